@@ -1,0 +1,15 @@
+#pragma once
+// Sub-command registration for the aggpack CLI. Each register_* adds one sub-command to the app
+// and sets its callback; callbacks throw aggpack::Error on bad input.
+
+#include <CLI/CLI.hpp>
+
+namespace aggpack::cli {
+
+void register_particle(CLI::App& app);
+void register_shapes(CLI::App& app);
+
+/// Limits the worker threads for the rest of the process (0 = all cores).
+void set_thread_count(int threads);
+
+}  // namespace aggpack::cli

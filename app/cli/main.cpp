@@ -1,0 +1,31 @@
+// aggpack: random aggregate generation, packing and export. See README.md for every command.
+
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "aggpack/core/error.h"
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"aggpack " AGGPACK_VERSION
+               ": irregular convex particles (random aggregate growth), packing and export.\n"
+               "Lengths are in metres unless an option says otherwise."};
+  app.set_version_flag("--version", "aggpack " AGGPACK_VERSION);
+  app.require_subcommand(1);
+  aggpack::cli::register_particle(app);
+  aggpack::cli::register_shapes(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  } catch (const aggpack::Error& error) {
+    std::fprintf(stderr, "aggpack: error: %s\n", error.what());
+    return error.kind() == aggpack::ErrorKind::kIoError ? 3 : 2;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "aggpack: internal error: %s\n", error.what());
+    return 4;
+  }
+  return 0;
+}

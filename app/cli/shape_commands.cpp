@@ -1,0 +1,184 @@
+// `aggpack particle` and `aggpack shapes`: make and measure particles (issue 2).
+
+#include <fmt/core.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#ifdef AGGPACK_HAS_TBB
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#endif
+
+#include "aggpack/core/atomic_file.h"
+#include "aggpack/core/error.h"
+#include "aggpack/io/stl.h"
+#include "aggpack/shape/descriptors.h"
+#include "aggpack/shape/generator.h"
+#include "commands.h"
+
+namespace aggpack::cli {
+
+namespace {
+
+struct ShapeFlags {
+  GeneratorOptions generator;
+  double radius = 0;  // --radius sets both ends of the range
+  int threads = 0;
+};
+
+void add_generator_options(CLI::App& command, ShapeFlags& flags) {
+  auto& g = flags.generator;
+  command.add_option("--alpha", g.alpha, "Eq. 3 shape control alpha, in [0, 1]")
+      ->capture_default_str();
+  command.add_option("-r,--radius", flags.radius,
+                     "control radius r (m), > 0; sets --radius-min and --radius-max");
+  command.add_option("--radius-min", g.radius_min, "smallest control radius (m), > 0")
+      ->capture_default_str();
+  command.add_option("--radius-max", g.radius_max, "largest control radius (m), >= radius-min")
+      ->capture_default_str();
+  command.add_option("-L,--edge-length", g.edge_length,
+                     "maximum edge length L (m), > 0: growth stops when every edge <= L")
+      ->capture_default_str();
+  command.add_option("--max-vertices", g.max_vertices, "vertex cap per particle, [6, 1000000]")
+      ->capture_default_str();
+  command.add_option("--seed", g.seed, "master seed; particle i uses stream (seed, i)")
+      ->capture_default_str();
+}
+
+void resolve_radius(ShapeFlags& flags, const CLI::App& command) {
+  if (command.count("--radius") > 0) {
+    if (command.count("--radius-min") > 0 || command.count("--radius-max") > 0) {
+      throw InvalidInput("--radius", format_value(flags.radius),
+                         "either --radius or --radius-min/--radius-max, not both");
+    }
+    flags.generator.radius_min = flags.radius;
+    flags.generator.radius_max = flags.radius;
+  }
+  validate(flags.generator);
+}
+
+void print_descriptors(const ShapeDescriptors& d, double control_radius) {
+  fmt::print("control radius       {:.6g} m\n", control_radius);
+  for (const auto& column : descriptor_columns()) {
+    fmt::print("{:<20} {:.6g} {}\n", column.name, column.get(d),
+               std::string(column.unit) == "-" ? "" : column.unit);
+  }
+}
+
+}  // namespace
+
+void set_thread_count(int threads) {
+  if (threads < 0) throw InvalidInput("--threads", std::to_string(threads), ">= 0 (0 = all cores)");
+#ifdef AGGPACK_HAS_TBB
+  static std::unique_ptr<tbb::global_control> control;
+  if (threads > 0) {
+    control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                    static_cast<std::size_t>(threads));
+  }
+#endif
+}
+
+void register_particle(CLI::App& app) {
+  auto flags = std::make_shared<ShapeFlags>();
+  auto output = std::make_shared<std::string>();
+  auto index = std::make_shared<std::uint64_t>(0);
+  auto is_ascii = std::make_shared<bool>(false);
+  auto is_forced = std::make_shared<bool>(false);
+  auto scale = std::make_shared<double>(1.0);
+  auto* command = app.add_subcommand(
+      "particle", "Generate one random aggregate particle, print its shape descriptors and "
+                  "optionally write it as STL.");
+  add_generator_options(*command, *flags);
+  command->add_option("--index", *index, "particle index within the seed's family")
+      ->capture_default_str();
+  command->add_option("-o,--output", *output, "STL file to write (omit to only measure)");
+  command->add_flag("--ascii", *is_ascii, "write ASCII STL instead of binary");
+  command->add_option("--scale", *scale, "multiply coordinates by this in the STL (1000 = mm)")
+      ->capture_default_str();
+  command->add_flag("-f,--force", *is_forced, "replace an existing output file");
+  command->callback([=, &app]() {
+    const auto* self = app.get_subcommand("particle");
+    resolve_radius(*flags, *self);
+    require_positive("--scale", *scale);
+    const Overwrite overwrite = *is_forced ? Overwrite::kAllow : Overwrite::kForbid;
+    if (!output->empty()) check_writable(*output, overwrite);
+    const GeneratedParticle particle = generate_particle(flags->generator, *index);
+    if (!output->empty()) {
+      write_stl(*output, {particle.body},
+                {.encoding = *is_ascii ? StlEncoding::kAscii : StlEncoding::kBinary,
+                 .scale = *scale,
+                 .solid_name = "particle",
+                 .overwrite = overwrite});
+      fmt::print("wrote {}\n", *output);
+    }
+    print_descriptors(describe(particle.body), particle.control_radius);
+  });
+}
+
+void register_shapes(CLI::App& app) {
+  auto flags = std::make_shared<ShapeFlags>();
+  auto output = std::make_shared<std::string>();
+  auto count = std::make_shared<std::uint64_t>(1000);
+  auto is_forced = std::make_shared<bool>(false);
+  auto* command = app.add_subcommand(
+      "shapes", "Generate N particles in parallel; write a CSV of their descriptors and print a "
+                "summary (mean, std, min, max).");
+  add_generator_options(*command, *flags);
+  command->add_option("-n,--count", *count, "number of particles, [1, 100000000]")
+      ->capture_default_str();
+  command->add_option("-o,--output", *output, "CSV file to write (omit to print the summary only)");
+  command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
+      ->capture_default_str();
+  command->add_flag("-f,--force", *is_forced, "replace an existing output file");
+  command->callback([=, &app]() {
+    const auto* self = app.get_subcommand("shapes");
+    resolve_radius(*flags, *self);
+    if (*count < 1 || *count > 100000000ULL) {
+      throw InvalidInput("--count", std::to_string(*count), "[1, 100000000]");
+    }
+    set_thread_count(flags->threads);
+    const Overwrite overwrite = *is_forced ? Overwrite::kAllow : Overwrite::kForbid;
+    if (!output->empty()) check_writable(*output, overwrite);
+
+    const auto n = static_cast<std::size_t>(*count);
+    std::vector<ShapeDescriptors> descriptors(n);
+    std::vector<double> radii(n);
+    auto make = [&](std::size_t i) {
+      const auto particle = generate_particle(flags->generator, i);
+      descriptors[i] = describe(particle.body);
+      radii[i] = particle.control_radius;
+    };
+#ifdef AGGPACK_HAS_TBB
+    tbb::parallel_for(std::size_t{0}, n, make);
+#else
+    for (std::size_t i = 0; i < n; ++i) make(i);
+#endif
+    const auto& columns = descriptor_columns();
+    if (!output->empty()) {
+      AtomicFile file(*output, overwrite, std::ios::out);
+      auto& out = file.stream();
+      out << "index,control_radius";
+      for (const auto& column : columns) out << ',' << column.name;
+      out << '\n';
+      for (std::size_t i = 0; i < n; ++i) {
+        out << i << ',' << fmt::format("{:.17g}", radii[i]);
+        for (const auto& column : columns) out << ',' << fmt::format("{:.17g}", column.get(descriptors[i]));
+        out << '\n';
+      }
+      file.commit();
+      fmt::print("wrote {} ({} particles)\n", *output, n);
+    }
+    fmt::print("{:<22}{:>14}{:>14}{:>14}{:>14}\n", "descriptor", "mean", "std", "min", "max");
+    for (const auto& column : columns) {
+      std::vector<double> values(n);
+      for (std::size_t i = 0; i < n; ++i) values[i] = column.get(descriptors[i]);
+      const auto s = summarize(values);
+      fmt::print("{:<22}{:>14.6g}{:>14.6g}{:>14.6g}{:>14.6g}\n", column.name, s.mean,
+                 s.standard_deviation, s.minimum, s.maximum);
+    }
+  });
+}
+
+}  // namespace aggpack::cli

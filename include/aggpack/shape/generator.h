@@ -1,0 +1,72 @@
+#pragma once
+// The paper's random aggregate generator (Section 2): a random octahedron whose six vertex
+// distances follow Eq. 3, grown on its longest edge until every edge is no longer than L.
+//
+// Eq. 3 as printed, d = alpha*r + 0.2*(1-alpha) + 0.8*(1-alpha)*r*U, is not dimensionally
+// consistent; we use the reading that agrees with it at r = 1 and scales with r:
+//     d = r * (alpha + (1 - alpha) * (0.2 + 0.8 * U)),  U uniform in [0, 1),
+// so d lies in [r * (alpha + 0.2 * (1 - alpha)), r]: alpha = 1 gives a regular octahedron,
+// alpha = 0 draws d anywhere in [0.2 r, r].
+
+#include <cstdint>
+#include <functional>
+
+#include "aggpack/core/rng.h"
+#include "aggpack/geom/convex_polyhedron.h"
+
+namespace aggpack {
+
+/// Controls of one growth run. Lengths in metres.
+struct GrowthParams {
+  double alpha = 0.5;                 ///< Eq. 3 shape control, in [0, 1]
+  double radius = 0.1;                ///< control radius r (m), > 0; every vertex lies within r
+  double edge_length = 0.1;           ///< L (m), > 0: growth stops when every edge <= L
+  std::uint32_t max_vertices = 20000; ///< cap on the vertex count, in [6, 10^6]
+};
+
+/// Optional limit on how far out a new vertex may be placed along a ray from the particle centre:
+/// given the unit direction and the feasible interval [s_lo, s_hi] (m), return the largest allowed
+/// s (>= s_lo). The lattice packer uses it for the paper's "contact check stops growth".
+using GrowthLimit = std::function<double(const Vec3& direction, double s_lo, double s_hi)>;
+
+/// Eq. 3 radius for control radius r, shape control alpha and uniform deviate u in [0, 1).
+double eq3_distance(double alpha, double radius, double u);
+
+/// Throws InvalidInput naming the field unless every parameter is in range, and LimitExceeded
+/// if the estimated vertex count for (radius, edge_length) exceeds max_vertices.
+void validate(const GrowthParams& params);
+
+/// Estimated vertex count of a grown particle: a sphere of radius r tiled by equilateral
+/// triangles of side L (an upper-range estimate; used to reject hopeless inputs up front).
+double estimated_vertex_count(double radius, double edge_length);
+
+/// Grows one particle centred at the origin, drawing every random number from `rng`.
+/// The result is convex, closed, outward CCW, has every edge <= L and every vertex within r.
+/// \throw InvalidInput, LimitExceeded (vertex cap reached).
+ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng,
+                                const GrowthLimit& limit = {});
+
+/// Controls of a family of particles (e.g. `aggpack shapes`).
+struct GeneratorOptions {
+  double alpha = 0.5;                 ///< Eq. 3 shape control, in [0, 1]
+  double radius_min = 0.1;            ///< smallest control radius (m), > 0
+  double radius_max = 0.1;            ///< largest control radius (m), >= radius_min
+  double edge_length = 0.1;           ///< L (m), > 0
+  std::uint32_t max_vertices = 20000; ///< vertex cap per particle
+  std::uint64_t seed = 1;             ///< master seed
+};
+
+/// Throws InvalidInput / LimitExceeded naming the field unless the options are usable.
+void validate(const GeneratorOptions& options);
+
+/// One generated particle with the control radius it was grown with.
+struct GeneratedParticle {
+  ConvexPolyhedron body;       ///< centred on its growth centre (the origin)
+  double control_radius = 0;   ///< m
+};
+
+/// Particle number `index` of the family: its radius (uniform in [radius_min, radius_max]) and
+/// shape come from the stream (seed, index) only, so any thread may generate it.
+GeneratedParticle generate_particle(const GeneratorOptions& options, std::uint64_t index);
+
+}  // namespace aggpack
