@@ -1,0 +1,62 @@
+#pragma once
+// Packing: the one central value (DESIGN.md). Container + particles (shape in a local frame with
+// its centroid at the origin, plus a pose) + provenance. Everything downstream of the packer takes
+// a `const Packing&` and nothing else.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "aggpack/geom/convex_polyhedron.h"
+
+namespace aggpack {
+
+enum class ContainerKind { kBox, kCylinder };
+
+/// The region particles are packed into. Lengths in metres.
+/// Box: [0, length] x [0, width] x [0, depth]  (x = length, y = width, z = depth, z up).
+/// Cylinder: axis along z through x = y = 0, radius `radius`, z in [0, height].
+struct Container {
+  ContainerKind kind = ContainerKind::kBox;
+  double length = 3.0;   ///< box x extent (m)
+  double width = 1.0;    ///< box y extent (m)
+  double depth = 2.8;    ///< box z extent (m)
+  double radius = 0.05;  ///< cylinder radius (m)
+  double height = 0.1;   ///< cylinder height (m)
+  double wall_gap = 0.0; ///< minimum distance from any particle to any wall (m), >= 0
+
+  /// Bounding box of the container.
+  [[nodiscard]] Aabb bounds() const;
+  /// Interior volume (m^3).
+  [[nodiscard]] double volume() const;
+};
+
+/// One placed particle.
+struct Particle {
+  std::uint32_t shape = 0;         ///< index into Packing::shapes
+  Pose pose;                       ///< world = rotation * local + position
+  double control_radius = 0.0;     ///< radius r the shape was grown with (m)
+  std::uint32_t size_class = 0;    ///< grading class index (0 when there is no grading)
+};
+
+/// Where a packing came from: enough to reproduce it.
+struct Provenance {
+  std::string aggpack_version = AGGPACK_VERSION;
+  std::string config_toml;  ///< the full, resolved configuration
+  std::uint64_t seed = 1;
+  std::string packer;       ///< "lattice", "random", "settled", ...
+};
+
+struct Packing {
+  Container container;
+  std::vector<ConvexPolyhedron> shapes;  ///< local frame, centroid at the origin
+  std::vector<Particle> particles;
+  Provenance provenance;
+
+  /// Particle i's polyhedron in world coordinates.
+  [[nodiscard]] ConvexPolyhedron placed(std::size_t i) const {
+    return shapes[particles[i].shape].transformed(particles[i].pose);
+  }
+};
+
+}  // namespace aggpack
