@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs every Debian bookworm package aggpack needs to build, test and run (as root).
+set -euo pipefail
+if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
+packages=(
+  # build
+  build-essential cmake ninja-build pkg-config git
+  # core + io libraries
+  libeigen3-dev libtbb-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
+  libhdf5-dev
+  # meshing, physics, rendering, GUI
+  libtet1.5-dev libbullet-dev libosmesa6-dev libegl-dev libgl-dev libglfw3-dev libimgui-dev
+  libstb-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev clang-format
+  # independent readers used by the tests, and tools used by commands
+  admesh calculix-ccx gmsh python3 python3-meshio python3-vtk9 python3-h5py python3-numpy
+  xvfb xauth gnuplot-nox
+)
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends "${packages[@]}"
