@@ -32,11 +32,15 @@ struct Container {
 };
 
 /// One placed particle.
+/// world = pose.rotation * (scale * local) + pose.position. `scale` is 1 unless the shape comes
+/// from a shape library (RandomPackOptions::shape.library_size > 0), where one unit-size shape is
+/// reused at many sizes. Always go through Packing::placed() (or apply the scale yourself).
 struct Particle {
   std::uint32_t shape = 0;         ///< index into Packing::shapes
-  Pose pose;                       ///< world = rotation * local + position
-  double control_radius = 0.0;     ///< radius r the shape was grown with (m)
+  Pose pose;                       ///< world = rotation * (scale * local) + position
+  double control_radius = 0.0;     ///< radius r the shape was grown with, after scaling (m)
   std::uint32_t size_class = 0;    ///< grading class index (0 when there is no grading)
+  double scale = 1.0;              ///< uniform scale of the stored shape, > 0 (1 = as stored)
 };
 
 /// Where a packing came from: enough to reproduce it.
@@ -53,9 +57,18 @@ struct Packing {
   std::vector<Particle> particles;
   Provenance provenance;
 
-  /// Particle i's polyhedron in world coordinates.
+  /// Particle i's polyhedron in world coordinates (scale, then rotation, then translation).
   [[nodiscard]] ConvexPolyhedron placed(std::size_t i) const {
-    return shapes[particles[i].shape].transformed(particles[i].pose);
+    const Particle& particle = particles[i];
+    if (particle.scale == 1.0) return shapes[particle.shape].transformed(particle.pose);
+    return shapes[particle.shape].scaled(particle.scale).transformed(particle.pose);
+  }
+
+  /// Particle i's polyhedron in its local frame at its true size (scale applied, no pose).
+  [[nodiscard]] ConvexPolyhedron local_body(std::size_t i) const {
+    const Particle& particle = particles[i];
+    if (particle.scale == 1.0) return shapes[particle.shape];
+    return shapes[particle.shape].scaled(particle.scale);
   }
 };
 

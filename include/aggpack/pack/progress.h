@@ -1,0 +1,70 @@
+#pragma once
+// What every packer reports, and how callers follow progress and cancel a long run.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "aggpack/pack/packing.h"
+
+namespace aggpack {
+
+/// A progress snapshot, passed to PackControl::on_progress.
+struct PackProgress {
+  double fraction = 0.0;        ///< fraction of the work done, [0, 1] (toward the target)
+  std::uint64_t placed = 0;     ///< particles placed so far
+  std::uint64_t attempted = 0;  ///< particles tried so far (placed + rejected)
+  std::uint64_t total = 0;      ///< particles in the run's size list
+  double solid_fraction = 0.0;  ///< solid volume placed / container volume so far
+};
+
+/// Progress callback. Called from the packing thread, at most every `progress_interval` seconds
+/// and once at the end; keep it cheap. It must not throw.
+using ProgressCallback = std::function<void(const PackProgress&)>;
+
+/// How the caller follows and stops a run. All members optional.
+struct PackControl {
+  ProgressCallback on_progress;                 ///< progress callback, or empty
+  double progress_interval = 0.1;               ///< seconds between callbacks, >= 0
+  const std::atomic<bool>* cancel = nullptr;    ///< set to true to stop; the packer returns
+                                                ///< what it placed with StopReason::kCancelled
+};
+
+/// Why a packer stopped.
+enum class StopReason {
+  kTargetReached,        ///< the count / volume-fraction target was reached (lattice: all sites)
+  kAttemptBudget,        ///< max_total_attempts used up before the target
+  kConsecutiveFailures,  ///< max_consecutive_failures particles in a row could not be placed
+  kSizeListExhausted,    ///< every particle of the size list was tried; some could not be placed
+  kCancelled             ///< PackControl::cancel was set
+};
+
+/// "target reached", "attempt budget exhausted", ...
+std::string to_string(StopReason reason);
+
+/// What a packer did. Counts are exact; times are wall-clock and not reproducible.
+struct PackReport {
+  StopReason stop_reason = StopReason::kTargetReached;
+  bool is_target_reached = false;
+  std::uint64_t placed = 0;            ///< particles in the packing
+  std::uint64_t requested = 0;         ///< particles in the size list / lattice sites
+  std::uint64_t rejected = 0;          ///< particles that used up their attempts and were skipped
+  std::uint64_t attempts = 0;          ///< placement attempts used (candidate poses tested)
+  double solid_volume = 0.0;           ///< sum of exact particle volumes (m^3)
+  double container_volume = 0.0;       ///< m^3
+  double solid_fraction = 0.0;         ///< solid_volume / container_volume
+  double target_solid_fraction = 0.0;  ///< random packer by fraction; 0 otherwise
+  double shape_seconds = 0.0;          ///< wall time generating shapes (s)
+  double placement_seconds = 0.0;      ///< wall time placing them (s)
+  /// One line: "placed 1050 of 1050 particles, solid 0.84 m^3 (10.0 %), target reached".
+  [[nodiscard]] std::string summary() const;
+};
+
+/// A packing and the report of how it was made.
+struct PackResult {
+  Packing packing;
+  PackReport report;
+};
+
+}  // namespace aggpack
