@@ -1,0 +1,15 @@
+# TetGen (Debian libtet1.5-dev) for quality tetrahedral meshes (src/mesh/tetgen.cpp). Optional:
+# without it the core library still builds and the centroid fan is the only mesher.
+option(AGGPACK_WITH_TETGEN "Use TetGen for quality tetrahedral meshes when it is found" ON)
+if(AGGPACK_WITH_TETGEN)
+  find_path(TETGEN_INCLUDE_DIR tetgen.h)
+  find_library(TETGEN_LIBRARY NAMES tet tetgen)
+  if(TETGEN_INCLUDE_DIR AND TETGEN_LIBRARY)
+    message(STATUS "TetGen: ${TETGEN_LIBRARY}")
+    target_include_directories(aggpack_core SYSTEM PRIVATE ${TETGEN_INCLUDE_DIR})
+    target_link_libraries(aggpack_core PRIVATE ${TETGEN_LIBRARY})
+    target_compile_definitions(aggpack_core PUBLIC AGGPACK_HAS_TETGEN=1)
+  else()
+    message(STATUS "TetGen not found (apt-get install libtet1.5-dev): centroid-fan meshing only")
+  endif()
+endif()

@@ -1,0 +1,117 @@
+#pragma once
+// Tetrahedral meshes of one convex particle: the paper's centroid fan (Section 4: "the centre
+// joined to every surface triangle") and a quality mesh through TetGen (Debian libtet1.5-dev).
+//
+// Conventions shared by every exporter:
+//  - Indices are 0-based here; writers add 1 for formats that count from 1.
+//  - A tetrahedron (n0, n1, n2, n3) is positively oriented: det[n1-n0, n2-n0, n3-n0] > 0, i.e.
+//    n0 -> n1 -> n2 is counter-clockwise seen from n3. This is the orientation Abaqus (C3D4),
+//    CalculiX, VTK (VTK_TETRA), Gmsh (type 4) and LS-DYNA expect.
+//  - Face k of a tetrahedron uses the local nodes kTetraFaces[k], the Abaqus/CalculiX face
+//    numbering S1..S4 (S1 = 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1); in a positive
+//    tetrahedron each face is counter-clockwise seen from the opposite node (its right-hand
+//    normal points into the tetrahedron), so a surface triangle appears reversed in its face.
+//  - The body's surface vertices come first, in the body's order, so node i < vertex_count is
+//    vertex i of the ConvexPolyhedron; interior (and, for TetGen, no other) nodes follow.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "aggpack/geom/convex_polyhedron.h"
+
+namespace aggpack {
+
+/// Local node numbers of the four faces of a tetrahedron (Abaqus S1..S4), each inward CCW.
+inline constexpr std::array<std::array<int, 3>, 4> kTetraFaces = {
+    {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}}};
+
+/// Node pairs of the six edges of a tetrahedron, in the order of the C3D10 / VTK_QUADRATIC_TETRA
+/// mid-side nodes 5..10: (1,2), (2,3), (3,1), (1,4), (2,4), (3,4) (1-based).
+inline constexpr std::array<std::array<int, 2>, 6> kTetraEdges = {
+    {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}}};
+
+/// A tetrahedral mesh of one body. Lengths in the body's units (metres).
+struct TetMesh {
+  std::vector<Vec3> nodes;
+  std::vector<std::array<std::uint32_t, 4>> tetrahedra;  ///< positively oriented
+  /// Per tetrahedron: bit k set when face k (kTetraFaces[k]) lies on the body's surface.
+  std::vector<std::uint8_t> boundary_faces;
+};
+
+/// A 10-node (quadratic) tetrahedral mesh: corner nodes as in TetMesh, then one node at the
+/// middle of every edge. Element node order is the Abaqus C3D10 / VTK_QUADRATIC_TETRA order:
+/// 4 corners, then the mid-side nodes of kTetraEdges.
+struct QuadraticTetMesh {
+  std::vector<Vec3> nodes;
+  std::vector<std::array<std::uint32_t, 10>> tetrahedra;
+  std::vector<std::uint8_t> boundary_faces;  ///< as in TetMesh
+};
+
+enum class TetMethod {
+  kCentroidFan,  ///< the paper's: the centroid joined to every surface triangle (exact volume)
+  kTetGen        ///< TetGen quality mesh, surface triangles kept (switch -Y)
+};
+
+/// How to cut a particle into tetrahedra.
+struct TetOptions {
+  TetMethod method = TetMethod::kCentroidFan;
+  /// TetGen only: largest tetrahedron volume (m^3, in the body's units), 0 = no bound (>= 0).
+  double max_volume = 0.0;
+  /// TetGen only: bound on the radius-edge ratio (circumradius / shortest edge) of every
+  /// tetrahedron, TetGen's -q. In [1.2, 10]; smaller = better shaped, more tetrahedra. The value
+  /// is passed to TetGen as an upper bound; TetGen may leave a few slivers at the surface because
+  /// the surface triangles are kept.
+  double radius_edge_ratio = 2.0;
+  /// TetGen only: keep the surface triangles exactly as they are (TetGen's -Y): the mesh's
+  /// surface matches the STL node for node and the volume is exact, but the bounds above then
+  /// hold only where TetGen can meet them without splitting a surface triangle. When false,
+  /// TetGen adds nodes on the surface too and meets the bounds everywhere, but it treats nearly
+  /// coplanar neighbouring faces as one, so the surface moves slightly (volume within ~1e-5
+  /// relative).
+  bool is_surface_kept = true;
+};
+
+/// Throws InvalidInput naming the field unless the options are usable.
+void validate(const TetOptions& options);
+
+/// Signed volume of the tetrahedron (a, b, c, d): det[b-a, c-a, d-a] / 6, positive when it is
+/// positively oriented (see the conventions above). m^3.
+double tetra_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+/// The paper's fan: node V (after the V surface vertices) is the body's centroid, and every
+/// surface triangle (a, b, c) gives the tetrahedron (a, c, b, centroid), whose face S1 is the
+/// surface triangle. F tetrahedra, V + 1 nodes; their volumes sum to the body's volume exactly
+/// (up to rounding). Precondition: a convex body with positive volume (the centroid is inside).
+/// \throw InvalidInput if the body is empty or has no positive volume.
+TetMesh centroid_fan(const ConvexPolyhedron& body);
+
+/// A TetGen quality mesh of the body (switches p, q, a and, with is_surface_kept, Y). The body's
+/// vertices stay the first nodes in their order; TetGen adds Steiner nodes inside (and, unless
+/// is_surface_kept, on the flat surface faces) to meet `max_volume` and `radius_edge_ratio`.
+/// \throw InvalidInput (options), LimitExceeded (TetGen failed on this input, with its code).
+TetMesh tetgen_mesh(const ConvexPolyhedron& body, const TetOptions& options);
+
+/// Dispatches on options.method. \throw as centroid_fan / tetgen_mesh.
+TetMesh tetrahedralize(const ConvexPolyhedron& body, const TetOptions& options = {});
+
+/// Adds a node at the middle of every edge (shared between neighbouring tetrahedra) and returns
+/// 10-node tetrahedra. Straight-sided: mid-side nodes sit on the straight edges, so the volume is
+/// unchanged.
+QuadraticTetMesh make_quadratic(const TetMesh& mesh);
+
+/// Sum of the signed tetrahedron volumes (m^3).
+double mesh_volume(const TetMesh& mesh);
+
+/// Smallest signed tetrahedron volume (m^3); > 0 when every tetrahedron is positively oriented.
+double min_tetra_volume(const TetMesh& mesh);
+
+/// Number of nodes, tetrahedra and unique edges of a mesh (used to size exports up front).
+struct TetMeshCounts {
+  std::size_t nodes = 0;
+  std::size_t tetrahedra = 0;
+  std::size_t edges = 0;
+};
+TetMeshCounts count(const TetMesh& mesh);
+
+}  // namespace aggpack
