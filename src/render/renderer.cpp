@@ -1,0 +1,644 @@
+// OpenGL 3.3 core drawing of a Packing. See renderer.h for the approach; comments here say why.
+
+#include "aggpack/render/renderer.h"
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "aggpack/core/error.h"
+
+namespace aggpack {
+
+namespace {
+
+// One particle (for shapes used once: its index) or 0 (instanced shapes: the particle index
+// comes from the per-instance attribute). The shader adds both, so one program serves both paths.
+struct GpuVertex {
+  float x, y, z;
+  std::uint32_t particle;
+};
+
+// Where a shape's data lives in the shared vertex and index buffers.
+struct ShapeRange {
+  GLint base_vertex = 0;
+  GLuint full_offset = 0;  // first index (not bytes)
+  GLsizei full_count = 0;
+  GLuint coarse_offset = 0;
+  GLsizei coarse_count = 0;
+  std::uint32_t instances = 0;
+  double radius = 0.0;  // largest vertex distance from the local origin (m, before scale)
+};
+
+constexpr const char* kParticleVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in uint a_particle;
+layout(location = 2) in uint a_instance;
+uniform samplerBuffer u_transforms;  // three texels per particle: rows of [scale * R | t]
+uniform samplerBuffer u_colors;      // one normalised RGBA8 texel per particle
+uniform mat4 u_view;
+uniform mat4 u_projection;
+out vec3 v_view_position;
+flat out vec3 v_color;
+void main() {
+  int id = int(a_particle + a_instance);
+  vec4 p = vec4(a_position, 1.0);
+  vec3 world = vec3(dot(texelFetch(u_transforms, 3 * id), p),
+                    dot(texelFetch(u_transforms, 3 * id + 1), p),
+                    dot(texelFetch(u_transforms, 3 * id + 2), p));
+  vec4 view = u_view * vec4(world, 1.0);
+  v_view_position = view.xyz;
+  v_color = texelFetch(u_colors, id).rgb;
+  gl_Position = u_projection * view;
+}
+)";
+
+// Flat facet normal from screen-space derivatives of the view position: exact per triangle
+// (position is linear across a triangle) and needs no per-face vertices. Two lights fixed to the
+// camera (key from the upper left, weaker fill from the lower right) plus ambient, and a small
+// specular term so neighbouring facets of similar orientation still read as separate.
+constexpr const char* kParticleFragmentShader = R"(#version 330 core
+in vec3 v_view_position;
+flat in vec3 v_color;
+uniform int u_lit;
+out vec4 fragment;
+void main() {
+  vec3 color = v_color;
+  if (u_lit != 0) {
+    vec3 n = normalize(cross(dFdx(v_view_position), dFdy(v_view_position)));
+    vec3 key = normalize(vec3(-0.45, 0.6, 0.65));
+    vec3 fill = normalize(vec3(0.55, -0.35, 0.55));
+    float diffuse = 0.28 + 0.62 * max(dot(n, key), 0.0) + 0.22 * max(dot(n, fill), 0.0);
+    vec3 half_vector = normalize(key + vec3(0.0, 0.0, 1.0));
+    float specular = 0.22 * pow(max(dot(n, half_vector), 0.0), 32.0);
+    color = color * diffuse + vec3(specular);
+  }
+  fragment = vec4(color, 1.0);
+}
+)";
+
+constexpr const char* kLineVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_view_projection;
+void main() { gl_Position = u_view_projection * vec4(a_position, 1.0); }
+)";
+
+constexpr const char* kLineFragmentShader = R"(#version 330 core
+uniform vec3 u_color;
+out vec4 fragment;
+void main() { fragment = vec4(u_color, 1.0); }
+)";
+
+[[noreturn]] void throw_gl(const std::string& message) {
+  throw IoError("OpenGL: " + message);
+}
+
+GLuint compile_shader(GLenum type, const char* source) {
+  const GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint is_compiled = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &is_compiled);
+  if (is_compiled == 0) {
+    std::array<char, 2048> log{};
+    glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    glDeleteShader(shader);
+    throw_gl(std::string("shader compilation failed: ") + log.data());
+  }
+  return shader;
+}
+
+GLuint link_program(const char* vertex_source, const char* fragment_source) {
+  const GLuint vertex = compile_shader(GL_VERTEX_SHADER, vertex_source);
+  const GLuint fragment = compile_shader(GL_FRAGMENT_SHADER, fragment_source);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vertex);
+  glAttachShader(program, fragment);
+  glLinkProgram(program);
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  GLint is_linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &is_linked);
+  if (is_linked == 0) {
+    std::array<char, 2048> log{};
+    glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    glDeleteProgram(program);
+    throw_gl(std::string("shader link failed: ") + log.data());
+  }
+  return program;
+}
+
+// The coarse level of detail: the shape's support vertices in the 6 axis and 8 diagonal
+// directions, joined like a tetrakis hexahedron (each octant: its diagonal vertex fanned to the
+// three axis vertices around it; 14 vertices, 24 triangles, closed). It reuses the shape's own
+// vertices, so only indices are added. Orientation is fixed from the ideal directions, so the
+// triangles face outward whenever the support points are in general position; coincident
+// support points only give zero-area triangles.
+std::vector<std::uint32_t> coarse_indices(const ConvexPolyhedron& shape) {
+  const auto& vertices = shape.vertices();
+  auto support = [&](const Vec3& direction) {
+    std::uint32_t best = 0;
+    double best_value = -std::numeric_limits<double>::infinity();
+    for (std::uint32_t v = 0; v < vertices.size(); ++v) {
+      const double value = vertices[v].dot(direction);
+      if (value > best_value) {
+        best_value = value;
+        best = v;
+      }
+    }
+    return best;
+  };
+  std::vector<std::uint32_t> indices;
+  indices.reserve(72);
+  for (int octant = 0; octant < 8; ++octant) {
+    const Vec3 sign((octant & 1) ? -1.0 : 1.0, (octant & 2) ? -1.0 : 1.0,
+                    (octant & 4) ? -1.0 : 1.0);
+    const Vec3 diagonal_direction = sign;
+    const std::array<Vec3, 3> axis_directions = {Vec3(sign.x(), 0, 0), Vec3(0, sign.y(), 0),
+                                                 Vec3(0, 0, sign.z())};
+    const std::uint32_t diagonal = support(diagonal_direction);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& a = axis_directions[static_cast<std::size_t>(k)];
+      const Vec3& b = axis_directions[static_cast<std::size_t>((k + 1) % 3)];
+      const bool is_outward =
+          (a - diagonal_direction).cross(b - diagonal_direction).dot(diagonal_direction) > 0.0;
+      const std::uint32_t va = support(a);
+      const std::uint32_t vb = support(b);
+      indices.push_back(diagonal);
+      indices.push_back(is_outward ? va : vb);
+      indices.push_back(is_outward ? vb : va);
+    }
+  }
+  return indices;
+}
+
+}  // namespace
+
+struct PackingRenderer::State {
+  GLuint particle_program = 0;
+  GLint u_transforms = -1, u_colors = -1, u_view = -1, u_projection = -1, u_lit = -1;
+  GLuint line_program = 0;
+  GLint u_view_projection = -1, u_line_color = -1;
+
+  GLuint vertex_array = 0;
+  GLuint vertex_buffer = 0;
+  GLuint index_buffer = 0;
+  GLuint instance_buffer = 0;
+  GLuint transform_buffer = 0, transform_texture = 0;
+  GLuint color_buffer = 0, color_texture = 0;
+  GLuint line_array = 0, line_buffer = 0;
+  GLsizei line_vertex_count = 0;
+
+  std::vector<ShapeRange> shapes;
+  std::vector<std::uint32_t> instanced_shapes;  // shapes drawn instanced (>= 2 particles)
+  std::vector<std::uint32_t> particle_shape;
+  std::vector<float> particle_sphere;  // x, y, z, radius per particle (world, m)
+  std::array<ParticleColors, 3> colors;
+  int uploaded_color = -1;  // ColorMode whose colours are in color_buffer, -1 = none
+  Aabb bounds;
+
+  // Per-frame scratch, kept to avoid reallocating.
+  std::vector<std::uint32_t> instance_list;
+  std::vector<std::uint32_t> group_counts;
+  std::vector<GLsizei> single_counts;
+  std::vector<const void*> single_offsets;
+  std::vector<GLint> single_base_vertices;
+
+  void upload_colors(ColorMode mode) {
+    const auto& source = colors[static_cast<std::size_t>(mode)].colors;
+    std::vector<std::uint8_t> texels(std::max<std::size_t>(source.size(), 1) * 4, 255);
+    for (std::size_t i = 0; i < source.size(); ++i) {
+      texels[4 * i] = source[i].r;
+      texels[4 * i + 1] = source[i].g;
+      texels[4 * i + 2] = source[i].b;
+    }
+    glBindBuffer(GL_TEXTURE_BUFFER, color_buffer);
+    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(texels.size()), texels.data(),
+                 GL_STATIC_DRAW);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    uploaded_color = static_cast<int>(mode);
+  }
+};
+
+PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major < 3 || (major == 3 && minor < 3)) {
+    const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    throw_gl(std::string("need a 3.3 core context, have ") + (version ? version : "none"));
+  }
+  State& s = *state_;
+  s.particle_program = link_program(kParticleVertexShader, kParticleFragmentShader);
+  s.u_transforms = glGetUniformLocation(s.particle_program, "u_transforms");
+  s.u_colors = glGetUniformLocation(s.particle_program, "u_colors");
+  s.u_view = glGetUniformLocation(s.particle_program, "u_view");
+  s.u_projection = glGetUniformLocation(s.particle_program, "u_projection");
+  s.u_lit = glGetUniformLocation(s.particle_program, "u_lit");
+  s.line_program = link_program(kLineVertexShader, kLineFragmentShader);
+  s.u_view_projection = glGetUniformLocation(s.line_program, "u_view_projection");
+  s.u_line_color = glGetUniformLocation(s.line_program, "u_color");
+
+  glGenVertexArrays(1, &s.vertex_array);
+  glGenBuffers(1, &s.vertex_buffer);
+  glGenBuffers(1, &s.index_buffer);
+  glGenBuffers(1, &s.instance_buffer);
+  glGenBuffers(1, &s.transform_buffer);
+  glGenBuffers(1, &s.color_buffer);
+  glGenTextures(1, &s.transform_texture);
+  glGenTextures(1, &s.color_texture);
+  glGenVertexArrays(1, &s.line_array);
+  glGenBuffers(1, &s.line_buffer);
+
+  glBindVertexArray(s.vertex_array);
+  glBindBuffer(GL_ARRAY_BUFFER, s.vertex_buffer);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(GpuVertex), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(GpuVertex),
+                         reinterpret_cast<const void*>(offsetof(GpuVertex, particle)));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.index_buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, s.instance_buffer);
+  const std::uint32_t zero = 0;
+  glBufferData(GL_ARRAY_BUFFER, sizeof(zero), &zero, GL_STREAM_DRAW);
+  glEnableVertexAttribArray(2);
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  glVertexAttribDivisor(2, 1);
+  glBindVertexArray(0);
+
+  glBindVertexArray(s.line_array);
+  glBindBuffer(GL_ARRAY_BUFFER, s.line_buffer);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  // Empty texel stores so the samplers are valid before the first packing; nothing to draw yet.
+  set_packing(Packing{});
+  s.line_vertex_count = 0;
+  s.bounds = Aabb{};
+}
+
+PackingRenderer::~PackingRenderer() {
+  State& s = *state_;
+  glDeleteProgram(s.particle_program);
+  glDeleteProgram(s.line_program);
+  const std::array<GLuint, 7> buffers = {s.vertex_buffer,    s.index_buffer, s.instance_buffer,
+                                         s.transform_buffer, s.color_buffer, s.line_buffer, 0};
+  glDeleteBuffers(6, buffers.data());
+  const std::array<GLuint, 2> textures = {s.transform_texture, s.color_texture};
+  glDeleteTextures(2, textures.data());
+  const std::array<GLuint, 2> arrays = {s.vertex_array, s.line_array};
+  glDeleteVertexArrays(2, arrays.data());
+}
+
+void PackingRenderer::set_packing(const Packing& packing) {
+  State& s = *state_;
+  const std::size_t particle_count = packing.particles.size();
+  for (std::size_t i = 0; i < particle_count; ++i) {
+    if (packing.particles[i].shape >= packing.shapes.size()) {
+      throw InvalidInput("particles[" + std::to_string(i) + "].shape",
+                         std::to_string(packing.particles[i].shape),
+                         "[0, " + std::to_string(packing.shapes.size()) + ")");
+    }
+  }
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  if (3.0 * static_cast<double>(particle_count) > static_cast<double>(max_texels)) {
+    throw LimitExceeded("particle count", std::to_string(particle_count),
+                        "<= " + std::to_string(max_texels / 3) + " for this OpenGL driver");
+  }
+
+  // Which shapes are used, and how often: a shape used once carries its particle index in its
+  // vertices and joins one multi-draw; a shape used more often is drawn instanced.
+  s.shapes.assign(packing.shapes.size(), ShapeRange{});
+  for (const auto& particle : packing.particles) ++s.shapes[particle.shape].instances;
+  std::vector<std::uint32_t> single_owner(packing.shapes.size(), 0);
+  for (std::size_t i = 0; i < particle_count; ++i) {
+    single_owner[packing.particles[i].shape] = static_cast<std::uint32_t>(i);
+  }
+
+  std::vector<GpuVertex> vertices;
+  std::vector<std::uint32_t> indices;
+  s.instanced_shapes.clear();
+  for (std::size_t shape_index = 0; shape_index < packing.shapes.size(); ++shape_index) {
+    ShapeRange& range = s.shapes[shape_index];
+    const ConvexPolyhedron& shape = packing.shapes[shape_index];
+    for (const Vec3& v : shape.vertices()) range.radius = std::max(range.radius, v.norm());
+    if (range.instances == 0 || shape.is_empty()) continue;
+    if (range.instances >= 2) s.instanced_shapes.push_back(static_cast<std::uint32_t>(shape_index));
+    const std::uint32_t particle = range.instances == 1 ? single_owner[shape_index] : 0;
+    range.base_vertex = static_cast<GLint>(vertices.size());
+    for (const Vec3& v : shape.vertices()) {
+      vertices.push_back({static_cast<float>(v.x()), static_cast<float>(v.y()),
+                          static_cast<float>(v.z()), particle});
+    }
+    range.full_offset = static_cast<GLuint>(indices.size());
+    for (const Triangle& t : shape.triangles()) indices.insert(indices.end(), t.begin(), t.end());
+    range.full_count = static_cast<GLsizei>(indices.size() - range.full_offset);
+    range.coarse_offset = static_cast<GLuint>(indices.size());
+    if (shape.triangle_count() > 24) {
+      const auto coarse = coarse_indices(shape);
+      indices.insert(indices.end(), coarse.begin(), coarse.end());
+      range.coarse_count = static_cast<GLsizei>(coarse.size());
+    } else {
+      // Already as coarse as the coarse level: reuse the full mesh.
+      range.coarse_offset = range.full_offset;
+      range.coarse_count = range.full_count;
+    }
+  }
+
+  // Transforms: rows of [scale * R | t] (float is ample: 1e-7 relative to the scene size).
+  std::vector<float> transforms(std::max<std::size_t>(particle_count, 1) * 12, 0.0f);
+  s.particle_shape.resize(particle_count);
+  s.particle_sphere.resize(particle_count * 4);
+  s.bounds = Aabb{};
+  const Aabb container_bounds = packing.container.bounds();
+  if (!container_bounds.is_empty()) {
+    s.bounds.expand(container_bounds.lower);
+    s.bounds.expand(container_bounds.upper);
+  }
+  for (std::size_t i = 0; i < particle_count; ++i) {
+    const Particle& particle = packing.particles[i];
+    const Mat3 linear = particle.pose.rotation.normalized().toRotationMatrix() * particle.scale;
+    const Vec3& t = particle.pose.position;
+    for (int row = 0; row < 3; ++row) {
+      for (int column = 0; column < 3; ++column) {
+        transforms[12 * i + 4 * static_cast<std::size_t>(row) + static_cast<std::size_t>(column)] =
+            static_cast<float>(linear(row, column));
+      }
+      transforms[12 * i + 4 * static_cast<std::size_t>(row) + 3] = static_cast<float>(t[row]);
+    }
+    const double radius = s.shapes[particle.shape].radius * particle.scale;
+    s.particle_shape[i] = particle.shape;
+    s.particle_sphere[4 * i] = static_cast<float>(t.x());
+    s.particle_sphere[4 * i + 1] = static_cast<float>(t.y());
+    s.particle_sphere[4 * i + 2] = static_cast<float>(t.z());
+    s.particle_sphere[4 * i + 3] = static_cast<float>(radius);
+    s.bounds.expand(t - Vec3::Constant(radius));
+    s.bounds.expand(t + Vec3::Constant(radius));
+  }
+
+  glBindBuffer(GL_ARRAY_BUFFER, s.vertex_buffer);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(GpuVertex)),
+               vertices.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindVertexArray(s.vertex_array);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+               static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
+               GL_STATIC_DRAW);
+  glBindVertexArray(0);
+
+  glBindBuffer(GL_TEXTURE_BUFFER, s.transform_buffer);
+  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(transforms.size() * sizeof(float)),
+               transforms.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  glBindTexture(GL_TEXTURE_BUFFER, s.transform_texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, s.transform_buffer);
+  glBindTexture(GL_TEXTURE_BUFFER, s.color_texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, s.color_buffer);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+
+  const ShapeMeasures measures = measure_shapes(packing);
+  for (ColorMode mode : {ColorMode::kParticle, ColorMode::kSize, ColorMode::kAlpha}) {
+    s.colors[static_cast<std::size_t>(mode)] = particle_colors(packing, measures, mode);
+  }
+  s.upload_colors(ColorMode::kParticle);
+
+  // Container outline as line segments.
+  std::vector<float> lines;
+  auto add_segment = [&lines](const Vec3& a, const Vec3& b) {
+    for (const Vec3* p : {&a, &b}) {
+      lines.push_back(static_cast<float>(p->x()));
+      lines.push_back(static_cast<float>(p->y()));
+      lines.push_back(static_cast<float>(p->z()));
+    }
+  };
+  const Container& container = packing.container;
+  if (container.kind == ContainerKind::kCylinder) {
+    constexpr int kSegments = 96;
+    for (int k = 0; k < kSegments; ++k) {
+      const double a0 = 2.0 * M_PI * k / kSegments, a1 = 2.0 * M_PI * (k + 1) / kSegments;
+      for (double z : {0.0, container.height}) {
+        add_segment(Vec3(container.radius * std::cos(a0), container.radius * std::sin(a0), z),
+                    Vec3(container.radius * std::cos(a1), container.radius * std::sin(a1), z));
+      }
+      if (k % (kSegments / 4) == 0) {
+        add_segment(Vec3(container.radius * std::cos(a0), container.radius * std::sin(a0), 0.0),
+                    Vec3(container.radius * std::cos(a0), container.radius * std::sin(a0),
+                         container.height));
+      }
+    }
+  } else {
+    const Aabb box = container.bounds();
+    if (!box.is_empty()) {
+      auto corner = [&box](int c) {
+        return Vec3((c & 1) ? box.upper.x() : box.lower.x(), (c & 2) ? box.upper.y() : box.lower.y(),
+                    (c & 4) ? box.upper.z() : box.lower.z());
+      };
+      for (int c = 0; c < 8; ++c) {
+        for (int bit : {1, 2, 4}) {
+          if ((c & bit) == 0) add_segment(corner(c), corner(c | bit));
+        }
+      }
+    }
+  }
+  s.line_vertex_count = static_cast<GLsizei>(lines.size() / 3);
+  glBindBuffer(GL_ARRAY_BUFFER, s.line_buffer);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(lines.size() * sizeof(float)),
+               lines.data(), GL_STATIC_DRAW);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+}
+
+DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
+                                const RenderStyle& style) {
+  State& s = *state_;
+  DrawStats stats;
+  width = std::max(width, 1);
+  height = std::max(height, 1);
+  if (s.uploaded_color != static_cast<int>(style.color)) s.upload_colors(style.color);
+
+  const Eigen::Matrix4f view = camera.view_matrix();
+  const Eigen::Matrix4f projection =
+      camera.projection_matrix(static_cast<double>(width) / static_cast<double>(height));
+  const Eigen::Matrix4f view_projection = projection * view;
+
+  glViewport(0, 0, width, height);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_BLEND);
+  glClearColor(style.background.r / 255.0f, style.background.g / 255.0f,
+               style.background.b / 255.0f, 1.0f);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+
+  // Visibility and level of detail per particle. Frustum planes from the combined matrix
+  // (Gribb-Hartmann); a particle is kept unless its bounding sphere is wholly outside a plane.
+  std::array<Eigen::Vector4f, 6> planes;
+  for (int k = 0; k < 3; ++k) {
+    planes[static_cast<std::size_t>(2 * k)] = view_projection.row(3) + view_projection.row(k);
+    planes[static_cast<std::size_t>(2 * k + 1)] = view_projection.row(3) - view_projection.row(k);
+  }
+  for (auto& plane : planes) plane /= plane.head<3>().norm();
+  const Eigen::Vector4f depth_row = -view.row(2);
+  const double pixel_scale = camera.pixels_per_metre(1.0, height);
+  const bool is_orthographic = camera.is_orthographic();
+
+  const std::size_t particle_count = s.particle_shape.size();
+  const std::size_t shape_count = s.shapes.size();
+  // Group keys: 2 * shape + (coarse ? 1 : 0) for instanced shapes.
+  s.group_counts.assign(2 * shape_count, 0);
+  s.single_counts.clear();
+  s.single_offsets.clear();
+  s.single_base_vertices.clear();
+  std::vector<std::uint8_t> is_coarse(particle_count, 0);
+  std::vector<std::uint8_t> is_visible(particle_count, 0);
+  for (std::size_t i = 0; i < particle_count; ++i) {
+    const Eigen::Vector4f centre(s.particle_sphere[4 * i], s.particle_sphere[4 * i + 1],
+                                 s.particle_sphere[4 * i + 2], 1.0f);
+    const float radius = s.particle_sphere[4 * i + 3];
+    bool is_inside = true;
+    for (const auto& plane : planes) {
+      if (plane.dot(centre) < -radius) {
+        is_inside = false;
+        break;
+      }
+    }
+    if (!is_inside) continue;
+    is_visible[i] = 1;
+    ++stats.particles_drawn;
+    const double depth = depth_row.dot(centre);
+    if (style.coarse_below_pixels > 0.0 && (is_orthographic || depth > radius)) {
+      const double pixels = 2.0 * radius * pixel_scale / (is_orthographic ? 1.0 : depth);
+      if (pixels < style.coarse_below_pixels) is_coarse[i] = 1;
+    }
+    stats.coarse_particles += is_coarse[i];
+    const std::uint32_t shape = s.particle_shape[i];
+    const ShapeRange& range = s.shapes[shape];
+    if (range.instances >= 2) {
+      ++s.group_counts[2 * shape + is_coarse[i]];
+    } else {
+      const GLsizei count = is_coarse[i] ? range.coarse_count : range.full_count;
+      const GLuint offset = is_coarse[i] ? range.coarse_offset : range.full_offset;
+      s.single_counts.push_back(count);
+      s.single_offsets.push_back(
+          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset) * 4u));
+      s.single_base_vertices.push_back(range.base_vertex);
+      stats.triangles += static_cast<std::size_t>(count / 3);
+    }
+  }
+
+  // Instance list: element 0 stays 0 (what single-use shapes read through the per-instance
+  // attribute), then one block per (shape, level) group.
+  std::vector<std::uint32_t> group_start(2 * shape_count, 0);
+  std::uint32_t next = 1;
+  for (std::uint32_t shape : s.instanced_shapes) {
+    for (int level = 0; level < 2; ++level) {
+      group_start[2 * shape + static_cast<std::size_t>(level)] = next;
+      next += s.group_counts[2 * shape + static_cast<std::size_t>(level)];
+    }
+  }
+  s.instance_list.assign(next, 0);
+  {
+    std::vector<std::uint32_t> cursor = group_start;
+    for (std::size_t i = 0; i < particle_count; ++i) {
+      if (is_visible[i] == 0) continue;
+      const std::uint32_t shape = s.particle_shape[i];
+      if (s.shapes[shape].instances < 2) continue;
+      s.instance_list[cursor[2 * shape + is_coarse[i]]++] = static_cast<std::uint32_t>(i);
+    }
+  }
+
+  glUseProgram(s.particle_program);
+  glUniformMatrix4fv(s.u_view, 1, GL_FALSE, view.data());
+  glUniformMatrix4fv(s.u_projection, 1, GL_FALSE, projection.data());
+  glUniform1i(s.u_lit, style.is_wireframe ? 0 : 1);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_BUFFER, s.transform_texture);
+  glUniform1i(s.u_transforms, 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_BUFFER, s.color_texture);
+  glUniform1i(s.u_colors, 1);
+  if (style.is_wireframe) {
+    glDisable(GL_CULL_FACE);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  } else {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+  }
+
+  glBindVertexArray(s.vertex_array);
+  glBindBuffer(GL_ARRAY_BUFFER, s.instance_buffer);
+  glBufferData(GL_ARRAY_BUFFER,
+               static_cast<GLsizeiptr>(s.instance_list.size() * sizeof(std::uint32_t)),
+               s.instance_list.data(), GL_STREAM_DRAW);
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  if (!s.single_counts.empty()) {
+    glMultiDrawElementsBaseVertex(GL_TRIANGLES, s.single_counts.data(), GL_UNSIGNED_INT,
+                                  s.single_offsets.data(),
+                                  static_cast<GLsizei>(s.single_counts.size()),
+                                  s.single_base_vertices.data());
+    ++stats.draw_calls;
+  }
+  // GL 3.3 has no base instance: point the per-instance attribute at each group's block.
+  for (std::uint32_t shape : s.instanced_shapes) {
+    const ShapeRange& range = s.shapes[shape];
+    for (int level = 0; level < 2; ++level) {
+      const std::size_t group = 2 * shape + static_cast<std::size_t>(level);
+      const GLsizei instances = static_cast<GLsizei>(s.group_counts[group]);
+      if (instances == 0) continue;
+      glVertexAttribIPointer(
+          2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t),
+          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(group_start[group]) * 4u));
+      const GLsizei count = level == 1 ? range.coarse_count : range.full_count;
+      const GLuint offset = level == 1 ? range.coarse_offset : range.full_offset;
+      glDrawElementsInstancedBaseVertex(
+          GL_TRIANGLES, count, GL_UNSIGNED_INT,
+          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset) * 4u), instances,
+          range.base_vertex);
+      ++stats.draw_calls;
+      stats.triangles += static_cast<std::size_t>(count / 3) * static_cast<std::size_t>(instances);
+    }
+  }
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  glBindVertexArray(0);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glDisable(GL_CULL_FACE);
+
+  if (style.show_container && s.line_vertex_count > 0) {
+    glUseProgram(s.line_program);
+    glUniformMatrix4fv(s.u_view_projection, 1, GL_FALSE, view_projection.data());
+    glUniform3f(s.u_line_color, style.container_color.r / 255.0f,
+                style.container_color.g / 255.0f, style.container_color.b / 255.0f);
+    glBindVertexArray(s.line_array);
+    glDrawArrays(GL_LINES, 0, s.line_vertex_count);
+    glBindVertexArray(0);
+    ++stats.draw_calls;
+  }
+  glUseProgram(0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  return stats;
+}
+
+const Aabb& PackingRenderer::scene_bounds() const { return state_->bounds; }
+
+const ParticleColors& PackingRenderer::colors(ColorMode mode) const {
+  return state_->colors[static_cast<std::size_t>(mode)];
+}
+
+std::size_t PackingRenderer::particle_count() const { return state_->particle_shape.size(); }
+
+std::size_t PackingRenderer::shape_count() const { return state_->shapes.size(); }
+
+}  // namespace aggpack

@@ -1,0 +1,339 @@
+// Headless rendering (EGL surfaceless + llvmpipe): render known packings and check the pixels.
+
+#include <gtest/gtest.h>
+#include <stb_image.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+#include <tuple>
+
+#include "aggpack/core/error.h"
+#include "aggpack/geom/convex_polyhedron.h"
+#include "aggpack/render/headless.h"
+#include "test_packings.h"
+
+// Mesa's EGL/llvmpipe keeps some allocations until process exit (driver singletons, the LLVM
+// JIT); they are not ours. Suppress only those libraries so LeakSanitizer still checks aggpack.
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:libEGL_mesa\nleak:libgallium\nleak:libLLVM\nleak:libglapi\nleak:libGLdispatch\n"
+         "leak:swrast_dri\nleak:libdrm\nleak:libexpat\n";
+}
+
+namespace aggpack {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool is_background(const Image& image, int x, int y, const Rgb& background) {
+  return image.pixel(x, y) == background;
+}
+
+std::size_t covered_pixels(const Image& image, const Rgb& background) {
+  std::size_t count = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) count += !is_background(image, x, y, background);
+  }
+  return count;
+}
+
+std::size_t differing_pixels(const Image& a, const Image& b) {
+  EXPECT_EQ(a.width, b.width);
+  EXPECT_EQ(a.height, b.height);
+  std::size_t count = 0;
+  for (int y = 0; y < a.height; ++y) {
+    for (int x = 0; x < a.width; ++x) count += !(a.pixel(x, y) == b.pixel(x, y));
+  }
+  return count;
+}
+
+// Pixel position (x right, y down) of a world point for the camera render_image uses.
+Eigen::Vector2d project(const Camera& camera, int width, int height, const Vec3& point) {
+  const Eigen::Vector4f clip =
+      camera.projection_matrix(static_cast<double>(width) / height) * camera.view_matrix() *
+      Eigen::Vector4f(static_cast<float>(point.x()), static_cast<float>(point.y()),
+                      static_cast<float>(point.z()), 1.0f);
+  return Eigen::Vector2d((clip.x() / clip.w() + 1.0) * 0.5 * width,
+                         (1.0 - clip.y() / clip.w()) * 0.5 * height);
+}
+
+RenderImageOptions small_options() {
+  RenderImageOptions options;
+  options.width = 320;
+  options.height = 240;
+  options.samples = 0;  // exact coverage: a pixel is covered iff its centre is inside
+  return options;
+}
+
+TEST(Headless, EmptyPackingRendersOnlyBackground) {
+  Packing packing;  // default container, no particles
+  RenderImageOptions options = small_options();
+  options.style.show_container = false;
+  const Image image = render_image(packing, options);
+  ASSERT_EQ(image.width, 320);
+  ASSERT_EQ(image.height, 240);
+  EXPECT_EQ(covered_pixels(image, options.style.background), 0u);
+
+  // With the outline on, only outline-coloured pixels join the background.
+  options.style.show_container = true;
+  const Image outlined = render_image(packing, options);
+  std::size_t outline = 0;
+  for (int y = 0; y < outlined.height; ++y) {
+    for (int x = 0; x < outlined.width; ++x) {
+      const Rgb c = outlined.pixel(x, y);
+      if (c == options.style.background) continue;
+      EXPECT_EQ(c, options.style.container_color) << x << "," << y;
+      ++outline;
+    }
+  }
+  EXPECT_GT(outline, 300u);  // 12 edges of a box spanning most of the picture
+}
+
+TEST(Headless, CubeCoversExactlyItsProjectedSquare) {
+  // One cube of side 0.4 m at (1.0, 0.5, 0.5) in a 2 x 1 x 1 box, seen from the top,
+  // orthographic: it must cover the square its corners project to, and nothing else.
+  Packing packing;
+  packing.container.length = 2.0;
+  packing.container.width = 1.0;
+  packing.container.depth = 1.0;
+  packing.shapes.push_back(make_box(Vec3::Constant(-0.2), Vec3::Constant(0.2)));
+  Particle particle;
+  particle.pose.position = Vec3(1.0, 0.5, 0.5);
+  packing.particles.push_back(particle);
+  RenderImageOptions options = small_options();
+  options.view = ViewPreset::kTop;
+  options.is_orthographic = true;
+  options.style.show_container = false;
+  const Image image = render_image(packing, options);
+
+  Aabb scene;
+  scene.expand(Vec3::Zero());
+  scene.expand(Vec3(2.0, 1.0, 1.0));
+  const Camera camera = Camera::framing(scene, ViewPreset::kTop, 320.0 / 240.0, true);
+  const Eigen::Vector2d a = project(camera, image.width, image.height, Vec3(0.8, 0.3, 0.7));
+  const Eigen::Vector2d b = project(camera, image.width, image.height, Vec3(1.2, 0.7, 0.7));
+  const double x0 = std::min(a.x(), b.x()), x1 = std::max(a.x(), b.x());
+  const double y0 = std::min(a.y(), b.y()), y1 = std::max(a.y(), b.y());
+  ASSERT_GT(x1 - x0, 20.0);  // the square is large enough for the test to mean something
+  std::size_t inside = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const double cx = x + 0.5, cy = y + 0.5;  // pixel centre
+      const bool is_covered = !is_background(image, x, y, options.style.background);
+      const bool is_in_square = cx > x0 && cx < x1 && cy > y0 && cy < y1;
+      const bool is_near_edge = std::abs(cx - x0) < 1.0 || std::abs(cx - x1) < 1.0 ||
+                                std::abs(cy - y0) < 1.0 || std::abs(cy - y1) < 1.0;
+      if (!is_near_edge) {
+        EXPECT_EQ(is_covered, is_in_square) << x << "," << y;
+      }
+      inside += is_covered;
+    }
+  }
+  EXPECT_NEAR(static_cast<double>(inside), (x1 - x0) * (y1 - y0), 2.0 * (x1 - x0 + y1 - y0));
+  // The top face faces the viewer: lit, so brighter than its unlit colour would be dark.
+  const Rgb centre = image.pixel(static_cast<int>(0.5 * (x0 + x1)), static_cast<int>(0.5 * (y0 + y1)));
+  EXPECT_GT(centre.r + centre.g + centre.b, 200);
+}
+
+TEST(Headless, ParticlesCoverTheRegionTheyOccupy) {
+  // 6 x 3 x 3 particles on a grid; only the left half of a container twice as long holds them.
+  Packing packing = test::grid_packing(6, 3, 3);
+  const double filled_length = packing.container.length;
+  packing.container.length = 2.0 * filled_length;
+  RenderImageOptions options = small_options();
+  options.view = ViewPreset::kFront;
+  options.is_orthographic = true;
+  options.style.show_container = false;
+  const Image image = render_image(packing, options);
+
+  Aabb scene = packing.container.bounds();
+  const Camera camera = Camera::framing(scene, ViewPreset::kFront, 320.0 / 240.0, true);
+  const double margin = 0.01;  // grid_packing's margin is 0.1 r = 0.01 m
+  const Eigen::Vector2d low = project(camera, image.width, image.height,
+                                      Vec3(margin, 0.0, margin));
+  const Eigen::Vector2d high = project(camera, image.width, image.height,
+                                       Vec3(filled_length - margin, 0.0,
+                                            packing.container.depth - margin));
+  std::size_t covered_left = 0, pixels_left = 0, covered_right = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const bool is_covered = !is_background(image, x, y, options.style.background);
+      const double cx = x + 0.5, cy = y + 0.5;
+      if (cx > low.x() + 1 && cx < high.x() - 1 && cy > high.y() + 1 && cy < low.y() - 1) {
+        ++pixels_left;
+        covered_left += is_covered;
+      } else if (cx > high.x() + 1 || cx < low.x() - 1 || cy < high.y() - 1 ||
+                 cy > low.y() + 1) {
+        covered_right += is_covered;  // outside the occupied block
+      }
+    }
+  }
+  ASSERT_GT(pixels_left, 1000u);
+  EXPECT_EQ(covered_right, 0u);
+  // Every particle contains its centre, so each projected centre is covered; the particles
+  // (spacing 2.2 r, vertices between 0.6 r and r from the centre) cover a good part of the block.
+  for (const Particle& particle : packing.particles) {
+    const Eigen::Vector2d centre =
+        project(camera, image.width, image.height, particle.pose.position);
+    EXPECT_FALSE(is_background(image, static_cast<int>(centre.x()), static_cast<int>(centre.y()),
+                               options.style.background));
+  }
+  EXPECT_GT(static_cast<double>(covered_left) / static_cast<double>(pixels_left), 0.3);
+}
+
+TEST(Headless, ColourModesGiveDifferentPictures) {
+  Packing packing = test::grid_packing(5, 2, 2, 0.1, 3);
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    packing.particles[i].scale = 0.6 + 0.02 * static_cast<double>(i);  // sizes differ
+  }
+  RenderImageOptions options = small_options();
+  options.style.show_container = false;
+  options.style.color = ColorMode::kParticle;
+  const Image by_id = render_image(packing, options);
+  options.style.color = ColorMode::kSize;
+  const Image by_size = render_image(packing, options);
+  options.style.color = ColorMode::kAlpha;
+  const Image by_alpha = render_image(packing, options);
+  const std::size_t covered = covered_pixels(by_id, options.style.background);
+  ASSERT_GT(covered, 2000u);
+  // Same geometry: the same pixels are covered in every mode ...
+  EXPECT_EQ(covered_pixels(by_size, options.style.background), covered);
+  EXPECT_EQ(covered_pixels(by_alpha, options.style.background), covered);
+  // ... but most of them in other colours.
+  EXPECT_GT(differing_pixels(by_id, by_size), covered / 2);
+  EXPECT_GT(differing_pixels(by_id, by_alpha), covered / 2);
+  EXPECT_GT(differing_pixels(by_size, by_alpha), covered / 2);
+
+  // By id: many distinct hues; by size the colour follows the scale: the largest (last)
+  // particle is the brightest yellow-green end, the smallest the dark blue end.
+  std::set<std::tuple<int, int, int>> hues;
+  for (int y = 0; y < by_id.height; ++y) {
+    for (int x = 0; x < by_id.width; ++x) {
+      const Rgb c = by_id.pixel(x, y);
+      hues.insert({c.r / 32, c.g / 32, c.b / 32});
+    }
+  }
+  EXPECT_GT(hues.size(), 15u);
+}
+
+TEST(Headless, InstancedAndSingleShapePathsDrawTheSamePicture) {
+  const Packing library = test::grid_packing(4, 3, 2, 0.1, 2);  // 24 particles, 2 shapes
+  const Packing unique = test::with_unique_shapes(library);
+  ASSERT_EQ(unique.shapes.size(), 24u);
+  RenderImageOptions options = small_options();
+  options.style.coarse_below_pixels = 0.0;
+  const Image a = render_image(library, options);
+  const Image b = render_image(unique, options);
+  const std::size_t covered = covered_pixels(a, options.style.background);
+  ASSERT_GT(covered, 2000u);
+  EXPECT_EQ(covered_pixels(b, options.style.background), covered);
+  EXPECT_LE(differing_pixels(a, b), covered / 1000);
+}
+
+TEST(Headless, WireframeAndCoarseDetailChangeThePicture) {
+  const Packing packing = test::grid_packing(4, 2, 2, 0.1, 0, 3);
+  RenderImageOptions options = small_options();
+  options.style.show_container = false;
+  options.style.coarse_below_pixels = 0.0;
+  const Image solid = render_image(packing, options);
+  options.style.is_wireframe = true;
+  const Image wire = render_image(packing, options);
+  const std::size_t solid_covered = covered_pixels(solid, options.style.background);
+  const std::size_t wire_covered = covered_pixels(wire, options.style.background);
+  EXPECT_GT(wire_covered, solid_covered / 10);
+  EXPECT_LT(wire_covered, solid_covered * 9 / 10);  // lines leave gaps between edges
+
+  // All particles coarse: similar outline, different facets.
+  options.style.is_wireframe = false;
+  options.style.coarse_below_pixels = 1e6;
+  const Image coarse = render_image(packing, options);
+  const std::size_t coarse_covered = covered_pixels(coarse, options.style.background);
+  EXPECT_GT(coarse_covered, solid_covered * 7 / 10);  // coarse hull lies inside the particle
+  EXPECT_LE(coarse_covered, solid_covered);
+  EXPECT_GT(differing_pixels(solid, coarse), solid_covered / 10);
+}
+
+TEST(Headless, RendererReportsCullingAndDetailLevels) {
+  HeadlessContext context;
+  EXPECT_FALSE(context.renderer_name().empty());
+  const Packing packing = test::grid_packing(10, 10, 2, 0.1, 4);
+  PackingRenderer renderer;
+  renderer.set_packing(packing);
+  EXPECT_EQ(renderer.particle_count(), 200u);
+  EXPECT_EQ(renderer.shape_count(), 4u);
+  OffscreenTarget target(200, 200);
+  target.bind();
+  Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kTop);
+  RenderStyle style;
+  style.coarse_below_pixels = 0.0;
+  DrawStats stats = renderer.draw(camera, 200, 200, style);
+  EXPECT_EQ(stats.particles_drawn, 200u);
+  EXPECT_EQ(stats.coarse_particles, 0u);
+  EXPECT_LE(stats.draw_calls, 4u * 2u + 1u);  // one instanced call per shape and level + outline
+  std::size_t full_triangles = 0, coarse_triangles = 0;
+  for (const Particle& particle : packing.particles) {
+    const std::size_t count = packing.shapes[particle.shape].triangle_count();
+    full_triangles += count;
+    coarse_triangles += std::min<std::size_t>(count, 24);  // shapes at most that fine stay full
+  }
+  EXPECT_EQ(stats.triangles, full_triangles);
+  style.coarse_below_pixels = 1e6;
+  stats = renderer.draw(camera, 200, 200, style);
+  EXPECT_EQ(stats.coarse_particles, 200u);
+  EXPECT_EQ(stats.triangles, coarse_triangles);
+  EXPECT_LT(coarse_triangles, full_triangles);
+  // Zoomed far in on one corner: most particles are outside the view and skipped.
+  camera.zoom(0.05);
+  camera.pan(-90.0, -90.0, 200);
+  stats = renderer.draw(camera, 200, 200, style);
+  EXPECT_LT(stats.particles_drawn, 50u);
+  EXPECT_GT(stats.particles_drawn, 0u);
+}
+
+TEST(Headless, PngRoundTripsThroughAnIndependentDecoder) {
+  const Packing packing = test::grid_packing(3, 2, 2);
+  RenderImageOptions options = small_options();
+  options.samples = 4;
+  const Image image = render_image(packing, options);
+  const fs::path dir = fs::temp_directory_path() / "aggpack_render_test";
+  fs::create_directories(dir);
+  const std::string path = (dir / "grid.png").string();
+  write_png(image, path);
+  int width = 0, height = 0, channels = 0;
+  unsigned char* decoded = stbi_load(path.c_str(), &width, &height, &channels, 3);
+  ASSERT_NE(decoded, nullptr);
+  EXPECT_EQ(width, image.width);
+  EXPECT_EQ(height, image.height);
+  EXPECT_EQ(channels, 3);
+  std::size_t mismatches = 0;
+  for (int i = 0; i < width * height; ++i) {
+    for (int c = 0; c < 3; ++c) mismatches += decoded[3 * i + c] != image.rgba[4 * i + c];
+  }
+  stbi_image_free(decoded);
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_THROW(write_png(image, path, Overwrite::kForbid), IoError);
+  EXPECT_THROW(write_png(image, (dir / "missing" / "x.png").string()), IoError);
+  EXPECT_THROW(write_png(Image{}, (dir / "empty.png").string()), InvalidInput);
+  EXPECT_FALSE(fs::exists(dir / "empty.png"));
+  fs::remove_all(dir);
+}
+
+TEST(Headless, RejectsBadOptions) {
+  const Packing packing;
+  RenderImageOptions options;
+  options.width = 8;
+  EXPECT_THROW(render_image(packing, options), InvalidInput);
+  options = {};
+  options.samples = 32;
+  EXPECT_THROW(render_image(packing, options), InvalidInput);
+  options = {};
+  options.style.coarse_below_pixels = -1.0;
+  EXPECT_THROW(render_image(packing, options), InvalidInput);
+  Packing broken = test::grid_packing(1, 1, 1);
+  broken.particles[0].shape = 5;
+  EXPECT_THROW(render_image(broken, small_options()), InvalidInput);
+}
+
+}  // namespace
+}  // namespace aggpack
