@@ -16,6 +16,7 @@ namespace aggpack {
 std::string to_json(const PackingStatistics& statistics, int indent = 2);
 
 /// A pack report as a JSON object (stop_reason, is_target_reached, placed, requested, rejected,
+/// shrunk,
 /// attempts, solid_volume_m3, container_volume_m3, solid_fraction, target_solid_fraction,
 /// shape_seconds, placement_seconds).
 std::string to_json(const PackReport& report, int indent = 2);

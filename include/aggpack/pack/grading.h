@@ -43,12 +43,12 @@ struct SieveRow {
 /// P(d) = (r^4 - r_min^4) / (r_max^4 - r_min^4) with r = d/2.
 struct Grading {
   GradingKind kind = GradingKind::kUniform;
-  double radius_min = 0.1;   ///< kUniform: smallest control radius (m), > 0
-  double radius_max = 0.1;   ///< kUniform: largest control radius (m), >= radius_min
-  double size_min = 0.005;   ///< kFuller: d_min, smallest control diameter (m), > 0
-  double size_max = 0.02;    ///< kFuller: d_max, largest control diameter (m), > size_min
-  double exponent = 0.5;     ///< kFuller: q, in (0, 10]
-  std::vector<SieveRow> sieve;  ///< kSieve: at least 2 rows (sizes in m, percent by volume)
+  double radius_min = 0.1;        ///< kUniform: smallest control radius (m), > 0
+  double radius_max = 0.1;        ///< kUniform: largest control radius (m), >= radius_min
+  double size_min = 0.005;        ///< kFuller: d_min, smallest control diameter (m), > 0
+  double size_max = 0.02;         ///< kFuller: d_max, largest control diameter (m), > size_min
+  double exponent = 0.5;          ///< kFuller: q, in (0, 10]
+  std::vector<SieveRow> sieve{};  ///< kSieve: at least 2 rows (sizes in m, percent by volume)
 };
 
 /// Throws InvalidInput naming the field ("grading.radius_min", "grading.size_max",

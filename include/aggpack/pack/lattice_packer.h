@@ -15,11 +15,11 @@ namespace aggpack {
 /// L 0.1 m in a 3.0 x 1.0 x 2.8 m box -> 15 x 5 x 14 = 1,050 sites (the paper reports 1,050
 /// particles and 0.84 m^3 of solid).
 struct LatticeOptions {
-  Container container;                ///< default: box 3.0 x 1.0 x 2.8 m, wall_gap 0
-  double alpha = 0.5;                 ///< Eq. 3 shape control, [0, 1]
-  double radius = 0.1;                ///< control radius R of every particle (m), > 0
-  double edge_length = 0.1;           ///< growth edge-length control L (m), > 0
-  double gap = 0.0;                   ///< minimum distance between particles (m), >= 0
+  Container container{};     ///< default: box 3.0 x 1.0 x 2.8 m, wall_gap 0
+  double alpha = 0.5;        ///< Eq. 3 shape control, [0, 1]
+  double radius = 0.1;       ///< control radius R of every particle (m), > 0
+  double edge_length = 0.1;  ///< growth edge-length control L (m), > 0
+  double gap = 0.0;          ///< minimum distance between particles (m), >= 0
   /// Centre-to-centre lattice spacing (m). 0 = 2 R + gap, where particles cannot touch and grow
   /// independently (in parallel). A positive value below 2 R + gap packs the sites closer and
   /// turns on the paper's contact check: growth toward an already grown neighbour is stopped
@@ -27,8 +27,8 @@ struct LatticeOptions {
   /// growth (edge-edge contact the vertex check cannot see) is shrunk about its centre until the
   /// exact test passes. Must be >= R (otherwise a site lies inside its neighbour's sphere).
   double spacing = 0.0;
-  std::uint32_t max_vertices = 20000; ///< vertex cap per particle, [6, 10^6]
-  std::uint64_t seed = 1;             ///< master seed; site i draws from Rng(seed, i)
+  std::uint32_t max_vertices = 20000;  ///< vertex cap per particle, [6, 10^6]
+  std::uint64_t seed = 1;              ///< master seed; site i draws from Rng(seed, i)
 };
 
 /// Throws InvalidInput naming the field ("lattice.radius", "lattice.spacing",

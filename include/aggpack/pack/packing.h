@@ -18,12 +18,12 @@ enum class ContainerKind { kBox, kCylinder };
 /// Cylinder: axis along z through x = y = 0, radius `radius`, z in [0, height].
 struct Container {
   ContainerKind kind = ContainerKind::kBox;
-  double length = 3.0;   ///< box x extent (m)
-  double width = 1.0;    ///< box y extent (m)
-  double depth = 2.8;    ///< box z extent (m)
-  double radius = 0.05;  ///< cylinder radius (m)
-  double height = 0.1;   ///< cylinder height (m)
-  double wall_gap = 0.0; ///< minimum distance from any particle to any wall (m), >= 0
+  double length = 3.0;    ///< box x extent (m)
+  double width = 1.0;     ///< box y extent (m)
+  double depth = 2.8;     ///< box z extent (m)
+  double radius = 0.05;   ///< cylinder radius (m)
+  double height = 0.1;    ///< cylinder height (m)
+  double wall_gap = 0.0;  ///< minimum distance from any particle to any wall (m), >= 0
 
   /// Bounding box of the container.
   [[nodiscard]] Aabb bounds() const;
@@ -36,26 +36,26 @@ struct Container {
 /// from a shape library (RandomPackOptions::shape.library_size > 0), where one unit-size shape is
 /// reused at many sizes. Always go through Packing::placed() (or apply the scale yourself).
 struct Particle {
-  std::uint32_t shape = 0;         ///< index into Packing::shapes
-  Pose pose;                       ///< world = rotation * (scale * local) + position
-  double control_radius = 0.0;     ///< radius r the shape was grown with, after scaling (m)
-  std::uint32_t size_class = 0;    ///< grading class index (0 when there is no grading)
-  double scale = 1.0;              ///< uniform scale of the stored shape, > 0 (1 = as stored)
+  std::uint32_t shape = 0;       ///< index into Packing::shapes
+  Pose pose{};                   ///< world = rotation * (scale * local) + position
+  double control_radius = 0.0;   ///< radius r the shape was grown with, after scaling (m)
+  std::uint32_t size_class = 0;  ///< grading class index (0 when there is no grading)
+  double scale = 1.0;            ///< uniform scale of the stored shape, > 0 (1 = as stored)
 };
 
 /// Where a packing came from: enough to reproduce it.
 struct Provenance {
   std::string aggpack_version = AGGPACK_VERSION;
-  std::string config_toml;  ///< the full, resolved configuration
+  std::string config_toml{};  ///< the full, resolved configuration
   std::uint64_t seed = 1;
-  std::string packer;       ///< "lattice", "random", "settled", ...
+  std::string packer{};  ///< "lattice", "random", "settled", ...
 };
 
 struct Packing {
-  Container container;
-  std::vector<ConvexPolyhedron> shapes;  ///< local frame, centroid at the origin
-  std::vector<Particle> particles;
-  Provenance provenance;
+  Container container{};
+  std::vector<ConvexPolyhedron> shapes{};  ///< local frame, centroid at the origin
+  std::vector<Particle> particles{};
+  Provenance provenance{};
 
   /// Particle i's polyhedron in world coordinates (scale, then rotation, then translation).
   [[nodiscard]] ConvexPolyhedron placed(std::size_t i) const {

@@ -10,9 +10,17 @@
 
 namespace aggpack {
 
+/// Which part of a run a progress snapshot is about.
+enum class PackStage {
+  kShapes,    ///< growing the particle shapes (random packer: the size list)
+  kPlacement  ///< placing them
+};
+
 /// A progress snapshot, passed to PackControl::on_progress.
 struct PackProgress {
-  double fraction = 0.0;        ///< fraction of the work done, [0, 1] (toward the target)
+  PackStage stage = PackStage::kPlacement;
+  double fraction = 0.0;        ///< fraction of this stage done, [0, 1] (placement: toward the
+                                ///< target count or volume fraction)
   std::uint64_t placed = 0;     ///< particles placed so far
   std::uint64_t attempted = 0;  ///< particles tried so far (placed + rejected)
   std::uint64_t total = 0;      ///< particles in the run's size list
@@ -25,10 +33,10 @@ using ProgressCallback = std::function<void(const PackProgress&)>;
 
 /// How the caller follows and stops a run. All members optional.
 struct PackControl {
-  ProgressCallback on_progress;                 ///< progress callback, or empty
-  double progress_interval = 0.1;               ///< seconds between callbacks, >= 0
-  const std::atomic<bool>* cancel = nullptr;    ///< set to true to stop; the packer returns
-                                                ///< what it placed with StopReason::kCancelled
+  ProgressCallback on_progress{};             ///< progress callback, or empty
+  double progress_interval = 0.1;             ///< seconds between callbacks, >= 0
+  const std::atomic<bool>* cancel = nullptr;  ///< set to true to stop; the packer returns
+                                              ///< what it placed with StopReason::kCancelled
 };
 
 /// Why a packer stopped.
@@ -50,6 +58,8 @@ struct PackReport {
   std::uint64_t placed = 0;            ///< particles in the packing
   std::uint64_t requested = 0;         ///< particles in the size list / lattice sites
   std::uint64_t rejected = 0;          ///< particles that used up their attempts and were skipped
+  std::uint64_t shrunk = 0;            ///< lattice contact mode: particles scaled down about their
+                                       ///< centre because they touched an earlier neighbour
   std::uint64_t attempts = 0;          ///< placement attempts used (candidate poses tested)
   double solid_volume = 0.0;           ///< sum of exact particle volumes (m^3)
   double container_volume = 0.0;       ///< m^3
@@ -63,8 +73,8 @@ struct PackReport {
 
 /// A packing and the report of how it was made.
 struct PackResult {
-  Packing packing;
-  PackReport report;
+  Packing packing{};
+  PackReport report{};
 };
 
 }  // namespace aggpack

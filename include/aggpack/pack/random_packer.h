@@ -33,16 +33,16 @@ enum class PackTarget {
 
 /// Options of the random packer. Lengths in metres.
 struct RandomPackOptions {
-  Container container;   ///< default: box 3.0 x 1.0 x 2.8 m, wall_gap 0
-  Grading grading;       ///< default: uniform r = 0.1 m (single size)
-  ShapeOptions shape;
+  Container container{};  ///< default: box 3.0 x 1.0 x 2.8 m, wall_gap 0
+  Grading grading{};      ///< default: uniform r = 0.1 m (single size)
+  ShapeOptions shape{};
   PackTarget target = PackTarget::kVolumeFraction;
-  std::uint64_t count = 1000;     ///< kCount: particles to place, [1, 10^8]
+  std::uint64_t count = 1000;  ///< kCount: particles to place, [1, 10^8]
   /// kVolumeFraction: solid volume / container volume to reach, (0, 0.9]. The size list is drawn
   /// until its exact solid volume reaches this; if some particles cannot be placed the run ends
   /// below it and says so.
   double volume_fraction = 0.35;
-  double gap = 0.0;               ///< minimum distance between particles (m), >= 0
+  double gap = 0.0;  ///< minimum distance between particles (m), >= 0
   /// Candidate poses tried per particle before it is skipped (rejected), [1, 10^9].
   std::uint64_t max_attempts_per_particle = 5000;
   /// Total candidate poses for the whole run, [1, 10^12]; the run stops when they are used up.

@@ -17,36 +17,36 @@ namespace aggpack {
 /// Exact: each particle is cut by the bin planes (convex-polyhedron slicing), and each bin's solid
 /// volume is divided by the container's volume in that slab (circular segments for a cylinder).
 struct AxisProfile {
-  int axis = 0;                        ///< 0 = x, 1 = y, 2 = z
-  double lower = 0.0;                  ///< first bin's lower edge (m)
-  double bin_width = 0.0;              ///< m
-  std::vector<double> solid_fraction;  ///< per bin, [0, 1]
+  int axis = 0;                          ///< 0 = x, 1 = y, 2 = z
+  double lower = 0.0;                    ///< first bin's lower edge (m)
+  double bin_width = 0.0;                ///< m
+  std::vector<double> solid_fraction{};  ///< per bin, [0, 1]
 };
 
 /// Summary of one shape descriptor over all particles.
 struct DescriptorSummary {
-  std::string name;  ///< descriptor_columns() name, e.g. "sphericity"
-  std::string unit;  ///< "m", "m^3", "-", ...
-  SummaryStatistics stats;
+  std::string name{};  ///< descriptor_columns() name, e.g. "sphericity"
+  std::string unit{};  ///< "m", "m^3", "-", ...
+  SummaryStatistics stats{};
 };
 
 struct PackingStatistics {
   std::size_t particle_count = 0;
-  std::size_t shape_count = 0;          ///< distinct stored shapes
-  double solid_volume = 0.0;            ///< m^3, exact sum of particle volumes
-  double container_volume = 0.0;        ///< m^3
-  double solid_fraction = 0.0;          ///< solid_volume / container_volume
-  std::array<AxisProfile, 3> profiles;  ///< x, y, z
-  std::vector<GradingPoint> grading;    ///< empty when no target grading was given
-  std::vector<DescriptorSummary> descriptors;  ///< measured per particle (true size)
+  std::size_t shape_count = 0;                   ///< distinct stored shapes
+  double solid_volume = 0.0;                     ///< m^3, exact sum of particle volumes
+  double container_volume = 0.0;                 ///< m^3
+  double solid_fraction = 0.0;                   ///< solid_volume / container_volume
+  std::array<AxisProfile, 3> profiles{};         ///< x, y, z
+  std::vector<GradingPoint> grading{};           ///< empty when no target grading was given
+  std::vector<DescriptorSummary> descriptors{};  ///< measured per particle (true size)
 };
 
 /// Options of compute_statistics.
 struct StatisticsOptions {
-  int bins = 10;                  ///< bins per axis profile, [1, 10000]
-  std::optional<Grading> target;  ///< compare the achieved grading with this one
-  std::vector<double> sieve_sizes;  ///< sizes for the grading table (m); empty = report_sizes()
-  bool has_descriptors = true;    ///< measure shape descriptors (one describe() per particle)
+  int bins = 10;                      ///< bins per axis profile, [1, 10000]
+  std::optional<Grading> target{};    ///< compare the achieved grading with this one
+  std::vector<double> sieve_sizes{};  ///< sizes for the grading table (m); empty = report_sizes()
+  bool has_descriptors = true;        ///< measure shape descriptors (one describe() per particle)
 };
 
 /// Computes the statistics of a packing (parallel over particles where TBB is available;

@@ -9,7 +9,7 @@
 namespace aggpack {
 
 struct VerifyOptions {
-  double gap = 0.0;       ///< required minimum distance between particles (m), >= 0
+  double gap = 0.0;  ///< required minimum distance between particles (m), >= 0
   /// Relative tolerance on distances, as a fraction of the largest particle size: distances
   /// within tolerance * size of the required gap still pass (GJK round-off), >= 0.
   double tolerance = 1e-9;
@@ -23,7 +23,7 @@ struct VerifyResult {
   std::size_t outside_particles = 0;  ///< particles not inside container minus wall_gap
   double min_distance = 0.0;          ///< smallest pair distance found (m); +inf if < 2 particles
   double min_wall_clearance = 0.0;    ///< smallest vertex-to-wall distance (m)
-  std::string message;                ///< first problem found, or empty
+  std::string message{};              ///< first problem found, or empty
 };
 
 /// Checks every particle against the container (vertex test, exact for convex bodies) and every
