@@ -16,6 +16,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   aggpack::cli::register_particle(app);
   aggpack::cli::register_shapes(app);
+#ifdef AGGPACK_HAS_IO
+  aggpack::cli::register_pack(app);
+  aggpack::cli::register_info(app);
+  aggpack::cli::register_export(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

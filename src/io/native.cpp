@@ -128,9 +128,9 @@ class Writer {
     H5Tset_strpad(type.get(), H5T_STR_NULLTERM);
     H5Tset_cset(type.get(), H5T_CSET_UTF8);
     Handle space = checked(H5Screate(H5S_SCALAR), H5Sclose, "dataspace");
-    Handle attribute = checked(
-        H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-        std::string("attribute ") + name);
+    Handle attribute =
+        checked(H5Acreate2(object, name, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                H5Aclose, std::string("attribute ") + name);
     if (H5Awrite(attribute.get(), type.get(), value.c_str()) < 0) {
       fail(std::string("attribute ") + name);
     }
@@ -140,9 +140,9 @@ class Writer {
   void write_attribute_number(hid_t object, const char* name, hid_t file_type, hid_t memory_type,
                               T value) const {
     Handle space = checked(H5Screate(H5S_SCALAR), H5Sclose, "dataspace");
-    Handle attribute = checked(
-        H5Acreate2(object, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-        std::string("attribute ") + name);
+    Handle attribute =
+        checked(H5Acreate2(object, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                H5Aclose, std::string("attribute ") + name);
     if (H5Awrite(attribute.get(), memory_type, &value) < 0) {
       fail(std::string("attribute ") + name);
     }
@@ -194,9 +194,9 @@ void write_hdf5(const std::string& file_path, const std::string& display_path,
   Handle access = writer.checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file properties");
   // 1.8+ object format: checksummed superblock, object headers and chunk indexes.
   H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_LATEST);
-  Handle file = writer.checked(
-      H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()), H5Fclose,
-      "create file");
+  Handle file =
+      writer.checked(H5Fcreate(file_path.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()),
+                     H5Fclose, "create file");
   const hid_t root = file.get();
   writer.write_attribute_string(root, "format_name", kNativeFormatName);
   writer.write_attribute_number(root, "format_version", H5T_STD_I32LE, H5T_NATIVE_INT,
@@ -318,17 +318,31 @@ std::string xdmf_text(const std::string& h5_name, const Packing& packing) {
          "<Xdmf Version=\"3.0\">\n"
          "  <Domain>\n"
          "    <Grid Name=\"particles\" GridType=\"Uniform\">\n"
-         "      <Topology TopologyType=\"Triangle\" NumberOfElements=\"" + t + "\">\n"
-         "        <DataItem Dimensions=\"" + t + " 3\" NumberType=\"Int\" Precision=\"8\" "
-         "Format=\"HDF\">" + h5_name + ":/world/triangles</DataItem>\n"
+         "      <Topology TopologyType=\"Triangle\" NumberOfElements=\"" +
+         t +
+         "\">\n"
+         "        <DataItem Dimensions=\"" +
+         t +
+         " 3\" NumberType=\"Int\" Precision=\"8\" "
+         "Format=\"HDF\">" +
+         h5_name +
+         ":/world/triangles</DataItem>\n"
          "      </Topology>\n"
          "      <Geometry GeometryType=\"XYZ\">\n"
-         "        <DataItem Dimensions=\"" + v + " 3\" NumberType=\"Float\" Precision=\"8\" "
-         "Format=\"HDF\">" + h5_name + ":/world/vertices</DataItem>\n"
+         "        <DataItem Dimensions=\"" +
+         v +
+         " 3\" NumberType=\"Float\" Precision=\"8\" "
+         "Format=\"HDF\">" +
+         h5_name +
+         ":/world/vertices</DataItem>\n"
          "      </Geometry>\n"
          "      <Attribute Name=\"particle\" AttributeType=\"Scalar\" Center=\"Cell\">\n"
-         "        <DataItem Dimensions=\"" + t + "\" NumberType=\"Int\" Precision=\"4\" "
-         "Format=\"HDF\">" + h5_name + ":/world/particle</DataItem>\n"
+         "        <DataItem Dimensions=\"" +
+         t +
+         "\" NumberType=\"Int\" Precision=\"4\" "
+         "Format=\"HDF\">" +
+         h5_name +
+         ":/world/particle</DataItem>\n"
          "      </Attribute>\n"
          "    </Grid>\n"
          "  </Domain>\n"
@@ -341,9 +355,7 @@ class Reader {
  public:
   explicit Reader(std::string path) : path_(std::move(path)) {}
 
-  [[noreturn]] void fail(const std::string& what) const {
-    throw FormatError(path_ + ": " + what);
-  }
+  [[noreturn]] void fail(const std::string& what) const { throw FormatError(path_ + ": " + what); }
   [[noreturn]] void fail_hdf5(const std::string& what) const {
     fail(what + " (" + hdf5_reason() + "; the file is truncated or corrupted)");
   }
@@ -564,10 +576,10 @@ Packing read_hdf5(const std::string& path) {
                         vertices, vertex_rows);
     reader.read_dataset(group.get(), "shapes", "triangles", H5T_NATIVE_UINT32, H5T_INTEGER, 3,
                         triangles, triangle_rows);
-    reader.read_dataset(group.get(), "shapes", "vertex_offsets", H5T_NATIVE_UINT64, H5T_INTEGER,
-                        0, vertex_offsets, shape_rows);
-    reader.read_dataset(group.get(), "shapes", "triangle_offsets", H5T_NATIVE_UINT64,
-                        H5T_INTEGER, 0, triangle_offsets, triangle_shape_rows);
+    reader.read_dataset(group.get(), "shapes", "vertex_offsets", H5T_NATIVE_UINT64, H5T_INTEGER, 0,
+                        vertex_offsets, shape_rows);
+    reader.read_dataset(group.get(), "shapes", "triangle_offsets", H5T_NATIVE_UINT64, H5T_INTEGER,
+                        0, triangle_offsets, triangle_shape_rows);
     if (shape_rows == 0 || triangle_shape_rows != shape_rows) {
       reader.fail("shape offset tables are empty or of different lengths");
     }
@@ -615,16 +627,16 @@ Packing read_hdf5(const std::string& path) {
     std::vector<double> control_radius;
     std::vector<double> scale;
     std::size_t rows[6] = {};
-    reader.read_dataset(group.get(), "particles", "shape", H5T_NATIVE_UINT32, H5T_INTEGER, 0,
-                        shape, rows[0]);
+    reader.read_dataset(group.get(), "particles", "shape", H5T_NATIVE_UINT32, H5T_INTEGER, 0, shape,
+                        rows[0]);
     reader.read_dataset(group.get(), "particles", "position", H5T_NATIVE_DOUBLE, H5T_FLOAT, 3,
                         position, rows[1]);
     reader.read_dataset(group.get(), "particles", "rotation", H5T_NATIVE_DOUBLE, H5T_FLOAT, 4,
                         rotation, rows[2]);
-    reader.read_dataset(group.get(), "particles", "control_radius", H5T_NATIVE_DOUBLE, H5T_FLOAT,
-                        0, control_radius, rows[3]);
-    reader.read_dataset(group.get(), "particles", "size_class", H5T_NATIVE_UINT32, H5T_INTEGER,
-                        0, size_class, rows[4]);
+    reader.read_dataset(group.get(), "particles", "control_radius", H5T_NATIVE_DOUBLE, H5T_FLOAT, 0,
+                        control_radius, rows[3]);
+    reader.read_dataset(group.get(), "particles", "size_class", H5T_NATIVE_UINT32, H5T_INTEGER, 0,
+                        size_class, rows[4]);
     reader.read_dataset(group.get(), "particles", "scale", H5T_NATIVE_DOUBLE, H5T_FLOAT, 0, scale,
                         rows[5]);
     const std::size_t n = rows[0];
@@ -643,8 +655,8 @@ Packing read_hdf5(const std::string& path) {
       p.control_radius = control_radius[i];
       p.scale = scale[i];
       p.pose.position = Vec3(position[3 * i], position[3 * i + 1], position[3 * i + 2]);
-      p.pose.rotation = Quat(rotation[4 * i], rotation[4 * i + 1], rotation[4 * i + 2],
-                             rotation[4 * i + 3]);
+      p.pose.rotation =
+          Quat(rotation[4 * i], rotation[4 * i + 1], rotation[4 * i + 2], rotation[4 * i + 3]);
       if (!p.pose.position.allFinite() || !p.pose.rotation.coeffs().allFinite() ||
           !std::isfinite(p.control_radius) || p.control_radius < 0 || !std::isfinite(p.scale) ||
           p.scale <= 0) {
@@ -653,7 +665,8 @@ Packing read_hdf5(const std::string& path) {
       }
       // Written from unit quaternions; anything far from unit length is corruption.
       if (std::abs(p.pose.rotation.squaredNorm() - 1.0) > 1e-6) {
-        reader.fail("particle " + std::to_string(i) + " has a rotation that is not a unit "
+        reader.fail("particle " + std::to_string(i) +
+                    " has a rotation that is not a unit "
                     "quaternion");
       }
     }
@@ -707,7 +720,8 @@ void write_packing(const std::string& path, const Packing& packing,
 
 Packing read_packing(const std::string& path) {
   std::error_code error;
-  if (!std::filesystem::exists(path, error)) throw IoError("cannot read " + path + ": no such file");
+  if (!std::filesystem::exists(path, error))
+    throw IoError("cannot read " + path + ": no such file");
   if (std::filesystem::is_directory(path, error)) {
     throw IoError("cannot read " + path + ": it is a folder");
   }

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,12 +12,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <thread>
-#include <chrono>
-#include <unistd.h>
 #include <limits>
 #include <map>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "aggpack/core/error.h"
@@ -33,13 +33,15 @@ class NativeFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() / (std::string("aggpack_native_") + info->name() + "_" +
-                                           std::to_string(::getpid()));
+    folder_ = fs::temp_directory_path() /
+              (std::string("aggpack_native_") + info->name() + "_" + std::to_string(::getpid()));
     fs::remove_all(folder_);
     fs::create_directories(folder_);
   }
   void TearDown() override { fs::remove_all(folder_); }
-  [[nodiscard]] std::string path(const std::string& name) const { return (folder_ / name).string(); }
+  [[nodiscard]] std::string path(const std::string& name) const {
+    return (folder_ / name).string();
+  }
 
   fs::path folder_;
 };
@@ -112,7 +114,8 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
     const auto& pb = b.particles[i];
     bool is_same = pa.shape == pb.shape && pa.size_class == pb.size_class &&
                    same_bits(pa.control_radius, pb.control_radius) && same_bits(pa.scale, pb.scale);
-    for (int k = 0; k < 3; ++k) is_same = is_same && same_bits(pa.pose.position[k], pb.pose.position[k]);
+    for (int k = 0; k < 3; ++k)
+      is_same = is_same && same_bits(pa.pose.position[k], pb.pose.position[k]);
     for (int k = 0; k < 4; ++k) {
       is_same = is_same && same_bits(pa.pose.rotation.coeffs()[k], pb.pose.rotation.coeffs()[k]);
     }
@@ -211,7 +214,8 @@ TEST_F(NativeFileTest, SameInputGivesByteIdenticalFiles) {
 TEST_F(NativeFileTest, WritesAtomicallyAndLeavesNoTemporaryFile) {
   write_packing(path("run.h5"), sample_packing());
   std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(folder_)) names.push_back(entry.path().filename());
+  for (const auto& entry : fs::directory_iterator(folder_))
+    names.push_back(entry.path().filename());
   EXPECT_EQ(names, std::vector<std::string>{"run.h5"});
   EXPECT_EQ(error_kind_of([&] {
               write_packing(path("run.h5"), sample_packing(), {.overwrite = Overwrite::kForbid});
@@ -223,8 +227,9 @@ TEST_F(NativeFileTest, WritesAtomicallyAndLeavesNoTemporaryFile) {
 }
 
 TEST_F(NativeFileTest, RejectsBadWriteOptionsAndShapeIndices) {
-  EXPECT_EQ(error_kind_of([&] { write_packing(path("a.h5"), sample_packing(), {.compression = 10}); }),
-            ErrorKind::kInvalidInput);
+  EXPECT_EQ(
+      error_kind_of([&] { write_packing(path("a.h5"), sample_packing(), {.compression = 10}); }),
+      ErrorKind::kInvalidInput);
   Packing packing = sample_packing();
   packing.particles[3].shape = 99;
   EXPECT_EQ(error_kind_of([&] { write_packing(path("a.h5"), packing); }), ErrorKind::kInvalidInput);
@@ -351,7 +356,8 @@ TEST_F(NativeFileTest, H5pyReadsTheDatasets) {
                 p.pose.rotation.w(), p.scale, static_cast<int>(p.shape),
                 packing.shapes[0].vertices()[2].z());
   const std::string script =
-      "import h5py, sys; f = h5py.File(\"" + path("run.h5") + "\", \"r\"); "
+      "import h5py, sys; f = h5py.File(\"" + path("run.h5") +
+      "\", \"r\"); "
       "assert f.attrs[\"format_name\"] == b\"aggpack-packing\"; "
       "assert f.attrs[\"format_version\"] == 1; "
       "assert f[\"particles/position\"].shape == (7, 3); "
@@ -360,7 +366,8 @@ TEST_F(NativeFileTest, H5pyReadsTheDatasets) {
       "q = f[\"particles\"]; "
       "got = \"%.17g,%.17g,%.17g,%d,%.17g\" % (q[\"position\"][5, 0], q[\"rotation\"][5, 0], "
       "q[\"scale\"][5], q[\"shape\"][5], f[\"shapes/vertices\"][2, 2]); "
-      "sys.exit(0 if got == \"" + std::string(expected) + "\" else 1)";
+      "sys.exit(0 if got == \"" +
+      std::string(expected) + "\" else 1)";
   EXPECT_EQ(run_python(script), 0);
 }
 
@@ -382,9 +389,11 @@ TEST_F(NativeFileTest, XdmfSideFileOpensInMeshio) {
   std::snprintf(expected, sizeof expected, "%zu %zu %.12e", vertices, triangles,
                 last.vertices().back().y());
   const std::string script =
-      "import meshio, sys; m = meshio.read(\"" + path("run.xdmf") + "\"); "
+      "import meshio, sys; m = meshio.read(\"" + path("run.xdmf") +
+      "\"); "
       "got = \"%d %d %.12e\" % (len(m.points), len(m.cells_dict[\"triangle\"]), m.points[-1, 1]); "
-      "print(got); sys.exit(0 if got == \"" + std::string(expected) + "\" else 1)";
+      "print(got); sys.exit(0 if got == \"" +
+      std::string(expected) + "\" else 1)";
   EXPECT_EQ(run_python(script), 0);
 }
 

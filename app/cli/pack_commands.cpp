@@ -1,0 +1,290 @@
+// `aggpack pack` and `aggpack info`: pack particles from a TOML configuration into the native
+// packing file, and print the statistics of a saved packing (issue 3).
+
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "aggpack/core/atomic_file.h"
+#include "aggpack/core/error.h"
+#include "aggpack/io/config.h"
+#include "aggpack/io/native.h"
+#include "aggpack/io/packing_stats_json.h"
+#include "aggpack/pack/lattice_packer.h"
+#include "aggpack/pack/random_packer.h"
+#include "aggpack/pack/statistics.h"
+#include "commands.h"
+#include "progress.h"
+
+namespace aggpack::cli {
+
+namespace {
+
+struct PackFlags {
+  std::string config_path;
+  std::vector<std::string> overrides;
+  std::string output;
+  std::optional<std::uint64_t> seed;
+  std::optional<int> threads;
+  bool is_forced = false;
+  bool has_xdmf = false;
+  int compression = 0;
+  std::string progress = "auto";
+  bool is_print_config = false;
+  bool is_json = false;
+};
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+// Re-indents a pretty-printed JSON value so it can sit at `indent` inside another object.
+std::string nest_json(const std::string& json, int indent) {
+  std::string out;
+  const std::string pad(static_cast<std::size_t>(indent), ' ');
+  for (const char c : json) {
+    out += c;
+    if (c == '\n') out += pad;
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  return out;
+}
+
+std::string describe_container(const Container& c) {
+  if (c.kind == ContainerKind::kCylinder) {
+    return fmt::format("cylinder radius {} m x height {} m, wall gap {} m", c.radius, c.height,
+                       c.wall_gap);
+  }
+  return fmt::format("box {} x {} x {} m, wall gap {} m", c.length, c.width, c.depth, c.wall_gap);
+}
+
+std::string container_json(const Container& c) {
+  if (c.kind == ContainerKind::kCylinder) {
+    return fmt::format(
+        "{{\"kind\": \"cylinder\", \"radius_m\": {}, \"height_m\": {}, \"wall_gap_m\": {}}}",
+        c.radius, c.height, c.wall_gap);
+  }
+  return fmt::format(
+      "{{\"kind\": \"box\", \"length_m\": {}, \"width_m\": {}, \"depth_m\": {}, "
+      "\"wall_gap_m\": {}}}",
+      c.length, c.width, c.depth, c.wall_gap);
+}
+
+void warn(const std::string& text) { std::fprintf(stderr, "aggpack: warning: %s\n", text.c_str()); }
+
+void run_pack(const PackFlags& flags) {
+  std::vector<std::string> overrides = flags.overrides;
+  // --seed and --threads are shortcuts for --set and win over it.
+  if (flags.seed) overrides.push_back("packer.seed=" + std::to_string(*flags.seed));
+  if (flags.threads) overrides.push_back("packer.threads=" + std::to_string(*flags.threads));
+  const PackConfig config = flags.config_path.empty()
+                                ? parse_pack_config("", "defaults", overrides)
+                                : load_pack_config(flags.config_path, overrides);
+  if (flags.is_print_config) {
+    fmt::print("{}", config.resolved_toml);
+    return;
+  }
+  require_in_range("--compression", flags.compression, 0, 9);
+  const ProgressStyle style = parse_progress_style("--progress", flags.progress);
+  for (const auto& text : config.warnings) warn(text);
+
+  std::string output = flags.output;
+  if (output.empty()) {
+    const auto native = config.outputs.find("native");
+    output = native != config.outputs.end() ? native->second
+                                            : fmt::format("aggpack-seed{}.h5", config.seed());
+  }
+  const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
+  // Fail before the (possibly long) run, not after it.
+  check_writable(output, overwrite);
+  if (flags.has_xdmf) check_writable(xdmf_path_for(output), overwrite);
+  for (const auto& [format, path] : config.outputs) {
+    if (format != "native") {
+      warn(
+          fmt::format("output.{} = {} is not written by `aggpack pack`; run `aggpack export {} "
+                      "-o {}` after packing",
+                      format, path, output, path));
+    }
+  }
+  set_thread_count(config.threads);
+
+  if (!flags.is_json) {
+    fmt::print("aggpack pack: {} packer, seed {}, {}\n", config.packer_name(), config.seed(),
+               describe_container(config.container()));
+    std::fflush(stdout);
+  }
+  std::unique_ptr<ProgressBar> bar;
+  std::optional<PackStage> stage;
+  PackControl control;
+  control.on_progress = [&](const PackProgress& progress) {
+    if (!stage || *stage != progress.stage) {
+      bar.reset();  // finishes the previous stage's display
+      stage = progress.stage;
+      bar = std::make_unique<ProgressBar>(
+          progress.stage == PackStage::kShapes ? "shapes " : "placing", "particles", style);
+    }
+    const bool is_shapes = progress.stage == PackStage::kShapes;
+    bar->update(
+        progress.fraction, is_shapes ? progress.attempted : progress.placed, progress.total,
+        is_shapes ? std::string() : fmt::format("solid {:.1f} %", 100.0 * progress.solid_fraction));
+  };
+  PackResult result = config.packer == PackerKind::kLattice ? pack_lattice(config.lattice, control)
+                                                            : pack_random(config.random, control);
+  bar.reset();
+
+  Packing& packing = result.packing;
+  packing.provenance.config_toml = config.resolved_toml;
+  packing.provenance.seed = config.seed();
+  packing.provenance.packer = config.packer_name();
+  write_packing(
+      output, packing,
+      {.overwrite = overwrite, .compression = flags.compression, .write_xdmf = flags.has_xdmf});
+
+  const PackReport& report = result.report;
+  if (flags.is_json) {
+    fmt::print("{{\n  \"output\": {},\n  \"report\": {}\n}}\n", json_string(output),
+               nest_json(to_json(report, 2), 2));
+  } else {
+    fmt::print("{}\n", report.summary());
+    fmt::print("particles       {}\n", report.placed);
+    fmt::print("solid volume    {:.6g} m^3\n", report.solid_volume);
+    fmt::print("solid fraction  {:.4f}\n", report.solid_fraction);
+    fmt::print("time            {:.2f} s shapes + {:.2f} s placement\n", report.shape_seconds,
+               report.placement_seconds);
+    fmt::print("wrote {}{}\n", output,
+               flags.has_xdmf ? " and " + xdmf_path_for(output) : std::string());
+  }
+  if (!report.is_target_reached) {
+    warn("target not reached (" + to_string(report.stop_reason) + "): placed " +
+         std::to_string(report.placed) + " of " + std::to_string(report.requested) +
+         " particles; the file holds what was placed");
+  }
+}
+
+void run_info(const std::string& path, bool is_json, int bins, bool has_descriptors) {
+  require_in_range("--bins", bins, 1, 10000);
+  const Packing packing = read_packing(path);
+  StatisticsOptions options{.bins = bins, .has_descriptors = has_descriptors};
+  // The stored configuration names the target grading; compare against it when it parses.
+  bool has_config = false;
+  if (!packing.provenance.config_toml.empty()) {
+    try {
+      options.target =
+          parse_pack_config(packing.provenance.config_toml, "stored config").target_grading();
+      has_config = true;
+    } catch (const Error&) {
+      has_config = false;  // written by another version or tool: statistics without the target
+    }
+  }
+  const PackingStatistics statistics = compute_statistics(packing, options);
+  const Provenance& p = packing.provenance;
+  if (is_json) {
+    fmt::print(
+        "{{\n  \"file\": {},\n  \"format_version\": {},\n  \"aggpack_version\": {},\n"
+        "  \"packer\": {},\n  \"seed\": {},\n  \"container\": {},\n  \"statistics\": {}\n}}\n",
+        json_string(path), kNativeFormatVersion, json_string(p.aggpack_version),
+        json_string(p.packer), p.seed, container_json(packing.container),
+        nest_json(to_json(statistics, 2), 2));
+    return;
+  }
+  fmt::print("file            {} ({} v{}, written by aggpack {})\n", path, kNativeFormatName,
+             kNativeFormatVersion, p.aggpack_version);
+  fmt::print("packer          {}, seed {}\n", p.packer.empty() ? "(unknown)" : p.packer, p.seed);
+  fmt::print("container       {}\n", describe_container(packing.container));
+  if (!has_config && !p.config_toml.empty()) {
+    fmt::print("note            stored configuration not readable; no target grading\n");
+  }
+  fmt::print("{}", format_statistics(statistics));
+}
+
+}  // namespace
+
+void register_pack(CLI::App& app) {
+  auto flags = std::make_shared<PackFlags>();
+  auto* command = app.add_subcommand(
+      "pack",
+      "Pack particles into a container (the paper's lattice placement or random sequential "
+      "addition) and write the native packing file (.h5). Without a config: the paper's case, "
+      "1,050 particles in a 3.0 x 1.0 x 2.8 m box. Keys: docs/config.md.");
+  command->add_option("config", flags->config_path,
+                      "TOML configuration file (omit for the paper's case)");
+  command
+      ->add_option("--set", flags->overrides,
+                   "override one config key, KEY=VALUE with a dotted key, e.g. --set "
+                   "packer.gap=0.001 (repeatable; applied in order, after the file)")
+      ->allow_extra_args(false);
+  command->add_option("-o,--output", flags->output,
+                      "native packing file to write (default: output.native from the config, "
+                      "else aggpack-seed<SEED>.h5)");
+  command->add_option("--seed", flags->seed, "master seed, same as --set packer.seed=N");
+  command->add_option("-j,--threads", flags->threads,
+                      "worker threads, 0 = all cores (same as --set packer.threads=N; results do "
+                      "not depend on it)");
+  command->add_flag("-f,--force", flags->is_forced, "replace existing output files");
+  command->add_flag("--xdmf", flags->has_xdmf,
+                    "also store world-coordinate surfaces and write <output>.xdmf for ParaView");
+  command
+      ->add_option("--compression", flags->compression,
+                   "deflate level of the .h5 datasets, 0 (none) .. 9")
+      ->capture_default_str();
+  command
+      ->add_option("--progress", flags->progress,
+                   "progress display on stderr: auto (bar on a terminal, else lines), bar, lines, "
+                   "none")
+      ->capture_default_str();
+  command->add_flag("--print-config", flags->is_print_config,
+                    "print the resolved configuration (every effective key) and exit");
+  command->add_flag("--json", flags->is_json, "print the pack report as JSON on stdout");
+  command->callback([flags]() { run_pack(*flags); });
+}
+
+void register_info(CLI::App& app) {
+  auto path = std::make_shared<std::string>();
+  auto is_json = std::make_shared<bool>(false);
+  auto bins = std::make_shared<int>(10);
+  auto is_without_descriptors = std::make_shared<bool>(false);
+  auto* command = app.add_subcommand(
+      "info",
+      "Print the statistics of a saved packing: count, solid volume and fraction (global and "
+      "along x, y, z), achieved vs target grading, shape-descriptor summaries.");
+  command->add_option("file", *path, "native packing file (.h5)")->required();
+  command->add_flag("--json", *is_json, "print JSON instead of the readable summary");
+  command->add_option("--bins", *bins, "bins per axis for the solid-fraction profiles, [1, 10000]")
+      ->capture_default_str();
+  command->add_flag("--no-descriptors", *is_without_descriptors,
+                    "skip the per-particle shape descriptors (faster for large packings)");
+  command->callback([=]() { run_info(*path, *is_json, *bins, !*is_without_descriptors); });
+}
+
+}  // namespace aggpack::cli

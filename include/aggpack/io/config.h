@@ -1,0 +1,97 @@
+#pragma once
+// The pack configuration: a TOML file (toml++) plus `--set key=value` overrides, validated key by
+// key and turned into the packers' option structs. Every key, its unit, default and allowed range
+// is listed by config_keys() and documented in docs/config.md. An empty configuration is the
+// paper's stacking case (lattice placement, alpha 0.5, R 0.1 m, L 0.1 m, box 3.0 x 1.0 x 2.8 m).
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "aggpack/core/error.h"
+#include "aggpack/pack/grading.h"
+#include "aggpack/pack/lattice_packer.h"
+#include "aggpack/pack/random_packer.h"
+
+namespace aggpack {
+
+/// A configuration that cannot be used: an unknown key (with a suggestion), a value of the wrong
+/// type, out of range or not one of the allowed words. Kind kInvalidInput. The message starts with
+/// where the value came from ("paper.toml:5: ", "--set packer.gap=-1: ") and names the key, the
+/// value and what is allowed.
+class ConfigError : public Error {
+ public:
+  ConfigError(std::string key, const std::string& message)
+      : Error(ErrorKind::kInvalidInput, message), key_(std::move(key)) {}
+  /// The dotted key at fault ("packer.gap"), or "" for a syntax error.
+  [[nodiscard]] const std::string& key() const { return key_; }
+
+ private:
+  std::string key_;
+};
+
+/// One documented configuration key.
+struct ConfigKey {
+  std::string name;           ///< dotted key, e.g. "packer.gap"
+  std::string type;           ///< "float", "integer", "string", "array"
+  std::string unit;           ///< "m", "-", "%", "" (none)
+  std::string default_value;  ///< as it would be written in TOML, or a description
+  std::string allowed;        ///< allowed values or range
+  std::string used_when;      ///< which packer / container / grading reads it
+  std::string description;    ///< one line
+};
+
+/// Every key the configuration accepts, in documentation order. `output.<format>` stands for one
+/// key per export format (see output_formats()).
+const std::vector<ConfigKey>& config_keys();
+
+/// Format names accepted as keys of the [output] table ("native", "stl", ...).
+const std::vector<std::string>& output_formats();
+
+enum class PackerKind { kLattice, kRandom };
+
+/// A resolved, validated configuration.
+struct PackConfig {
+  PackerKind packer = PackerKind::kLattice;
+  LatticeOptions lattice;    ///< the options used when packer == kLattice
+  RandomPackOptions random;  ///< the options used when packer == kRandom
+  int threads = 0;  ///< packer.threads: worker threads, 0 = all cores (no effect on results)
+  /// The [output] table: format name -> path. "native" is the .h5 file `aggpack pack` writes when
+  /// no -o is given; the others are for the exporters.
+  std::map<std::string, std::string> outputs;
+  /// Keys that were given but have no effect with the chosen packer / container / grading, one
+  /// line each ("grading.exponent is ignored: grading.kind is uniform").
+  std::vector<std::string> warnings;
+  /// The complete configuration with every key at its effective value (canonical TOML, without
+  /// packer.threads, which cannot change results). Parsing it again gives the same PackConfig.
+  std::string resolved_toml;
+
+  /// The chosen packer's seed.
+  [[nodiscard]] std::uint64_t seed() const;
+  /// The chosen packer's container.
+  [[nodiscard]] const Container& container() const;
+  /// The target grading to compare a packing with: the random packer's grading, none for lattice.
+  [[nodiscard]] std::optional<Grading> target_grading() const;
+  /// "lattice" or "random".
+  [[nodiscard]] std::string packer_name() const;
+};
+
+/// Parses TOML text, applies the overrides ("dotted.key=value", the value in TOML syntax; a bare
+/// word is taken as a string) in order, and validates every key.
+/// `source_name` names the text in error messages (usually the file name).
+/// \throw FormatError (TOML syntax error, with line and column; an override value that starts
+///        like a number, array or quoted string but is not valid TOML); ConfigError (unknown key,
+///        wrong type, out of range, bad word, an override without '=' or value, and the packers'
+///        own cross-field rules, renamed to config keys); Error of kind kLimitExceeded (vertex cap
+///        too small for the radius and edge length).
+PackConfig parse_pack_config(std::string_view text, std::string_view source_name = "config",
+                             const std::vector<std::string>& overrides = {});
+
+/// Reads `path` and calls parse_pack_config. \throw IoError if it cannot be read; as above.
+PackConfig load_pack_config(const std::string& path,
+                            const std::vector<std::string>& overrides = {});
+
+}  // namespace aggpack
