@@ -10,7 +10,6 @@ void register_particle(CLI::App& app);
 void register_shapes(CLI::App& app);
 void register_pack(CLI::App& app);
 void register_info(CLI::App& app);
-void register_export(CLI::App& app);  // export_commands.cpp
 
 /// Limits the worker threads for the rest of the process (0 = all cores).
 void set_thread_count(int threads);

@@ -19,7 +19,6 @@ int main(int argc, char** argv) {
 #ifdef AGGPACK_HAS_IO
   aggpack::cli::register_pack(app);
   aggpack::cli::register_info(app);
-  aggpack::cli::register_export(app);
 #endif
   try {
     app.parse(argc, argv);
