@@ -10,6 +10,7 @@ void register_particle(CLI::App& app);
 void register_shapes(CLI::App& app);
 void register_pack(CLI::App& app);
 void register_info(CLI::App& app);
+void register_render(CLI::App& app);  // render_commands.cpp, when built with AGGPACK_HAS_RENDER
 
 /// Limits the worker threads for the rest of the process (0 = all cores).
 void set_thread_count(int threads);

@@ -19,6 +19,9 @@ int main(int argc, char** argv) {
 #ifdef AGGPACK_HAS_IO
   aggpack::cli::register_pack(app);
   aggpack::cli::register_info(app);
+#ifdef AGGPACK_HAS_RENDER
+  aggpack::cli::register_render(app);
+#endif
 #endif
   try {
     app.parse(argc, argv);

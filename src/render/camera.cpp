@@ -69,7 +69,7 @@ void Camera::reset(ViewPreset view, double aspect) {
   scene_radius_ = std::max(0.5 * scene_.extent().norm(), 1e-9);
   switch (view) {
     case ViewPreset::kIso:
-      orientation_ = orientation_from(Vec3(1.0, -1.25, 0.9), Vec3::UnitZ());
+      orientation_ = orientation_from(Vec3(0.8, -1.5, 0.95), Vec3::UnitZ());
       break;
     case ViewPreset::kFront:
       orientation_ = orientation_from(-Vec3::UnitY(), Vec3::UnitZ());
