@@ -140,30 +140,45 @@ OffscreenTarget::~OffscreenTarget() {
 void OffscreenTarget::bind() const { glBindFramebuffer(GL_FRAMEBUFFER, draw_framebuffer_); }
 
 Image OffscreenTarget::read() const {
-  GLuint source = draw_framebuffer_;
   if (samples_ > 0) {
+    // Multisampled pixels cannot be read directly: resolve into the plain colour buffer first.
     glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_framebuffer_);
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_framebuffer_);
     glBlitFramebuffer(0, 0, width_, height_, 0, 0, width_, height_, GL_COLOR_BUFFER_BIT,
                       GL_NEAREST);
-    source = resolve_framebuffer_;
   }
-  Image image;
-  image.width = width_;
-  image.height = height_;
-  image.rgba.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, source);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, samples_ > 0 ? resolve_framebuffer_ : draw_framebuffer_);
+  Image image = read_framebuffer(0, 0, width_, height_);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return image;
+}
+
+void OffscreenTarget::blit(unsigned framebuffer, int x, int y) const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_framebuffer_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  glBlitFramebuffer(0, 0, width_, height_, x, y, x + width_, y + height_, GL_COLOR_BUFFER_BIT,
+                    GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+}
+
+Image read_framebuffer(int x, int y, int width, int height) {
+  Image image;
+  image.width = width;
+  image.height = height;
+  image.rgba.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(x, y, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
   // OpenGL's rows run bottom to top; images run top to bottom.
-  const std::size_t row_bytes = static_cast<std::size_t>(width_) * 4;
-  for (int y = 0; y < height_ / 2; ++y) {
-    auto top = image.rgba.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * row_bytes);
-    auto bottom = image.rgba.begin() +
-                  static_cast<std::ptrdiff_t>(static_cast<std::size_t>(height_ - 1 - y) * row_bytes);
+  const std::size_t row_bytes = static_cast<std::size_t>(width) * 4;
+  for (int row = 0; row < height / 2; ++row) {
+    auto top = image.rgba.begin() +
+               static_cast<std::ptrdiff_t>(static_cast<std::size_t>(row) * row_bytes);
+    auto bottom = image.rgba.begin() + static_cast<std::ptrdiff_t>(
+                                           static_cast<std::size_t>(height - 1 - row) * row_bytes);
     std::swap_ranges(top, top + static_cast<std::ptrdiff_t>(row_bytes), bottom);
   }
+  // Window back buffers may carry alpha < 255; the picture is opaque.
+  for (std::size_t i = 3; i < image.rgba.size(); i += 4) image.rgba[i] = 255;
   return image;
 }
 

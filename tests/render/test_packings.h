@@ -15,7 +15,7 @@ namespace aggpack::test {
 /// reuse that many shapes (instanced drawing), each randomly rotated; otherwise each particle has
 /// its own shape. Particle i is at grid cell (i % nx, (i / nx) % ny, i / (nx ny)).
 inline Packing grid_packing(int nx, int ny, int nz, double radius = 0.1,
-                            std::uint32_t library_size = 0, std::uint64_t seed = 7) {
+                            std::uint32_t library_size = 0, std::uint64_t seed = 7, double edge_ratio = 1.0) {
   Packing packing;
   const double spacing = 2.2 * radius;
   const double margin = 0.1 * radius;
@@ -26,7 +26,7 @@ inline Packing grid_packing(int nx, int ny, int nz, double radius = 0.1,
   const GeneratorOptions options{.alpha = 0.5,
                                  .radius_min = radius,
                                  .radius_max = radius,
-                                 .edge_length = radius,
+                                 .edge_length = radius * edge_ratio,
                                  .seed = seed};
   const int count = nx * ny * nz;
   const int shape_count = library_size > 0 ? static_cast<int>(library_size) : count;

@@ -62,6 +62,9 @@ class OffscreenTarget {
   void bind() const;
   /// Resolves multisampling and reads the pixels back (rows top to bottom).
   [[nodiscard]] Image read() const;
+  /// Copies the picture into framebuffer `framebuffer` (0 = the window) with its lower-left
+  /// corner at pixel (x, y) there. Leaves `framebuffer` bound for drawing.
+  void blit(unsigned framebuffer, int x, int y) const;
   [[nodiscard]] int width() const { return width_; }
   [[nodiscard]] int height() const { return height_; }
 
@@ -73,6 +76,10 @@ class OffscreenTarget {
   unsigned resolve_framebuffer_ = 0;
   unsigned renderbuffers_[3] = {0, 0, 0};  // colour, depth, resolved colour
 };
+
+/// Reads the currently bound read framebuffer's region (x, y, width, height) (lower-left origin,
+/// pixels) into an image with rows top to bottom, e.g. a window's back buffer for a screenshot.
+Image read_framebuffer(int x, int y, int width, int height);
 
 /// Options of render_image. Sizes in pixels.
 struct RenderImageOptions {

@@ -1,0 +1,104 @@
+#pragma once
+// One background task at a time (packing, opening, exporting) for aggpack-gui: runs on a worker
+// thread so the window stays live, reports progress through atomics, and can be cancelled.
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "aggpack/pack/packing.h"
+
+namespace aggpack::gui {
+
+/// What a finished job hands back to the window thread.
+struct JobResult {
+  bool is_ok = false;
+  std::string message;                      ///< status line: summary or error
+  std::shared_ptr<const Packing> packing;   ///< new packing to show, or null (export)
+};
+
+class BackgroundJob {
+ public:
+  /// The task gets the job so it can publish progress and poll cancellation; it returns its
+  /// result or throws (the exception text becomes the status message).
+  using Task = std::function<JobResult(BackgroundJob&)>;
+
+  BackgroundJob() = default;
+  ~BackgroundJob() { wait(); }
+  BackgroundJob(const BackgroundJob&) = delete;
+  BackgroundJob& operator=(const BackgroundJob&) = delete;
+
+  /// Starts `task` on a worker thread. Precondition: !is_running().
+  void start(std::string name, Task task) {
+    wait();
+    name_ = std::move(name);
+    progress_ = 0.0;
+    cancel_ = false;
+    is_running_ = true;
+    has_result_ = false;
+    worker_ = std::thread([this, task = std::move(task)] {
+      JobResult result;
+      try {
+        result = task(*this);
+      } catch (const std::exception& error) {
+        result.is_ok = false;
+        result.message = error.what();
+      }
+      {
+        std::lock_guard lock(mutex_);
+        result_ = std::move(result);
+        has_result_ = true;
+      }
+      is_running_ = false;
+    });
+  }
+
+  /// Takes the result of a finished job (once). Returns false while running or when taken.
+  bool take_result(JobResult& out) {
+    std::lock_guard lock(mutex_);
+    if (!has_result_) return false;
+    out = std::move(result_);
+    has_result_ = false;
+    if (worker_.joinable()) worker_.join();
+    return true;
+  }
+
+  void wait() {
+    if (worker_.joinable()) worker_.join();
+  }
+
+  [[nodiscard]] bool is_running() const { return is_running_; }
+  [[nodiscard]] const std::string& name() const { return name_; }
+  /// Fraction done in [0, 1] (set by the task).
+  [[nodiscard]] double progress() const { return progress_; }
+  void set_progress(double fraction) { progress_ = fraction; }
+  void request_cancel() { cancel_ = true; }
+  /// The flag packers poll (PackControl::cancel).
+  [[nodiscard]] const std::atomic<bool>* cancel_flag() const { return &cancel_; }
+  [[nodiscard]] bool is_cancel_requested() const { return cancel_; }
+  /// Free-form progress text (e.g. "placed 512 of 1050"), set by the task.
+  void set_detail(std::string detail) {
+    std::lock_guard lock(mutex_);
+    detail_ = std::move(detail);
+  }
+  [[nodiscard]] std::string detail() const {
+    std::lock_guard lock(mutex_);
+    return detail_;
+  }
+
+ private:
+  std::thread worker_;
+  std::string name_;
+  std::atomic<double> progress_{0.0};
+  std::atomic<bool> cancel_{false};
+  std::atomic<bool> is_running_{false};
+  mutable std::mutex mutex_;
+  bool has_result_ = false;
+  JobResult result_;
+  std::string detail_;
+};
+
+}  // namespace aggpack::gui

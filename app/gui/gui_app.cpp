@@ -1,0 +1,637 @@
+#include "gui_app.h"
+
+#define GLFW_INCLUDE_NONE
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+#include <GLFW/glfw3.h>
+#include <fmt/core.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "aggpack/core/error.h"
+#include "aggpack/geom/mass_properties.h"
+#include "aggpack/io/export.h"
+#include "aggpack/io/native.h"
+#include "aggpack/pack/lattice_packer.h"
+#include "aggpack/pack/random_packer.h"
+
+namespace aggpack::gui {
+
+namespace {
+
+// A TOML float: fmt's shortest round-trip form, with ".0" added where it would read as integer.
+std::string toml_float(double value) {
+  std::string text = fmt::format("{}", value);
+  if (text.find_first_of(".eE") == std::string::npos) text += ".0";
+  return text;
+}
+
+const char* kContainerKinds[] = {"box", "cylinder"};
+const char* kPackers[] = {"lattice", "random"};
+const char* kGradings[] = {"uniform", "fuller"};
+constexpr float kPanelWidth = 360.0f;
+
+// Input for a length in metres with a sensible step; returns true when changed.
+bool input_metres(const char* label, double* value, double step = 0.01) {
+  return ImGui::InputDouble(label, value, step, step * 10.0, "%.4g m");
+}
+
+// Colour bar for the scale colour modes.
+void draw_legend(const ParticleColors& colors) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = ImGui::GetContentRegionAvail().x;
+  const float height = 12.0f;
+  constexpr int kSteps = 48;
+  for (int k = 0; k < kSteps; ++k) {
+    const Rgb c = scale_color((k + 0.5) / kSteps);
+    const float x0 = origin.x + width * static_cast<float>(k) / kSteps;
+    const float x1 = origin.x + width * static_cast<float>(k + 1) / kSteps;
+    draw->AddRectFilled(ImVec2(x0, origin.y), ImVec2(x1, origin.y + height),
+                        IM_COL32(c.r, c.g, c.b, 255));
+  }
+  ImGui::Dummy(ImVec2(width, height));
+  ImGui::Text("%.4g", colors.minimum);
+  ImGui::SameLine(width - ImGui::CalcTextSize(fmt::format("{:.4g}", colors.maximum).c_str()).x);
+  ImGui::Text("%.4g", colors.maximum);
+  ImGui::TextDisabled("%s", colors.quantity.c_str());
+}
+
+}  // namespace
+
+Fields fields_from_config(const PackConfig& config) {
+  Fields f;
+  const bool is_random = config.packer == PackerKind::kRandom;
+  const Container& c = config.container();
+  f.container_kind = c.kind == ContainerKind::kCylinder ? 1 : 0;
+  f.length = c.length;
+  f.width = c.width;
+  f.depth = c.depth;
+  f.cylinder_radius = c.radius;
+  f.cylinder_height = c.height;
+  f.wall_gap = c.wall_gap;
+  f.packer = is_random ? 1 : 0;
+  f.seed = config.seed();
+  const LatticeOptions& l = config.lattice;
+  f.alpha = l.alpha;
+  f.radius = l.radius;
+  f.radius_min = l.radius;
+  f.radius_max = l.radius;
+  f.edge_length = l.edge_length;
+  f.spacing = l.spacing;
+  f.gap = l.gap;
+  if (is_random) {
+    const RandomPackOptions& r = config.random;
+    f.alpha = r.shape.alpha;
+    f.edge_length = r.shape.edge_length;
+    f.edge_length_ratio = r.shape.edge_length_ratio;
+    f.gap = r.gap;
+    f.grading = r.grading.kind == GradingKind::kFuller ? 1 : 0;
+    f.radius_min = r.grading.radius_min;
+    f.radius_max = r.grading.radius_max;
+    f.radius = r.grading.radius_min;
+    f.has_radius_range = r.grading.radius_min != r.grading.radius_max;
+    f.size_min = r.grading.size_min;
+    f.size_max = r.grading.size_max;
+    f.exponent = r.grading.exponent;
+    f.target = r.target == PackTarget::kCount ? 1 : 0;
+    f.target_fraction = r.volume_fraction;
+    f.target_count = static_cast<int>(std::min<std::uint64_t>(r.count, 100000000));
+    f.shape_library = static_cast<int>(r.shape.library_size);
+  }
+  return f;
+}
+
+std::vector<std::string> overrides_from_fields(const Fields& f) {
+  std::vector<std::string> set;
+  auto add = [&set](const std::string& key, const std::string& value) {
+    set.push_back(key + "=" + value);
+  };
+  const bool is_random = f.packer == 1;
+  add("packer.kind", fmt::format("\"{}\"", kPackers[f.packer]));
+  add("packer.seed", std::to_string(f.seed));
+  add("container.kind", fmt::format("\"{}\"", kContainerKinds[f.container_kind]));
+  if (f.container_kind == 0) {
+    add("container.length", toml_float(f.length));
+    add("container.width", toml_float(f.width));
+    add("container.depth", toml_float(f.depth));
+  } else {
+    add("container.radius", toml_float(f.cylinder_radius));
+    add("container.height", toml_float(f.cylinder_height));
+  }
+  add("container.wall_gap", toml_float(f.wall_gap));
+  add("particle.alpha", toml_float(f.alpha));
+  add("packer.gap", toml_float(f.gap));
+  if (!is_random) {
+    add("particle.radius", toml_float(f.radius));
+    add("particle.edge_length", toml_float(f.edge_length));
+    add("packer.spacing", toml_float(f.spacing));
+    return set;
+  }
+  add("grading.kind", fmt::format("\"{}\"", kGradings[f.grading]));
+  if (f.grading == 0) {
+    add("particle.radius_min", toml_float(f.has_radius_range ? f.radius_min : f.radius));
+    add("particle.radius_max", toml_float(f.has_radius_range ? f.radius_max : f.radius));
+  } else {
+    add("grading.size_min", toml_float(f.size_min));
+    add("grading.size_max", toml_float(f.size_max));
+    add("grading.exponent", toml_float(f.exponent));
+  }
+  add("particle.edge_length", toml_float(f.edge_length));
+  if (f.edge_length == 0.0) add("particle.edge_length_ratio", toml_float(f.edge_length_ratio));
+  if (f.target == 0) {
+    add("packer.target_fraction", toml_float(f.target_fraction));
+  } else {
+    add("packer.target_count", std::to_string(f.target_count));
+  }
+  add("packer.shape_library", std::to_string(f.shape_library));
+  return set;
+}
+
+GuiApp::GuiApp(GLFWwindow* window, GuiOptions options)
+    : window_(window), options_(std::move(options)) {
+  // The configuration fills the fields (defaults: the paper's case); errors are the CLI's.
+  const PackConfig config =
+      options_.config_path ? load_pack_config(*options_.config_path, options_.overrides)
+                           : parse_pack_config("", "defaults", options_.overrides);
+  fields_ = fields_from_config(config);
+  style_ = options_.style;
+  view_ = options_.view;
+  export_base_ = options_.export_base;
+  renderer_ = std::make_unique<PackingRenderer>();
+  // Show the empty container until there is a packing.
+  Packing empty;
+  empty.container = config.container();
+  renderer_->set_packing(empty);
+  reset_view();
+  if (options_.open_path) {
+    open_path_ = *options_.open_path;
+    start_open(open_path_);
+    is_waiting_for_first_job_ = true;
+  } else if (options_.is_pack_at_start) {
+    is_waiting_for_first_job_ = true;
+    start_pack();
+  } else if (options_.screenshot_path || options_.is_quit_when_done) {
+    frames_since_job_ = 0;  // nothing to wait for: screenshot / quit after two frames
+  }
+}
+
+GuiApp::~GuiApp() {
+  job_.request_cancel();
+  job_.wait();
+}
+
+bool GuiApp::is_busy() const {
+  return job_.is_running() || benchmark_left_ > 0 || is_waiting_for_first_job_ ||
+         (frames_since_job_ >= 0 && frames_since_job_ < 3) || dragging_button_ >= 0;
+}
+
+int GuiApp::panel_width() const {
+  int width = 0, height = 0;
+  glfwGetWindowSize(window_, &width, &height);
+  return std::min(static_cast<int>(kPanelWidth), width / 2);
+}
+
+bool GuiApp::is_in_view(double x, double /*y*/) const {
+  return x >= panel_width() && !ImGui::GetIO().WantCaptureMouse;
+}
+
+void GuiApp::set_status(std::string text, bool is_error) {
+  status_ = std::move(text);
+  is_status_error_ = is_error;
+}
+
+void GuiApp::reset_view() {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  const double view_width = std::max(1, width - panel_width());
+  const bool is_orthographic = camera_.is_orthographic();
+  camera_ = Camera::framing(renderer_->scene_bounds(), view_, view_width / std::max(1, height),
+                            is_orthographic);
+  is_scene_dirty_ = true;
+}
+
+void GuiApp::start_pack() {
+  if (job_.is_running()) return;
+  // Validate on this thread so a bad field is reported at once, with the CLI's message.
+  PackConfig config;
+  try {
+    config = parse_pack_config("", "gui", overrides_from_fields(fields_));
+  } catch (const Error& error) {
+    set_status(error.what(), true);
+    if (is_waiting_for_first_job_) exit_code_ = 2;
+    return;
+  }
+  set_status("Packing...", false);
+  job_.start("Packing", [config](BackgroundJob& job) {
+    PackControl control;
+    control.cancel = job.cancel_flag();
+    control.progress_interval = 0.05;
+    control.on_progress = [&job](const PackProgress& progress) {
+      job.set_progress(progress.fraction);
+      job.set_detail(fmt::format("placed {} of {}, solid fraction {:.1f} %", progress.placed,
+                                 progress.total, 100.0 * progress.solid_fraction));
+    };
+    PackResult result = config.packer == PackerKind::kLattice
+                            ? pack_lattice(config.lattice, control)
+                            : pack_random(config.random, control);
+    result.packing.provenance.config_toml = config.resolved_toml;
+    result.packing.provenance.seed = config.seed();
+    result.packing.provenance.packer = config.packer_name();
+    JobResult out;
+    const bool is_cancelled = result.report.stop_reason == StopReason::kCancelled;
+    out.is_ok = true;
+    out.message = fmt::format("{} {} particles, solid fraction {:.2f} %.\n{}",
+                              is_cancelled ? "Cancelled:" : "Packing finished!",
+                              result.packing.particles.size(), 100.0 * result.report.solid_fraction,
+                              result.report.summary());
+    out.packing = std::make_shared<const Packing>(std::move(result.packing));
+    return out;
+  });
+}
+
+void GuiApp::start_open(const std::string& path) {
+  if (job_.is_running()) return;
+  set_status("Opening " + path + "...", false);
+  job_.start("Opening", [path](BackgroundJob&) {
+    JobResult out;
+    auto packing = std::make_shared<const Packing>(read_packing(path));
+    out.is_ok = true;
+    double solid = 0.0;
+    for (std::size_t i = 0; i < packing->particles.size(); ++i) {
+      solid += mass_properties(packing->local_body(i)).volume;
+    }
+    const double volume = packing->container.volume();
+    out.message = fmt::format("Opened {}: {} particles, solid fraction {:.2f} %.", path,
+                              packing->particles.size(), volume > 0 ? 100.0 * solid / volume : 0.0);
+    out.packing = std::move(packing);
+    return out;
+  });
+}
+
+void GuiApp::start_export(const std::string& format) {
+  if (job_.is_running() || !packing_) return;
+  const std::string extension = format == "native" ? "h5" : format;
+  const std::string path = export_base_ + "." + extension;
+  set_status("Writing " + path + "...", false);
+  job_.start("Exporting", [packing = packing_, format, path](BackgroundJob&) {
+    JobResult out;
+    if (format == "native") {
+      write_packing(path, *packing, {.overwrite = Overwrite::kAllow});
+      out.message = fmt::format("Wrote {} ({} particles).", path, packing->particles.size());
+    } else {
+      ExportOptions options;
+      options.format = parse_export_format(format);
+      options.overwrite = Overwrite::kAllow;
+      const ExportSummary summary = write(*packing, path, options);
+      out.message = fmt::format("Wrote {}: {} particles, {} nodes, {} elements.", path,
+                                summary.particles, summary.nodes, summary.elements);
+    }
+    out.is_ok = true;
+    return out;
+  });
+}
+
+void GuiApp::show_packing(std::shared_ptr<const Packing> packing) {
+  const Aabb old_bounds = renderer_->scene_bounds();
+  renderer_->set_packing(*packing);
+  packing_ = std::move(packing);
+  // Keep the user's camera when the scene did not move (re-pack with new shape parameters);
+  // refit when the container changed.
+  const Aabb& bounds = renderer_->scene_bounds();
+  const bool is_same_scene = !old_bounds.is_empty() && !bounds.is_empty() &&
+                             (old_bounds.lower - bounds.lower).norm() +
+                                     (old_bounds.upper - bounds.upper).norm() <
+                                 1e-3 * bounds.extent().norm();
+  if (!is_same_scene) reset_view();
+  is_scene_dirty_ = true;
+}
+
+void GuiApp::poll_job() {
+  JobResult result;
+  if (!job_.take_result(result)) return;
+  set_status(result.message, !result.is_ok);
+  if (result.packing) show_packing(result.packing);
+  if (is_waiting_for_first_job_) {
+    is_waiting_for_first_job_ = false;
+    frames_since_job_ = 0;
+    if (!result.is_ok) exit_code_ = 2;
+    if (options_.benchmark_frames > 0) {
+      benchmark_left_ = options_.benchmark_frames;
+      benchmark_start_ = glfwGetTime();
+      benchmark_scene_seconds_ = 0.0;
+    }
+  }
+}
+
+void GuiApp::render_scene_if_needed(int width, int height) {
+  if (!scene_target_ || scene_target_->width() != width || scene_target_->height() != height) {
+    scene_target_ = std::make_unique<OffscreenTarget>(width, height, 0);
+    is_scene_dirty_ = true;
+  }
+  if (!is_scene_dirty_) return;
+  const double start = glfwGetTime();
+  scene_target_->bind();
+  last_stats_ = renderer_->draw(camera_, width, height, style_);
+  // Finish here so the time measures the scene, not whatever comes later in the frame.
+  glFinish();
+  last_scene_seconds_ = glfwGetTime() - start;
+  is_scene_dirty_ = false;
+}
+
+void GuiApp::frame() {
+  poll_job();
+  int fb_width = 0, fb_height = 0;
+  glfwGetFramebufferSize(window_, &fb_width, &fb_height);
+  int win_width = 0, win_height = 0;
+  glfwGetWindowSize(window_, &win_width, &win_height);
+  const double scale = win_width > 0 ? static_cast<double>(fb_width) / win_width : 1.0;
+  const int view_x = static_cast<int>(std::lround(panel_width() * scale));
+  const int view_width = std::max(1, fb_width - view_x);
+  const int view_height = std::max(1, fb_height);
+
+  if (benchmark_left_ > 0) {
+    // Turn the scene a little every frame so every frame redraws it.
+    camera_.rotate_arcball(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.02, 0.0));
+    is_scene_dirty_ = true;
+  }
+  const double scene_start = glfwGetTime();
+  render_scene_if_needed(view_width, view_height);
+  scene_target_->blit(0, view_x, 0);
+  if (benchmark_left_ > 0) benchmark_scene_seconds_ += glfwGetTime() - scene_start;
+
+  draw_panel();
+
+  if (benchmark_left_ > 0 && --benchmark_left_ == 0) {
+    const double seconds = glfwGetTime() - benchmark_start_;
+    const int frames = options_.benchmark_frames;
+    std::printf(
+        "benchmark: %d frames of %zu particles (%zu drawn, %zu coarse, %zu triangles) in a "
+        "%dx%d view: %.1f ms/frame (%.1f frames/s), scene %.1f ms/frame\n",
+        frames, renderer_->particle_count(), last_stats_.particles_drawn,
+        last_stats_.coarse_particles, last_stats_.triangles, view_width, view_height,
+        1e3 * seconds / frames, frames / seconds, 1e3 * benchmark_scene_seconds_ / frames);
+    std::fflush(stdout);
+  }
+  if (frames_since_job_ >= 0) ++frames_since_job_;
+}
+
+void GuiApp::after_render() {
+  // Scripted runs: act once the first job's result has been on screen for two frames (the
+  // status line and the scene are then drawn) and any benchmark is over.
+  if (frames_since_job_ < 2 || benchmark_left_ > 0 || is_script_done_) return;
+  is_script_done_ = true;
+  if (options_.screenshot_path) {
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window_, &width, &height);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    try {
+      write_png(read_framebuffer(0, 0, width, height), *options_.screenshot_path);
+      std::printf("screenshot: wrote %s (%dx%d)\n", options_.screenshot_path->c_str(), width,
+                  height);
+    } catch (const Error& error) {
+      std::fprintf(stderr, "aggpack-gui: error: %s\n", error.what());
+      exit_code_ = 3;
+    }
+  }
+  std::printf("status: %s\n", status_.c_str());
+  std::fflush(stdout);
+  if (options_.is_quit_when_done) should_quit_ = true;
+}
+
+void GuiApp::draw_panel() {
+  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  int width = 0, height = 0;
+  glfwGetWindowSize(window_, &width, &height);
+  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(panel_width()), static_cast<float>(height)));
+  ImGui::Begin("aggpack", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  ImGui::PushItemWidth(-150.0f);
+  draw_container_section();
+  draw_shape_section();
+  draw_packer_section();
+  ImGui::PopItemWidth();
+  draw_job_section();
+  draw_file_section();
+  draw_view_section();
+  ImGui::End();
+}
+
+void GuiApp::draw_container_section() {
+  if (!ImGui::CollapsingHeader("Container", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::Combo("kind", &fields_.container_kind, kContainerKinds, 2);
+  if (fields_.container_kind == 0) {
+    input_metres("length (x)", &fields_.length, 0.1);
+    input_metres("width (y)", &fields_.width, 0.1);
+    input_metres("depth (z)", &fields_.depth, 0.1);
+  } else {
+    input_metres("radius", &fields_.cylinder_radius, 0.005);
+    input_metres("height", &fields_.cylinder_height, 0.01);
+  }
+  input_metres("wall gap", &fields_.wall_gap, 0.001);
+}
+
+void GuiApp::draw_shape_section() {
+  if (!ImGui::CollapsingHeader("Particle shape", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  float alpha = static_cast<float>(fields_.alpha);
+  if (ImGui::SliderFloat("alpha (Eq. 3)", &alpha, 0.0f, 1.0f, "%.2f")) fields_.alpha = alpha;
+  const bool is_random = fields_.packer == 1;
+  if (is_random && fields_.grading == 0) {
+    ImGui::Checkbox("radius range", &fields_.has_radius_range);
+  }
+  if (is_random && fields_.grading == 0 && fields_.has_radius_range) {
+    input_metres("radius min", &fields_.radius_min);
+    input_metres("radius max", &fields_.radius_max);
+  } else if (!is_random || fields_.grading == 0) {
+    input_metres("radius R", &fields_.radius);
+  }
+  input_metres(is_random ? "edge length L (0=rel.)" : "edge length L", &fields_.edge_length);
+  if (is_random && fields_.edge_length == 0.0) {
+    ImGui::InputDouble("L / r", &fields_.edge_length_ratio, 0.05, 0.25, "%.3g");
+  }
+}
+
+void GuiApp::draw_packer_section() {
+  if (!ImGui::CollapsingHeader("Grading and packer", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::Combo("packer", &fields_.packer, kPackers, 2);
+  if (fields_.packer == 0) {
+    input_metres("spacing (0=2R+gap)", &fields_.spacing);
+  } else {
+    ImGui::Combo("grading", &fields_.grading, kGradings, 2);
+    if (fields_.grading == 1) {
+      input_metres("size min d", &fields_.size_min, 0.001);
+      input_metres("size max d", &fields_.size_max, 0.001);
+      ImGui::InputDouble("exponent q", &fields_.exponent, 0.05, 0.1, "%.3g");
+    }
+    ImGui::Combo("target", &fields_.target, "solid fraction\0count\0");
+    if (fields_.target == 0) {
+      ImGui::InputDouble("solid fraction", &fields_.target_fraction, 0.01, 0.05, "%.3g");
+    } else {
+      ImGui::InputInt("count", &fields_.target_count, 100, 10000);
+    }
+    ImGui::InputInt("shape library K", &fields_.shape_library, 10, 100);
+  }
+  input_metres("gap", &fields_.gap, 0.001);
+  ImGui::InputScalar("seed", ImGuiDataType_U64, &fields_.seed);
+}
+
+void GuiApp::draw_job_section() {
+  ImGui::Separator();
+  if (job_.is_running()) {
+    ImGui::BeginDisabled();
+    ImGui::Button("Pack", ImVec2(120, 0));
+    ImGui::EndDisabled();
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel", ImVec2(-1, 0))) job_.request_cancel();
+    const std::string detail = job_.detail();
+    ImGui::ProgressBar(static_cast<float>(job_.progress()), ImVec2(-1, 0),
+                       detail.empty() ? job_.name().c_str() : nullptr);
+    if (!detail.empty()) ImGui::TextWrapped("%s", detail.c_str());
+  } else {
+    if (ImGui::Button("Pack", ImVec2(120, 0))) start_pack();
+    ImGui::SameLine();
+    ImGui::TextDisabled("(Enter)");
+  }
+  if (is_status_error_) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.3f, 1.0f));
+    ImGui::TextWrapped("%s", status_.c_str());
+    ImGui::PopStyleColor();
+  } else {
+    ImGui::TextWrapped("%s", status_.c_str());
+  }
+}
+
+void GuiApp::draw_file_section() {
+  if (!ImGui::CollapsingHeader("Open and export", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  char buffer[512];
+  std::snprintf(buffer, sizeof(buffer), "%s", open_path_.c_str());
+  ImGui::PushItemWidth(-70.0f);
+  if (ImGui::InputText("##open", buffer, sizeof(buffer))) open_path_ = buffer;
+  ImGui::PopItemWidth();
+  ImGui::SameLine();
+  if (ImGui::Button("Open", ImVec2(-1, 0)) && !job_.is_running()) start_open(open_path_);
+  std::snprintf(buffer, sizeof(buffer), "%s", export_base_.c_str());
+  ImGui::PushItemWidth(-70.0f);
+  if (ImGui::InputText("##export", buffer, sizeof(buffer))) export_base_ = buffer;
+  ImGui::PopItemWidth();
+  ImGui::SameLine();
+  ImGui::TextDisabled("name");
+  const bool can_export = packing_ != nullptr && !job_.is_running();
+  if (!can_export) ImGui::BeginDisabled();
+  const char* labels[] = {"STL", "rock.dat", ".inp", ".vtu", "native .h5"};
+  const char* formats[] = {"stl", "dat", "inp", "vtu", "native"};
+  for (int k = 0; k < 5; ++k) {
+    if (k > 0) ImGui::SameLine();
+    if (ImGui::Button(labels[k])) start_export(formats[k]);
+  }
+  if (!can_export) ImGui::EndDisabled();
+}
+
+void GuiApp::draw_view_section() {
+  if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  bool is_changed = false;
+  int color = static_cast<int>(style_.color);
+  ImGui::Text("Colour by");
+  ImGui::SameLine();
+  is_changed |= ImGui::RadioButton("particle", &color, 0);
+  ImGui::SameLine();
+  is_changed |= ImGui::RadioButton("size", &color, 1);
+  ImGui::SameLine();
+  is_changed |= ImGui::RadioButton("alpha", &color, 2);
+  style_.color = static_cast<ColorMode>(color);
+  is_changed |= ImGui::Checkbox("wireframe", &style_.is_wireframe);
+  ImGui::SameLine();
+  is_changed |= ImGui::Checkbox("container", &style_.show_container);
+  ImGui::SameLine();
+  bool is_orthographic = camera_.is_orthographic();
+  if (ImGui::Checkbox("ortho", &is_orthographic)) {
+    camera_.set_orthographic(is_orthographic);
+    reset_view();
+  }
+  const ViewPreset presets[] = {ViewPreset::kIso, ViewPreset::kFront, ViewPreset::kSide,
+                                ViewPreset::kTop};
+  for (int k = 0; k < 4; ++k) {
+    if (k > 0) ImGui::SameLine();
+    if (ImGui::Button(view_preset_name(presets[k]))) {
+      view_ = presets[k];
+      reset_view();
+    }
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Reset View (R)")) reset_view();
+  float coarse = static_cast<float>(style_.coarse_below_pixels);
+  if (ImGui::SliderFloat("coarse below px", &coarse, 0.0f, 64.0f, "%.0f")) {
+    style_.coarse_below_pixels = coarse;
+    is_changed = true;
+  }
+  if (style_.color != ColorMode::kParticle && renderer_->particle_count() > 0) {
+    draw_legend(renderer_->colors(style_.color));
+  }
+  ImGui::TextDisabled("%zu particles, %zu distinct shapes", renderer_->particle_count(),
+                      renderer_->shape_count());
+  ImGui::TextDisabled("drawn %zu (%zu coarse), %.2f M triangles", last_stats_.particles_drawn,
+                      last_stats_.coarse_particles, last_stats_.triangles / 1e6);
+  ImGui::TextDisabled("scene %.1f ms; UI %.0f frames/s", 1e3 * last_scene_seconds_,
+                      ImGui::GetIO().Framerate);
+  ImGui::TextDisabled("left drag: rotate, right drag: pan, wheel: zoom");
+  if (is_changed) is_scene_dirty_ = true;
+}
+
+void GuiApp::on_mouse_button(int button, int action) {
+  if (action == GLFW_PRESS) {
+    glfwGetCursorPos(window_, &cursor_x_, &cursor_y_);
+    if ((button == GLFW_MOUSE_BUTTON_LEFT || button == GLFW_MOUSE_BUTTON_RIGHT) &&
+        is_in_view(cursor_x_, cursor_y_)) {
+      dragging_button_ = button;
+    }
+  } else if (action == GLFW_RELEASE && button == dragging_button_) {
+    dragging_button_ = -1;
+  }
+}
+
+void GuiApp::on_cursor(double x, double y) {
+  const double dx = x - cursor_x_, dy = y - cursor_y_;
+  if (dragging_button_ >= 0 && (dx != 0.0 || dy != 0.0)) {
+    int width = 0, height = 0;
+    glfwGetWindowSize(window_, &width, &height);
+    const double left = panel_width();
+    const double view_width = std::max(1.0, width - left);
+    const double view_height = std::max(1, height);
+    if (dragging_button_ == GLFW_MOUSE_BUTTON_LEFT) {
+      // Arcball in the view's normalised coordinates; the shorter side spans [-1, 1].
+      const double half = 0.5 * std::min(view_width, view_height);
+      auto ndc = [&](double px, double py) {
+        return Eigen::Vector2d((px - left - 0.5 * view_width) / half,
+                               (0.5 * view_height - py) / half);
+      };
+      camera_.rotate_arcball(ndc(cursor_x_, cursor_y_), ndc(x, y));
+    } else {
+      camera_.pan(dx, dy, static_cast<int>(view_height));
+    }
+    is_scene_dirty_ = true;
+  }
+  cursor_x_ = x;
+  cursor_y_ = y;
+}
+
+void GuiApp::on_scroll(double dy) {
+  double x = 0.0, y = 0.0;
+  glfwGetCursorPos(window_, &x, &y);
+  if (!is_in_view(x, y)) return;
+  camera_.zoom(std::pow(0.85, dy));
+  is_scene_dirty_ = true;
+}
+
+void GuiApp::on_key(int key, int action) {
+  if (action != GLFW_PRESS || ImGui::GetIO().WantTextInput) return;
+  if (key == GLFW_KEY_R) reset_view();
+  if (key == GLFW_KEY_ENTER || key == GLFW_KEY_KP_ENTER) start_pack();
+  if (key == GLFW_KEY_ESCAPE && job_.is_running()) job_.request_cancel();
+}
+
+}  // namespace aggpack::gui

@@ -1,0 +1,141 @@
+#pragma once
+// aggpack-gui: the paper's program (Section 5) done as a modern tool. Panels for the container,
+// particle shape, grading and packer; Pack on a worker thread with progress and Cancel; a 3D
+// view with arcball rotation, pan, zoom and colour modes; Open and Export.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "aggpack/io/config.h"
+#include "aggpack/render/camera.h"
+#include "aggpack/render/headless.h"
+#include "aggpack/render/renderer.h"
+#include "background_job.h"
+
+struct GLFWwindow;
+
+namespace aggpack::gui {
+
+/// The editable packing parameters. They become `--set` overrides of the pack configuration, so
+/// the GUI validates and reports errors exactly as `aggpack pack` does.
+struct Fields {
+  int container_kind = 0;  // 0 box, 1 cylinder
+  double length = 3.0, width = 1.0, depth = 2.8;  // box (m)
+  double cylinder_radius = 0.05, cylinder_height = 0.1;  // cylinder (m)
+  double wall_gap = 0.0;  // m
+  double alpha = 0.5;
+  bool has_radius_range = false;  // random + uniform grading: r in [radius_min, radius_max]
+  double radius = 0.1, radius_min = 0.1, radius_max = 0.1;  // m
+  double edge_length = 0.1;        // m; random: 0 = relative (edge_length_ratio * r)
+  double edge_length_ratio = 1.0;  // random with edge_length 0
+  int packer = 0;  // 0 lattice, 1 random
+  double spacing = 0.0, gap = 0.0;  // m
+  int grading = 0;  // 0 uniform, 1 fuller
+  double size_min = 0.005, size_max = 0.02, exponent = 0.5;  // fuller (m, m, -)
+  int target = 0;  // 0 volume fraction, 1 count
+  double target_fraction = 0.35;
+  int target_count = 1000;
+  int shape_library = 0;
+  std::uint64_t seed = 1;
+};
+
+/// Fields holding the values of a resolved configuration.
+Fields fields_from_config(const PackConfig& config);
+/// `--set` overrides (key=value, TOML values) for the keys the chosen packer reads.
+std::vector<std::string> overrides_from_fields(const Fields& fields);
+
+/// Start-up options (from the command line).
+struct GuiOptions {
+  std::optional<std::string> config_path;  ///< TOML configuration to fill the fields from
+  std::vector<std::string> overrides;      ///< --set key=value, applied to the configuration
+  std::optional<std::string> open_path;    ///< native packing to open at start
+  bool is_pack_at_start = false;           ///< press Pack once at start
+  std::optional<std::string> screenshot_path;  ///< save the window once the first job is done
+  bool is_quit_when_done = false;          ///< exit after the screenshot / benchmark
+  int benchmark_frames = 0;                ///< rotate and redraw this many frames, print fps
+  ViewPreset view = ViewPreset::kIso;
+  RenderStyle style;
+  std::string export_base = "aggpack_out";  ///< export file name without extension
+};
+
+class GuiApp {
+ public:
+  /// Needs the window's OpenGL 3.3 core context current. \throw Error for a bad configuration.
+  GuiApp(GLFWwindow* window, GuiOptions options);
+  ~GuiApp();
+
+  /// One frame: events already polled; draws scene + panels into the back buffer.
+  void frame();
+  /// After the frame (scene + panels) is drawn, before it is shown: takes the --screenshot and
+  /// handles --quit.
+  void after_render();
+  /// True when the program should exit (window closed, or --quit finished its work).
+  [[nodiscard]] bool should_quit() const { return should_quit_; }
+  /// True while something changes on screen by itself (job running, benchmark), so the main
+  /// loop polls instead of waiting for events.
+  [[nodiscard]] bool is_busy() const;
+  /// Exit code for main: non-zero when a --pack/--open/--screenshot step failed.
+  [[nodiscard]] int exit_code() const { return exit_code_; }
+
+  // Input from the GLFW callbacks (window coordinates).
+  void on_mouse_button(int button, int action);
+  void on_cursor(double x, double y);
+  void on_scroll(double dy);
+  void on_key(int key, int action);
+
+ private:
+  void draw_panel();
+  void draw_container_section();
+  void draw_shape_section();
+  void draw_packer_section();
+  void draw_job_section();
+  void draw_file_section();
+  void draw_view_section();
+  void start_pack();
+  void start_open(const std::string& path);
+  void start_export(const std::string& format);
+  void poll_job();
+  void show_packing(std::shared_ptr<const Packing> packing);
+  void render_scene_if_needed(int width, int height);
+  void reset_view();
+  void set_status(std::string text, bool is_error);
+  [[nodiscard]] int panel_width() const;
+  [[nodiscard]] bool is_in_view(double x, double y) const;
+
+  GLFWwindow* window_;
+  GuiOptions options_;
+  Fields fields_;
+  BackgroundJob job_;
+  std::shared_ptr<const Packing> packing_;
+  std::unique_ptr<PackingRenderer> renderer_;
+  std::unique_ptr<OffscreenTarget> scene_target_;
+  Camera camera_;
+  RenderStyle style_;
+  ViewPreset view_ = ViewPreset::kIso;
+  bool is_scene_dirty_ = true;
+  DrawStats last_stats_;
+  double last_scene_seconds_ = 0.0;
+
+  std::string status_ = "Set the parameters and press Pack.";
+  bool is_status_error_ = false;
+  std::string open_path_ = "run.h5";
+  std::string export_base_;
+
+  // Mouse state.
+  int dragging_button_ = -1;
+  double cursor_x_ = 0.0, cursor_y_ = 0.0;
+
+  // Scripted runs (--pack/--open, --screenshot, --benchmark-frames, --quit).
+  bool is_waiting_for_first_job_ = false;
+  int frames_since_job_ = -1;
+  int benchmark_left_ = 0;
+  double benchmark_start_ = 0.0;
+  double benchmark_scene_seconds_ = 0.0;
+  bool is_script_done_ = false;
+  bool should_quit_ = false;
+  int exit_code_ = 0;
+};
+
+}  // namespace aggpack::gui

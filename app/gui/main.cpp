@@ -1,0 +1,160 @@
+// aggpack-gui: the interactive program (GLFW + OpenGL 3.3 core + Dear ImGui). See README.md.
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <string>
+
+#include "aggpack/core/error.h"
+#include "gui_app.h"
+
+namespace {
+
+aggpack::gui::GuiApp* g_app = nullptr;  // for the GLFW callbacks, which carry no context
+
+// Installed before ImGui's backend, which then chains to them (install_callbacks = true).
+void on_mouse_button(GLFWwindow*, int button, int action, int) {
+  if (g_app != nullptr) g_app->on_mouse_button(button, action);
+}
+void on_cursor(GLFWwindow*, double x, double y) {
+  if (g_app != nullptr) g_app->on_cursor(x, y);
+}
+void on_scroll(GLFWwindow*, double, double dy) {
+  if (g_app != nullptr) g_app->on_scroll(dy);
+}
+void on_key(GLFWwindow*, int key, int, int action, int) {
+  if (g_app != nullptr) g_app->on_key(key, action);
+}
+void on_glfw_error(int code, const char* text) {
+  std::fprintf(stderr, "aggpack-gui: GLFW error %d: %s\n", code, text);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App cli{"aggpack-gui " AGGPACK_VERSION
+               ": pack irregular convex particles interactively and look at them in 3D.\n"
+               "Left drag rotates, right drag pans, the wheel zooms, R resets the view, Enter "
+               "packs."};
+  aggpack::gui::GuiOptions options;
+  std::string config_path, open_path, screenshot_path, view = "iso", color = "id";
+  std::string size = "1400x900";
+  cli.add_option("config", config_path,
+                 "TOML configuration to start from (as for `aggpack pack`; default: the paper's "
+                 "case)");
+  cli.add_option("--set", options.overrides, "override a configuration key, key=value (repeat)");
+  cli.add_option("--open", open_path, "open a saved packing (.h5) at start");
+  cli.add_flag("--pack", options.is_pack_at_start, "press Pack once at start");
+  cli.add_option("--screenshot", screenshot_path,
+                 "save the window as PNG once the first pack/open has finished and been drawn");
+  cli.add_flag("--quit", options.is_quit_when_done,
+               "exit after the first pack/open (and --screenshot / --benchmark-frames)");
+  cli.add_option("--benchmark-frames", options.benchmark_frames,
+                 "after the first pack/open, redraw the turning scene this many frames and print "
+                 "the frame rate")
+      ->check(CLI::Range(0, 100000));
+  cli.add_option("--size", size, "window size WxH in pixels")->capture_default_str();
+  cli.add_option("--view", view, "start view: iso, front, side, top")->capture_default_str();
+  cli.add_option("--color", color, "particle colours: id, size, alpha")->capture_default_str();
+  cli.add_flag("--wireframe", options.style.is_wireframe, "start in wireframe");
+  cli.add_option("--export-name", options.export_base,
+                 "file name (without extension) the Export buttons write")
+      ->capture_default_str();
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return cli.exit(error);
+  }
+
+  int width = 1400, height = 900;
+  try {
+    if (!config_path.empty()) options.config_path = config_path;
+    if (!open_path.empty()) options.open_path = open_path;
+    if (!screenshot_path.empty()) {
+      aggpack::check_writable(screenshot_path, aggpack::Overwrite::kAllow);
+      options.screenshot_path = screenshot_path;
+    }
+    options.view = aggpack::parse_view_preset(view, "--view");
+    options.style.color = aggpack::parse_color_mode(color, "--color");
+    if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2 || width < 320 ||
+        height < 240 || width > 8192 || height > 8192) {
+      throw aggpack::InvalidInput("--size", size, "WxH with W in [320, 8192], H in [240, 8192]");
+    }
+  } catch (const aggpack::Error& error) {
+    std::fprintf(stderr, "aggpack-gui: error: %s\n", error.what());
+    return 2;
+  }
+
+  glfwSetErrorCallback(on_glfw_error);
+  if (glfwInit() == GLFW_FALSE) {
+    std::fprintf(stderr, "aggpack-gui: error: cannot open a display (is DISPLAY set? For no "
+                         "display use `aggpack render` or run under xvfb-run)\n");
+    return 3;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(width, height, "aggpack", nullptr, nullptr);
+  if (window == nullptr) {
+    std::fprintf(stderr, "aggpack-gui: error: cannot create an OpenGL 3.3 core window\n");
+    glfwTerminate();
+    return 3;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(options.benchmark_frames > 0 ? 0 : 1);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini littering the working folder
+  ImGui::StyleColorsDark();
+  glfwSetMouseButtonCallback(window, on_mouse_button);
+  glfwSetCursorPosCallback(window, on_cursor);
+  glfwSetScrollCallback(window, on_scroll);
+  glfwSetKeyCallback(window, on_key);
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+
+  int exit_code = 0;
+  {
+    std::unique_ptr<aggpack::gui::GuiApp> app;
+    try {
+      app = std::make_unique<aggpack::gui::GuiApp>(window, options);
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "aggpack-gui: error: %s\n", error.what());
+      exit_code = 2;
+    }
+    g_app = app.get();
+    while (app && !glfwWindowShouldClose(window) && !app->should_quit()) {
+      // Sleep until input when nothing moves by itself; keep polling while a job runs.
+      if (app->is_busy()) {
+        glfwPollEvents();
+      } else {
+        glfwWaitEventsTimeout(0.25);
+      }
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      app->frame();
+      ImGui::Render();
+      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+      app->after_render();
+      glfwSwapBuffers(window);
+    }
+    if (app) exit_code = app->exit_code();
+    g_app = nullptr;
+  }
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return exit_code;
+}

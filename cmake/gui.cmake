@@ -1,0 +1,38 @@
+# aggpack-gui: GLFW + OpenGL 3.3 core + Dear ImGui (Debian's libimgui-dev, whose static library
+# carries the GLFW and OpenGL3 backends). Optional: needs aggpack_render and aggpack_io.
+# Needs (Debian): libglfw3-dev libimgui-dev (+ the render packages). Smoke test: xvfb xauth.
+
+option(AGGPACK_BUILD_GUI "Build the interactive program aggpack-gui" ON)
+
+if(AGGPACK_BUILD_GUI)
+  find_package(glfw3 QUIET)
+  find_package(Threads REQUIRED)
+  if(PkgConfig_FOUND)
+    pkg_check_modules(IMGUI QUIET IMPORTED_TARGET imgui)
+  endif()
+  if(NOT TARGET aggpack_render OR NOT TARGET aggpack_io OR NOT TARGET glfw
+     OR NOT TARGET PkgConfig::IMGUI)
+    message(STATUS "aggpack: aggpack-gui disabled (needs rendering, the io library, GLFW and "
+                   "Dear ImGui: apt-get install libglfw3-dev libimgui-dev)")
+    set(AGGPACK_BUILD_GUI OFF)
+  endif()
+endif()
+
+if(AGGPACK_BUILD_GUI)
+  file(GLOB AGGPACK_GUI_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/app/gui/*.cpp)
+  add_executable(aggpack-gui ${AGGPACK_GUI_SOURCES})
+  target_link_libraries(aggpack-gui PRIVATE aggpack_render aggpack_io aggpack_core
+                        PkgConfig::IMGUI glfw OpenGL::OpenGL CLI11::CLI11 fmt::fmt
+                        Threads::Threads ${CMAKE_DL_LIBS})
+
+  # GUI smoke test: pack under a virtual X server, save a screenshot, inspect it.
+  find_program(AGGPACK_XVFB_RUN xvfb-run)
+  find_package(Python3 QUIET COMPONENTS Interpreter)
+  if(AGGPACK_BUILD_TESTS AND AGGPACK_XVFB_RUN AND Python3_Interpreter_FOUND)
+    enable_testing()
+    add_test(NAME gui_smoke
+             COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/smoke_test.sh $<TARGET_FILE:aggpack-gui>
+                     ${CMAKE_CURRENT_BINARY_DIR}/gui_smoke)
+    set_tests_properties(gui_smoke PROPERTIES TIMEOUT 300)
+  endif()
+endif()
