@@ -152,12 +152,17 @@ void run_pack(const PackFlags& flags) {
       bar.reset();  // finishes the previous stage's display
       stage = progress.stage;
       bar = std::make_unique<ProgressBar>(
-          progress.stage == PackStage::kShapes ? "shapes " : "placing", "particles", style);
+          progress.stage == PackStage::kShapes ? "shapes" : "placing", "particles", style);
     }
-    const bool is_shapes = progress.stage == PackStage::kShapes;
-    bar->update(
-        progress.fraction, is_shapes ? progress.attempted : progress.placed, progress.total,
-        is_shapes ? std::string() : fmt::format("solid {:.1f} %", 100.0 * progress.solid_fraction));
+    if (progress.stage == PackStage::kShapes) {
+      // While shapes grow, `total` is the number grown so far; the final count is not known yet.
+      bar->update(progress.fraction, progress.total, 0);
+    } else {
+      bar->update(progress.fraction, progress.placed, progress.total,
+                  progress.solid_fraction > 0
+                      ? fmt::format("solid {:.1f} %", 100.0 * progress.solid_fraction)
+                      : std::string());
+    }
   };
   PackResult result = config.packer == PackerKind::kLattice ? pack_lattice(config.lattice, control)
                                                             : pack_random(config.random, control);

@@ -62,13 +62,23 @@ ProgressBar::ProgressBar(std::string label, std::string unit, ProgressStyle styl
 
 ProgressBar::~ProgressBar() { finish(); }
 
+std::string ProgressBar::count_text() const {
+  if (total_ == 0) return fmt::format("{} {}", done_, unit_);
+  return fmt::format("{}/{} {}", done_, total_, unit_);
+}
+
 std::string ProgressBar::status_text(double elapsed) const {
-  const double rate = elapsed > 0 ? static_cast<double>(done_) / elapsed : 0.0;
-  const double eta = fraction_ > 0 && fraction_ < 1 ? elapsed * (1 - fraction_) / fraction_
-                     : fraction_ >= 1               ? 0
-                                                    : -1;
-  std::string text = fmt::format("{:5.1f}%  {}/{} {}  {}/s  ETA {}", 100.0 * fraction_, done_,
-                                 total_, unit_, format_rate(rate), format_duration(eta));
+  const double span = first_time_ >= 0 ? elapsed - first_time_ : 0.0;
+  // Below 0.2 s a rate is noise (one callback may cover a large jump).
+  const double rate = span > 0.2 ? static_cast<double>(done_ - first_done_) / span : 0.0;
+  double eta = -1;
+  if (fraction_ >= 1) {
+    eta = 0;
+  } else if (span > 0.2 && fraction_ > first_fraction_) {
+    eta = span * (1 - fraction_) / (fraction_ - first_fraction_);
+  }
+  std::string text = fmt::format("{:5.1f}%  {}  {}/s  ETA {}", 100.0 * fraction_, count_text(),
+                                 format_rate(rate), format_duration(eta));
   if (!extra_.empty()) text += "  " + extra_;
   return text;
 }
@@ -83,19 +93,22 @@ void ProgressBar::update(double fraction, std::uint64_t done, std::uint64_t tota
   has_update_ = true;
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (first_time_ < 0) {
+    first_time_ = elapsed;
+    first_fraction_ = fraction_;
+    first_done_ = done_;
+  }
   if (style_ == ProgressStyle::kBar) {
     if (last_output_ >= 0 && elapsed - last_output_ < 0.1 && fraction_ < 1) return;
     last_output_ = elapsed;
     const std::string status = status_text(elapsed);
     const int width = terminal_width(stream_);
-    const int bar_width =
-        std::clamp(width - static_cast<int>(label_.size() + status.size()) - 6, 0, 30);
-    std::string bar;
-    if (bar_width >= 5) {
-      const int filled = static_cast<int>(std::floor(fraction_ * bar_width));
-      bar = "[" + std::string(static_cast<std::size_t>(filled), '#') +
-            std::string(static_cast<std::size_t>(bar_width - filled), '.') + "] ";
-    }
+    // A fixed bar width (a quarter of the terminal) so the bar does not jump as the text changes;
+    // the status text is cut at the right edge instead.
+    const int bar_width = std::clamp(width / 4, 10, 30);
+    const int filled = static_cast<int>(std::floor(fraction_ * bar_width));
+    const std::string bar = "[" + std::string(static_cast<std::size_t>(filled), '#') +
+                            std::string(static_cast<std::size_t>(bar_width - filled), '.') + "] ";
     std::string line = label_ + " " + bar + status;
     if (static_cast<int>(line.size()) > width - 1) line.resize(static_cast<std::size_t>(width - 1));
     // \r + erase-line: redraw in place.
@@ -119,10 +132,12 @@ void ProgressBar::finish() {
   if (style_ == ProgressStyle::kNone || !has_update_) return;
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  const double rate = elapsed > 0 ? static_cast<double>(done_) / elapsed : 0.0;
+  const double span = elapsed - first_time_;
   std::string line =
-      fmt::format("{}: {:.1f}%  {}/{} {} in {:.2f} s ({}/s)", label_, 100.0 * fraction_, done_,
-                  total_, unit_, elapsed, format_rate(rate));
+      fmt::format("{}: {:.1f}%  {} in {:.2f} s", label_, 100.0 * fraction_, count_text(), elapsed);
+  if (span > 0.2) {
+    line += fmt::format(" ({}/s)", format_rate(static_cast<double>(done_ - first_done_) / span));
+  }
   if (!extra_.empty()) line += "  " + extra_;
   if (style_ == ProgressStyle::kBar) std::fprintf(stream_, "\r\033[K");
   std::fprintf(stream_, "%s\n", line.c_str());

@@ -30,7 +30,9 @@ class ProgressBar {
   ~ProgressBar();
 
   /// Reports progress: `fraction` of the work in [0, 1] (drives the bar and the ETA), `done` of
-  /// `total` items (drives the rate, items per second), `extra` appended ("solid 31.2 %").
+  /// `total` items (drives the rate, items per second; total 0 = unknown), `extra` appended
+  /// ("solid 31.2 %"). Rate and ETA are measured from the first update, so a display created
+  /// late (at a stage's first callback) still shows true figures.
   /// Bars redraw at most 10 times a second; plain lines appear at every further 10 % and at
   /// least every 10 s.
   void update(double fraction, std::uint64_t done, std::uint64_t total,
@@ -42,6 +44,7 @@ class ProgressBar {
 
  private:
   [[nodiscard]] std::string status_text(double elapsed) const;
+  [[nodiscard]] std::string count_text() const;
 
   std::string label_;
   std::string unit_;
@@ -50,6 +53,9 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
   double last_output_ = -1.0;  // seconds since start of the last bar draw / line
   double next_line_fraction_ = 0.1;
+  double first_time_ = -1.0;  // seconds since start of the first update
+  double first_fraction_ = 0.0;
+  std::uint64_t first_done_ = 0;
   double fraction_ = 0.0;
   std::uint64_t done_ = 0;
   std::uint64_t total_ = 0;

@@ -1,0 +1,233 @@
+// `aggpack pack` and `aggpack info` end to end: the paper's case, determinism across thread
+// counts, and bad input (non-zero exit, one-line error, no output file left).
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "aggpack/io/config.h"
+#include "aggpack/io/native.h"
+#include "aggpack/pack/verify.h"
+
+namespace aggpack {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+class PackCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    folder_ = fs::temp_directory_path() /
+              (std::string("aggpack_cli_") + info->name() + "_" + std::to_string(::getpid()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  // Runs the CLI inside the test folder.
+  CliRun run(const std::string& arguments) const {
+    const std::string command = "cd '" + folder_.string() + "' && '" AGGPACK_BINARY "' " +
+                                arguments + " >stdout.txt 2>stderr.txt";
+    const int status = std::system(command.c_str());
+    CliRun result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = read_text(folder_ / "stdout.txt");
+    result.err = read_text(folder_ / "stderr.txt");
+    fs::remove(folder_ / "stdout.txt");
+    fs::remove(folder_ / "stderr.txt");
+    return result;
+  }
+
+  [[nodiscard]] std::vector<std::string> files() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder_)) {
+      names.push_back(entry.path().filename().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  [[nodiscard]] std::string path(const std::string& name) const {
+    return (folder_ / name).string();
+  }
+
+  fs::path folder_;
+};
+
+// A random packing small enough for a test: 0.3 m cube, radii 0.03-0.05 m, 20 % solid.
+const char* const kSmallRandom =
+    "--set packer.kind=random --set container.length=0.3 --set container.width=0.3 "
+    "--set container.depth=0.3 --set particle.radius_min=0.03 --set particle.radius_max=0.05 "
+    "--set packer.target_fraction=0.2 --set packer.gap=0.002";
+
+TEST_F(PackCliTest, PapersCaseEndToEndThenInfo) {
+  const CliRun pack = run("pack --progress lines");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  EXPECT_NE(pack.out.find("particles       1050\n"), std::string::npos) << pack.out;
+  EXPECT_NE(pack.out.find("solid volume    "), std::string::npos) << pack.out;
+  EXPECT_NE(pack.out.find("wrote aggpack-seed1.h5"), std::string::npos) << pack.out;
+  EXPECT_NE(pack.err.find("placing: "), std::string::npos) << pack.err;  // plain progress lines
+  ASSERT_EQ(files(), std::vector<std::string>{"aggpack-seed1.h5"});
+
+  const Packing packing = read_packing(path("aggpack-seed1.h5"));
+  EXPECT_EQ(packing.particles.size(), 1050U);
+  EXPECT_EQ(packing.provenance.packer, "lattice");
+  EXPECT_EQ(packing.provenance.seed, 1U);
+  EXPECT_EQ(packing.provenance.config_toml, parse_pack_config("").resolved_toml);
+  EXPECT_EQ(packing.container.length, 3.0);
+  EXPECT_TRUE(verify(packing).is_ok);
+
+  const CliRun info = run("info aggpack-seed1.h5");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("packer          lattice, seed 1"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("1050"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("sphericity"), std::string::npos) << info.out;
+
+  const CliRun json = run("info aggpack-seed1.h5 --json --bins 4 --no-descriptors");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"particle_count\": 1050"), std::string::npos) << json.out;
+  EXPECT_NE(json.out.find("\"packer\": \"lattice\""), std::string::npos) << json.out;
+  // A real JSON reader accepts it.
+  std::ofstream(path("info.json")) << json.out;
+  const std::string check = "/usr/bin/python3 -c 'import json,sys; d = json.load(open(\"" +
+                            path("info.json") +
+                            "\")); sys.exit(0 if len(d[\"statistics\"][\"profiles\"][\"z\"]"
+                            "[\"solid_fraction\"]) == 4 else 1)'";
+  EXPECT_EQ(std::system(check.c_str()), 0);
+}
+
+TEST_F(PackCliTest, SameSeedGivesByteIdenticalFilesForAnyThreadCount) {
+  for (const auto& packer : std::vector<std::string>{"", kSmallRandom}) {
+    SCOPED_TRACE(packer.empty() ? "lattice" : "random");
+    ASSERT_EQ(run("pack --progress none --seed 5 -j 1 -o one.h5 " + packer).exit_code, 0);
+    ASSERT_EQ(run("pack --progress none --seed 5 -j 2 -o two.h5 " + packer).exit_code, 0);
+    ASSERT_EQ(run("pack --progress none --seed 6 -j 2 -o other.h5 " + packer).exit_code, 0);
+    const std::string one = read_text(folder_ / "one.h5");
+    ASSERT_GT(one.size(), 1000U);
+    EXPECT_TRUE(one == read_text(folder_ / "two.h5"));
+    EXPECT_FALSE(one == read_text(folder_ / "other.h5"));  // the seed matters
+    for (const char* name : {"one.h5", "two.h5", "other.h5"}) fs::remove(folder_ / name);
+  }
+}
+
+TEST_F(PackCliTest, RandomPackingWithXdmfAndTargetGrading) {
+  const CliRun pack =
+      run(std::string("pack --progress none ") + kSmallRandom + " -o r.h5 --xdmf --compression 4");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"r.h5", "r.xdmf"}));
+  const Packing packing = read_packing(path("r.h5"));
+  EXPECT_EQ(packing.provenance.packer, "random");
+  EXPECT_TRUE(verify(packing, {.gap = 0.002}).is_ok);
+  const CliRun info = run("info r.h5 --json");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  // The stored config names a uniform grading; info compares against it.
+  EXPECT_NE(info.out.find("\"target_percent\""), std::string::npos) << info.out;
+}
+
+TEST_F(PackCliTest, ExampleConfigRunsWithOverrides) {
+  // The concrete example, shrunk to a 50 mm cube at 15 % so that it runs in a test.
+  const CliRun pack = run("pack '" AGGPACK_SOURCE_DIR
+                          "/examples/concrete-fuller.toml' --set container.length=0.05 "
+                          "--set container.width=0.05 --set container.depth=0.05 "
+                          "--set packer.target_fraction=0.15 --progress none --json");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  EXPECT_NE(pack.out.find("\"output\": \"aggpack-seed1.h5\""), std::string::npos) << pack.out;
+  EXPECT_NE(pack.out.find("\"is_target_reached\": true"), std::string::npos) << pack.out;
+  const Packing packing = read_packing(path("aggpack-seed1.h5"));
+  EXPECT_NE(packing.provenance.config_toml.find("kind = \"fuller\""), std::string::npos);
+  EXPECT_NE(packing.provenance.config_toml.find("length = 0.05"), std::string::npos);
+}
+
+TEST_F(PackCliTest, PrintConfigWritesNothing) {
+  const CliRun run_result = run("pack --print-config --set packer.gap=0.01");
+  ASSERT_EQ(run_result.exit_code, 0) << run_result.err;
+  EXPECT_NE(run_result.out.find("[packer]\nkind = \"lattice\"\nseed = 1\ngap = 0.01\n"),
+            std::string::npos)
+      << run_result.out;
+  EXPECT_TRUE(files().empty());
+}
+
+// Each bad input: the given exit code, exactly one line on stderr starting "aggpack: error:"
+// and containing `expected`, and no file left behind (not even a temporary one).
+TEST_F(PackCliTest, BadInputFailsCleanlyWithOneLine) {
+  std::ofstream(path("syntax.toml")) << "[packer]\ngap = = 1\n";
+  std::ofstream(path("unknown.toml")) << "[packer]\ngapp = 0.001\n";
+  std::ofstream(path("notes.h5")) << "not hdf5\n";
+  struct Case {
+    std::string arguments;
+    int exit_code;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+      {"pack unknown.toml", 2,
+       "unknown.toml:2: unknown key 'packer.gapp'; did you mean 'packer.gap'?"},
+      {"pack syntax.toml", 2, "syntax.toml:2:"},
+      {"pack missing.toml", 3, "cannot read config missing.toml"},
+      {"pack --set particle.alpha=2", 2, "invalid particle.alpha = 2 (allowed: [0, 1])"},
+      {"pack --set packer.kind=latice", 2, "did you mean 'lattice'?"},
+      {"pack --set packer.target_count=1.5 --set packer.kind=random", 2,
+       "packer.target_count must be an integer"},
+      {"pack -o no/such/folder/run.h5", 3, "folder no/such/folder does not exist"},
+      {"pack --compression 12", 2, "--compression"},
+      {"pack --progress sometimes", 2, "--progress"},
+      {"pack --threads=-3", 2, "invalid packer.threads = -3"},
+      {"info missing.h5", 3, "cannot read missing.h5: no such file"},
+      {"info notes.h5", 2, "notes.h5: not an HDF5 file"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.arguments);
+    const CliRun result = run(c.arguments);
+    EXPECT_EQ(result.exit_code, c.exit_code) << result.err;
+    EXPECT_EQ(result.err.rfind("aggpack: error: ", 0), 0U) << result.err;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    EXPECT_NE(result.err.find(c.expected), std::string::npos) << result.err;
+    EXPECT_EQ(files(), (std::vector<std::string>{"notes.h5", "syntax.toml", "unknown.toml"}));
+  }
+}
+
+TEST_F(PackCliTest, ExistingOutputIsKeptWithoutForce) {
+  ASSERT_EQ(run("pack --progress none -o run.h5 --set container.depth=0.5").exit_code, 0);
+  const std::string before = read_text(folder_ / "run.h5");
+  const CliRun again = run("pack --progress none -o run.h5 --seed 2 --set container.depth=0.5");
+  EXPECT_EQ(again.exit_code, 3);
+  EXPECT_NE(again.err.find("file exists (use --force to replace it)"), std::string::npos);
+  EXPECT_TRUE(before == read_text(folder_ / "run.h5"));
+  const CliRun forced =
+      run("pack --progress none -o run.h5 --seed 2 --force --set container.depth=0.5");
+  EXPECT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_FALSE(before == read_text(folder_ / "run.h5"));
+  EXPECT_EQ(files(), std::vector<std::string>{"run.h5"});
+}
+
+TEST_F(PackCliTest, WarningsForIneffectiveKeysGoToStderr) {
+  const CliRun pack =
+      run("pack --progress none --set container.radius=0.3 --set container.depth=0.5");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  EXPECT_NE(pack.err.find("aggpack: warning: --set container.radius=0.3: container.radius is "
+                          "ignored (used only when container.kind = cylinder)"),
+            std::string::npos)
+      << pack.err;
+}
+
+}  // namespace
+}  // namespace aggpack
