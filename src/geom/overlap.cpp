@@ -1,0 +1,689 @@
+#include "aggpack/geom/overlap.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "aggpack/core/error.h"
+
+namespace aggpack {
+
+namespace {
+
+constexpr int kMaxIterations = 128;
+// Convergence: stop when the gap between the upper bound |v| and the lower bound v.w/|v| is below
+// this fraction of |v| (or below a tenth of tol). GJK on polytopes normally stops earlier, when
+// the support point repeats.
+constexpr double kRelativeGap = 1e-13;
+// A triangle whose sine of angle is below ~1e-10 is treated as its three edges: its plane (and
+// so the origin's projection) is not determined in double precision.
+constexpr double kDegenerateTriangle = 1e-20;
+// Hull-vertex reduction drops a vertex when it is within this fraction of the shape's size from
+// the hull of its neighbours (it then changes no support value by more than that).
+constexpr double kRedundantVertex = 1e-14;
+// A hull vertex whose incident face normals span R^3 by less than this (max |det| of three unit
+// normals) has a nearly flat cone; a hill-climb ending there is confirmed by a scan, because a
+// rounding-level "no better neighbour" says little about far vertices at such a vertex.
+constexpr double kBluntVertex = 1e-3;
+
+// ---------------------------------------------------------------------------------------------
+// Support providers. Each returns the index of a vertex maximising direction . x in its own
+// local frame, and the vertex for an index.
+
+// Every vertex of a ConvexPolyhedron (no preparation; exact).
+struct PolyhedronSupport {
+  const std::vector<Vec3>& vertices;
+  [[nodiscard]] std::uint32_t support(const Vec3& direction, std::uint32_t /*hint*/) const {
+    std::uint32_t best = 0;
+    double best_value = direction.dot(vertices[0]);
+    const auto count = static_cast<std::uint32_t>(vertices.size());
+    for (std::uint32_t i = 1; i < count; ++i) {
+      const double value = direction.dot(vertices[i]);
+      if (value > best_value) {
+        best_value = value;
+        best = i;
+      }
+    }
+    return best;
+  }
+  [[nodiscard]] Vec3 vertex(std::uint32_t index) const { return vertices[index]; }
+};
+
+struct ShapeSupport {
+  const SupportShape& shape;
+  [[nodiscard]] std::uint32_t support(const Vec3& direction, std::uint32_t hint) const {
+    return shape.support(direction, hint);
+  }
+  [[nodiscard]] Vec3 vertex(std::uint32_t index) const { return shape.vertex(index); }
+};
+
+// A list of points (vertex links during SupportShape construction).
+struct PointsSupport {
+  const Vec3* points;
+  std::uint32_t count;
+  [[nodiscard]] std::uint32_t support(const Vec3& direction, std::uint32_t /*hint*/) const {
+    std::uint32_t best = 0;
+    double best_value = direction.dot(points[0]);
+    for (std::uint32_t i = 1; i < count; ++i) {
+      const double value = direction.dot(points[i]);
+      if (value > best_value) {
+        best_value = value;
+        best = i;
+      }
+    }
+    return best;
+  }
+  [[nodiscard]] Vec3 vertex(std::uint32_t index) const { return points[index]; }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Signed-volumes sub-algorithm (Montanari et al. 2017): closest point to the origin of a simplex
+// of 1-4 points, as barycentric weights over a subset of them. Barycentric coordinates come from
+// signed volumes/areas of the full-dimensional simplex (projected onto the best-conditioned
+// coordinate plane for a triangle), so that the decision "origin inside / which face" is
+// consistent across dimensions; no Gram-matrix inversions as in Johnson's algorithm.
+
+struct SubResult {
+  Vec3 v = Vec3::Zero();
+  // Parallel to v, but computed from the simplex's shape where possible: when the origin projects
+  // into a triangle, its normal (a cross product of edges) has a direction error of ~1e-16
+  // whatever |v| is, while v (a weighted sum of points of size ~R) points only to within
+  // ~1e-16 R / |v|. Searching and bounding along `direction` keeps tiny distances accurate.
+  Vec3 direction = Vec3::Zero();
+  double distance_squared = std::numeric_limits<double>::infinity();
+  std::array<double, 4> lambda{};
+  unsigned mask = 0;
+};
+
+inline bool same_sign(double a, double b) { return (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0); }
+
+inline void set_vertex(const Vec3* p, int i, SubResult& out) {
+  out.v = p[i];
+  out.direction = p[i];
+  out.distance_squared = p[i].squaredNorm();
+  out.lambda = {0.0, 0.0, 0.0, 0.0};
+  out.lambda[i] = 1.0;
+  out.mask = 1u << i;
+}
+
+void closest_on_segment(const Vec3* p, int i, int j, SubResult& out) {
+  const Vec3 t = p[j] - p[i];
+  const double length_squared = t.squaredNorm();
+  const double along = -p[i].dot(t);  // weight of p[j] times |t|^2
+  if (!(along > 0.0) || !(length_squared > 0.0)) {
+    set_vertex(p, i, out);
+    return;
+  }
+  if (along >= length_squared) {
+    set_vertex(p, j, out);
+    return;
+  }
+  const double u = along / length_squared;
+  out.lambda = {0.0, 0.0, 0.0, 0.0};
+  out.lambda[i] = 1.0 - u;
+  out.lambda[j] = u;
+  out.v = (1.0 - u) * p[i] + u * p[j];
+  // v's rounding error along t would tilt the search off the segment's normal cone and spoil the
+  // lower bound by ~|t| * 1e-16 / |v|; errors across t only turn it within the cone.
+  out.direction = out.v - t * (out.v.dot(t) / length_squared);
+  out.distance_squared = out.v.squaredNorm();
+  out.mask = (1u << i) | (1u << j);
+}
+
+inline void keep_closer(const SubResult& candidate, SubResult& best) {
+  if (candidate.distance_squared < best.distance_squared) best = candidate;
+}
+
+void closest_on_triangle(const Vec3* p, int i, int j, int k, SubResult& out) {
+  const Vec3 e1 = p[j] - p[i];
+  const Vec3 e2 = p[k] - p[i];
+  const Vec3 n = e1.cross(e2);
+  const double nn = n.squaredNorm();
+  SubResult candidate;
+  if (!(nn > kDegenerateTriangle * e1.squaredNorm() * e2.squaredNorm())) {
+    out.distance_squared = std::numeric_limits<double>::infinity();
+    closest_on_segment(p, i, j, candidate);
+    keep_closer(candidate, out);
+    closest_on_segment(p, j, k, candidate);
+    keep_closer(candidate, out);
+    closest_on_segment(p, k, i, candidate);
+    keep_closer(candidate, out);
+    return;
+  }
+  // Projection of the origin onto the plane, then signed areas in the coordinate plane where the
+  // triangle's projection is largest (|n[axis]| >= |n| / sqrt(3)).
+  const Vec3 q = n * (p[i].dot(n) / nn);
+  int axis = 0;
+  if (std::abs(n.y()) > std::abs(n.x())) axis = 1;
+  if (std::abs(n.z()) > std::abs(n[axis])) axis = 2;
+  const int u = (axis + 1) % 3;
+  const int w = (axis + 2) % 3;
+  // (u, w, axis) is cyclic, so the projected area of (p_i, p_j, p_k) has the sign of n[axis].
+  const auto area = [u, w](const Vec3& a, const Vec3& b, const Vec3& c) {
+    return (b[u] - a[u]) * (c[w] - a[w]) - (b[w] - a[w]) * (c[u] - a[u]);
+  };
+  const double mu = n[axis];
+  const std::array<double, 3> c = {area(q, p[j], p[k]), area(p[i], q, p[k]), area(p[i], p[j], q)};
+  if (same_sign(c[0], mu) && same_sign(c[1], mu) && same_sign(c[2], mu)) {
+    const double sum = c[0] + c[1] + c[2];
+    out.lambda = {0.0, 0.0, 0.0, 0.0};
+    out.lambda[i] = c[0] / sum;
+    out.lambda[j] = c[1] / sum;
+    out.lambda[k] = c[2] / sum;
+    out.v = out.lambda[i] * p[i] + out.lambda[j] * p[j] + out.lambda[k] * p[k];
+    out.direction = p[i].dot(n) >= 0.0 ? n : Vec3(-n);
+    out.distance_squared = out.v.squaredNorm();
+    out.mask = (1u << i) | (1u << j) | (1u << k);
+    return;
+  }
+  // The origin projects outside: the closest point lies on an edge opposite a vertex whose
+  // weight is not positive (Montanari et al., Theorem 1).
+  out.distance_squared = std::numeric_limits<double>::infinity();
+  const std::array<std::array<int, 2>, 3> opposite = {{{j, k}, {i, k}, {i, j}}};
+  for (int m = 0; m < 3; ++m) {
+    if (!same_sign(c[m], mu)) {
+      closest_on_segment(p, opposite[m][0], opposite[m][1], candidate);
+      keep_closer(candidate, out);
+    }
+  }
+}
+
+inline double triple(const Vec3& a, const Vec3& b, const Vec3& c) { return a.dot(b.cross(c)); }
+
+void closest_on_tetrahedron(const Vec3* p, SubResult& out) {
+  // Cofactors of [[p0 p1 p2 p3]; [1 1 1 1]] along the last row: the signed volume of the
+  // tetrahedron with vertex m replaced by the origin. They sum to the full signed volume.
+  const std::array<double, 4> c = {triple(p[1], p[2], p[3]), -triple(p[0], p[2], p[3]),
+                                   triple(p[0], p[1], p[3]), -triple(p[0], p[1], p[2])};
+  const double det = c[0] + c[1] + c[2] + c[3];
+  if (same_sign(c[0], det) && same_sign(c[1], det) && same_sign(c[2], det) &&
+      same_sign(c[3], det)) {
+    out.v = Vec3::Zero();
+    out.direction = Vec3::Zero();
+    out.distance_squared = 0.0;
+    for (int m = 0; m < 4; ++m) out.lambda[m] = c[m] / det;
+    out.mask = 0xF;
+    return;
+  }
+  out.distance_squared = std::numeric_limits<double>::infinity();
+  SubResult candidate;
+  const std::array<std::array<int, 3>, 4> opposite = {{{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}};
+  for (int m = 0; m < 4; ++m) {
+    if (!same_sign(c[m], det)) {
+      closest_on_triangle(p, opposite[m][0], opposite[m][1], opposite[m][2], candidate);
+      keep_closer(candidate, out);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// GJK on A - B in A's local frame. B's local frame maps into A's by x -> rotation * x + translation.
+
+struct Simplex {
+  std::array<Vec3, 4> points;
+  std::array<std::uint32_t, 4> index_a{};
+  std::array<std::uint32_t, 4> index_b{};
+  std::array<double, 4> lambda{};
+  int size = 0;
+};
+
+enum class GjkOutcome {
+  kIntersecting,  // |v| <= tol, or the origin is inside a simplex, or no separation certified
+  kSeparated,     // separation query: lower bound > threshold
+  kWithin,        // separation query: upper bound <= threshold
+  kConverged      // distance query: bounds met
+};
+
+struct GjkResult {
+  GjkOutcome outcome = GjkOutcome::kIntersecting;
+  Simplex simplex;
+  Vec3 v = Vec3::Zero();
+  double lower_bound = 0.0;
+  int iterations = 0;
+};
+
+// `threshold` < 0 runs a full distance query; otherwise the query stops as soon as the distance
+// is certified > threshold (kSeparated) or shown <= threshold (kWithin).
+template <class SupportA, class SupportB>
+GjkResult run_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
+                  const Vec3& translation, double tolerance, double threshold) {
+  const bool is_separation_query = threshold >= 0.0;
+  const double tolerance_squared = tolerance * tolerance;
+  const double threshold_squared = threshold * threshold;
+  GjkResult result;
+  Simplex& simplex = result.simplex;
+  // First direction: between the local origins (inside generated particles), so the first
+  // support pair is usually already the closest.
+  Vec3 v = -translation;
+  if (!(v.squaredNorm() > 0.0)) v = Vec3::UnitX();
+  Vec3 direction = v;               // search direction, parallel to v (see SubResult)
+  bool is_v_in_difference = false;  // v is a point of A - B (then |v| bounds the distance)
+  double v_squared = v.squaredNorm();
+  std::uint32_t hint_a = SupportShape::kNoHint;
+  std::uint32_t hint_b = SupportShape::kNoHint;
+  double lower_bound = 0.0;
+  Simplex previous;
+  Vec3 last_w = Vec3::Zero();
+
+  for (int iteration = 1; iteration <= kMaxIterations; ++iteration) {
+    result.iterations = iteration;
+    hint_a = a.support(-direction, hint_a);
+    hint_b = b.support(rotation.transpose() * direction, hint_b);
+    const Vec3 w = a.vertex(hint_a) - (rotation * b.vertex(hint_b) + translation);
+    last_w = w;
+    const double dw = direction.dot(w);
+    // Any direction gives a lower bound: w is the support point of A - B towards the origin,
+    // so the plane through w normal to `direction` separates A - B from the origin by
+    // direction.w / |direction|.
+    if (dw > 0.0) {
+      const double bound = dw / direction.norm();
+      lower_bound = std::max(lower_bound, bound);
+      if (is_separation_query && bound > threshold) {
+        result.outcome = GjkOutcome::kSeparated;
+        break;
+      }
+      if (is_v_in_difference) {
+        const double v_norm = std::sqrt(v_squared);
+        if (v_norm - bound <= std::max(kRelativeGap * v_norm, 0.1 * tolerance)) {
+          result.outcome = GjkOutcome::kConverged;
+          break;
+        }
+      }
+    }
+    bool is_repeat = false;
+    for (int m = 0; m < simplex.size; ++m) {
+      if (simplex.index_a[m] == hint_a && simplex.index_b[m] == hint_b) is_repeat = true;
+    }
+    if (is_repeat) {
+      // No new support point: the simplex already holds the closest feature.
+      result.outcome = is_v_in_difference ? GjkOutcome::kConverged : GjkOutcome::kIntersecting;
+      break;
+    }
+    previous = simplex;
+    simplex.points[simplex.size] = w;
+    simplex.index_a[simplex.size] = hint_a;
+    simplex.index_b[simplex.size] = hint_b;
+    ++simplex.size;
+
+    SubResult sub;
+    switch (simplex.size) {
+      case 1:
+        set_vertex(simplex.points.data(), 0, sub);
+        break;
+      case 2:
+        closest_on_segment(simplex.points.data(), 0, 1, sub);
+        break;
+      case 3:
+        closest_on_triangle(simplex.points.data(), 0, 1, 2, sub);
+        break;
+      default:
+        closest_on_tetrahedron(simplex.points.data(), sub);
+        break;
+    }
+    if (sub.mask == 0xF || sub.distance_squared <= tolerance_squared) {
+      v = sub.v;
+      v_squared = sub.distance_squared;
+      result.outcome = GjkOutcome::kIntersecting;
+      break;
+    }
+    if (is_v_in_difference && !(sub.distance_squared < v_squared)) {
+      // No progress (rounding): keep the previous, better simplex.
+      simplex = previous;
+      result.outcome = GjkOutcome::kConverged;
+      break;
+    }
+    // Keep only the points with positive weight, in their order.
+    int kept = 0;
+    for (int m = 0; m < simplex.size; ++m) {
+      if ((sub.mask & (1u << m)) != 0) {
+        simplex.points[kept] = simplex.points[m];
+        simplex.index_a[kept] = simplex.index_a[m];
+        simplex.index_b[kept] = simplex.index_b[m];
+        simplex.lambda[kept] = sub.lambda[m];
+        ++kept;
+      }
+    }
+    simplex.size = kept;
+    v = sub.v;
+    direction = sub.direction;
+    v_squared = sub.distance_squared;
+    is_v_in_difference = true;
+    if (is_separation_query && v_squared <= threshold_squared) {
+      result.outcome = GjkOutcome::kWithin;
+      break;
+    }
+    if (iteration == kMaxIterations) {
+      result.outcome = GjkOutcome::kConverged;  // judged below from the bounds
+    }
+  }
+  // A stall on a segment (a CSO edge: vertex against edge) whose normal cone is thin -- nearly
+  // coplanar faces -- can leave the bounds apart: the search direction, accurate to ~1e-16 R/|v|
+  // rad, may point just outside the cone. The faces next to the edge are planes that the
+  // segment and the last support point span; their normals are accurate, and the distance to
+  // their planes is within (cone width)^2 of |v|. Bound along them.
+  for (int polish = 0; polish < 4 && result.outcome == GjkOutcome::kConverged &&
+                       simplex.size == 2;
+       ++polish) {
+    const double v_norm = std::sqrt(v_squared);
+    if (v_norm - lower_bound <= std::max(kRelativeGap * v_norm, 0.1 * tolerance)) break;
+    Vec3 normal = (simplex.points[1] - simplex.points[0]).cross(last_w - simplex.points[0]);
+    if (!(normal.squaredNorm() > 0.0)) break;
+    if (normal.dot(v) < 0.0) normal = -normal;
+    const std::uint32_t index_a = a.support(-normal, hint_a);
+    const std::uint32_t index_b = b.support(rotation.transpose() * normal, hint_b);
+    last_w = a.vertex(index_a) - (rotation * b.vertex(index_b) + translation);
+    const double bound = normal.dot(last_w) / normal.norm();
+    lower_bound = std::max(lower_bound, bound);
+    if (is_separation_query && bound > threshold) result.outcome = GjkOutcome::kSeparated;
+  }
+  result.v = v;
+  result.lower_bound = lower_bound;
+  // Only a certified lower bound above tol separates; anything else is contact.
+  if ((result.outcome == GjkOutcome::kConverged) && !(lower_bound > tolerance)) {
+    result.outcome = GjkOutcome::kIntersecting;
+  }
+  return result;
+}
+
+void require_valid(const Pose& pose, const char* field) {
+  if (!pose.position.allFinite() || !pose.rotation.coeffs().allFinite()) {
+    throw InvalidInput(field, "non-finite pose", "finite position and rotation");
+  }
+  const double norm_squared = pose.rotation.squaredNorm();
+  if (std::abs(norm_squared - 1.0) > 1e-9) {
+    throw InvalidInput(std::string(field) + ".rotation", "|q|^2 = " + format_value(norm_squared),
+                       "a unit quaternion (|q|^2 = 1 within 1e-9)");
+  }
+}
+
+void require_valid_gap(double gap) {
+  if (!(gap >= 0.0) || !std::isfinite(gap)) {
+    throw InvalidInput("gap", format_value(gap), "finite and >= 0 (m)");
+  }
+}
+
+// B's local frame expressed in A's local frame.
+struct RelativeFrame {
+  Mat3 rotation;
+  Vec3 translation;
+};
+
+RelativeFrame relative_frame(const Pose& pose_a, const Pose& pose_b) {
+  const Mat3 rotation_a_transposed = pose_a.rotation.toRotationMatrix().transpose();
+  return {rotation_a_transposed * pose_b.rotation.toRotationMatrix(),
+          rotation_a_transposed * (pose_b.position - pose_a.position)};
+}
+
+template <class SupportA, class SupportB>
+DistanceResult distance_query(const SupportA& a, const Pose& pose_a, const SupportB& b,
+                              const Pose& pose_b, double scale) {
+  const RelativeFrame frame = relative_frame(pose_a, pose_b);
+  const GjkResult run = run_gjk(a, b, frame.rotation, frame.translation,
+                                kProximityTolerance * scale, -1.0);
+  DistanceResult result;
+  result.iterations = run.iterations;
+  if (run.outcome == GjkOutcome::kIntersecting) {
+    result.is_intersecting = true;
+    return result;
+  }
+  Vec3 local_a = Vec3::Zero();
+  Vec3 local_b = Vec3::Zero();
+  for (int m = 0; m < run.simplex.size; ++m) {
+    local_a += run.simplex.lambda[m] * a.vertex(run.simplex.index_a[m]);
+    local_b += run.simplex.lambda[m] * b.vertex(run.simplex.index_b[m]);
+  }
+  result.distance = run.v.norm();
+  result.point_a = pose_a.apply(local_a);
+  result.point_b = pose_b.apply(local_b);
+  return result;
+}
+
+template <class SupportA, class SupportB>
+bool separation_query(const SupportA& a, const Pose& pose_a, const SupportB& b,
+                      const Pose& pose_b, double scale, double gap) {
+  const RelativeFrame frame = relative_frame(pose_a, pose_b);
+  const double tolerance = kProximityTolerance * scale;
+  const GjkResult run =
+      run_gjk(a, b, frame.rotation, frame.translation, tolerance, gap + tolerance);
+  return run.outcome == GjkOutcome::kSeparated;
+}
+
+// Largest |det| of three unit normals: 0 when they all lie in one plane (the vertex is not a
+// corner), up to 1 for three orthogonal faces.
+double corner_sharpness(const std::vector<Vec3>& normals) {
+  double sharpness = 0.0;
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    for (std::size_t j = i + 1; j < normals.size(); ++j) {
+      const Vec3 cross = normals[i].cross(normals[j]);
+      for (std::size_t k = j + 1; k < normals.size(); ++k) {
+        sharpness = std::max(sharpness, std::abs(cross.dot(normals[k])));
+      }
+    }
+  }
+  return sharpness;
+}
+
+}  // namespace
+
+double bounding_radius(const ConvexPolyhedron& body) {
+  double radius_squared = 0.0;
+  for (const auto& v : body.vertices()) radius_squared = std::max(radius_squared, v.squaredNorm());
+  return std::sqrt(radius_squared);
+}
+
+// --- SupportShape ---------------------------------------------------------------------------
+
+SupportShape::SupportShape(const ConvexPolyhedron& body) {
+  if (body.is_empty()) throw InvalidInput("support shape", "empty polyhedron", ">= 4 vertices");
+  const auto& vertices = body.vertices();
+  const auto& triangles = body.triangles();
+  const auto vertex_total = static_cast<std::uint32_t>(vertices.size());
+  (void)body.edges();  // throws InvalidInput unless a closed 2-manifold
+  const auto all_neighbours = body.vertex_neighbours();
+  bounding_radius_ = aggpack::bounding_radius(body);
+
+  std::vector<std::vector<Vec3>> incident_normals(vertex_total);
+  inner_radius_ = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    const Vec3 scaled = body.face_normal_scaled(f);
+    const double twice_area = scaled.norm();
+    if (!(twice_area > 0.0)) continue;  // a zero-area triangle constrains nothing
+    const Vec3 normal = scaled / twice_area;
+    for (auto index : triangles[f]) incident_normals[index].push_back(normal);
+    inner_radius_ = std::min(inner_radius_, normal.dot(vertices[triangles[f][0]]));
+  }
+  if (!(inner_radius_ > 0.0)) inner_radius_ = 0.0;
+
+  // Hull vertices: a vertex in the hull of its neighbours (on an edge or face of the hull) is
+  // never needed by a support query. Distance point-to-hull by the same GJK.
+  std::vector<std::uint32_t> hull_index(vertex_total, kNoHint);
+  std::vector<std::uint32_t> kept;
+  std::vector<Vec3> link;
+  const double redundancy = kRedundantVertex * bounding_radius_;
+  for (std::uint32_t i = 0; i < vertex_total; ++i) {
+    link.clear();
+    for (auto n : all_neighbours[i]) link.push_back(vertices[n]);
+    bool is_redundant = false;
+    if (link.size() >= 2) {
+      const std::array<Vec3, 1> point = {vertices[i]};
+      const GjkResult run = run_gjk(
+          PointsSupport{link.data(), static_cast<std::uint32_t>(link.size())},
+          PointsSupport{point.data(), 1}, Mat3::Identity(), Vec3::Zero(), redundancy, redundancy);
+      is_redundant = run.outcome != GjkOutcome::kSeparated;
+    }
+    if (!is_redundant) {
+      hull_index[i] = static_cast<std::uint32_t>(kept.size());
+      kept.push_back(i);
+    }
+  }
+  if (kept.size() < 4) {  // only for degenerate (flat) input; keep everything
+    kept.clear();
+    for (std::uint32_t i = 0; i < vertex_total; ++i) {
+      hull_index[i] = i;
+      kept.push_back(i);
+    }
+  }
+  count_ = static_cast<std::uint32_t>(kept.size());
+  stride_ = (count_ + 3u) & ~3u;
+  coordinates_.assign(3 * static_cast<std::size_t>(stride_), 0.0);
+  for (std::uint32_t slot = 0; slot < stride_; ++slot) {
+    const Vec3& p = vertices[kept[std::min(slot, count_ - 1)]];
+    for (int axis = 0; axis < 3; ++axis) coordinates_[axis * stride_ + slot] = p[axis];
+  }
+
+  // Adjacency between hull vertices: neighbours in the mesh, reached through dropped vertices.
+  // It contains every edge of the hull (an edge of the hull is a chain of mesh edges whose inner
+  // vertices were dropped), which is all hill-climbing needs.
+  neighbour_offsets_.assign(1, 0);
+  is_blunt_.assign(count_, 0);
+  std::vector<std::uint8_t> visited(vertex_total, 0);
+  std::vector<std::uint32_t> stack;
+  std::vector<std::uint32_t> touched;
+  for (std::uint32_t slot = 0; slot < count_; ++slot) {
+    const std::uint32_t origin = kept[slot];
+    stack.assign(all_neighbours[origin].begin(), all_neighbours[origin].end());
+    touched.assign(1, origin);
+    visited[origin] = 1;
+    const std::size_t first = neighbours_.size();
+    while (!stack.empty()) {
+      const std::uint32_t current = stack.back();
+      stack.pop_back();
+      if (visited[current] != 0) continue;
+      visited[current] = 1;
+      touched.push_back(current);
+      if (hull_index[current] != kNoHint) {
+        neighbours_.push_back(hull_index[current]);
+      } else {
+        for (auto n : all_neighbours[current]) {
+          if (visited[n] == 0) stack.push_back(n);
+        }
+      }
+    }
+    for (auto t : touched) visited[t] = 0;
+    std::sort(neighbours_.begin() + static_cast<std::ptrdiff_t>(first), neighbours_.end());
+    neighbour_offsets_.push_back(static_cast<std::uint32_t>(neighbours_.size()));
+    is_blunt_[slot] = corner_sharpness(incident_normals[origin]) < kBluntVertex ? 1 : 0;
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    Vec3 direction = Vec3::Zero();
+    direction[axis] = 1.0;
+    axis_extremes_[2 * axis] = scan(direction);
+    axis_extremes_[2 * axis + 1] = scan(-direction);
+  }
+  uses_hill_climbing_ = count_ > kHillClimbMinVertices;
+}
+
+std::uint32_t SupportShape::scan(const Vec3& direction) const {
+  const double* x = coordinates_.data();
+  const double* y = x + stride_;
+  const double* z = y + stride_;
+  std::uint32_t best = 0;
+  double best_value = direction.x() * x[0] + direction.y() * y[0] + direction.z() * z[0];
+  for (std::uint32_t i = 1; i < count_; ++i) {
+    const double value = direction.x() * x[i] + direction.y() * y[i] + direction.z() * z[i];
+    if (value > best_value) {
+      best_value = value;
+      best = i;
+    }
+  }
+  return best;
+}
+
+std::uint32_t SupportShape::climb(const Vec3& direction, std::uint32_t start) const {
+  if (start >= count_) {
+    int axis = 0;
+    if (std::abs(direction.y()) > std::abs(direction.x())) axis = 1;
+    if (std::abs(direction.z()) > std::abs(direction[axis])) axis = 2;
+    start = axis_extremes_[2 * axis + (direction[axis] < 0.0 ? 1 : 0)];
+  }
+  const double* x = coordinates_.data();
+  const double* y = x + stride_;
+  const double* z = y + stride_;
+  std::uint32_t current = start;
+  double current_value =
+      direction.x() * x[current] + direction.y() * y[current] + direction.z() * z[current];
+  // Steepest ascent; strictly increasing, so it ends. On a convex polytope a vertex with no
+  // better neighbour along the hull edges is a global maximum.
+  for (;;) {
+    std::uint32_t best = current;
+    for (std::uint32_t k = neighbour_offsets_[current]; k < neighbour_offsets_[current + 1]; ++k) {
+      const std::uint32_t n = neighbours_[k];
+      const double value = direction.x() * x[n] + direction.y() * y[n] + direction.z() * z[n];
+      if (value > current_value) {
+        current_value = value;
+        best = n;
+      }
+    }
+    if (best == current) break;
+    current = best;
+  }
+  return is_blunt_[current] != 0 ? scan(direction) : current;
+}
+
+std::uint32_t SupportShape::support(const Vec3& direction, std::uint32_t start) const {
+  return uses_hill_climbing_ ? climb(direction, start) : scan(direction);
+}
+
+// --- queries ---------------------------------------------------------------------------------
+
+DistanceResult gjk_distance(const ConvexPolyhedron& a, const Pose& pose_a,
+                            const ConvexPolyhedron& b, const Pose& pose_b) {
+  if (a.is_empty() || b.is_empty()) {
+    throw InvalidInput("gjk_distance", "empty polyhedron", ">= 4 vertices");
+  }
+  require_valid(pose_a, "pose_a");
+  require_valid(pose_b, "pose_b");
+  return distance_query(PolyhedronSupport{a.vertices()}, pose_a, PolyhedronSupport{b.vertices()},
+                        pose_b, bounding_radius(a) + bounding_radius(b));
+}
+
+DistanceResult gjk_distance(const SupportShape& a, const Pose& pose_a, const SupportShape& b,
+                            const Pose& pose_b) {
+  if (a.vertex_count() == 0 || b.vertex_count() == 0) {
+    throw InvalidInput("gjk_distance", "empty support shape", ">= 4 vertices");
+  }
+  require_valid(pose_a, "pose_a");
+  require_valid(pose_b, "pose_b");
+  return distance_query(ShapeSupport{a}, pose_a, ShapeSupport{b}, pose_b,
+                        a.bounding_radius() + b.bounding_radius());
+}
+
+bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a,
+                  const ConvexPolyhedron& b, const Pose& pose_b, double radius_b, double gap) {
+  if (a.is_empty() || b.is_empty()) {
+    throw InvalidInput("is_separated", "empty polyhedron", ">= 4 vertices");
+  }
+  require_valid_gap(gap);
+  require_valid(pose_a, "pose_a");
+  require_valid(pose_b, "pose_b");
+  // The spheres' test is widened by tol like GJK's, so that both agree at exact touching.
+  const double reach = (radius_a + radius_b) * (1.0 + kProximityTolerance) + gap;
+  if ((pose_b.position - pose_a.position).squaredNorm() > reach * reach) return true;
+  return separation_query(PolyhedronSupport{a.vertices()}, pose_a,
+                          PolyhedronSupport{b.vertices()}, pose_b, radius_a + radius_b, gap);
+}
+
+bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape& b,
+                  const Pose& pose_b, double gap) {
+  if (a.vertex_count() == 0 || b.vertex_count() == 0) {
+    throw InvalidInput("is_separated", "empty support shape", ">= 4 vertices");
+  }
+  require_valid_gap(gap);
+  require_valid(pose_a, "pose_a");
+  require_valid(pose_b, "pose_b");
+  const double centre_distance_squared = (pose_b.position - pose_a.position).squaredNorm();
+  const double reach = (a.bounding_radius() + b.bounding_radius()) * (1.0 + kProximityTolerance) +
+                       gap;
+  if (centre_distance_squared > reach * reach) return true;
+  // The inner balls (inside the bodies) are closer than gap, so the bodies are too.
+  if (a.inner_radius() > 0.0 && b.inner_radius() > 0.0) {
+    const double inner_reach = a.inner_radius() + b.inner_radius() + gap;
+    if (centre_distance_squared < inner_reach * inner_reach) return false;
+  }
+  return separation_query(ShapeSupport{a}, pose_a, ShapeSupport{b}, pose_b,
+                          a.bounding_radius() + b.bounding_radius(), gap);
+}
+
+}  // namespace aggpack
