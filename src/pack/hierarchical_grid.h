@@ -2,10 +2,12 @@
 // Internal: a hierarchical uniform grid of spheres (broad phase of the packers and of verify()).
 // Level l has cells of size s_l = s_0 / 2^l and holds the spheres with s_l/4 < radius <= s_l/2
 // (the finest level also holds all smaller ones); a query visits, on every non-empty level, the
-// cells within (query radius + s_l/2) of the query centre. With one level this is the plain
-// uniform grid with cell size = largest diameter; more levels keep wide gradings fast (a small
-// particle never scans cells sized for the largest ones and vice versa).
-// Cells are linked lists (head per cell, next per item), so inserts never reallocate per cell.
+// cells within (query radius + largest radius on that level) of the query centre. With one level
+// this is the plain uniform grid with cell size = largest diameter; more levels keep wide
+// gradings fast (a small particle never scans cells sized for the largest ones and vice versa).
+// Each cell stores its entries contiguously (centre, radii, id): a query scans memory
+// sequentially instead of chasing per-item links -- the broad phase is latency-bound (~100-250
+// entries looked at per candidate in a dense graded packing).
 
 #include <algorithm>
 #include <array>
@@ -17,17 +19,25 @@
 
 namespace aggpack::detail {
 
+/// One stored sphere: its centre, outer (bounding) radius, an optional inner radius the caller
+/// may use (e.g. an inscribed ball), and its id (insertion order).
+struct GridEntry {
+  Vec3 centre;
+  double radius;
+  double inner_radius;
+  std::uint32_t id;
+};
+
 class HierarchicalGrid {
  public:
   /// `bounds`: where the centres lie (others are clamped into edge cells, still correct).
   /// Radii in [min_radius, max_radius] (> 0). Levels are capped so no level exceeds max_cells.
   HierarchicalGrid(const Aabb& bounds, double min_radius, double max_radius,
-                   double max_cells = 16.0e6)
+                   double max_cells = 8.0e6)
       : lower_(bounds.lower) {
     const Vec3 extent = bounds.extent().cwiseMax(1e-300);
-    double cell = 2.0 * max_radius;
     // A huge region with tiny particles: coarsen level 0 so its cell count stays bounded.
-    cell = std::max(cell, std::cbrt(extent.prod() / max_cells));
+    const double cell = std::max(2.0 * max_radius, std::cbrt(extent.prod() / max_cells));
     const int wanted =
         1 + static_cast<int>(std::floor(std::log2(std::max(1.0, max_radius / min_radius))));
     for (int level = 0; level < std::max(1, wanted); ++level) {
@@ -39,35 +49,30 @@ class HierarchicalGrid {
       for (int axis = 0; axis < 3; ++axis) {
         const double count = std::max(1.0, std::ceil(extent[axis] / size));
         cells *= count;
-        entry.dims[axis] = static_cast<std::int64_t>(count);
+        entry.dims[static_cast<std::size_t>(axis)] = static_cast<std::int64_t>(count);
       }
       if (level > 0 && cells > max_cells) break;
-      entry.head.assign(static_cast<std::size_t>(cells), -1);
+      entry.cells.resize(static_cast<std::size_t>(cells));
       levels_.push_back(std::move(entry));
     }
   }
 
-  [[nodiscard]] std::size_t size() const { return items_.size(); }
+  [[nodiscard]] std::size_t size() const { return count_; }
   [[nodiscard]] std::size_t level_count() const { return levels_.size(); }
 
   /// Adds sphere number size() (ids are insertion order).
-  void insert(const Vec3& centre, double radius) {
-    int level = 0;
-    while (level + 1 < static_cast<int>(levels_.size()) &&
-           radius <= levels_[static_cast<std::size_t>(level + 1)].cell * 0.5) {
-      ++level;
-    }
-    Level& entry = levels_[static_cast<std::size_t>(level)];
-    const std::size_t cell = cell_index(entry, centre);
-    const auto id = static_cast<std::int32_t>(items_.size());
-    items_.push_back({centre, radius});
-    next_.push_back(entry.head[cell]);
-    entry.head[cell] = id;
+  void insert(const Vec3& centre, double radius, double inner_radius = 0.0) {
+    std::size_t level = 0;
+    while (level + 1 < levels_.size() && radius <= levels_[level + 1].cell * 0.5) ++level;
+    Level& entry = levels_[level];
+    entry.cells[cell_index(entry, centre)].push_back(
+        {centre, radius, inner_radius, static_cast<std::uint32_t>(count_)});
     entry.max_radius = std::max(entry.max_radius, radius);
     ++entry.count;
+    ++count_;
   }
 
-  /// Calls visit(id, distance_squared) for every stored sphere that intersects the sphere
+  /// Calls visit(entry, distance_squared) for every stored sphere that intersects the sphere
   /// (centre, radius) (strictly: |c - c_id| < radius + r_id). Stops early and returns false as
   /// soon as visit returns false.
   template <class Visit>
@@ -78,22 +83,27 @@ class HierarchicalGrid {
       std::array<std::int64_t, 3> lo{};
       std::array<std::int64_t, 3> hi{};
       for (int axis = 0; axis < 3; ++axis) {
-        lo[axis] = clamp_cell(entry, axis, centre[axis] - reach);
-        hi[axis] = clamp_cell(entry, axis, centre[axis] + reach);
+        lo[static_cast<std::size_t>(axis)] = clamp_cell(entry, axis, centre[axis] - reach);
+        hi[static_cast<std::size_t>(axis)] = clamp_cell(entry, axis, centre[axis] + reach);
       }
+      // Visit only cells whose box meets the reach sphere: per (z, y) row, the x range left
+      // after the row's distance in y and z (saves ~40 % of the cells of the bounding cube).
+      const double reach_squared = reach * reach;
       for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+        const double dz = axis_gap(entry, 2, z, centre.z());
         for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-          for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
-            const auto cell = static_cast<std::size_t>((z * entry.dims[1] + y) * entry.dims[0] + x);
-            for (std::int32_t id = entry.head[cell]; id >= 0;
-                 id = next_[static_cast<std::size_t>(id)]) {
-              const Item& item = items_[static_cast<std::size_t>(id)];
+          const double dy = axis_gap(entry, 1, y, centre.y());
+          const double rest = reach_squared - dz * dz - dy * dy;
+          if (rest < 0.0) continue;
+          const double half = std::sqrt(rest);
+          const std::int64_t x0 = std::max(lo[0], clamp_cell(entry, 0, centre.x() - half));
+          const std::int64_t x1 = std::min(hi[0], clamp_cell(entry, 0, centre.x() + half));
+          const std::int64_t row = (z * entry.dims[1] + y) * entry.dims[0];
+          for (std::int64_t x = x0; x <= x1; ++x) {
+            for (const GridEntry& item : entry.cells[static_cast<std::size_t>(row + x)]) {
               const double distance_squared = (item.centre - centre).squaredNorm();
               const double limit = radius + item.radius;
-              if (distance_squared < limit * limit &&
-                  !visit(static_cast<std::uint32_t>(id), distance_squared)) {
-                return false;
-              }
+              if (distance_squared < limit * limit && !visit(item, distance_squared)) return false;
             }
           }
         }
@@ -107,18 +117,28 @@ class HierarchicalGrid {
     double cell = 0.0;
     double inverse_cell = 0.0;
     std::array<std::int64_t, 3> dims{};
-    std::vector<std::int32_t> head;
+    std::vector<std::vector<GridEntry>> cells;
     double max_radius = 0.0;
     std::size_t count = 0;
-  };
-  struct Item {
-    Vec3 centre;
-    double radius;
   };
 
   [[nodiscard]] std::int64_t clamp_cell(const Level& entry, int axis, double coordinate) const {
     const double t = std::floor((coordinate - lower_[axis]) * entry.inverse_cell);
-    return static_cast<std::int64_t>(std::clamp(t, 0.0, static_cast<double>(entry.dims[axis] - 1)));
+    return static_cast<std::int64_t>(
+        std::clamp(t, 0.0, static_cast<double>(entry.dims[static_cast<std::size_t>(axis)] - 1)));
+  }
+  // Distance along `axis` from `coordinate` to cell `index`'s slab (0 inside it). Edge cells
+  // extend to infinity (clamped centres live there), so their far side never counts.
+  [[nodiscard]] double axis_gap(const Level& entry, int axis, std::int64_t index,
+                                double coordinate) const {
+    const double t = (coordinate - lower_[axis]) * entry.inverse_cell;
+    const auto last = entry.dims[static_cast<std::size_t>(axis)] - 1;
+    const double below = static_cast<double>(index) - t;      // > 0: cell starts after the point
+    const double above = t - static_cast<double>(index + 1);  // > 0: cell ends before the point
+    double gap = 0.0;
+    if (below > 0.0 && index > 0) gap = below;
+    if (above > 0.0 && index < last) gap = above;
+    return gap * entry.cell;
   }
   [[nodiscard]] std::size_t cell_index(const Level& entry, const Vec3& centre) const {
     const std::int64_t x = clamp_cell(entry, 0, centre.x());
@@ -129,8 +149,7 @@ class HierarchicalGrid {
 
   Vec3 lower_;
   std::vector<Level> levels_;
-  std::vector<Item> items_;
-  std::vector<std::int32_t> next_;
+  std::size_t count_ = 0;
 };
 
 }  // namespace aggpack::detail

@@ -143,16 +143,15 @@ class Placement {
     }
     const double gap = options_.gap;
     close.clear();
-    const bool is_clear = grid_.for_each_near(pose.position, item.outer_radius + gap / 2.0,
-                                              [&](std::uint32_t id, double distance_squared) {
-                                                const Item& other = items_[placed_items_[id]];
-                                                const double inner =
-                                                    item.inner_radius + other.inner_radius + gap;
-                                                if (distance_squared < inner * inner)
-                                                  return false;  // inscribed balls too close
-                                                close.emplace_back(distance_squared, id);
-                                                return true;
-                                              });
+    const bool is_clear =
+        grid_.for_each_near(pose.position, item.outer_radius + gap / 2.0,
+                            [&](const detail::GridEntry& other, double distance_squared) {
+                              const double inner = item.inner_radius + other.inner_radius + gap;
+                              if (distance_squared < inner * inner)
+                                return false;  // inscribed balls too close
+                              close.emplace_back(distance_squared, other.id);
+                              return true;
+                            });
     if (!is_clear) return false;
     // Closest first: the likeliest to conflict, so a rejection costs the fewest GJK calls.
     std::sort(close.begin(), close.end());
@@ -177,7 +176,7 @@ class Placement {
 
   void add(std::size_t item_index, const Pose& pose) {
     const Item& item = items_[item_index];
-    grid_.insert(pose.position, item.outer_radius + options_.gap / 2.0);
+    grid_.insert(pose.position, item.outer_radius + options_.gap / 2.0, item.inner_radius);
     placed_items_.push_back(item_index);
     poses_.push_back(pose);
   }

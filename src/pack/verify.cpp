@@ -75,8 +75,8 @@ VerifyResult verify(const Packing& packing, const VerifyOptions& options) {
     detail::HierarchicalGrid grid(container.bounds(), smallest + half_gap, largest + half_gap);
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3& centre = packing.particles[i].pose.position;
-      grid.for_each_near(centre, radius[i] + half_gap, [&](std::uint32_t j, double) {
-        pairs.emplace_back(j, static_cast<std::uint32_t>(i));
+      grid.for_each_near(centre, radius[i] + half_gap, [&](const detail::GridEntry& other, double) {
+        pairs.emplace_back(other.id, static_cast<std::uint32_t>(i));
         return true;
       });
       grid.insert(centre, radius[i] + half_gap);
