@@ -501,9 +501,14 @@ std::string suggest_key(std::string_view key) {
 }
 
 std::string format_double(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  // Shortest round-trip text; plain decimals ("0.0005") unless they get long (1e-12, 3e+20).
+  char buffer[512];
+  auto result = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed);
   std::string text(buffer, result.ptr);
+  if (result.ec != std::errc() || text.size() > 12) {
+    result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    text.assign(buffer, result.ptr);
+  }
   // TOML needs a float to look like one ("3" is an integer).
   if (text.find_first_of(".eEn") == std::string::npos) text += ".0";
   return text;

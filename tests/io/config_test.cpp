@@ -90,7 +90,7 @@ TEST(Config, ExamplesHaveTheDocumentedSettings) {
   EXPECT_EQ(concrete.random.grading.size_min, 0.005);
   EXPECT_EQ(concrete.random.grading.size_max, 0.02);
   EXPECT_EQ(concrete.random.target, PackTarget::kVolumeFraction);
-  EXPECT_EQ(concrete.random.volume_fraction, 0.35);
+  EXPECT_EQ(concrete.random.volume_fraction, 0.30);
   const PackConfig triaxial = load_pack_config(root + "triaxial-cylinder.toml");
   ASSERT_EQ(triaxial.packer, PackerKind::kRandom);
   EXPECT_EQ(triaxial.container().kind, ContainerKind::kCylinder);
