@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <queue>
 #include <string>
 #include <vector>
 
@@ -15,12 +14,11 @@ namespace {
 
 constexpr std::uint32_t kVertexCapLimit = 1000000;
 
-// A candidate edge in the max-heap, identified by the half-edge (face, local) that ran u -> v when
-// it was pushed. Entries go stale when faces are rewritten; they are checked when popped.
+// A candidate edge in the max-heap: the undirected edge {from, to} with from < to. The longest
+// edge wins; ties go to the smaller (from, to), so the order never depends on how the heap
+// stores its entries.
 struct EdgeEntry {
   double length_squared;
-  std::uint32_t face;
-  std::uint32_t local;
   std::uint32_t from;
   std::uint32_t to;
   bool operator<(const EdgeEntry& other) const {
@@ -30,54 +28,141 @@ struct EdgeEntry {
   }
 };
 
-// Triangle mesh with face adjacency: neighbour[f][k] is the face across the edge
-// triangle[f][k] -> triangle[f][(k+1)%3].
+// Position of the half-edge from -> to in triangle t (0..2), or 3 if t does not contain it.
+constexpr std::uint32_t find_half_edge(const Triangle& t, std::uint32_t from, std::uint32_t to) {
+  if (t[0] == from && t[1] == to) return 0;
+  if (t[1] == from && t[2] == to) return 1;
+  if (t[2] == from && t[0] == to) return 2;
+  return 3;
+}
+
+// Position of vertex v in triangle t (0..2), or 3.
+constexpr std::uint32_t find_corner(const Triangle& t, std::uint32_t v) {
+  return t[0] == v ? 0 : t[1] == v ? 1 : t[2] == v ? 2 : 3;
+}
+
+// A half-edge named by its face and position: triangle[face][local] -> triangle[face][local+1].
+// Packed as face * 4 + local (faces stay below 2^30: the vertex cap is 10^6).
+constexpr std::uint32_t half_edge(std::uint32_t face, std::uint32_t local) {
+  return (face << 2) | local;
+}
+constexpr std::uint32_t face_of(std::uint32_t half) { return half >> 2; }
+constexpr std::uint32_t local_of(std::uint32_t half) { return half & 3U; }
+
+// Adjacency as twins: twin[f][k] is the oppositely running half-edge of triangle f's edge k, in
+// the neighbouring triangle.
+using Twins = std::array<std::uint32_t, 3>;
+
+// The base octahedron's topology, the same for every particle: make_octahedron's triangles (same
+// order), their twins, and one triangle at each vertex.
+struct BaseTopology {
+  std::array<Triangle, 8> triangles{};
+  std::array<Twins, 8> twins{};
+  std::array<std::uint32_t, 6> corner_faces{};
+};
+
+constexpr BaseTopology make_base_topology() {
+  BaseTopology base;
+  std::uint32_t f = 0;
+  for (std::uint32_t sx = 0; sx < 2; ++sx) {
+    for (std::uint32_t sy = 0; sy < 2; ++sy) {
+      for (std::uint32_t sz = 0; sz < 2; ++sz) {
+        const std::uint32_t x = sx;      // 0: +x, 1: -x
+        const std::uint32_t y = 2 + sy;  // 2: +y, 3: -y
+        const std::uint32_t z = 4 + sz;  // 4: +z, 5: -z
+        const bool is_positive = ((sx + sy + sz) % 2) == 0;
+        base.triangles[f++] = is_positive ? Triangle{x, y, z} : Triangle{x, z, y};
+      }
+    }
+  }
+  for (std::uint32_t face = 0; face < 8; ++face) {
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t from = base.triangles[face][k];
+      const std::uint32_t to = base.triangles[face][(k + 1) % 3];
+      for (std::uint32_t other = 0; other < 8; ++other) {
+        const std::uint32_t j = find_half_edge(base.triangles[other], to, from);
+        if (j < 3) base.twins[face][k] = half_edge(other, j);
+      }
+      base.corner_faces[from] = face;
+    }
+  }
+  return base;
+}
+
+constexpr BaseTopology kBase = make_base_topology();
+
+// Next and previous position in a triangle (cheaper than % 3 on a variable).
+constexpr std::array<std::uint32_t, 3> kNext = {1, 2, 0};
+constexpr std::array<std::uint32_t, 3> kPrev = {2, 0, 1};
+
+// Triangle mesh with twin half-edges, grown one split at a time.
+//
+// Speed (bench/RESULTS.md, "Generator"): storage is reserved from the expected vertex count
+// rather than the cap; adjacency is kept as twin half-edges, so a split rewires its neighbours
+// without searching; the heap holds only edges longer than L (shorter ones can never be chosen)
+// and is keyed by vertex pair, so a split pushes only its new edges and no entry ever goes
+// stale (an edge leaves the mesh only by being split, which pops it, and never comes back:
+// growth only adds vertices); the face of the chosen edge is found by turning around its first
+// vertex. None of this changes which edge is split or where the new vertex goes: the results
+// are bit-identical to the plain version (a golden-hash test in tests/shape pins them).
 class GrowingMesh {
  public:
-  GrowingMesh(const ConvexPolyhedron& base, std::uint32_t vertex_capacity) {
-    vertices_ = base.vertices();
-    triangles_ = base.triangles();
-    vertices_.reserve(vertex_capacity);
-    triangles_.reserve(2 * static_cast<std::size_t>(vertex_capacity));
-    neighbours_.assign(triangles_.size(), {0, 0, 0});
-    for (const auto& edge : base.edges()) {
-      set_neighbour(edge.faces[0], edge.vertices[0], edge.vertices[1], edge.faces[1]);
-      set_neighbour(edge.faces[1], edge.vertices[1], edge.vertices[0], edge.faces[0]);
-    }
-    for (std::uint32_t f = 0; f < triangles_.size(); ++f) {
-      for (std::uint32_t k = 0; k < 3; ++k) push(f, k);
+  GrowingMesh(const std::array<double, 6>& distances, double edge_length,
+              std::size_t expected_vertices)
+      : limit_squared_(edge_length * edge_length) {
+    const std::size_t expected_faces = 2 * expected_vertices;
+    vertices_.reserve(expected_vertices);
+    triangles_.reserve(expected_faces);
+    twins_.reserve(expected_faces);
+    corner_faces_.reserve(expected_vertices);
+    heap_.reserve(expected_faces);
+    // The octahedron of make_octahedron, same vertex and triangle order.
+    vertices_ = {{distances[0], 0, 0}, {-distances[1], 0, 0}, {0, distances[2], 0},
+                 {0, -distances[3], 0}, {0, 0, distances[4]}, {0, 0, -distances[5]}};
+    triangles_.assign(kBase.triangles.begin(), kBase.triangles.end());
+    twins_.assign(kBase.twins.begin(), kBase.twins.end());
+    corner_faces_.assign(kBase.corner_faces.begin(), kBase.corner_faces.end());
+    for (const auto& t : kBase.triangles) {
+      for (std::uint32_t k = 0; k < 3; ++k) {
+        const std::uint32_t from = t[k];
+        const std::uint32_t to = t[kNext[k]];
+        if (from > to) continue;  // each edge once
+        const double length_squared = (vertices_[from] - vertices_[to]).squaredNorm();
+        if (length_squared > limit_squared_) insert({length_squared, from, to});
+      }
     }
   }
 
   [[nodiscard]] std::size_t vertex_count() const { return vertices_.size(); }
 
-  // Pops stale entries; returns false when no edge is left (never happens for a closed mesh).
-  bool longest_edge(EdgeEntry& entry) {
-    while (!heap_.empty()) {
-      entry = heap_.top();
-      const auto& t = triangles_[entry.face];
-      if (t[entry.local] == entry.from && t[(entry.local + 1) % 3] == entry.to) return true;
-      heap_.pop();
-    }
-    return false;
+  // The longest edge that is longer than L; false when every edge is within L.
+  bool longest_edge(EdgeEntry& entry) const {
+    if (heap_.empty()) return false;
+    entry = heap_.front();
+    return true;
   }
 
-  // Splits the edge of `entry` with a new vertex on the ray from the origin through the edge
-  // midpoint, at distance `drawn` clamped so that the body stays convex (and within `limit`).
+  // Splits the edge of `entry` (the heap's top) with a new vertex on the ray from the origin
+  // through the edge midpoint, at distance `drawn` clamped so that the body stays convex (and
+  // within `limit`).
   void split(const EdgeEntry& entry, double drawn, const GrowthLimit& limit) {
-    heap_.pop();
-    const std::uint32_t f1 = entry.face;
-    const std::uint32_t k1 = entry.local;
-    const std::uint32_t a = triangles_[f1][k1];
-    const std::uint32_t b = triangles_[f1][(k1 + 1) % 3];
-    const std::uint32_t c = triangles_[f1][(k1 + 2) % 3];
-    const std::uint32_t f2 = neighbours_[f1][k1];
-    const std::uint32_t k2 = local_index(f2, b, a);
-    const std::uint32_t d = triangles_[f2][(k2 + 2) % 3];
-    const std::uint32_t across_bc = neighbours_[f1][(k1 + 1) % 3];
-    const std::uint32_t across_ca = neighbours_[f1][(k1 + 2) % 3];
-    const std::uint32_t across_ad = neighbours_[f2][(k2 + 1) % 3];
-    const std::uint32_t across_db = neighbours_[f2][(k2 + 2) % 3];
+    pop();
+    // f1 holds a -> b (a < b), f2 holds b -> a; c and d are their third vertices.
+    const std::uint32_t ab = find_outgoing(entry.from, entry.to);
+    const std::uint32_t f1 = face_of(ab);
+    const std::uint32_t k1 = local_of(ab);
+    const std::uint32_t a = entry.from;
+    const std::uint32_t b = entry.to;
+    const std::uint32_t c = triangles_[f1][kPrev[k1]];
+    const std::uint32_t ba = twins_[f1][k1];
+    const std::uint32_t f2 = face_of(ba);
+    const std::uint32_t k2 = local_of(ba);
+    const std::uint32_t d = triangles_[f2][kPrev[k2]];
+    // The half-edges across the border of the patch {f1, f2}: c -> b, a -> c, d -> a, b -> d.
+    const std::uint32_t across_bc = twins_[f1][kNext[k1]];
+    const std::uint32_t across_ca = twins_[f1][kPrev[k1]];
+    const std::uint32_t across_ad = twins_[f2][kNext[k2]];
+    const std::uint32_t across_db = twins_[f2][kPrev[k2]];
 
     const Vec3 midpoint = 0.5 * (vertices_[a] + vertices_[b]);
     const double midpoint_distance = midpoint.norm();
@@ -87,8 +172,8 @@ class GrowingMesh {
     // f1 and f2 for any s >= |midpoint|; the faces it sees form a connected patch, so it sees no
     // other face as long as it stays behind the four faces across the patch's border.
     double distance = std::max(drawn, midpoint_distance);
-    for (const std::uint32_t face : {across_bc, across_ca, across_ad, across_db}) {
-      const auto& t = triangles_[face];
+    for (const std::uint32_t across : {across_bc, across_ca, across_ad, across_db}) {
+      const auto& t = triangles_[face_of(across)];
       const Vec3 normal = (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
       const double approach = normal.dot(direction);
       if (approach > 0.0) distance = std::min(distance, normal.dot(vertices_[t[0]]) / approach);
@@ -104,46 +189,92 @@ class GrowingMesh {
     triangles_.push_back({p, b, c});  // f3
     triangles_[f2] = {b, p, d};
     triangles_.push_back({p, a, d});  // f4
-    neighbours_[f1] = {f4, f3, across_ca};
-    neighbours_.push_back({f2, across_bc, f1});
-    neighbours_[f2] = {f3, f4, across_db};
-    neighbours_.push_back({f1, across_ad, f2});
-    set_neighbour(across_bc, c, b, f3);
-    set_neighbour(across_ad, d, a, f4);
-    set_neighbour(across_ca, a, c, f1);
-    set_neighbour(across_db, b, d, f2);
-    for (const std::uint32_t face : {f1, f2, f3, f4}) {
-      for (std::uint32_t k = 0; k < 3; ++k) push(face, k);
+    twins_[f1] = {half_edge(f4, 0), half_edge(f3, 2), across_ca};
+    twins_.push_back({half_edge(f2, 0), across_bc, half_edge(f1, 1)});  // f3
+    twins_[f2] = {half_edge(f3, 0), half_edge(f4, 2), across_db};
+    twins_.push_back({half_edge(f1, 0), across_ad, half_edge(f2, 1)});  // f4
+    set_twin(across_bc, half_edge(f3, 1));
+    set_twin(across_ca, half_edge(f1, 2));
+    set_twin(across_ad, half_edge(f4, 1));
+    set_twin(across_db, half_edge(f2, 2));
+    // f1 lost b and f2 lost a; every vertex of the split keeps a face it lies on.
+    corner_faces_[a] = f1;
+    corner_faces_[c] = f1;
+    corner_faces_[b] = f2;
+    corner_faces_[d] = f2;
+    corner_faces_.push_back(f1);
+    // The four new edges (p is the largest index). The outer edges bc, ca, ad, db are unchanged.
+    const Vec3& new_vertex = vertices_[p];
+    for (const std::uint32_t v : {a, b, c, d}) {
+      const double length_squared = (vertices_[v] - new_vertex).squaredNorm();
+      if (length_squared > limit_squared_) insert({length_squared, v, p});
     }
   }
 
-  ConvexPolyhedron release() { return {std::move(vertices_), std::move(triangles_)}; }
+  ConvexPolyhedron release() {
+    // Exactly sized copies: the working vectors were reserved from an estimate.
+    return {std::vector<Vec3>(vertices_.begin(), vertices_.end()),
+            std::vector<Triangle>(triangles_.begin(), triangles_.end())};
+  }
 
  private:
-  [[nodiscard]] std::uint32_t local_index(std::uint32_t face, std::uint32_t from,
-                                          std::uint32_t to) const {
-    const auto& t = triangles_[face];
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      if (t[k] == from && t[(k + 1) % 3] == to) return k;
-    }
+  [[noreturn]] static void broken() {
     throw Error(ErrorKind::kInvalidInput, "internal: broken adjacency in aggregate growth");
   }
-  void set_neighbour(std::uint32_t face, std::uint32_t from, std::uint32_t to,
-                     std::uint32_t neighbour) {
-    neighbours_[face][local_index(face, from, to)] = neighbour;
+  void set_twin(std::uint32_t half, std::uint32_t twin) {
+    twins_[face_of(half)][local_of(half)] = twin;
   }
-  void push(std::uint32_t face, std::uint32_t k) {
-    const std::uint32_t from = triangles_[face][k];
-    const std::uint32_t to = triangles_[face][(k + 1) % 3];
-    // Each undirected edge is pushed from the face where it runs low -> high, so once.
-    if (from > to) return;
-    heap_.push({(vertices_[from] - vertices_[to]).squaredNorm(), face, k, from, to});
+  // The half-edge from -> to, by turning around `from`: the twin of the edge that enters `from`
+  // is the next edge that leaves it.
+  [[nodiscard]] std::uint32_t find_outgoing(std::uint32_t from, std::uint32_t to) const {
+    std::uint32_t face = corner_faces_[from];
+    std::uint32_t k = find_corner(triangles_[face], from);
+    if (k == 3) broken();
+    for (std::size_t step = 0; step < triangles_.size(); ++step) {
+      if (triangles_[face][kNext[k]] == to) return half_edge(face, k);
+      const std::uint32_t next = twins_[face][kPrev[k]];
+      face = face_of(next);
+      k = local_of(next);
+    }
+    broken();
+  }
+  // Adds an edge longer than L to the heap: a binary max-heap, sifted up by hand (as
+  // std::push_heap does).
+  void insert(const EdgeEntry& entry) {
+    std::size_t hole = heap_.size();
+    heap_.push_back(entry);
+    while (hole > 0) {
+      const std::size_t parent = (hole - 1) / 2;
+      if (!(heap_[parent] < entry)) break;
+      heap_[hole] = heap_[parent];
+      hole = parent;
+    }
+    heap_[hole] = entry;
+  }
+  // Removes the top of the heap: the last entry sifts down from the root.
+  void pop() {
+    const EdgeEntry last = heap_.back();
+    heap_.pop_back();
+    const std::size_t size = heap_.size();
+    if (size == 0) return;
+    std::size_t hole = 0;
+    for (;;) {
+      std::size_t child = 2 * hole + 1;
+      if (child >= size) break;
+      if (child + 1 < size && heap_[child] < heap_[child + 1]) ++child;
+      if (!(last < heap_[child])) break;
+      heap_[hole] = heap_[child];
+      hole = child;
+    }
+    heap_[hole] = last;
   }
 
+  double limit_squared_;
   std::vector<Vec3> vertices_;
   std::vector<Triangle> triangles_;
-  std::vector<std::array<std::uint32_t, 3>> neighbours_;
-  std::priority_queue<EdgeEntry> heap_;
+  std::vector<Twins> twins_;
+  std::vector<std::uint32_t> corner_faces_;  // one face containing each vertex
+  std::vector<EdgeEntry> heap_;              // edges longer than L
 };
 
 }  // namespace
@@ -184,10 +315,14 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const Grow
   validate(params);
   std::array<double, 6> distances{};
   for (auto& d : distances) d = eq3_distance(params.alpha, params.radius, rng.uniform());
-  GrowingMesh mesh(make_octahedron(distances), params.max_vertices);
-  const double limit_squared = params.edge_length * params.edge_length;
+  // Reserve for the usual size (growth rarely exceeds twice the estimate), not for the cap: a
+  // 20,000-vertex reservation per particle costs more in page faults than the growth itself.
+  const auto expected = static_cast<std::size_t>(std::min(
+      2.0 * estimated_vertex_count(params.radius, params.edge_length) + 16.0,
+      static_cast<double>(params.max_vertices) + 1.0));
+  GrowingMesh mesh(distances, params.edge_length, expected);
   EdgeEntry longest{};
-  while (mesh.longest_edge(longest) && longest.length_squared > limit_squared) {
+  while (mesh.longest_edge(longest)) {
     if (mesh.vertex_count() >= params.max_vertices) {
       throw LimitExceeded("max_vertices", std::to_string(params.max_vertices),
                           "a larger cap or a longer edge_length (growth still had edges of " +
