@@ -370,10 +370,11 @@ void GuiApp::frame() {
     const double seconds = glfwGetTime() - benchmark_start_;
     const int frames = options_.benchmark_frames;
     std::printf(
-        "benchmark: %d frames of %zu particles (%zu drawn, %zu coarse, %zu triangles) in a "
-        "%dx%d view: %.1f ms/frame (%.1f frames/s), scene %.1f ms/frame\n",
+        "benchmark: %d frames of %zu particles (%zu in view: %zu coarse, %zu points; %zu "
+        "triangles) in a %dx%d view: %.1f ms/frame (%.1f frames/s), scene %.1f ms/frame\n",
         frames, renderer_->particle_count(), last_stats_.particles_drawn,
-        last_stats_.coarse_particles, last_stats_.triangles, view_width, view_height,
+        last_stats_.coarse_particles, last_stats_.point_particles, last_stats_.triangles,
+        view_width, view_height,
         1e3 * seconds / frames, frames / seconds, 1e3 * benchmark_scene_seconds_ / frames);
     std::fflush(stdout);
   }
@@ -569,13 +570,19 @@ void GuiApp::draw_view_section() {
     style_.coarse_below_pixels = coarse;
     is_changed = true;
   }
+  int budget = static_cast<int>(style_.triangle_budget / 1000);
+  if (ImGui::SliderInt("triangle budget (k)", &budget, 0, 5000, budget == 0 ? "no limit" : "%d k")) {
+    style_.triangle_budget = static_cast<std::size_t>(budget) * 1000;
+    is_scene_dirty_ = true;
+  }
   if (style_.color != ColorMode::kParticle && renderer_->particle_count() > 0) {
     draw_legend(renderer_->colors(style_.color));
   }
   ImGui::TextDisabled("%zu particles, %zu distinct shapes", renderer_->particle_count(),
                       renderer_->shape_count());
-  ImGui::TextDisabled("drawn %zu (%zu coarse), %.2f M triangles", last_stats_.particles_drawn,
-                      last_stats_.coarse_particles, last_stats_.triangles / 1e6);
+  ImGui::TextDisabled("in view %zu (%zu coarse, %zu points)", last_stats_.particles_drawn,
+                      last_stats_.coarse_particles, last_stats_.point_particles);
+  ImGui::TextDisabled("%.2f M triangles", last_stats_.triangles / 1e6);
   ImGui::TextDisabled("scene %.1f ms; UI %.0f frames/s", 1e3 * last_scene_seconds_,
                       ImGui::GetIO().Framerate);
   ImGui::TextDisabled("left drag: rotate, right drag: pan, wheel: zoom");

@@ -64,6 +64,16 @@ int main(int argc, char** argv) {
   cli.add_option("--view", view, "start view: iso, front, side, top")->capture_default_str();
   cli.add_option("--color", color, "particle colours: id, size, alpha")->capture_default_str();
   cli.add_flag("--wireframe", options.style.is_wireframe, "start in wireframe");
+  options.style.triangle_budget = 250000;
+  options.style.point_below_pixels = 3.0;
+  cli.add_option("--triangle-budget", options.style.triangle_budget,
+                 "most triangles per frame; beyond it the smallest particles are drawn as "
+                 "points (0 = no limit)")
+      ->capture_default_str();
+  cli.add_option("--points-below", options.style.point_below_pixels,
+                 "draw particles smaller than this many pixels as points (0 = never)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1e6));
   cli.add_option("--export-name", options.export_base,
                  "file name (without extension) the Export buttons write")
       ->capture_default_str();

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -33,13 +34,32 @@ struct ShapeRange {
   GLsizei coarse_count = 0;
   std::uint32_t instances = 0;
   double radius = 0.0;  // largest vertex distance from the local origin (m, before scale)
+  // Radius of the ball about the local origin that lies inside the shape (smallest distance to
+  // a face plane): certainly solid, so it may hide what is behind it (m, before scale).
+  double inner_radius = 0.0;
+};
+
+// A particle's bounding and inscribed spheres in world coordinates (m).
+struct ParticleSphere {
+  float x, y, z;
+  float radius;
+  float inner_radius;
+};
+
+// A particle in the view, for culling and level-of-detail decisions.
+struct Candidate {
+  float near_depth;  // view depth of the nearest point of the bounding sphere (m)
+  float depth;       // view depth of the centre (m)
+  float pixels;      // projected diameter of the bounding sphere (px)
+  float screen_x, screen_y;  // projected centre (px, origin lower left)
+  std::uint32_t particle;
 };
 
 constexpr const char* kParticleVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in uint a_particle;
 layout(location = 2) in uint a_instance;
-uniform samplerBuffer u_transforms;  // three texels per particle: rows of [scale * R | t]
+uniform samplerBuffer u_transforms;  // four texels per particle: rows of [scale * R | t], radius
 uniform samplerBuffer u_colors;      // one normalised RGBA8 texel per particle
 uniform mat4 u_view;
 uniform mat4 u_projection;
@@ -48,9 +68,9 @@ flat out vec3 v_color;
 void main() {
   int id = int(a_particle + a_instance);
   vec4 p = vec4(a_position, 1.0);
-  vec3 world = vec3(dot(texelFetch(u_transforms, 3 * id), p),
-                    dot(texelFetch(u_transforms, 3 * id + 1), p),
-                    dot(texelFetch(u_transforms, 3 * id + 2), p));
+  vec3 world = vec3(dot(texelFetch(u_transforms, 4 * id), p),
+                    dot(texelFetch(u_transforms, 4 * id + 1), p),
+                    dot(texelFetch(u_transforms, 4 * id + 2), p));
   vec4 view = u_view * vec4(world, 1.0);
   v_view_position = view.xyz;
   v_color = texelFetch(u_colors, id).rgb;
@@ -62,22 +82,66 @@ void main() {
 // (position is linear across a triangle) and needs no per-face vertices. Two lights fixed to the
 // camera (key from the upper left, weaker fill from the lower right) plus ambient, and a small
 // specular term so neighbouring facets of similar orientation still read as separate.
-constexpr const char* kParticleFragmentShader = R"(#version 330 core
+#define AGGPACK_SHADE_GLSL                                                                      \
+  "vec3 shade(vec3 color, vec3 n) {\n"                                                          \
+  "  vec3 key = normalize(vec3(-0.45, 0.6, 0.65));\n"                                           \
+  "  vec3 fill = normalize(vec3(0.55, -0.35, 0.55));\n"                                         \
+  "  float diffuse = 0.28 + 0.62 * max(dot(n, key), 0.0) + 0.22 * max(dot(n, fill), 0.0);\n"    \
+  "  vec3 half_vector = normalize(key + vec3(0.0, 0.0, 1.0));\n"                                \
+  "  float specular = 0.22 * pow(max(dot(n, half_vector), 0.0), 32.0);\n"                       \
+  "  return color * diffuse + vec3(specular);\n"                                                \
+  "}\n"
+
+constexpr const char* kParticleFragmentShader = "#version 330 core\n" AGGPACK_SHADE_GLSL R"(
 in vec3 v_view_position;
 flat in vec3 v_color;
 uniform int u_lit;
 out vec4 fragment;
 void main() {
   vec3 color = v_color;
-  if (u_lit != 0) {
-    vec3 n = normalize(cross(dFdx(v_view_position), dFdy(v_view_position)));
-    vec3 key = normalize(vec3(-0.45, 0.6, 0.65));
-    vec3 fill = normalize(vec3(0.55, -0.35, 0.55));
-    float diffuse = 0.28 + 0.62 * max(dot(n, key), 0.0) + 0.22 * max(dot(n, fill), 0.0);
-    vec3 half_vector = normalize(key + vec3(0.0, 0.0, 1.0));
-    float specular = 0.22 * pow(max(dot(n, half_vector), 0.0), 32.0);
-    color = color * diffuse + vec3(specular);
-  }
+  if (u_lit != 0) color = shade(color, normalize(cross(dFdx(v_view_position), dFdy(v_view_position))));
+  fragment = vec4(color, 1.0);
+}
+)";
+
+// Impostor for particles a few pixels across: a point sprite of the volume-equivalent diameter,
+// shaded as a ball with the same lights as the facets.
+// Per-point data comes as vertex attributes, not buffer-texture fetches: llvmpipe runs texel
+// fetches in vertex shaders far slower than attribute fetches, and points are its hot path.
+constexpr const char* kPointVertexShader = R"(#version 330 core
+layout(location = 0) in vec4 a_sphere;  // centre (m), impostor radius (m)
+layout(location = 1) in vec4 a_color;   // normalised RGBA8
+uniform mat4 u_view;
+uniform mat4 u_projection;
+uniform float u_pixel_scale;  // pixels per metre at unit depth (or at any depth, orthographic)
+uniform int u_orthographic;
+flat out vec3 v_color;
+void main() {
+  float radius = a_sphere.w;
+  vec4 view = u_view * vec4(a_sphere.xyz, 1.0);
+  float pixels_per_metre = u_orthographic != 0 ? u_pixel_scale : u_pixel_scale / max(-view.z, 1e-6);
+  gl_PointSize = clamp(2.0 * radius * pixels_per_metre, 1.0, 64.0);
+  v_color = a_color.rgb;
+  gl_Position = u_projection * view;
+}
+)";
+
+// One point of the impostor stream.
+struct GpuPoint {
+  float x, y, z, radius;
+  std::uint8_t r, g, b, a;
+};
+
+constexpr const char* kPointFragmentShader = "#version 330 core\n" AGGPACK_SHADE_GLSL R"(
+flat in vec3 v_color;
+uniform int u_lit;
+out vec4 fragment;
+void main() {
+  vec2 q = gl_PointCoord * 2.0 - 1.0;
+  q.y = -q.y;
+  float r2 = dot(q, q);
+  if (r2 > 1.0) discard;
+  vec3 color = u_lit != 0 ? shade(v_color, vec3(q, sqrt(1.0 - r2))) : v_color;
   fragment = vec4(color, 1.0);
 }
 )";
@@ -184,6 +248,9 @@ struct PackingRenderer::State {
   GLint u_transforms = -1, u_colors = -1, u_view = -1, u_projection = -1, u_lit = -1;
   GLuint line_program = 0;
   GLint u_view_projection = -1, u_line_color = -1;
+  GLuint point_program = 0;
+  GLint p_view = -1, p_projection = -1, p_pixel_scale = -1, p_orthographic = -1, p_lit = -1;
+  GLuint point_array = 0, point_buffer = 0;
 
   GLuint vertex_array = 0;
   GLuint vertex_buffer = 0;
@@ -197,12 +264,17 @@ struct PackingRenderer::State {
   std::vector<ShapeRange> shapes;
   std::vector<std::uint32_t> instanced_shapes;  // shapes drawn instanced (>= 2 particles)
   std::vector<std::uint32_t> particle_shape;
-  std::vector<float> particle_sphere;  // x, y, z, radius per particle (world, m)
+  std::vector<ParticleSphere> particle_sphere;
   std::array<ParticleColors, 3> colors;
   int uploaded_color = -1;  // ColorMode whose colours are in color_buffer, -1 = none
   Aabb bounds;
 
   // Per-frame scratch, kept to avoid reallocating.
+  std::vector<Candidate> candidates;
+  std::vector<std::uint8_t> level;  // per candidate: 0 full, 1 coarse, 2 point
+  std::vector<std::uint32_t> point_list;
+  std::vector<GpuPoint> points;
+  std::vector<float> impostor_radius;  // per particle (m)
   std::vector<std::uint32_t> instance_list;
   std::vector<std::uint32_t> group_counts;
   std::vector<GLsizei> single_counts;
@@ -243,6 +315,23 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   s.line_program = link_program(kLineVertexShader, kLineFragmentShader);
   s.u_view_projection = glGetUniformLocation(s.line_program, "u_view_projection");
   s.u_line_color = glGetUniformLocation(s.line_program, "u_color");
+  s.point_program = link_program(kPointVertexShader, kPointFragmentShader);
+  s.p_view = glGetUniformLocation(s.point_program, "u_view");
+  s.p_projection = glGetUniformLocation(s.point_program, "u_projection");
+  s.p_pixel_scale = glGetUniformLocation(s.point_program, "u_pixel_scale");
+  s.p_orthographic = glGetUniformLocation(s.point_program, "u_orthographic");
+  s.p_lit = glGetUniformLocation(s.point_program, "u_lit");
+  glGenVertexArrays(1, &s.point_array);
+  glGenBuffers(1, &s.point_buffer);
+  glBindVertexArray(s.point_array);
+  glBindBuffer(GL_ARRAY_BUFFER, s.point_buffer);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(GpuPoint), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(GpuPoint),
+                        reinterpret_cast<const void*>(offsetof(GpuPoint, r)));
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
 
   glGenVertexArrays(1, &s.vertex_array);
   glGenBuffers(1, &s.vertex_buffer);
@@ -288,6 +377,9 @@ PackingRenderer::~PackingRenderer() {
   State& s = *state_;
   glDeleteProgram(s.particle_program);
   glDeleteProgram(s.line_program);
+  glDeleteProgram(s.point_program);
+  glDeleteBuffers(1, &s.point_buffer);
+  glDeleteVertexArrays(1, &s.point_array);
   const std::array<GLuint, 7> buffers = {s.vertex_buffer,    s.index_buffer, s.instance_buffer,
                                          s.transform_buffer, s.color_buffer, s.line_buffer, 0};
   glDeleteBuffers(6, buffers.data());
@@ -309,9 +401,9 @@ void PackingRenderer::set_packing(const Packing& packing) {
   }
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  if (3.0 * static_cast<double>(particle_count) > static_cast<double>(max_texels)) {
+  if (4.0 * static_cast<double>(particle_count) > static_cast<double>(max_texels)) {
     throw LimitExceeded("particle count", std::to_string(particle_count),
-                        "<= " + std::to_string(max_texels / 3) + " for this OpenGL driver");
+                        "<= " + std::to_string(max_texels / 4) + " for this OpenGL driver");
   }
 
   // Which shapes are used, and how often: a shape used once carries its particle index in its
@@ -330,6 +422,12 @@ void PackingRenderer::set_packing(const Packing& packing) {
     ShapeRange& range = s.shapes[shape_index];
     const ConvexPolyhedron& shape = packing.shapes[shape_index];
     for (const Vec3& v : shape.vertices()) range.radius = std::max(range.radius, v.norm());
+    range.inner_radius = range.radius;
+    for (std::size_t face = 0; face < shape.triangle_count(); ++face) {
+      const Vec3 normal = shape.face_normal(face);
+      const double distance = normal.dot(shape.vertices()[shape.triangles()[face][0]]);
+      range.inner_radius = std::max(0.0, std::min(range.inner_radius, distance));
+    }
     if (range.instances == 0 || shape.is_empty()) continue;
     if (range.instances >= 2) s.instanced_shapes.push_back(static_cast<std::uint32_t>(shape_index));
     const std::uint32_t particle = range.instances == 1 ? single_owner[shape_index] : 0;
@@ -353,10 +451,13 @@ void PackingRenderer::set_packing(const Packing& packing) {
     }
   }
 
-  // Transforms: rows of [scale * R | t] (float is ample: 1e-7 relative to the scene size).
-  std::vector<float> transforms(std::max<std::size_t>(particle_count, 1) * 12, 0.0f);
+  // Transforms: rows of [scale * R | t] (float is ample: 1e-7 relative to the scene size), then
+  // the impostor radius (volume-equivalent, m).
+  const ShapeMeasures measures = measure_shapes(packing);
+  std::vector<float> transforms(std::max<std::size_t>(particle_count, 1) * 16, 0.0f);
   s.particle_shape.resize(particle_count);
-  s.particle_sphere.resize(particle_count * 4);
+  s.particle_sphere.resize(particle_count);
+  s.impostor_radius.resize(particle_count);
   s.bounds = Aabb{};
   const Aabb container_bounds = packing.container.bounds();
   if (!container_bounds.is_empty()) {
@@ -369,17 +470,20 @@ void PackingRenderer::set_packing(const Packing& packing) {
     const Vec3& t = particle.pose.position;
     for (int row = 0; row < 3; ++row) {
       for (int column = 0; column < 3; ++column) {
-        transforms[12 * i + 4 * static_cast<std::size_t>(row) + static_cast<std::size_t>(column)] =
+        transforms[16 * i + 4 * static_cast<std::size_t>(row) + static_cast<std::size_t>(column)] =
             static_cast<float>(linear(row, column));
       }
-      transforms[12 * i + 4 * static_cast<std::size_t>(row) + 3] = static_cast<float>(t[row]);
+      transforms[16 * i + 4 * static_cast<std::size_t>(row) + 3] = static_cast<float>(t[row]);
     }
+    transforms[16 * i + 12] =
+        static_cast<float>(0.5 * measures.equivalent_diameter[particle.shape] * particle.scale);
+    s.impostor_radius[i] = transforms[16 * i + 12];
     const double radius = s.shapes[particle.shape].radius * particle.scale;
     s.particle_shape[i] = particle.shape;
-    s.particle_sphere[4 * i] = static_cast<float>(t.x());
-    s.particle_sphere[4 * i + 1] = static_cast<float>(t.y());
-    s.particle_sphere[4 * i + 2] = static_cast<float>(t.z());
-    s.particle_sphere[4 * i + 3] = static_cast<float>(radius);
+    s.particle_sphere[i] = {static_cast<float>(t.x()), static_cast<float>(t.y()),
+                            static_cast<float>(t.z()), static_cast<float>(radius),
+                            static_cast<float>(s.shapes[particle.shape].inner_radius *
+                                               particle.scale)};
     s.bounds.expand(t - Vec3::Constant(radius));
     s.bounds.expand(t + Vec3::Constant(radius));
   }
@@ -404,7 +508,6 @@ void PackingRenderer::set_packing(const Packing& packing) {
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, s.color_buffer);
   glBindTexture(GL_TEXTURE_BUFFER, 0);
 
-  const ShapeMeasures measures = measure_shapes(packing);
   for (ColorMode mode : {ColorMode::kParticle, ColorMode::kSize, ColorMode::kAlpha}) {
     s.colors[static_cast<std::size_t>(mode)] = particle_colors(packing, measures, mode);
   }
@@ -479,8 +582,8 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
 
-  // Visibility and level of detail per particle. Frustum planes from the combined matrix
-  // (Gribb-Hartmann); a particle is kept unless its bounding sphere is wholly outside a plane.
+  // 1. Frustum: keep a particle unless its bounding sphere is wholly outside a plane of the
+  //    view volume (planes from the combined matrix, Gribb-Hartmann).
   std::array<Eigen::Vector4f, 6> planes;
   for (int k = 0; k < 3; ++k) {
     planes[static_cast<std::size_t>(2 * k)] = view_projection.row(3) + view_projection.row(k);
@@ -488,71 +591,129 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   }
   for (auto& plane : planes) plane /= plane.head<3>().norm();
   const Eigen::Vector4f depth_row = -view.row(2);
-  const double pixel_scale = camera.pixels_per_metre(1.0, height);
+  const float pixel_scale = static_cast<float>(camera.pixels_per_metre(1.0, height));
   const bool is_orthographic = camera.is_orthographic();
-
+  // Pixels per metre at a view depth; perspective shrinks with depth.
+  auto pixels_per_metre = [&](float depth) {
+    return is_orthographic ? pixel_scale : pixel_scale / std::max(depth, 1e-9f);
+  };
   const std::size_t particle_count = s.particle_shape.size();
-  const std::size_t shape_count = s.shapes.size();
-  // Group keys: 2 * shape + (coarse ? 1 : 0) for instanced shapes.
-  s.group_counts.assign(2 * shape_count, 0);
-  s.single_counts.clear();
-  s.single_offsets.clear();
-  s.single_base_vertices.clear();
-  std::vector<std::uint8_t> is_coarse(particle_count, 0);
-  std::vector<std::uint8_t> is_visible(particle_count, 0);
+  s.candidates.clear();
   for (std::size_t i = 0; i < particle_count; ++i) {
-    const Eigen::Vector4f centre(s.particle_sphere[4 * i], s.particle_sphere[4 * i + 1],
-                                 s.particle_sphere[4 * i + 2], 1.0f);
-    const float radius = s.particle_sphere[4 * i + 3];
+    const ParticleSphere& sphere = s.particle_sphere[i];
+    const Eigen::Vector4f centre(sphere.x, sphere.y, sphere.z, 1.0f);
     bool is_inside = true;
     for (const auto& plane : planes) {
-      if (plane.dot(centre) < -radius) {
+      if (plane.dot(centre) < -sphere.radius) {
         is_inside = false;
         break;
       }
     }
     if (!is_inside) continue;
-    is_visible[i] = 1;
-    ++stats.particles_drawn;
-    const double depth = depth_row.dot(centre);
-    if (style.coarse_below_pixels > 0.0 && (is_orthographic || depth > radius)) {
-      const double pixels = 2.0 * radius * pixel_scale / (is_orthographic ? 1.0 : depth);
-      if (pixels < style.coarse_below_pixels) is_coarse[i] = 1;
+    const Eigen::Vector4f clip = view_projection * centre;
+    Candidate candidate;
+    candidate.particle = static_cast<std::uint32_t>(i);
+    candidate.depth = depth_row.dot(centre);
+    candidate.near_depth = candidate.depth - sphere.radius;
+    const bool is_in_front = is_orthographic || candidate.near_depth > 0.0f;
+    candidate.pixels = is_in_front ? 2.0f * sphere.radius * pixels_per_metre(candidate.depth)
+                                   : std::numeric_limits<float>::infinity();
+    const float w = clip.w() > 1e-9f ? clip.w() : 1e-9f;
+    candidate.screen_x = (clip.x() / w + 1.0f) * 0.5f * static_cast<float>(width);
+    candidate.screen_y = (clip.y() / w + 1.0f) * 0.5f * static_cast<float>(height);
+    s.candidates.push_back(candidate);
+  }
+  // Front to back: lets the rasteriser's early depth test reject hidden fragments.
+  std::sort(s.candidates.begin(), s.candidates.end(),
+            [](const Candidate& a, const Candidate& b) {
+              return a.near_depth < b.near_depth ||
+                     (a.near_depth == b.near_depth && a.particle < b.particle);
+            });
+
+  const std::size_t kept = s.candidates.size();
+
+  // 2. Level of detail: full, coarse or point by projected size; then, over the triangle
+  //    budget, the smallest particles become points.
+  s.level.assign(kept, 0);
+  auto triangles_of = [&](std::size_t c) -> std::size_t {
+    const ShapeRange& range = s.shapes[s.particle_shape[s.candidates[c].particle]];
+    if (s.level[c] == 2) return 0;
+    return static_cast<std::size_t>((s.level[c] == 1 ? range.coarse_count : range.full_count) / 3);
+  };
+  std::size_t mesh_triangles = 0;
+  for (std::size_t c = 0; c < kept; ++c) {
+    const float pixels = s.candidates[c].pixels;
+    if (pixels < style.point_below_pixels) {
+      s.level[c] = 2;
+    } else if (pixels < style.coarse_below_pixels) {
+      s.level[c] = 1;
     }
-    stats.coarse_particles += is_coarse[i];
-    const std::uint32_t shape = s.particle_shape[i];
-    const ShapeRange& range = s.shapes[shape];
-    if (range.instances >= 2) {
-      ++s.group_counts[2 * shape + is_coarse[i]];
-    } else {
-      const GLsizei count = is_coarse[i] ? range.coarse_count : range.full_count;
-      const GLuint offset = is_coarse[i] ? range.coarse_offset : range.full_offset;
-      s.single_counts.push_back(count);
-      s.single_offsets.push_back(
-          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset) * 4u));
-      s.single_base_vertices.push_back(range.base_vertex);
-      stats.triangles += static_cast<std::size_t>(count / 3);
+    mesh_triangles += triangles_of(c);
+  }
+  if (style.triangle_budget > 0 && mesh_triangles > style.triangle_budget) {
+    std::vector<std::uint32_t> by_size(kept);
+    for (std::size_t c = 0; c < kept; ++c) by_size[c] = static_cast<std::uint32_t>(c);
+    std::sort(by_size.begin(), by_size.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return s.candidates[a].pixels < s.candidates[b].pixels ||
+             (s.candidates[a].pixels == s.candidates[b].pixels && a < b);
+    });
+    for (std::uint32_t c : by_size) {
+      if (mesh_triangles <= style.triangle_budget) break;
+      mesh_triangles -= triangles_of(c);
+      s.level[c] = 2;
     }
   }
+
+  // 3. Draw lists: single-use shapes in one multi-draw, instanced shapes by (shape, level),
+  //    points in one draw; all in front-to-back order.
+  const std::size_t shape_count = s.shapes.size();
+  s.group_counts.assign(2 * shape_count, 0);
+  s.single_counts.clear();
+  s.single_offsets.clear();
+  s.single_base_vertices.clear();
+  s.point_list.clear();
+  for (std::size_t c = 0; c < kept; ++c) {
+    const std::uint32_t particle = s.candidates[c].particle;
+    const std::uint32_t shape = s.particle_shape[particle];
+    const ShapeRange& range = s.shapes[shape];
+    const std::uint8_t level = s.level[c];
+    if (level == 2) {
+      s.point_list.push_back(particle);
+      continue;
+    }
+    if (range.instances >= 2) {
+      ++s.group_counts[2 * shape + level];
+    } else {
+      s.single_counts.push_back(level == 1 ? range.coarse_count : range.full_count);
+      s.single_offsets.push_back(reinterpret_cast<const void*>(
+          static_cast<std::uintptr_t>(level == 1 ? range.coarse_offset : range.full_offset) * 4u));
+      s.single_base_vertices.push_back(range.base_vertex);
+    }
+  }
+  stats.particles_drawn = kept;
+  stats.point_particles = s.point_list.size();
+  stats.coarse_particles =
+      static_cast<std::size_t>(std::count(s.level.begin(), s.level.end(), std::uint8_t{1}));
+  stats.triangles = mesh_triangles;
 
   // Instance list: element 0 stays 0 (what single-use shapes read through the per-instance
   // attribute), then one block per (shape, level) group.
   std::vector<std::uint32_t> group_start(2 * shape_count, 0);
   std::uint32_t next = 1;
   for (std::uint32_t shape : s.instanced_shapes) {
-    for (int level = 0; level < 2; ++level) {
-      group_start[2 * shape + static_cast<std::size_t>(level)] = next;
-      next += s.group_counts[2 * shape + static_cast<std::size_t>(level)];
+    for (std::size_t level = 0; level < 2; ++level) {
+      group_start[2 * shape + level] = next;
+      next += s.group_counts[2 * shape + level];
     }
   }
   s.instance_list.assign(next, 0);
   {
     std::vector<std::uint32_t> cursor = group_start;
-    for (std::size_t i = 0; i < particle_count; ++i) {
-      if (is_visible[i] == 0) continue;
-      const std::uint32_t shape = s.particle_shape[i];
-      if (s.shapes[shape].instances < 2) continue;
-      s.instance_list[cursor[2 * shape + is_coarse[i]]++] = static_cast<std::uint32_t>(i);
+    for (std::size_t c = 0; c < kept; ++c) {
+      const std::uint32_t particle = s.candidates[c].particle;
+      const std::uint32_t shape = s.particle_shape[particle];
+      if (s.level[c] == 2 || s.shapes[shape].instances < 2) continue;
+      s.instance_list[cursor[2 * shape + s.level[c]]++] = particle;
     }
   }
 
@@ -591,8 +752,8 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   // GL 3.3 has no base instance: point the per-instance attribute at each group's block.
   for (std::uint32_t shape : s.instanced_shapes) {
     const ShapeRange& range = s.shapes[shape];
-    for (int level = 0; level < 2; ++level) {
-      const std::size_t group = 2 * shape + static_cast<std::size_t>(level);
+    for (std::size_t level = 0; level < 2; ++level) {
+      const std::size_t group = 2 * shape + level;
       const GLsizei instances = static_cast<GLsizei>(s.group_counts[group]);
       if (instances == 0) continue;
       glVertexAttribIPointer(
@@ -605,13 +766,39 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
           reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset) * 4u), instances,
           range.base_vertex);
       ++stats.draw_calls;
-      stats.triangles += static_cast<std::size_t>(count / 3) * static_cast<std::size_t>(instances);
     }
   }
   glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
   glBindVertexArray(0);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glDisable(GL_CULL_FACE);
+
+  if (!s.point_list.empty()) {
+    glUseProgram(s.point_program);
+    glUniformMatrix4fv(s.p_view, 1, GL_FALSE, view.data());
+    glUniformMatrix4fv(s.p_projection, 1, GL_FALSE, projection.data());
+    glUniform1f(s.p_pixel_scale, pixel_scale);
+    glUniform1i(s.p_orthographic, is_orthographic ? 1 : 0);
+    glUniform1i(s.p_lit, style.is_wireframe ? 0 : 1);
+    const auto& colors = s.colors[static_cast<std::size_t>(style.color)].colors;
+    s.points.resize(s.point_list.size());
+    for (std::size_t k = 0; k < s.point_list.size(); ++k) {
+      const std::uint32_t particle = s.point_list[k];
+      const ParticleSphere& sphere = s.particle_sphere[particle];
+      const Rgb color = particle < colors.size() ? colors[particle] : Rgb{255, 255, 255};
+      s.points[k] = {sphere.x, sphere.y, sphere.z, s.impostor_radius[particle],
+                     color.r, color.g, color.b, 255};
+    }
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glBindVertexArray(s.point_array);
+    glBindBuffer(GL_ARRAY_BUFFER, s.point_buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.points.size() * sizeof(GpuPoint)),
+                 s.points.data(), GL_STREAM_DRAW);
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(s.point_list.size()));
+    glBindVertexArray(0);
+    glDisable(GL_PROGRAM_POINT_SIZE);
+    ++stats.draw_calls;
+  }
 
   if (style.show_container && s.line_vertex_count > 0) {
     glUseProgram(s.line_program);
@@ -624,6 +811,7 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
     ++stats.draw_calls;
   }
   glUseProgram(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_BUFFER, 0);
   glActiveTexture(GL_TEXTURE0);

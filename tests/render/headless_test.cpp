@@ -291,6 +291,42 @@ TEST(Headless, RendererReportsCullingAndDetailLevels) {
   EXPECT_GT(stats.particles_drawn, 0u);
 }
 
+TEST(Headless, TriangleBudgetTurnsTheSmallestParticlesIntoPoints) {
+  Packing packing = test::grid_packing(6, 4, 3, 0.1, 3);
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    packing.particles[i].scale = 0.5 + 0.01 * static_cast<double>(i);
+  }
+  HeadlessContext context;
+  PackingRenderer renderer;
+  renderer.set_packing(packing);
+  OffscreenTarget target(320, 240);
+  const Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kIso, 320.0 / 240.0);
+  RenderStyle style;
+  style.coarse_below_pixels = 0.0;
+  style.show_container = false;
+  target.bind();
+  const DrawStats full = renderer.draw(camera, 320, 240, style);
+  const std::size_t covered_full = covered_pixels(target.read(), style.background);
+  EXPECT_EQ(full.point_particles, 0u);
+  style.triangle_budget = full.triangles / 3;
+  target.bind();
+  const DrawStats budget = renderer.draw(camera, 320, 240, style);
+  EXPECT_LE(budget.triangles, style.triangle_budget);
+  EXPECT_GT(budget.point_particles, 0u);
+  EXPECT_EQ(budget.particles_drawn, full.particles_drawn);
+  // Everything as points: one shaded disc of the equal-volume size per particle, so about as
+  // much of the picture is covered (a disc is rounder, not larger or smaller on average).
+  style.triangle_budget = 0;
+  style.point_below_pixels = 1e6;
+  target.bind();
+  const DrawStats points = renderer.draw(camera, 320, 240, style);
+  const std::size_t covered_points = covered_pixels(target.read(), style.background);
+  EXPECT_EQ(points.point_particles, packing.particles.size());
+  EXPECT_EQ(points.triangles, 0u);
+  EXPECT_GT(covered_points, covered_full / 2);
+  EXPECT_LT(covered_points, covered_full * 2);
+}
+
 TEST(Headless, PngRoundTripsThroughAnIndependentDecoder) {
   const Packing packing = test::grid_packing(3, 2, 2);
   RenderImageOptions options = small_options();

@@ -5,10 +5,12 @@
 // and drawn instanced: a particle is its shape index plus a per-particle transform
 // (scale * rotation, translation) and colour held in buffer textures. Facet normals come from
 // screen-space derivatives in the fragment shader, so facets are lit flat without duplicating
-// vertices per triangle. Particles that cover few pixels are drawn with a coarse 24-triangle
-// version of their shape (level of detail), and particles outside the view are skipped: the
-// software renderer (llvmpipe) is bound by triangles, so this is what keeps 10^5 particles
-// interactive.
+// vertices per triangle.
+//
+// The software renderer (llvmpipe) pays per primitive, so particles outside the view are skipped
+// (frustum test of the bounding sphere) and the rest are drawn front to back. Particles
+// that cover few pixels are drawn with a coarse 24-triangle version of their shape or as one
+// shaded point (an impostor), and a triangle budget turns the smallest ones into points first.
 
 #include <cstddef>
 #include <cstdint>
@@ -32,12 +34,19 @@ struct RenderStyle {
   /// shape (24 triangles through the shape's support points in 14 directions). 0 = always full
   /// detail. >= 0.
   double coarse_below_pixels = 12.0;
+  /// Particles whose projected diameter is below this many pixels are drawn as one shaded disc
+  /// (a point sprite of their volume-equivalent size). 0 = never. >= 0.
+  double point_below_pixels = 0.0;
+  /// Most triangles to submit per frame; when the visible particles need more, the smallest on
+  /// screen are drawn as points instead. 0 = no limit.
+  std::size_t triangle_budget = 0;
 };
 
 /// What one draw() did (for the GUI's status line and benchmarks).
 struct DrawStats {
   std::size_t particles_drawn = 0;   ///< particles in the view
-  std::size_t coarse_particles = 0;  ///< of those, drawn with the coarse shape
+  std::size_t coarse_particles = 0;  ///< of those drawn, with the coarse shape
+  std::size_t point_particles = 0;   ///< of those drawn, as points
   std::size_t triangles = 0;         ///< triangles submitted
   std::size_t draw_calls = 0;        ///< OpenGL draw calls issued
 };
