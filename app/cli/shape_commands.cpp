@@ -28,12 +28,22 @@ struct ShapeFlags {
   int threads = 0;
 };
 
+// Unsigned options: CLI11 would wrap "-1" to 2^64-1, so negative text is rejected first (CLI11's
+// NonNegativeNumber would print DBL_MAX as the range).
+const CLI::Validator kNotNegative(
+    [](std::string& text) {
+      const auto first = text.find_first_not_of(" \t");
+      if (first != std::string::npos && text[first] == '-') return "must be >= 0, got " + text;
+      return std::string();
+    },
+    "");
+
 void add_generator_options(CLI::App& command, ShapeFlags& flags) {
   auto& g = flags.generator;
   command.add_option("--alpha", g.alpha, "Eq. 3 shape control alpha, in [0, 1]")
       ->capture_default_str();
   command.add_option("-r,--radius", flags.radius,
-                     "control radius r (m), > 0; sets --radius-min and --radius-max");
+                     "control radius r (m), > 0; sets --radius-min and --radius-max (default: unset)");
   command.add_option("--radius-min", g.radius_min, "smallest control radius (m), > 0")
       ->capture_default_str();
   command.add_option("--radius-max", g.radius_max, "largest control radius (m), >= radius-min")
@@ -42,21 +52,35 @@ void add_generator_options(CLI::App& command, ShapeFlags& flags) {
                      "maximum edge length L (m), > 0: growth stops when every edge <= L")
       ->capture_default_str();
   command.add_option("--max-vertices", g.max_vertices, "vertex cap per particle, [6, 1000000]")
+      ->check(kNotNegative)
       ->capture_default_str();
-  command.add_option("--seed", g.seed, "master seed; particle i uses stream (seed, i)")
+  command.add_option("--seed", g.seed, "master seed, [0, 2^64-1]; particle i uses stream (seed, i)")
+      ->check(kNotNegative)
       ->capture_default_str();
 }
 
+// Checks every flag under its own name (the library's checks name its struct fields), then the
+// library's own validation, which adds the vertex-cap estimate.
 void resolve_radius(ShapeFlags& flags, const CLI::App& command) {
+  auto& g = flags.generator;
+  require_in_range("--alpha", g.alpha, 0.0, 1.0);
   if (command.count("--radius") > 0) {
     if (command.count("--radius-min") > 0 || command.count("--radius-max") > 0) {
       throw InvalidInput("--radius", format_value(flags.radius),
                          "either --radius or --radius-min/--radius-max, not both");
     }
-    flags.generator.radius_min = flags.radius;
-    flags.generator.radius_max = flags.radius;
+    require_positive("--radius", flags.radius);
+    g.radius_min = flags.radius;
+    g.radius_max = flags.radius;
   }
-  validate(flags.generator);
+  require_positive("--radius-min", g.radius_min);
+  require_positive("--radius-max", g.radius_max);
+  if (g.radius_max < g.radius_min) {
+    throw InvalidInput("--radius-max", format_value(g.radius_max),
+                       ">= --radius-min = " + format_value(g.radius_min));
+  }
+  require_positive("--edge-length", g.edge_length);
+  validate(g);
 }
 
 void print_descriptors(const ShapeDescriptors& d, double control_radius) {
@@ -91,7 +115,8 @@ void register_particle(CLI::App& app) {
       "particle", "Generate one random aggregate particle, print its shape descriptors and "
                   "optionally write it as STL.");
   add_generator_options(*command, *flags);
-  command->add_option("--index", *index, "particle index within the seed's family")
+  command->add_option("--index", *index, "particle index within the seed's family, >= 0")
+      ->check(kNotNegative)
       ->capture_default_str();
   command->add_option("-o,--output", *output, "STL file to write (omit to only measure)");
   command->add_flag("--ascii", *is_ascii, "write ASCII STL instead of binary");
@@ -127,6 +152,7 @@ void register_shapes(CLI::App& app) {
                 "summary (mean, std, min, max).");
   add_generator_options(*command, *flags);
   command->add_option("-n,--count", *count, "number of particles, [1, 100000000]")
+      ->check(kNotNegative)
       ->capture_default_str();
   command->add_option("-o,--output", *output, "CSV file to write (omit to print the summary only)");
   command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
