@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -24,6 +25,10 @@ void put_float(std::ostream& out, double value) {
 void write_stl(const std::string& path, const std::vector<ConvexPolyhedron>& bodies,
                const StlOptions& options) {
   require_positive("stl scale", options.scale);
+  // A line break in the name would end the ASCII "solid" line early.
+  if (options.solid_name.find_first_of("\r\n") != std::string::npos) {
+    throw InvalidInput("stl solid_name", "a name with a line break", "one line of text");
+  }
   std::size_t triangle_count = 0;
   for (const auto& body : bodies) triangle_count += body.triangle_count();
   if (options.encoding == StlEncoding::kBinary && triangle_count > 0xFFFFFFFFULL) {
@@ -75,6 +80,8 @@ void write_stl(const std::string& path, const std::vector<ConvexPolyhedron>& bod
 }
 
 StlMesh read_stl(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw IoError("cannot read " + path + ": it is a folder");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open " + path);
   std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -122,7 +129,11 @@ StlMesh read_stl(const std::string& path) {
     Vec3 normal;
     std::string keyword;
     text >> keyword >> normal.x() >> normal.y() >> normal.z();
-    text >> keyword >> word;  // outer loop
+    if (!text || keyword != "normal") throw FormatError(path + ": malformed facet normal line");
+    text >> keyword >> word;
+    if (!text || keyword != "outer" || word != "loop") {
+      throw FormatError(path + ": expected 'outer loop'");
+    }
     std::array<Vec3, 3> triangle;
     for (auto& v : triangle) {
       text >> keyword >> v.x() >> v.y() >> v.z();
