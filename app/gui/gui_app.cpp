@@ -186,7 +186,7 @@ GuiApp::~GuiApp() {
 }
 
 bool GuiApp::is_busy() const {
-  return job_.is_running() || benchmark_left_ > 0 || is_waiting_for_first_job_ ||
+  return job_.is_running() || benchmark_left_ > 0 || is_waiting_for_first_job_ || is_preview_ ||
          (frames_since_job_ >= 0 && frames_since_job_ < 3) || dragging_button_ >= 0;
 }
 
@@ -336,15 +336,28 @@ void GuiApp::render_scene_if_needed(int width, int height) {
   if (!is_scene_dirty_) return;
   const double start = glfwGetTime();
   scene_target_->bind();
-  last_stats_ = renderer_->draw(camera_, width, height, style_);
+  // While the view moves, a lighter frame (a fifth of the triangle budget, the rest as
+  // impostors); the full frame follows when the mouse rests.
+  RenderStyle style = style_;
+  is_preview_ = is_interacting();
+  if (is_preview_) {
+    const std::size_t light = std::max<std::size_t>(20000, style.triangle_budget / 5);
+    style.triangle_budget = style.triangle_budget == 0 ? 50000 : std::min(style.triangle_budget, light);
+  }
+  last_stats_ = renderer_->draw(camera_, width, height, style);
   // Finish here so the time measures the scene, not whatever comes later in the frame.
   glFinish();
   last_scene_seconds_ = glfwGetTime() - start;
   is_scene_dirty_ = false;
 }
 
+bool GuiApp::is_interacting() const {
+  return dragging_button_ >= 0 || glfwGetTime() - last_scroll_time_ < 0.3;
+}
+
 void GuiApp::frame() {
   poll_job();
+  if (is_preview_ && !is_interacting()) is_scene_dirty_ = true;  // refine after the move
   int fb_width = 0, fb_height = 0;
   glfwGetFramebufferSize(window_, &fb_width, &fb_height);
   int win_width = 0, win_height = 0;
@@ -631,6 +644,7 @@ void GuiApp::on_scroll(double dy) {
   glfwGetCursorPos(window_, &x, &y);
   if (!is_in_view(x, y)) return;
   camera_.zoom(std::pow(0.85, dy));
+  last_scroll_time_ = glfwGetTime();
   is_scene_dirty_ = true;
 }
 

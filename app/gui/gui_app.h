@@ -103,6 +103,7 @@ class GuiApp {
   void set_status(std::string text, bool is_error);
   [[nodiscard]] int panel_width() const;
   [[nodiscard]] bool is_in_view(double x, double y) const;
+  [[nodiscard]] bool is_interacting() const;
 
   GLFWwindow* window_;
   GuiOptions options_;
@@ -125,6 +126,8 @@ class GuiApp {
 
   // Mouse state.
   int dragging_button_ = -1;
+  double last_scroll_time_ = -1.0;
+  bool is_preview_ = false;  // the cached scene is a light in-motion frame
   double cursor_x_ = 0.0, cursor_y_ = 0.0;
 
   // Scripted runs (--pack/--open, --screenshot, --benchmark-frames, --quit).

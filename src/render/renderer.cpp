@@ -104,23 +104,25 @@ void main() {
 }
 )";
 
-// Impostor for particles a few pixels across: a point sprite of the volume-equivalent diameter,
-// shaded as a ball with the same lights as the facets.
-// Per-point data comes as vertex attributes, not buffer-texture fetches: llvmpipe runs texel
-// fetches in vertex shaders far slower than attribute fetches, and points are its hot path.
+// Impostor for particles a few pixels across: one view-facing triangle circumscribing a disc of
+// the volume-equivalent radius, shaded as a ball with the same lights as the facets. One
+// triangle, not a point sprite: llvmpipe expands wide points into two triangles on a slow path.
+// Per-impostor data comes as instanced attributes, not buffer-texture fetches, which llvmpipe
+// runs far slower in vertex shaders.
 constexpr const char* kPointVertexShader = R"(#version 330 core
-layout(location = 0) in vec4 a_sphere;  // centre (m), impostor radius (m)
-layout(location = 1) in vec4 a_color;   // normalised RGBA8
+layout(location = 0) in vec4 a_sphere;  // centre (m), impostor radius (m); per instance
+layout(location = 1) in vec4 a_color;   // normalised RGBA8; per instance
 uniform mat4 u_view;
 uniform mat4 u_projection;
-uniform float u_pixel_scale;  // pixels per metre at unit depth (or at any depth, orthographic)
-uniform int u_orthographic;
 flat out vec3 v_color;
+out vec2 v_disc;  // position in units of the disc radius
 void main() {
-  float radius = a_sphere.w;
+  // Corners of the equilateral triangle whose inscribed circle is the unit circle.
+  const vec2 corners[3] = vec2[3](vec2(0.0, 2.0), vec2(-1.7320508, -1.0), vec2(1.7320508, -1.0));
+  v_disc = corners[gl_VertexID];
   vec4 view = u_view * vec4(a_sphere.xyz, 1.0);
-  float pixels_per_metre = u_orthographic != 0 ? u_pixel_scale : u_pixel_scale / max(-view.z, 1e-6);
-  gl_PointSize = clamp(2.0 * radius * pixels_per_metre, 1.0, 64.0);
+  // Bring the billboard forward by the radius so it is not hidden inside neighbouring facets.
+  view.xyz += vec3(v_disc * a_sphere.w, 0.0) + normalize(-view.xyz) * a_sphere.w * 0.5;
   v_color = a_color.rgb;
   gl_Position = u_projection * view;
 }
@@ -134,11 +136,11 @@ struct GpuPoint {
 
 constexpr const char* kPointFragmentShader = "#version 330 core\n" AGGPACK_SHADE_GLSL R"(
 flat in vec3 v_color;
+in vec2 v_disc;
 uniform int u_lit;
 out vec4 fragment;
 void main() {
-  vec2 q = gl_PointCoord * 2.0 - 1.0;
-  q.y = -q.y;
+  vec2 q = v_disc;
   float r2 = dot(q, q);
   if (r2 > 1.0) discard;
   vec3 color = u_lit != 0 ? shade(v_color, vec3(q, sqrt(1.0 - r2))) : v_color;
@@ -249,7 +251,7 @@ struct PackingRenderer::State {
   GLuint line_program = 0;
   GLint u_view_projection = -1, u_line_color = -1;
   GLuint point_program = 0;
-  GLint p_view = -1, p_projection = -1, p_pixel_scale = -1, p_orthographic = -1, p_lit = -1;
+  GLint p_view = -1, p_projection = -1, p_lit = -1;
   GLuint point_array = 0, point_buffer = 0;
 
   GLuint vertex_array = 0;
@@ -318,8 +320,6 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   s.point_program = link_program(kPointVertexShader, kPointFragmentShader);
   s.p_view = glGetUniformLocation(s.point_program, "u_view");
   s.p_projection = glGetUniformLocation(s.point_program, "u_projection");
-  s.p_pixel_scale = glGetUniformLocation(s.point_program, "u_pixel_scale");
-  s.p_orthographic = glGetUniformLocation(s.point_program, "u_orthographic");
   s.p_lit = glGetUniformLocation(s.point_program, "u_lit");
   glGenVertexArrays(1, &s.point_array);
   glGenBuffers(1, &s.point_buffer);
@@ -327,9 +327,11 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   glBindBuffer(GL_ARRAY_BUFFER, s.point_buffer);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(GpuPoint), nullptr);
+  glVertexAttribDivisor(0, 1);
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(GpuPoint),
                         reinterpret_cast<const void*>(offsetof(GpuPoint, r)));
+  glVertexAttribDivisor(1, 1);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 
@@ -777,8 +779,6 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
     glUseProgram(s.point_program);
     glUniformMatrix4fv(s.p_view, 1, GL_FALSE, view.data());
     glUniformMatrix4fv(s.p_projection, 1, GL_FALSE, projection.data());
-    glUniform1f(s.p_pixel_scale, pixel_scale);
-    glUniform1i(s.p_orthographic, is_orthographic ? 1 : 0);
     glUniform1i(s.p_lit, style.is_wireframe ? 0 : 1);
     const auto& colors = s.colors[static_cast<std::size_t>(style.color)].colors;
     s.points.resize(s.point_list.size());
@@ -789,14 +789,12 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
       s.points[k] = {sphere.x, sphere.y, sphere.z, s.impostor_radius[particle],
                      color.r, color.g, color.b, 255};
     }
-    glEnable(GL_PROGRAM_POINT_SIZE);
     glBindVertexArray(s.point_array);
     glBindBuffer(GL_ARRAY_BUFFER, s.point_buffer);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.points.size() * sizeof(GpuPoint)),
                  s.points.data(), GL_STREAM_DRAW);
-    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(s.point_list.size()));
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 3, static_cast<GLsizei>(s.point_list.size()));
     glBindVertexArray(0);
-    glDisable(GL_PROGRAM_POINT_SIZE);
     ++stats.draw_calls;
   }
 
