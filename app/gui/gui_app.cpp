@@ -394,25 +394,33 @@ void GuiApp::frame() {
   if (frames_since_job_ >= 0) ++frames_since_job_;
 }
 
+void GuiApp::save_screenshot(const std::string& path) {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window_, &width, &height);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  try {
+    write_png(read_framebuffer(0, 0, width, height), path);
+    std::printf("screenshot: wrote %s (%dx%d)\n", path.c_str(), width, height);
+    std::fflush(stdout);
+    set_status("Saved the window to " + path + ".", false);
+  } catch (const Error& error) {
+    std::fprintf(stderr, "aggpack-gui: error: %s\n", error.what());
+    set_status(error.what(), true);
+    exit_code_ = 3;
+  }
+}
+
 void GuiApp::after_render() {
+  if (is_screenshot_requested_) {
+    is_screenshot_requested_ = false;
+    save_screenshot(options_.screenshot_path.value_or("aggpack-gui.png"));
+  }
   // Scripted runs: act once the first job's result has been on screen for two frames (the
   // status line and the scene are then drawn) and any benchmark is over.
   if (frames_since_job_ < 2 || benchmark_left_ > 0 || is_script_done_) return;
   is_script_done_ = true;
-  if (options_.screenshot_path) {
-    int width = 0, height = 0;
-    glfwGetFramebufferSize(window_, &width, &height);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    glReadBuffer(GL_BACK);
-    try {
-      write_png(read_framebuffer(0, 0, width, height), *options_.screenshot_path);
-      std::printf("screenshot: wrote %s (%dx%d)\n", options_.screenshot_path->c_str(), width,
-                  height);
-    } catch (const Error& error) {
-      std::fprintf(stderr, "aggpack-gui: error: %s\n", error.what());
-      exit_code_ = 3;
-    }
-  }
+  if (options_.screenshot_path) save_screenshot(*options_.screenshot_path);
   std::printf("status: %s\n", status_.c_str());
   std::fflush(stdout);
   if (options_.is_quit_when_done) should_quit_ = true;
@@ -598,7 +606,8 @@ void GuiApp::draw_view_section() {
   ImGui::TextDisabled("%.2f M triangles", last_stats_.triangles / 1e6);
   ImGui::TextDisabled("scene %.1f ms; UI %.0f frames/s", 1e3 * last_scene_seconds_,
                       ImGui::GetIO().Framerate);
-  ImGui::TextDisabled("left drag: rotate, right drag: pan, wheel: zoom");
+  ImGui::TextDisabled("left drag: rotate, right drag: pan, wheel: zoom,");
+  ImGui::TextDisabled("R: reset view, Enter: pack, Esc: cancel, F12: screenshot");
   if (is_changed) is_scene_dirty_ = true;
 }
 
@@ -653,6 +662,7 @@ void GuiApp::on_key(int key, int action) {
   if (key == GLFW_KEY_R) reset_view();
   if (key == GLFW_KEY_ENTER || key == GLFW_KEY_KP_ENTER) start_pack();
   if (key == GLFW_KEY_ESCAPE && job_.is_running()) job_.request_cancel();
+  if (key == GLFW_KEY_F12) is_screenshot_requested_ = true;
 }
 
 }  // namespace aggpack::gui

@@ -101,6 +101,7 @@ class GuiApp {
   void render_scene_if_needed(int width, int height);
   void reset_view();
   void set_status(std::string text, bool is_error);
+  void save_screenshot(const std::string& path);
   [[nodiscard]] int panel_width() const;
   [[nodiscard]] bool is_in_view(double x, double y) const;
   [[nodiscard]] bool is_interacting() const;
@@ -137,6 +138,7 @@ class GuiApp {
   double benchmark_start_ = 0.0;
   double benchmark_scene_seconds_ = 0.0;
   bool is_script_done_ = false;
+  bool is_screenshot_requested_ = false;  // F12
   bool should_quit_ = false;
   int exit_code_ = 0;
 };
