@@ -53,7 +53,9 @@ ConvexPolyhedron::ConvexPolyhedron(std::vector<Vec3> vertices, std::vector<Trian
   // sum of x * 0, which is 0 exactly when every coordinate is finite (inf * 0 and NaN give NaN).
   std::uint32_t largest_index = 0;
   for (const auto& triangle : triangles_) {
-    largest_index = std::max({largest_index, triangle[0], triangle[1], triangle[2]});
+    largest_index = std::max(largest_index, triangle[0]);
+    largest_index = std::max(largest_index, triangle[1]);
+    largest_index = std::max(largest_index, triangle[2]);
   }
   if (largest_index >= vertices_.size()) {
     for (const auto& triangle : triangles_) {

@@ -13,22 +13,34 @@ MassProperties mass_properties(const ConvexPolyhedron& body) {
 
   double volume = 0.0;
   Vec3 first_moment = Vec3::Zero();
-  Mat3 second_moment = Mat3::Zero();  // integral of x x^T over the body, about `reference`
+  // Integral of x x^T over the body about `reference`, kept as its six distinct entries (the
+  // matrix is symmetric): xx, yy, zz, xy, yz, zx. Half the work of full 3x3 outer products.
+  double xx = 0.0, yy = 0.0, zz = 0.0, xy = 0.0, yz = 0.0, zx = 0.0;
+  double twice_area = 0.0;
   for (const auto& t : body.triangles()) {
     const Vec3 a = vertices[t[0]] - reference;
     const Vec3 b = vertices[t[1]] - reference;
     const Vec3 c = vertices[t[2]] - reference;
-    result.surface_area += 0.5 * (b - a).cross(c - a).norm();
+    twice_area += (b - a).cross(c - a).norm();
     // Signed tetrahedron (0, a, b, c): positive for an outward CCW triangle seen from inside.
     const double tet_volume = a.dot(b.cross(c)) / 6.0;
     const Vec3 sum = a + b + c;
     volume += tet_volume;
-    first_moment += tet_volume * sum / 4.0;
+    first_moment += tet_volume * sum;
     // For a tetrahedron with a vertex at the origin: integral x_i x_j = V/20 (sum_k p_ki p_kj +
     // S_i S_j) with S the vertex sum.
-    second_moment += tet_volume / 20.0 *
-                     (a * a.transpose() + b * b.transpose() + c * c.transpose() + sum * sum.transpose());
+    const double w = tet_volume / 20.0;
+    xx += w * (a.x() * a.x() + b.x() * b.x() + c.x() * c.x() + sum.x() * sum.x());
+    yy += w * (a.y() * a.y() + b.y() * b.y() + c.y() * c.y() + sum.y() * sum.y());
+    zz += w * (a.z() * a.z() + b.z() * b.z() + c.z() * c.z() + sum.z() * sum.z());
+    xy += w * (a.x() * a.y() + b.x() * b.y() + c.x() * c.y() + sum.x() * sum.y());
+    yz += w * (a.y() * a.z() + b.y() * b.z() + c.y() * c.z() + sum.y() * sum.z());
+    zx += w * (a.z() * a.x() + b.z() * b.x() + c.z() * c.x() + sum.z() * sum.x());
   }
+  first_moment /= 4.0;
+  result.surface_area = 0.5 * twice_area;
+  Mat3 second_moment;
+  second_moment << xx, xy, zx, xy, yy, yz, zx, yz, zz;
   result.volume = volume;
   if (volume == 0.0) return result;
   const Vec3 centroid_offset = first_moment / volume;
