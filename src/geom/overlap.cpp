@@ -8,6 +8,12 @@
 
 #include "aggpack/core/error.h"
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#elif defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace aggpack {
 
 namespace {
@@ -167,11 +173,11 @@ void closest_on_triangle(const Vec3* p, int i, int j, int k, SubResult& out) {
   const double mu = n[axis];
   const std::array<double, 3> c = {area(q, p[j], p[k]), area(p[i], q, p[k]), area(p[i], p[j], q)};
   if (same_sign(c[0], mu) && same_sign(c[1], mu) && same_sign(c[2], mu)) {
-    const double sum = c[0] + c[1] + c[2];
+    const double inverse_sum = 1.0 / (c[0] + c[1] + c[2]);
     out.lambda = {0.0, 0.0, 0.0, 0.0};
-    out.lambda[i] = c[0] / sum;
-    out.lambda[j] = c[1] / sum;
-    out.lambda[k] = c[2] / sum;
+    out.lambda[i] = c[0] * inverse_sum;
+    out.lambda[j] = c[1] * inverse_sum;
+    out.lambda[k] = c[2] * inverse_sum;
     out.v = out.lambda[i] * p[i] + out.lambda[j] * p[j] + out.lambda[k] * p[k];
     out.direction = p[i].dot(n) >= 0.0 ? n : Vec3(-n);
     out.distance_squared = out.v.squaredNorm();
@@ -192,18 +198,36 @@ void closest_on_triangle(const Vec3* p, int i, int j, int k, SubResult& out) {
 
 inline double triple(const Vec3& a, const Vec3& b, const Vec3& c) { return a.dot(b.cross(c)); }
 
+// Cofactors of [[p0 p1 p2 p3]; [1 1 1 1]] along the last row: the signed volume of the
+// tetrahedron with vertex m replaced by the origin. They sum to the full signed volume `det`.
+// The origin is strictly inside when all four have the sign of det.
+struct Cofactors {
+  std::array<double, 4> c;
+  double det;
+  [[nodiscard]] bool contains_origin() const {
+    return same_sign(c[0], det) && same_sign(c[1], det) && same_sign(c[2], det) &&
+           same_sign(c[3], det);
+  }
+};
+
+Cofactors tetrahedron_cofactors(const Vec3* p) {
+  Cofactors result{{triple(p[1], p[2], p[3]), -triple(p[0], p[2], p[3]), triple(p[0], p[1], p[3]),
+                    -triple(p[0], p[1], p[2])},
+                   0.0};
+  result.det = result.c[0] + result.c[1] + result.c[2] + result.c[3];
+  return result;
+}
+
 void closest_on_tetrahedron(const Vec3* p, SubResult& out) {
-  // Cofactors of [[p0 p1 p2 p3]; [1 1 1 1]] along the last row: the signed volume of the
-  // tetrahedron with vertex m replaced by the origin. They sum to the full signed volume.
-  const std::array<double, 4> c = {triple(p[1], p[2], p[3]), -triple(p[0], p[2], p[3]),
-                                   triple(p[0], p[1], p[3]), -triple(p[0], p[1], p[2])};
-  const double det = c[0] + c[1] + c[2] + c[3];
-  if (same_sign(c[0], det) && same_sign(c[1], det) && same_sign(c[2], det) &&
-      same_sign(c[3], det)) {
+  const Cofactors cofactors = tetrahedron_cofactors(p);
+  const auto& c = cofactors.c;
+  const double det = cofactors.det;
+  if (cofactors.contains_origin()) {
     out.v = Vec3::Zero();
     out.direction = Vec3::Zero();
     out.distance_squared = 0.0;
-    for (int m = 0; m < 4; ++m) out.lambda[m] = c[m] / det;
+    const double inverse_det = 1.0 / det;
+    for (int m = 0; m < 4; ++m) out.lambda[m] = c[m] * inverse_det;
     out.mask = 0xF;
     return;
   }
@@ -264,7 +288,6 @@ GjkResult run_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
   std::uint32_t hint_a = SupportShape::kNoHint;
   std::uint32_t hint_b = SupportShape::kNoHint;
   double lower_bound = 0.0;
-  Simplex previous;
   Vec3 last_w = Vec3::Zero();
 
   for (int iteration = 1; iteration <= kMaxIterations; ++iteration) {
@@ -278,12 +301,13 @@ GjkResult run_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
     // so the plane through w normal to `direction` separates A - B from the origin by
     // direction.w / |direction|.
     if (dw > 0.0) {
-      const double bound = dw / direction.norm();
-      lower_bound = std::max(lower_bound, bound);
-      if (is_separation_query && bound > threshold) {
+      const double direction_squared = direction.squaredNorm();
+      if (is_separation_query && dw * dw > threshold_squared * direction_squared) {
         result.outcome = GjkOutcome::kSeparated;
         break;
       }
+      const double bound = dw / std::sqrt(direction_squared);
+      lower_bound = std::max(lower_bound, bound);
       if (is_v_in_difference) {
         const double v_norm = std::sqrt(v_squared);
         if (v_norm - bound <= std::max(kRelativeGap * v_norm, 0.1 * tolerance)) {
@@ -301,7 +325,6 @@ GjkResult run_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
       result.outcome = is_v_in_difference ? GjkOutcome::kConverged : GjkOutcome::kIntersecting;
       break;
     }
-    previous = simplex;
     simplex.points[simplex.size] = w;
     simplex.index_a[simplex.size] = hint_a;
     simplex.index_b[simplex.size] = hint_b;
@@ -329,8 +352,9 @@ GjkResult run_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
       break;
     }
     if (is_v_in_difference && !(sub.distance_squared < v_squared)) {
-      // No progress (rounding): keep the previous, better simplex.
-      simplex = previous;
+      // No progress (rounding): keep the previous, better simplex (drop the point just added;
+      // nothing else has changed yet).
+      --simplex.size;
       result.outcome = GjkOutcome::kConverged;
       break;
     }
@@ -378,6 +402,7 @@ GjkResult run_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
     lower_bound = std::max(lower_bound, bound);
     if (is_separation_query && bound > threshold) result.outcome = GjkOutcome::kSeparated;
   }
+  if (result.outcome == GjkOutcome::kSeparated) lower_bound = std::max(lower_bound, threshold);
   result.v = v;
   result.lower_bound = lower_bound;
   // Only a certified lower bound above tol separates; anything else is contact.
@@ -387,12 +412,170 @@ GjkResult run_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
   return result;
 }
 
-void require_valid(const Pose& pose, const char* field) {
-  if (!pose.position.allFinite() || !pose.rotation.coeffs().allFinite()) {
-    throw InvalidInput(field, "non-finite pose", "finite position and rotation");
+// ---------------------------------------------------------------------------------------------
+// Boolean GJK (region tests in the style of Muratori's "Implementing GJK", 2006): no closest
+// points, no divisions, so an iteration costs about half of run_gjk's. It answers only with a
+// certificate -- a separating plane with margin > threshold, or a tetrahedron of A - B points
+// that the signed-volume cofactors show to contain the origin -- and otherwise gives up
+// (kUnknown) so that the exact run_gjk decides: touching, near-degenerate and distance-in-
+// (0, threshold] cases. Its region logic assumes exact arithmetic; rounding can only make it give
+// up, never answer wrongly, because the answers are checked independently of that logic.
+
+enum class FastAnswer { kSeparated, kOverlapping, kUnknown };
+
+constexpr int kFastIterations = 16;
+
+// Segment (b, a) = (p[0], p[1]), a the newest: the search direction towards the origin from the
+// segment, or from a alone (size becomes 1) when the origin lies beyond a.
+inline void update_line(std::array<Vec3, 4>& p, std::array<std::uint64_t, 4>& key, int& size,
+                        Vec3& search) {
+  const Vec3& a = p[1];
+  const Vec3 ab = p[0] - a;
+  const Vec3 ao = -a;
+  if (ab.dot(ao) > 0.0) {
+    search = ab.cross(ao).cross(ab);
+  } else {
+    p[0] = a;
+    key[0] = key[1];
+    size = 1;
+    search = ao;
   }
+}
+
+// Triangle (c, b, a) = (p[0], p[1], p[2]), a the newest.
+inline void update_triangle(std::array<Vec3, 4>& p, std::array<std::uint64_t, 4>& key, int& size,
+                            Vec3& search) {
+  const Vec3 a = p[2];
+  const Vec3 ab = p[1] - a;
+  const Vec3 ac = p[0] - a;
+  const Vec3 ao = -a;
+  const Vec3 abc = ab.cross(ac);
+  const auto keep_edge_ab = [&]() {  // segment (b, a), or a alone
+    p[0] = p[1];
+    key[0] = key[1];
+    p[1] = a;
+    key[1] = key[2];
+    size = 2;
+    update_line(p, key, size, search);
+  };
+  if (abc.cross(ac).dot(ao) > 0.0) {  // beyond edge ac
+    if (ac.dot(ao) > 0.0) {
+      p[1] = a;  // segment (c, a)
+      key[1] = key[2];
+      size = 2;
+      search = ac.cross(ao).cross(ac);
+    } else {
+      keep_edge_ab();
+    }
+  } else if (ab.cross(abc).dot(ao) > 0.0) {  // beyond edge ab
+    keep_edge_ab();
+  } else {
+    search = abc.dot(ao) > 0.0 ? abc : Vec3(-abc);
+  }
+}
+
+// Tetrahedron (d, c, b, a) = (p[0..3]), a the newest. kOverlapping when the origin is inside
+// (confirmed by the cofactors); otherwise reduces to the face the origin is beyond (size 3 or
+// less), or leaves size 4 when it cannot tell (the caller then gives up).
+inline FastAnswer update_tetrahedron(std::array<Vec3, 4>& p, std::array<std::uint64_t, 4>& key,
+                                     int& size, Vec3& search) {
+  const Vec3 a = p[3];
+  const Vec3 ao = -a;
+  // Faces through a, each with the vertex opposite: (a, b, c | d), (a, c, d | b), (a, d, b | c).
+  constexpr int faces[3][3] = {{2, 1, 0}, {1, 0, 2}, {0, 2, 1}};
+  for (const auto& face : faces) {
+    const Vec3& x = p[face[0]];
+    const Vec3& y = p[face[1]];
+    const Vec3& opposite = p[face[2]];
+    const Vec3 normal = (x - a).cross(y - a);
+    const double opposite_side = normal.dot(opposite - a);
+    if (opposite_side == 0.0) return FastAnswer::kUnknown;  // flat tetrahedron
+    const double origin_side = normal.dot(ao);
+    if ((opposite_side > 0.0) ? origin_side < 0.0 : origin_side > 0.0) {
+      const std::uint64_t key_x = key[face[0]];
+      const std::uint64_t key_y = key[face[1]];
+      const std::uint64_t key_a = key[3];
+      const Vec3 px = x;
+      const Vec3 py = y;
+      p[0] = py;
+      key[0] = key_y;
+      p[1] = px;
+      key[1] = key_x;
+      p[2] = a;
+      key[2] = key_a;
+      size = 3;
+      update_triangle(p, key, size, search);
+      return FastAnswer::kUnknown;  // keep iterating
+    }
+  }
+  return tetrahedron_cofactors(p.data()).contains_origin() ? FastAnswer::kOverlapping
+                                                           : FastAnswer::kUnknown;
+}
+
+// kSeparated: distance certainly > threshold; kOverlapping: the bodies certainly overlap.
+template <class SupportA, class SupportB>
+FastAnswer boolean_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
+                       const Vec3& translation, double threshold) {
+  const double threshold_squared = threshold * threshold;
+  // Towards the origin from the point (centre of A) - (centre of B) = -translation.
+  Vec3 search = translation;
+  if (!(search.squaredNorm() > 0.0)) search = Vec3::UnitX();
+  std::array<Vec3, 4> p;
+  std::array<std::uint64_t, 4> key{};
+  int size = 0;
+  std::uint32_t hint_a = SupportShape::kNoHint;
+  std::uint32_t hint_b = SupportShape::kNoHint;
+  for (int iteration = 0; iteration < kFastIterations; ++iteration) {
+    hint_a = a.support(search, hint_a);
+    hint_b = b.support(-(rotation.transpose() * search), hint_b);
+    const Vec3 w = a.vertex(hint_a) - (rotation * b.vertex(hint_b) + translation);
+    const double progress = search.dot(w);
+    if (!(progress > 0.0)) {
+      // w did not pass the origin: the plane through w normal to `search` separates A - B from
+      // the origin by -progress / |search|.
+      return (progress < 0.0 && progress * progress > threshold_squared * search.squaredNorm())
+                 ? FastAnswer::kSeparated
+                 : FastAnswer::kUnknown;
+    }
+    const std::uint64_t new_key = (static_cast<std::uint64_t>(hint_a) << 32) | hint_b;
+    for (int m = 0; m < size; ++m) {
+      if (key[m] == new_key) return FastAnswer::kUnknown;  // no progress
+    }
+    p[size] = w;
+    key[size] = new_key;
+    ++size;
+    switch (size) {
+      case 1:
+        search = -w;
+        break;
+      case 2:
+        update_line(p, key, size, search);
+        break;
+      case 3:
+        update_triangle(p, key, size, search);
+        break;
+      default:
+        if (update_tetrahedron(p, key, size, search) == FastAnswer::kOverlapping) {
+          return FastAnswer::kOverlapping;
+        }
+        if (size == 4) return FastAnswer::kUnknown;  // cofactors disagreed: near a face
+        break;
+    }
+    if (!(search.squaredNorm() > 0.0)) return FastAnswer::kUnknown;
+  }
+  return FastAnswer::kUnknown;
+}
+
+void require_valid(const Pose& pose, const char* field) {
+  // x - x is 0 for finite x and NaN otherwise; NaN fails every comparison below. Cheap enough
+  // for the hot path (this runs on every query).
+  const Vec3& p = pose.position;
+  const double probe = (p.x() - p.x()) + (p.y() - p.y()) + (p.z() - p.z());
   const double norm_squared = pose.rotation.squaredNorm();
-  if (std::abs(norm_squared - 1.0) > 1e-9) {
+  if (!(probe == 0.0) || !(std::abs(norm_squared - 1.0) <= 1e-9)) {
+    if (!(probe == 0.0) || !std::isfinite(norm_squared)) {
+      throw InvalidInput(field, "non-finite pose", "finite position and rotation");
+    }
     throw InvalidInput(std::string(field) + ".rotation", "|q|^2 = " + format_value(norm_squared),
                        "a unit quaternion (|q|^2 = 1 within 1e-9)");
   }
@@ -411,9 +594,10 @@ struct RelativeFrame {
 };
 
 RelativeFrame relative_frame(const Pose& pose_a, const Pose& pose_b) {
-  const Mat3 rotation_a_transposed = pose_a.rotation.toRotationMatrix().transpose();
-  return {rotation_a_transposed * pose_b.rotation.toRotationMatrix(),
-          rotation_a_transposed * (pose_b.position - pose_a.position)};
+  // Compose the quaternions first: one matrix conversion instead of two and a matrix product.
+  const Quat inverse_a = pose_a.rotation.conjugate();
+  return {(inverse_a * pose_b.rotation).toRotationMatrix(),
+          inverse_a * (pose_b.position - pose_a.position)};
 }
 
 template <class SupportA, class SupportB>
@@ -445,6 +629,8 @@ bool separation_query(const SupportA& a, const Pose& pose_a, const SupportB& b,
                       const Pose& pose_b, double scale, double gap) {
   const RelativeFrame frame = relative_frame(pose_a, pose_b);
   const double tolerance = kProximityTolerance * scale;
+  const FastAnswer fast = boolean_gjk(a, b, frame.rotation, frame.translation, gap + tolerance);
+  if (fast != FastAnswer::kUnknown) return fast == FastAnswer::kSeparated;
   const GjkResult run =
       run_gjk(a, b, frame.rotation, frame.translation, tolerance, gap + tolerance);
   return run.outcome == GjkOutcome::kSeparated;
@@ -475,7 +661,78 @@ double bounding_radius(const ConvexPolyhedron& body) {
 
 // --- SupportShape ---------------------------------------------------------------------------
 
-SupportShape::SupportShape(const ConvexPolyhedron& body) {
+namespace {
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define AGGPACK_HAS_AVX2_SCAN 1
+// Keeps, per lane, the larger value (the lower index on ties).
+__attribute__((target("avx2"), always_inline)) inline void merge_avx2(__m256d& value,
+                                                                      __m256d& index,
+                                                                      __m256d other_value,
+                                                                      __m256d other_index) {
+  const __m256d take =
+      _mm256_or_pd(_mm256_cmp_pd(other_value, value, _CMP_GT_OQ),
+                   _mm256_and_pd(_mm256_cmp_pd(other_value, value, _CMP_EQ_OQ),
+                                 _mm256_cmp_pd(other_index, index, _CMP_LT_OQ)));
+  value = _mm256_blendv_pd(value, other_value, take);
+  index = _mm256_blendv_pd(index, other_index, take);
+}
+
+// Eight vertices per step in two independent groups of four lanes. Same operations in the same
+// order as the SSE2 loop (no FMA), so both give bit-identical answers.
+__attribute__((target("avx2"))) std::uint32_t scan_avx2(const double* x, const double* y,
+                                                        const double* z, std::uint32_t stride,
+                                                        const Vec3& direction) {
+  const __m256d dx = _mm256_set1_pd(direction.x());
+  const __m256d dy = _mm256_set1_pd(direction.y());
+  const __m256d dz = _mm256_set1_pd(direction.z());
+  const __m256d step = _mm256_set1_pd(8.0);
+  __m256d index_low = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
+  __m256d index_high = _mm256_set_pd(7.0, 6.0, 5.0, 4.0);
+  __m256d best_low = _mm256_set1_pd(-std::numeric_limits<double>::infinity());
+  __m256d best_high = best_low;
+  __m256d best_index_low = index_low;
+  __m256d best_index_high = index_high;
+  for (std::uint32_t i = 0; i < stride; i += 8) {
+    const __m256d value_low = _mm256_add_pd(
+        _mm256_add_pd(_mm256_mul_pd(dx, _mm256_loadu_pd(x + i)),
+                      _mm256_mul_pd(dy, _mm256_loadu_pd(y + i))),
+        _mm256_mul_pd(dz, _mm256_loadu_pd(z + i)));
+    const __m256d value_high = _mm256_add_pd(
+        _mm256_add_pd(_mm256_mul_pd(dx, _mm256_loadu_pd(x + i + 4)),
+                      _mm256_mul_pd(dy, _mm256_loadu_pd(y + i + 4))),
+        _mm256_mul_pd(dz, _mm256_loadu_pd(z + i + 4)));
+    const __m256d is_greater_low = _mm256_cmp_pd(value_low, best_low, _CMP_GT_OQ);
+    const __m256d is_greater_high = _mm256_cmp_pd(value_high, best_high, _CMP_GT_OQ);
+    best_low = _mm256_blendv_pd(best_low, value_low, is_greater_low);
+    best_high = _mm256_blendv_pd(best_high, value_high, is_greater_high);
+    best_index_low = _mm256_blendv_pd(best_index_low, index_low, is_greater_low);
+    best_index_high = _mm256_blendv_pd(best_index_high, index_high, is_greater_high);
+    index_low = _mm256_add_pd(index_low, step);
+    index_high = _mm256_add_pd(index_high, step);
+  }
+  // Branchless tournament over the lanes (larger value, lower index on ties): data-dependent
+  // branches here cost more than the whole scan when they mispredict.
+  merge_avx2(best_low, best_index_low, best_high, best_index_high);
+  merge_avx2(best_low, best_index_low, _mm256_permute2f128_pd(best_low, best_low, 1),
+             _mm256_permute2f128_pd(best_index_low, best_index_low, 1));
+  merge_avx2(best_low, best_index_low, _mm256_permute_pd(best_low, 0x5),
+             _mm256_permute_pd(best_index_low, 0x5));
+  return static_cast<std::uint32_t>(_mm256_cvtsd_f64(best_index_low));
+}
+
+bool has_avx2() {
+  static const bool is_supported = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
+  return is_supported;
+}
+#endif
+
+}  // namespace
+
+SupportShape::SupportShape(const ConvexPolyhedron& body, SupportSearch search) {
   if (body.is_empty()) throw InvalidInput("support shape", "empty polyhedron", ">= 4 vertices");
   const auto& vertices = body.vertices();
   const auto& triangles = body.triangles();
@@ -526,7 +783,7 @@ SupportShape::SupportShape(const ConvexPolyhedron& body) {
     }
   }
   count_ = static_cast<std::uint32_t>(kept.size());
-  stride_ = (count_ + 3u) & ~3u;
+  stride_ = (count_ + 7u) & ~7u;  // whole steps of the widest scan
   coordinates_.assign(3 * static_cast<std::size_t>(stride_), 0.0);
   for (std::uint32_t slot = 0; slot < stride_; ++slot) {
     const Vec3& p = vertices[kept[std::min(slot, count_ - 1)]];
@@ -572,13 +829,66 @@ SupportShape::SupportShape(const ConvexPolyhedron& body) {
     axis_extremes_[2 * axis] = scan(direction);
     axis_extremes_[2 * axis + 1] = scan(-direction);
   }
-  uses_hill_climbing_ = count_ > kHillClimbMinVertices;
+  uses_hill_climbing_ = search == SupportSearch::kHillClimb ||
+                        (search == SupportSearch::kAuto && count_ > kHillClimbMinVertices);
 }
 
 std::uint32_t SupportShape::scan(const Vec3& direction) const {
   const double* x = coordinates_.data();
   const double* y = x + stride_;
   const double* z = y + stride_;
+#if defined(AGGPACK_HAS_AVX2_SCAN)
+  if (has_avx2()) return std::min(scan_avx2(x, y, z, stride_, direction), count_ - 1);
+#endif
+#if defined(__SSE2__)
+  // Four vertices per step (SSE2 is in every x86-64), in two independent pairs of lanes so the
+  // compare-and-select chains overlap. Each lane keeps its first maximum; lanes are merged
+  // preferring the lower index, so the answer is the first maximum overall, as in the scalar
+  // loop. Padding repeats the last vertex, which can only tie with it.
+  const __m128d dx = _mm_set1_pd(direction.x());
+  const __m128d dy = _mm_set1_pd(direction.y());
+  const __m128d dz = _mm_set1_pd(direction.z());
+  const __m128d step = _mm_set1_pd(4.0);
+  __m128d index_low = _mm_set_pd(1.0, 0.0);
+  __m128d index_high = _mm_set_pd(3.0, 2.0);
+  __m128d best_low = _mm_set1_pd(-std::numeric_limits<double>::infinity());
+  __m128d best_high = best_low;
+  __m128d best_index_low = index_low;
+  __m128d best_index_high = index_high;
+  const auto dot = [&](std::uint32_t i) {
+    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, _mm_loadu_pd(x + i)),
+                                 _mm_mul_pd(dy, _mm_loadu_pd(y + i))),
+                      _mm_mul_pd(dz, _mm_loadu_pd(z + i)));
+  };
+  const auto select = [](__m128d mask, __m128d if_true, __m128d if_false) {
+    return _mm_or_pd(_mm_and_pd(mask, if_true), _mm_andnot_pd(mask, if_false));
+  };
+  for (std::uint32_t i = 0; i < stride_; i += 4) {
+    const __m128d value_low = dot(i);
+    const __m128d value_high = dot(i + 2);
+    const __m128d is_greater_low = _mm_cmpgt_pd(value_low, best_low);
+    const __m128d is_greater_high = _mm_cmpgt_pd(value_high, best_high);
+    best_low = select(is_greater_low, value_low, best_low);
+    best_high = select(is_greater_high, value_high, best_high);
+    best_index_low = select(is_greater_low, index_low, best_index_low);
+    best_index_high = select(is_greater_high, index_high, best_index_high);
+    index_low = _mm_add_pd(index_low, step);
+    index_high = _mm_add_pd(index_high, step);
+  }
+  // Branchless tournament over the lanes, as in scan_avx2.
+  const auto merge = [&select](__m128d& value, __m128d& index, __m128d other_value,
+                               __m128d other_index) {
+    const __m128d take =
+        _mm_or_pd(_mm_cmpgt_pd(other_value, value),
+                  _mm_and_pd(_mm_cmpeq_pd(other_value, value), _mm_cmplt_pd(other_index, index)));
+    value = select(take, other_value, value);
+    index = select(take, other_index, index);
+  };
+  merge(best_low, best_index_low, best_high, best_index_high);
+  merge(best_low, best_index_low, _mm_shuffle_pd(best_low, best_low, 1),
+        _mm_shuffle_pd(best_index_low, best_index_low, 1));
+  return std::min(static_cast<std::uint32_t>(_mm_cvtsd_f64(best_index_low)), count_ - 1);
+#else
   std::uint32_t best = 0;
   double best_value = direction.x() * x[0] + direction.y() * y[0] + direction.z() * z[0];
   for (std::uint32_t i = 1; i < count_; ++i) {
@@ -589,6 +899,7 @@ std::uint32_t SupportShape::scan(const Vec3& direction) const {
     }
   }
   return best;
+#endif
 }
 
 std::uint32_t SupportShape::climb(const Vec3& direction, std::uint32_t start) const {

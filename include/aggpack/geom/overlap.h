@@ -43,6 +43,13 @@ struct DistanceResult {
 /// Largest distance from the local origin to a vertex (bounding-sphere radius about the origin).
 double bounding_radius(const ConvexPolyhedron& body);
 
+/// How SupportShape finds the vertex farthest along a direction.
+enum class SupportSearch {
+  kAuto,       ///< hill-climbing above kHillClimbMinVertices hull vertices, else a linear scan
+  kScan,       ///< always a linear scan over the hull vertices
+  kHillClimb   ///< always hill-climbing over the hull adjacency
+};
+
 /// A convex polyhedron prepared for fast support queries: only its hull vertices (vertices that
 /// lie on another vertex's edge or face, within 1e-14 of the size, are dropped; the generator
 /// produces many), stored coordinate-by-coordinate, with their adjacency for hill-climbing.
@@ -51,11 +58,11 @@ class SupportShape {
  public:
   /// Shapes with more hull vertices than this use hill-climbing over the adjacency graph;
   /// smaller ones use a linear scan (measured crossover, see bench/RESULTS.md).
-  static constexpr std::uint32_t kHillClimbMinVertices = 32;
+  static constexpr std::uint32_t kHillClimbMinVertices = 64;
 
   SupportShape() = default;
   /// \throw InvalidInput if `body` is empty or not a closed 2-manifold.
-  explicit SupportShape(const ConvexPolyhedron& body);
+  explicit SupportShape(const ConvexPolyhedron& body, SupportSearch search = SupportSearch::kAuto);
 
   /// Number of hull vertices kept for the support search.
   [[nodiscard]] std::uint32_t vertex_count() const { return count_; }
