@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
 #ifdef AGGPACK_HAS_RENDER
   aggpack::cli::register_render(app);
 #endif
+  aggpack::cli::register_export(app);
 #endif
   try {
     app.parse(argc, argv);

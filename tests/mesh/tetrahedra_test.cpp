@@ -123,7 +123,9 @@ double boundary_area_on_surface(const TetMesh& mesh, const ConvexPolyhedron& bod
       // Never outside; on the surface within `tolerance` (TetGen without -Y may cut a hair in).
       const PointLocation location = locate_point(body, (a + b + c) / 3.0, tolerance);
       EXPECT_NE(location, PointLocation::kOutside);
-      if (tolerance < 1e-14) EXPECT_EQ(location, PointLocation::kOnBoundary);
+      if (tolerance < 1e-14) {
+        EXPECT_EQ(location, PointLocation::kOnBoundary);
+      }
       area += 0.5 * (b - a).cross(c - a).norm();
     }
   }

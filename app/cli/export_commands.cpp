@@ -1,0 +1,141 @@
+// `aggpack export`: turn a native packing file into STL, rock.dat, Abaqus, VTK, Gmsh, LS-DYNA,
+// ANSYS, OBJ or YADE files (issue 4).
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "aggpack/core/error.h"
+#include "aggpack/io/export.h"
+#include "aggpack/io/native.h"
+#include "commands.h"
+
+namespace aggpack::cli {
+
+namespace {
+
+struct ExportFlags {
+  std::string input;
+  std::string output;
+  std::string format;
+  ExportOptions options;
+  bool is_forced = false;
+  bool is_ascii = false;
+  bool is_surface_split = false;
+  std::string cells = "default";
+  std::string tet_method = "fan";
+  std::string inp_layout = "sets";
+  int threads = 0;
+};
+
+}  // namespace
+
+void register_export(CLI::App& app) {
+  auto flags = std::make_shared<ExportFlags>();
+  auto& defaults = flags->options;
+  auto* command = app.add_subcommand(
+      "export",
+      "Write a packing (native .h5 file from `aggpack pack`) as STL, rock.dat, Abaqus .inp, VTK "
+      ".vtu, Gmsh .msh, LS-DYNA .k, ANSYS APDL .mac, OBJ or a YADE script. Particles are named "
+      "P1, P2, ... in every format; docs/formats.md gives each layout.");
+  command->add_option("input", flags->input, "native packing file (.h5)")->required();
+  command
+      ->add_option("-o,--output", flags->output,
+                   "file to write (a folder with --per-particle); the extension picks the "
+                   "format unless --format is given")
+      ->required();
+  command->add_option("--format", flags->format,
+                      "stl | dat | inp | vtu | msh | k | mac | obj | py (default: from the "
+                      "output extension; stl for a --per-particle folder without one)");
+  command->add_flag("-f,--force", flags->is_forced, "replace an existing output file or folder");
+  command
+      ->add_option("--scale", defaults.scale,
+                   "multiply coordinates by this (1000 writes millimetres), > 0")
+      ->capture_default_str();
+  command->add_flag("--per-particle", defaults.is_per_particle,
+                    "STL/OBJ: one file per particle (P000001.stl, ...) in the output folder");
+  command->add_flag("--ascii", flags->is_ascii, "STL: ASCII instead of binary");
+  command
+      ->add_option("--cells", flags->cells,
+                   "vtu/msh: surface | tetrahedra (default: vtu surface, msh tetrahedra)")
+      ->capture_default_str();
+  command
+      ->add_option("--tet-method", flags->tet_method,
+                   "tetrahedra: fan (the paper's centroid fan, exact volume) | tetgen "
+                   "(quality mesh)")
+      ->capture_default_str();
+  command
+      ->add_option("--max-volume", defaults.tetrahedra.max_volume,
+                   "tetgen: largest tetrahedron volume (m^3 of the stored shape), 0 = no bound")
+      ->capture_default_str();
+  command
+      ->add_option("--radius-edge", defaults.tetrahedra.radius_edge_ratio,
+                   "tetgen: radius-edge ratio bound, [1.2, 10]")
+      ->capture_default_str();
+  command->add_flag("--split-surface", flags->is_surface_split,
+                    "tetgen: let TetGen add nodes on the surface too (bounds met everywhere; "
+                    "surface then within ~1e-5 of the particle)");
+  command->add_flag("--quadratic", defaults.is_quadratic, "inp: C3D10 instead of C3D4");
+  command
+      ->add_option("--inp-layout", flags->inp_layout,
+                   "inp: sets (flat model, element/node set per particle; CalculiX reads it) "
+                   "| parts (one part + instance per particle)")
+      ->capture_default_str();
+  command->add_option("--material-name", defaults.material.name, "inp/k/mac/py: material name")
+      ->capture_default_str();
+  command->add_option("--density", defaults.material.density, "material density (kg/m^3), > 0")
+      ->capture_default_str();
+  command
+      ->add_option("--youngs-modulus", defaults.material.youngs_modulus,
+                   "Young's modulus E (Pa), > 0")
+      ->capture_default_str();
+  command
+      ->add_option("--poisson-ratio", defaults.material.poisson_ratio,
+                   "Poisson's ratio nu, in (-1, 0.5)")
+      ->capture_default_str();
+  command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
+      ->capture_default_str();
+
+  command->callback([flags]() {
+    ExportOptions options = flags->options;
+    set_thread_count(flags->threads);
+    options.overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
+    options.stl_encoding = flags->is_ascii ? StlEncoding::kAscii : StlEncoding::kBinary;
+    if (!flags->format.empty()) options.format = parse_export_format(flags->format);
+    if (flags->cells == "surface") {
+      options.cells = MeshCells::kSurface;
+    } else if (flags->cells == "tetrahedra") {
+      options.cells = MeshCells::kTetrahedra;
+    } else if (flags->cells != "default") {
+      throw InvalidInput("--cells", "'" + flags->cells + "'", "surface | tetrahedra");
+    }
+    if (flags->tet_method == "tetgen") {
+      options.tetrahedra.method = TetMethod::kTetGen;
+    } else if (flags->tet_method != "fan") {
+      throw InvalidInput("--tet-method", "'" + flags->tet_method + "'", "fan | tetgen");
+    }
+    options.tetrahedra.is_surface_kept = !flags->is_surface_split;
+    if (flags->inp_layout == "parts") {
+      options.abaqus_layout = AbaqusLayout::kPartsInstances;
+    } else if (flags->inp_layout != "sets") {
+      throw InvalidInput("--inp-layout", "'" + flags->inp_layout + "'", "sets | parts");
+    }
+    // Check options and the destination before the (possibly long) read of the input.
+    options.format = resolve_format(flags->output, options);
+    validate(options, options.format);
+    if (!options.is_per_particle) check_writable(flags->output, options.overwrite);
+
+    const auto start = std::chrono::steady_clock::now();
+    const Packing packing = read_packing(flags->input);
+    const ExportSummary summary = write(packing, flags->output, options);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fmt::print("wrote {} ({}): {} particles, {} nodes, {} elements, {} file{} in {:.2f} s\n",
+               flags->output, format_name(summary.format), summary.particles, summary.nodes,
+               summary.elements, summary.files, summary.files == 1 ? "" : "s", seconds);
+  });
+}
+
+}  // namespace aggpack::cli

@@ -1,0 +1,119 @@
+#pragma once
+// Exporters: one entry point, write(packing, path, options), that turns a Packing into the files
+// 3D printers, finite-element and DEM programs and ParaView read. The format comes from
+// options.format or, when that is kAuto, from the extension of `path`. docs/formats.md gives the
+// exact layout of every format.
+//
+// Common conventions:
+//  - Coordinates are world coordinates (Packing::placed) times options.scale (1000 writes mm).
+//  - Particles are numbered from 1 in every file: particle i of the Packing is "P<i+1>". Node and
+//    element ids are global, count from 1 and run particle by particle (particle 1's nodes first).
+//  - Every tetrahedron is positively oriented (see aggpack/mesh/tetrahedra.h).
+//  - Files stream: each particle's mesh is built, written and dropped, in parallel batches whose
+//    output order is fixed, so the output is byte-identical for any thread count.
+//  - Files are written atomically: a failure leaves no partial file behind.
+
+#include <cstdint>
+#include <string>
+
+#include "aggpack/core/atomic_file.h"
+#include "aggpack/io/stl.h"
+#include "aggpack/mesh/tetrahedra.h"
+#include "aggpack/pack/packing.h"
+
+namespace aggpack {
+
+/// File formats. The extension each is chosen by (for kAuto) is given after the name.
+enum class ExportFormat {
+  kAuto,       ///< from the extension of the output path
+  kStl,        ///< STL surface, binary or ASCII (.stl)
+  kRockDat,    ///< the paper's rock.dat: nodes and tetrahedra, comma separated (.dat)
+  kAbaqus,     ///< Abaqus / CalculiX input file, C3D4 or C3D10 (.inp)
+  kVtu,        ///< VTK XML unstructured grid, surfaces or tetrahedra (.vtu)
+  kGmsh,       ///< Gmsh MSH 4.1 ASCII, tetrahedra or surfaces (.msh)
+  kLsDyna,     ///< LS-DYNA keyword file (.k, .key)
+  kAnsysApdl,  ///< ANSYS APDL macro with N and EN commands (.mac, .apdl)
+  kObj,        ///< Wavefront OBJ surface (.obj)
+  kYade        ///< YADE Python script that rebuilds the packing as polyhedra (.py)
+};
+
+/// Which cells a format that can hold either (.vtu, .msh) gets.
+enum class MeshCells {
+  kDefault,    ///< .vtu: surfaces; .msh: tetrahedra
+  kSurface,    ///< each particle's surface triangles
+  kTetrahedra  ///< each particle's tetrahedra (options.tetrahedra says how they are made)
+};
+
+/// How an Abaqus file groups each particle.
+enum class AbaqusLayout {
+  /// One flat model (one *NODE and one *ELEMENT block per particle) with an element set and node
+  /// set per particle. CalculiX (ccx) reads this form.
+  kElementSets,
+  /// One *PART per particle (its nodes, elements, sets, section and surface) and one *INSTANCE of
+  /// it in the *ASSEMBLY. Abaqus/CAE's form; CalculiX does not read parts.
+  kPartsInstances
+};
+
+/// Material written by the FE formats (.inp, .k, APDL, YADE). SI units: when options.scale is
+/// not 1, convert these to the matching units yourself (e.g. mm, tonne, s: density in t/mm^3,
+/// modulus in MPa).
+struct MaterialOptions {
+  std::string name = "AGGREGATE";  ///< letters, digits and _ only, <= 32 characters
+  double density = 2700.0;         ///< kg/m^3, > 0
+  double youngs_modulus = 50e9;    ///< Pa, > 0
+  double poisson_ratio = 0.2;      ///< in (-1, 0.5)
+};
+
+struct ExportOptions {
+  ExportFormat format = ExportFormat::kAuto;
+  double scale = 1.0;                        ///< multiply coordinates by this, > 0 (1000 = mm)
+  Overwrite overwrite = Overwrite::kForbid;  ///< whether an existing file or folder is replaced
+  /// STL and OBJ only: `path` is a folder (created; it must not exist unless overwrite allows)
+  /// that gets one file per particle, named P000001.stl ... (zero-padded to the same width).
+  bool is_per_particle = false;
+  StlEncoding stl_encoding = StlEncoding::kBinary;  ///< STL only
+  MeshCells cells = MeshCells::kDefault;            ///< .vtu and .msh only
+  TetOptions tetrahedra = {};                       ///< how particles are cut into tetrahedra
+  /// .inp only: 10-node tetrahedra (C3D10) with straight mid-side nodes instead of C3D4.
+  bool is_quadratic = false;
+  AbaqusLayout abaqus_layout = AbaqusLayout::kElementSets;  ///< .inp only
+  MaterialOptions material = {};
+};
+
+/// What write() produced.
+struct ExportSummary {
+  ExportFormat format = ExportFormat::kAuto;  ///< the format actually written
+  std::uint64_t particles = 0;
+  std::uint64_t nodes = 0;     ///< nodes (vertices) written, over all files
+  std::uint64_t elements = 0;  ///< triangles or tetrahedra written, over all files
+  std::uint64_t files = 0;
+};
+
+/// Writes `packing` to `path` in the chosen format, atomically.
+/// \throw InvalidInput (options out of range, a format that cannot hold the request, e.g.
+///        is_quadratic for STL, no format given and an unknown extension),
+///        IoError (folder missing or not writable, file exists without Overwrite::kAllow, write
+///        failure), LimitExceeded (more ids than the format can number, TetGen failure).
+ExportSummary write(const Packing& packing, const std::string& path,
+                    const ExportOptions& options = {});
+
+/// The format a name or extension denotes: "stl", "dat" (or "rock.dat"), "inp" (or "abaqus"),
+/// "vtu", "msh" (or "gmsh"), "k" (or "key", "lsdyna"), "mac" (or "apdl", "ansys"), "obj",
+/// "py" (or "yade"); case-insensitive. \throw InvalidInput listing the names.
+ExportFormat parse_export_format(const std::string& name);
+
+/// The format write() uses: options.format, or when that is kAuto the extension of `path`, or
+/// STL for a per-particle folder without an extension. \throw InvalidInput as
+/// format_from_extension.
+ExportFormat resolve_format(const std::string& path, const ExportOptions& options);
+
+/// The format chosen by the extension of `path`. \throw InvalidInput for an unknown extension.
+ExportFormat format_from_extension(const std::string& path);
+
+/// Short name of a format ("stl", "dat", "inp", "vtu", "msh", "k", "mac", "obj", "py").
+std::string format_name(ExportFormat format);
+
+/// Throws InvalidInput naming the field unless the options are usable for `format`.
+void validate(const ExportOptions& options, ExportFormat format);
+
+}  // namespace aggpack

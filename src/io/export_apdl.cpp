@@ -1,0 +1,71 @@
+// ANSYS APDL macro (.mac): /PREP7, one SOLID285 element type (4-node tetrahedron) and material,
+// every node as N,id,x,y,z and every tetrahedron as EN,id,i,j,k,l, then one element component
+// P<id> and one node component P<id>_N per particle. Run it with /INPUT or as a macro.
+
+#include <cstdio>
+
+#include "export_detail.h"
+
+namespace aggpack::detail {
+
+void write_ansys(const ExportModel& model, std::ostream& out) {
+  require_ids_fit(model, 0x7FFFFFFF, "ANSYS");
+  const MaterialOptions& material = model.options().material;
+  std::string head = "! aggpack " AGGPACK_VERSION " packing, " + std::to_string(model.size()) +
+                     " particles (material " + material.name + ")\n";
+  char line[160];
+  std::snprintf(line, sizeof line, "! coordinates in metres times %.17g\n", model.options().scale);
+  head += line;
+  head += "/PREP7\nET,1,SOLID285\nMP,EX,1,";
+  append_number(head, material.youngs_modulus);
+  head += "\nMP,PRXY,1,";
+  append_number(head, material.poisson_ratio);
+  head += "\nMP,DENS,1,";
+  append_number(head, material.density);
+  head += "\nTYPE,1\nMAT,1\n";
+  out << head;
+  stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
+    TetMesh mesh;
+    model.tetrahedra(k, mesh);
+    std::uint64_t id = model.node_offset(k) + 1;
+    for (const Vec3& node : mesh.nodes) {
+      buffer += "N,";
+      append_number(buffer, id++);
+      for (int axis = 0; axis < 3; ++axis) {
+        buffer += ',';
+        append_number(buffer, node[axis]);
+      }
+      buffer += '\n';
+    }
+  });
+  stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
+    TetMesh mesh;
+    model.tetrahedra(k, mesh);
+    const std::uint64_t first_node = model.node_offset(k) + 1;
+    std::uint64_t id = model.element_offset(k) + 1;
+    for (const auto& t : mesh.tetrahedra) {
+      buffer += "EN,";
+      append_number(buffer, id++);
+      for (auto index : t) {
+        buffer += ',';
+        append_number(buffer, first_node + index);
+      }
+      buffer += '\n';
+    }
+  });
+  stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
+    const std::string name = model.particle_name(k);
+    buffer += "ESEL,S,ELEM,,";
+    append_number(buffer, model.element_offset(k) + 1);
+    buffer += ',';
+    append_number(buffer, model.element_offset(k + 1));
+    buffer += "\nCM," + name + ",ELEM\nNSEL,S,NODE,,";
+    append_number(buffer, model.node_offset(k) + 1);
+    buffer += ',';
+    append_number(buffer, model.node_offset(k + 1));
+    buffer += "\nCM," + name + "_N,NODE\n";
+  });
+  out << "ALLSEL,ALL\n";
+}
+
+}  // namespace aggpack::detail

@@ -1,0 +1,170 @@
+#pragma once
+// Internals shared by the exporters (src/io/export_*.cpp); not a public header.
+
+#include <charconv>
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#ifdef AGGPACK_HAS_TBB
+#include <tbb/parallel_for.h>
+#endif
+
+#include "aggpack/core/error.h"
+#include "aggpack/io/export.h"
+
+namespace aggpack::detail {
+
+/// What a writer's elements are.
+enum class ElementMode { kSurface, kTetrahedra, kQuadraticTetrahedra };
+
+/// Per-shape measures, computed once (unscaled, local frame).
+struct ShapeInfo {
+  double volume = 0;
+  double sphericity = 0;
+  double alpha = 0;
+  Vec3 centroid = Vec3::Zero();
+  std::uint32_t nodes = 0;     ///< per particle of this shape, in the model's element mode
+  std::uint32_t elements = 0;  ///< triangles or tetrahedra
+};
+
+/// A read-only view of particles [first, last) of a packing, meshed on demand in world
+/// coordinates times the export scale. Holds per-shape data only (TetGen meshes are made once per
+/// shape); per-particle geometry is produced when a writer asks for it and not kept.
+class ExportModel {
+ public:
+  ExportModel(const Packing& packing, const ExportOptions& options, ElementMode mode,
+              std::size_t first, std::size_t last);
+
+  [[nodiscard]] std::size_t size() const { return last_ - first_; }
+  /// Index into packing.particles of the k-th particle of the view.
+  [[nodiscard]] std::size_t particle_index(std::size_t k) const { return first_ + k; }
+  /// 1-based particle number used in names ("P<number>").
+  [[nodiscard]] std::size_t particle_number(std::size_t k) const { return first_ + k + 1; }
+  /// "P<number>", the particle's name in set, part and group names.
+  [[nodiscard]] std::string particle_name(std::size_t k) const;
+  [[nodiscard]] const Packing& packing() const { return packing_; }
+  [[nodiscard]] const ExportOptions& options() const { return options_; }
+  [[nodiscard]] ElementMode mode() const { return mode_; }
+  /// True when the tetrahedra are centroid fans (every tetrahedron's face S1 on the surface).
+  [[nodiscard]] bool is_fan() const { return shape_meshes_.empty(); }
+
+  /// 0-based offset of particle k's first node / element; k = size() gives the totals.
+  [[nodiscard]] std::uint64_t node_offset(std::size_t k) const { return node_offsets_[k]; }
+  [[nodiscard]] std::uint64_t element_offset(std::size_t k) const { return element_offsets_[k]; }
+  [[nodiscard]] std::uint64_t node_count() const { return node_offsets_.back(); }
+  [[nodiscard]] std::uint64_t element_count() const { return element_offsets_.back(); }
+  [[nodiscard]] std::uint32_t nodes_of(std::size_t k) const {
+    return static_cast<std::uint32_t>(node_offsets_[k + 1] - node_offsets_[k]);
+  }
+  [[nodiscard]] std::uint32_t elements_of(std::size_t k) const {
+    return static_cast<std::uint32_t>(element_offsets_[k + 1] - element_offsets_[k]);
+  }
+
+  /// Particle k's surface vertices in output coordinates (same order as the shape's vertices).
+  void surface_nodes(std::size_t k, std::vector<Vec3>& nodes) const;
+  /// Particle k's surface triangles (0-based, local to the particle, outward CCW).
+  [[nodiscard]] const std::vector<Triangle>& triangles(std::size_t k) const;
+  /// Particle k's linear tetrahedra in output coordinates.
+  void tetrahedra(std::size_t k, TetMesh& mesh) const;
+  /// Particle k's 10-node tetrahedra in output coordinates.
+  void quadratic_tetrahedra(std::size_t k, QuadraticTetMesh& mesh) const;
+
+  /// Particle k's volume in output units (m^3 times scale^3), sphericity (Eq. 1), measured alpha
+  /// (Eq. 2), control radius in output units, size class.
+  [[nodiscard]] double volume(std::size_t k) const;
+  [[nodiscard]] double sphericity(std::size_t k) const;
+  [[nodiscard]] double alpha(std::size_t k) const;
+  [[nodiscard]] double control_radius(std::size_t k) const;
+  [[nodiscard]] std::uint32_t size_class(std::size_t k) const;
+
+ private:
+  [[nodiscard]] const Particle& particle(std::size_t k) const {
+    return packing_.particles[first_ + k];
+  }
+  [[nodiscard]] Vec3 place(std::size_t k, const Vec3& local) const;
+
+  const Packing& packing_;
+  const ExportOptions& options_;
+  ElementMode mode_;
+  std::size_t first_;
+  std::size_t last_;
+  std::vector<ShapeInfo> shapes_;
+  std::vector<TetMesh> shape_meshes_;  ///< TetGen meshes per shape (local frame); empty for fans
+  std::vector<std::uint64_t> node_offsets_;
+  std::vector<std::uint64_t> element_offsets_;
+};
+
+/// Formats `count` items in parallel batches and writes them to `out` in item order, so the
+/// output does not depend on the thread count. `format(k, buffer)` appends item k's bytes.
+template <class Format>
+void stream_items(std::size_t count, std::ostream& out, const Format& format) {
+  constexpr std::size_t kBatch = 1024;
+  std::vector<std::string> buffers(kBatch);
+  for (std::size_t begin = 0; begin < count; begin += kBatch) {
+    const std::size_t size = std::min(kBatch, count - begin);
+    auto run = [&](std::size_t j) {
+      buffers[j].clear();
+      format(begin + j, buffers[j]);
+    };
+#ifdef AGGPACK_HAS_TBB
+    tbb::parallel_for(std::size_t{0}, size, run);
+#else
+    for (std::size_t j = 0; j < size; ++j) run(j);
+#endif
+    for (std::size_t j = 0; j < size; ++j) {
+      out.write(buffers[j].data(), static_cast<std::streamsize>(buffers[j].size()));
+    }
+    // Stop at the first failed write (disk full, file size limit) instead of formatting the rest.
+    if (!out.good()) throw IoError("write error (disk full or file size limit?)");
+  }
+}
+
+/// Appends the shortest decimal form that reads back to exactly `value`.
+inline void append_number(std::string& out, double value) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, value);
+  out.append(text, result.ptr);
+}
+
+/// Appends `value` in scientific notation with `digits` digits after the point.
+inline void append_scientific(std::string& out, double value, int digits) {
+  char text[40];
+  const auto result =
+      std::to_chars(text, text + sizeof text, value, std::chars_format::scientific, digits);
+  out.append(text, result.ptr);
+}
+
+inline void append_number(std::string& out, std::uint64_t value) {
+  char text[24];
+  const auto result = std::to_chars(text, text + sizeof text, value);
+  out.append(text, result.ptr);
+}
+
+/// Appends `value` right-aligned in a field of `width` characters (LS-DYNA fixed columns).
+void append_field(std::string& out, std::uint64_t value, int width);
+void append_field(std::string& out, double value, int width);
+
+/// Appends raw little-endian bytes of a trivially copyable value.
+template <class T>
+void append_bytes(std::string& out, const T& value) {
+  out.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+/// Throws LimitExceeded unless every id of the model fits `max_id` (formats with 32-bit or
+/// fixed-width ids).
+void require_ids_fit(const ExportModel& model, std::uint64_t max_id, const std::string& format);
+
+// One writer per format. Each writes the whole view to `out`.
+void write_stl(const ExportModel& model, std::ostream& out);
+void write_rock_dat(const ExportModel& model, std::ostream& out);
+void write_abaqus(const ExportModel& model, std::ostream& out);
+void write_vtu(const ExportModel& model, std::ostream& out);
+void write_gmsh(const ExportModel& model, std::ostream& out);
+void write_lsdyna(const ExportModel& model, std::ostream& out);
+void write_ansys(const ExportModel& model, std::ostream& out);
+void write_obj(const ExportModel& model, std::ostream& out);
+void write_yade(const ExportModel& model, std::ostream& out);
+
+}  // namespace aggpack::detail

@@ -1,0 +1,205 @@
+// Abaqus / CalculiX input file (.inp): nodes, C3D4 or C3D10 elements, per-particle node and element
+// sets and an element-face surface, one material and solid section. Two layouts: a flat model
+// with sets (what CalculiX reads) or one part + instance per particle (Abaqus/CAE's form).
+
+#include <cstdio>
+
+#include "aggpack/core/error.h"
+#include "export_detail.h"
+
+namespace aggpack::detail {
+
+namespace {
+
+constexpr std::uint64_t kMaxAbaqusId = 999999999;  // Abaqus labels are at most 9 digits
+constexpr int kSetEntriesPerLine = 16;             // Abaqus reads at most 16 entries a line
+
+const char* element_type(const ExportModel& model) {
+  return model.mode() == ElementMode::kQuadraticTetrahedra ? "C3D10" : "C3D4";
+}
+
+void append_heading(const ExportModel& model, std::string& out) {
+  const Packing& packing = model.packing();
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "*HEADING\naggpack %s packing, %zu particles, packer %s, seed %llu\n"
+                "** Written by aggpack. Coordinates in metres times %.17g.\n"
+                "** Particle i (from 1): node set Pi, element set Pi, surface Pi_SURFACE.\n",
+                AGGPACK_VERSION, model.size(),
+                packing.provenance.packer.empty() ? "-" : packing.provenance.packer.c_str(),
+                static_cast<unsigned long long>(packing.provenance.seed), model.options().scale);
+  out += line;
+}
+
+// Element lines "id, n1, ..., n4|n10" for particle k, ids from first_element, nodes from
+// first_node (both 1-based).
+void append_elements(const ExportModel& model, std::size_t k, std::uint64_t first_node,
+                     std::uint64_t first_element, std::string& out) {
+  std::uint64_t id = first_element;
+  auto append_element = [&](const auto& element) {
+    append_number(out, id++);
+    for (auto index : element) {
+      out += ", ";
+      append_number(out, first_node + index);
+    }
+    out += '\n';
+  };
+  if (model.mode() == ElementMode::kQuadraticTetrahedra) {
+    QuadraticTetMesh mesh;
+    model.quadratic_tetrahedra(k, mesh);
+    for (const auto& element : mesh.tetrahedra) append_element(element);
+  } else {
+    TetMesh mesh;
+    model.tetrahedra(k, mesh);
+    for (const auto& element : mesh.tetrahedra) append_element(element);
+  }
+}
+
+void append_nodes(const ExportModel& model, std::size_t k, std::uint64_t first_node,
+                  std::string& out) {
+  std::vector<Vec3> nodes;
+  if (model.mode() == ElementMode::kQuadraticTetrahedra) {
+    QuadraticTetMesh mesh;
+    model.quadratic_tetrahedra(k, mesh);
+    nodes = std::move(mesh.nodes);
+  } else {
+    TetMesh mesh;
+    model.tetrahedra(k, mesh);
+    nodes = std::move(mesh.nodes);
+  }
+  std::uint64_t id = first_node;
+  for (const Vec3& node : nodes) {
+    append_number(out, id++);
+    for (int axis = 0; axis < 3; ++axis) {
+      out += ", ";
+      append_number(out, node[axis]);
+    }
+    out += '\n';
+  }
+}
+
+void append_generated_set(const char* keyword, const std::string& name, std::uint64_t first,
+                          std::uint64_t last, std::string& out) {
+  out += keyword;
+  out += name;
+  out += ", GENERATE\n";
+  append_number(out, first);
+  out += ", ";
+  append_number(out, last);
+  out += ", 1\n";
+}
+
+// The particle's outer surface as element faces. A fan's tetrahedra all have their face S1 on the
+// surface, so the particle's element set is enough; other meshes get one set per face number.
+void append_surface(const ExportModel& model, std::size_t k, const std::string& name,
+                    std::uint64_t first_element, std::string& out) {
+  if (model.is_fan()) {
+    out += "*SURFACE, TYPE=ELEMENT, NAME=" + name + "_SURFACE\n" + name + ", S1\n";
+    return;
+  }
+  TetMesh mesh;
+  model.tetrahedra(k, mesh);
+  std::string lines;
+  for (int face = 0; face < 4; ++face) {
+    std::string ids;
+    int on_line = 0;
+    for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+      if (((mesh.boundary_faces[e] >> face) & 1U) == 0) continue;
+      if (on_line == kSetEntriesPerLine) {
+        ids += '\n';
+        on_line = 0;
+      } else if (on_line > 0) {
+        ids += ", ";
+      }
+      append_number(ids, first_element + e);
+      ++on_line;
+    }
+    if (ids.empty()) continue;
+    const std::string set_name = name + "_S" + std::to_string(face + 1);
+    out += "*ELSET, ELSET=" + set_name + "\n" + ids + "\n";
+    lines += set_name + ", S" + std::to_string(face + 1) + "\n";
+  }
+  out += "*SURFACE, TYPE=ELEMENT, NAME=" + name + "_SURFACE\n" + lines;
+}
+
+void append_material(const ExportModel& model, std::string& out) {
+  const MaterialOptions& material = model.options().material;
+  out += "*MATERIAL, NAME=" + material.name + "\n*DENSITY\n";
+  append_number(out, material.density);
+  out += ",\n*ELASTIC\n";
+  append_number(out, material.youngs_modulus);
+  out += ", ";
+  append_number(out, material.poisson_ratio);
+  out += '\n';
+}
+
+void write_element_sets(const ExportModel& model, std::ostream& out) {
+  out << "*NODE, NSET=ALLNODES\n";
+  stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
+    append_nodes(model, k, model.node_offset(k) + 1, buffer);
+  });
+  const std::string type = element_type(model);
+  stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
+    buffer += "*ELEMENT, TYPE=";
+    buffer += type;
+    buffer += ", ELSET=";
+    buffer += model.particle_name(k);
+    buffer += '\n';
+    append_elements(model, k, model.node_offset(k) + 1, model.element_offset(k) + 1, buffer);
+  });
+  stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
+    const std::string name = model.particle_name(k);
+    append_generated_set("*NSET, NSET=", name, model.node_offset(k) + 1, model.node_offset(k + 1),
+                         buffer);
+    append_surface(model, k, name, model.element_offset(k) + 1, buffer);
+  });
+  std::string tail;
+  if (model.element_count() > 0) {
+    append_generated_set("*ELSET, ELSET=", "AGGREGATES", 1, model.element_count(), tail);
+  } else {
+    tail += "*ELSET, ELSET=AGGREGATES\n";
+  }
+  append_material(model, tail);
+  tail += "*SOLID SECTION, ELSET=AGGREGATES, MATERIAL=" + model.options().material.name + "\n";
+  out << tail;
+}
+
+void write_parts(const ExportModel& model, std::ostream& out) {
+  const std::string type = element_type(model);
+  const std::string& material = model.options().material.name;
+  stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
+    const std::string name = model.particle_name(k);
+    buffer += "*PART, NAME=" + name + "\n*NODE\n";
+    append_nodes(model, k, 1, buffer);
+    buffer += "*ELEMENT, TYPE=" + type + ", ELSET=" + name + "\n";
+    append_elements(model, k, 1, 1, buffer);
+    append_generated_set("*NSET, NSET=", name, 1, model.nodes_of(k), buffer);
+    buffer += "*SOLID SECTION, ELSET=" + name + ", MATERIAL=" + material + "\n";
+    append_surface(model, k, name, 1, buffer);
+    buffer += "*END PART\n";
+  });
+  out << "*ASSEMBLY, NAME=ASSEMBLY\n";
+  stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
+    const std::string name = model.particle_name(k);
+    buffer += "*INSTANCE, NAME=" + name + "-1, PART=" + name + "\n*END INSTANCE\n";
+  });
+  std::string tail = "*END ASSEMBLY\n";
+  append_material(model, tail);
+  out << tail;
+}
+
+}  // namespace
+
+void write_abaqus(const ExportModel& model, std::ostream& out) {
+  require_ids_fit(model, kMaxAbaqusId, "Abaqus");
+  std::string heading;
+  append_heading(model, heading);
+  out << heading;
+  if (model.options().abaqus_layout == AbaqusLayout::kPartsInstances) {
+    write_parts(model, out);
+  } else {
+    write_element_sets(model, out);
+  }
+}
+
+}  // namespace aggpack::detail
