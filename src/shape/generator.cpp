@@ -13,6 +13,8 @@ namespace aggpack {
 namespace {
 
 constexpr std::uint32_t kVertexCapLimit = 1000000;
+// Safety factor of estimated_vertex_count over the sphere tiling (see there).
+constexpr double kVertexCountMargin = 3.0;
 
 // A candidate edge in the max-heap: the undirected edge {from, to} with from < to. The longest
 // edge wins; ties go to the smaller (from, to), so the order never depends on how the heap
@@ -284,10 +286,16 @@ double eq3_distance(double alpha, double radius, double u) {
 }
 
 double estimated_vertex_count(double radius, double edge_length) {
+  // Adjacent base vertices lie on perpendicular half-axes within r, so every base edge is at most
+  // sqrt(2) r: a longer L means no growth at all.
+  if (edge_length >= std::sqrt(2.0) * radius * (1.0 + 1e-12)) return 6.0;
   // Sphere area / equilateral triangle area = faces; V = F/2 + 2 for a closed triangulation.
+  // Growth ends with edges between about L/2 and L, so real counts exceed this tiling: measured
+  // over alpha in [0, 1] and L/r in [0.05, 1.41] they reach 2.77 times it (alpha 1, L/r 1.4; 2.0
+  // to 2.5 times for L/r <= 0.5), hence the factor 3.
   const double faces = 4.0 * std::numbers::pi * radius * radius /
                        (std::sqrt(3.0) / 4.0 * edge_length * edge_length);
-  return std::max(6.0, faces / 2.0 + 2.0);
+  return std::max(6.0, kVertexCountMargin * (faces / 2.0 + 2.0));
 }
 
 void validate(const GrowthParams& params) {
@@ -300,12 +308,18 @@ void validate(const GrowthParams& params) {
   }
   const double estimate = estimated_vertex_count(params.radius, params.edge_length);
   if (estimate > params.max_vertices) {
+    // The smallest L whose estimate fits the cap (inverting estimated_vertex_count).
+    const double no_growth = std::sqrt(2.0) * params.radius * (1.0 + 1e-12);
+    const double half_faces = params.max_vertices / kVertexCountMargin - 2.0;
+    const double smallest =
+        half_faces <= 0.0
+            ? no_growth
+            : std::min(no_growth, params.radius * std::sqrt(4.0 * std::numbers::pi /
+                                                            (std::sqrt(3.0) / 4.0) /
+                                                            (2.0 * half_faces)));
     throw LimitExceeded("edge_length", format_value(params.edge_length),
-                        ">= about " +
-                            format_value(params.radius * std::sqrt(4.0 * std::numbers::pi /
-                                                                   (std::sqrt(3.0) / 4.0) /
-                                                                   (2.0 * params.max_vertices))) +
-                            " m for radius " + format_value(params.radius) + " m: needs about " +
+                        ">= about " + format_value(smallest) + " m for radius " +
+                            format_value(params.radius) + " m: may need up to " +
                             format_value(std::round(estimate)) + " vertices, max_vertices is " +
                             std::to_string(params.max_vertices));
   }
@@ -315,11 +329,11 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const Grow
   validate(params);
   std::array<double, 6> distances{};
   for (auto& d : distances) d = eq3_distance(params.alpha, params.radius, rng.uniform());
-  // Reserve for the usual size (growth rarely exceeds twice the estimate), not for the cap: a
-  // 20,000-vertex reservation per particle costs more in page faults than the growth itself.
-  const auto expected = static_cast<std::size_t>(std::min(
-      2.0 * estimated_vertex_count(params.radius, params.edge_length) + 16.0,
-      static_cast<double>(params.max_vertices) + 1.0));
+  // Reserve for the estimate, not for the cap: a 20,000-vertex reservation per particle costs more
+  // in page faults than the growth itself.
+  const auto expected = static_cast<std::size_t>(
+      std::min(estimated_vertex_count(params.radius, params.edge_length) + 16.0,
+               static_cast<double>(params.max_vertices) + 1.0));
   GrowingMesh mesh(distances, params.edge_length, expected);
   EdgeEntry longest{};
   while (mesh.longest_edge(longest)) {

@@ -296,19 +296,20 @@ TEST_F(ShapeCliTest, ExistingOutputIsKeptWithoutForce) {
   EXPECT_EQ(entry_count(), 2U);
 }
 
-// The up-front vertex estimate passes but growth needs more than the cap: the run stops with a
-// one-line LimitExceeded error and no CSV.
-TEST_F(ShapeCliTest, VertexCapReachedDuringGenerationLeavesNoFile) {
-  const auto cap = static_cast<std::uint32_t>(estimated_vertex_count(0.1, 0.02)) + 1;
-  ASSERT_NO_THROW(validate(GrowthParams{.alpha = 1.0, .radius = 0.1, .edge_length = 0.02,
-                                        .max_vertices = cap}));
-  const auto result = run("shapes -n 200 --alpha 1 -r 0.1 -L 0.02 --max-vertices " +
-                          std::to_string(cap) + " -o capped.csv");
-  EXPECT_EQ(result.exit_code, 2);
-  EXPECT_EQ(result.err.rfind("aggpack: error: limit exceeded for max_vertices", 0), 0U)
-      << result.err;
-  EXPECT_EQ(line_count(result.err), 1U);
+// A cap just below the up-front vertex estimate is refused before any particle is made; at the
+// estimate the run succeeds.
+TEST_F(ShapeCliTest, VertexCapIsCheckedUpFront) {
+  const auto cap = static_cast<std::uint32_t>(std::ceil(estimated_vertex_count(0.1, 0.02)));
+  const std::string flags = "shapes -n 200 --alpha 1 -r 0.1 -L 0.02 --max-vertices ";
+  const auto refused = run(flags + std::to_string(cap - 1) + " -o capped.csv");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_EQ(refused.err.rfind("aggpack: error: limit exceeded for edge_length = 0.02", 0), 0U)
+      << refused.err;
+  EXPECT_EQ(line_count(refused.err), 1U);
   EXPECT_EQ(entry_count(), 0U);
+  const auto accepted = run(flags + std::to_string(cap) + " -o capped.csv");
+  EXPECT_EQ(accepted.exit_code, 0) << accepted.err;
+  EXPECT_EQ(line_count(read_text(file("capped.csv"))), 201U);
 }
 
 }  // namespace

@@ -390,20 +390,39 @@ TEST(Validate, EveryFieldNamedWithValueAndRange) {
 
 TEST(Validate, EdgeTooSmallForVertexCapIsLimitExceeded) {
   const GrowthParams tiny{.alpha = 0.5, .radius = 0.1, .edge_length = 1e-5};
+  std::string message;
   try {
     validate(tiny);
     FAIL() << "expected LimitExceeded";
   } catch (const LimitExceeded& error) {
     EXPECT_EQ(error.kind(), ErrorKind::kLimitExceeded);
-    const std::string message = error.what();
-    EXPECT_NE(message.find("edge_length"), std::string::npos) << message;
-    EXPECT_NE(message.find("1e-05"), std::string::npos) << message;
-    EXPECT_NE(message.find("max_vertices"), std::string::npos) << message;
+    message = error.what();
   }
-  // The smallest L the message suggests is accepted.
+  EXPECT_NE(message.find("edge_length"), std::string::npos) << message;
+  EXPECT_NE(message.find("1e-05"), std::string::npos) << message;
+  EXPECT_NE(message.find("max_vertices is 20000"), std::string::npos) << message;
+  // The smallest L the message names is the boundary: accepted just above, rejected just below.
+  const auto at = message.find(">= about ");
+  ASSERT_NE(at, std::string::npos) << message;
+  const double smallest = std::stod(message.substr(at + 9));
   GrowthParams fine = tiny;
-  fine.edge_length = 0.0028;
+  fine.edge_length = smallest * 1.0001;
   EXPECT_NO_THROW(validate(fine));
+  fine.edge_length = smallest * 0.9999;
+  EXPECT_THROW(validate(fine), LimitExceeded);
+}
+
+TEST(EstimatedVertexCount, NoGrowthAndScaling) {
+  // L >= sqrt(2) r: the base octahedron is final.
+  EXPECT_EQ(estimated_vertex_count(1.0, 1.5), 6.0);
+  EXPECT_EQ(estimated_vertex_count(0.1, 0.15), 6.0);
+  // Only L / r matters, and halving L roughly quadruples the count.
+  EXPECT_NEAR(estimated_vertex_count(0.2, 0.02), estimated_vertex_count(1.0, 0.1), 1e-9);
+  EXPECT_NEAR(estimated_vertex_count(1.0, 0.05) / estimated_vertex_count(1.0, 0.1), 4.0, 0.05);
+  // A cap of 6 allows only the base octahedron.
+  EXPECT_NO_THROW(validate(GrowthParams{.radius = 1.0, .edge_length = 1.5, .max_vertices = 6}));
+  EXPECT_THROW(validate(GrowthParams{.radius = 1.0, .edge_length = 1.2, .max_vertices = 6}),
+               LimitExceeded);
 }
 
 TEST(Validate, GeneratorOptions) {
@@ -432,24 +451,29 @@ TEST(Validate, GeneratorOptions) {
   EXPECT_THROW(generate_particle(big, 0), LimitExceeded);
 }
 
-// When growth needs more vertices than the cap allows despite the up-front estimate, it stops
-// with LimitExceeded instead of returning a particle with edges longer than L.
-TEST(GrowAggregate, VertexCapReachedDuringGrowthThrows) {
-  const GrowthParams params{.alpha = 0.5, .radius = 0.1, .edge_length = 0.02, .max_vertices = 6};
-  int limits = 0;
-  for (std::uint64_t i = 0; i < 5; ++i) {
-    GrowthParams capped = params;
-    capped.max_vertices = static_cast<std::uint32_t>(estimated_vertex_count(0.1, 0.02));
-    Rng rng(1, i);
-    try {
-      const auto body = grow_aggregate(capped, rng);
-      EXPECT_LE(body.vertex_count(), capped.max_vertices);
-      EXPECT_LE(body.longest_edge(), capped.edge_length * (1 + kLengthTolerance));
-    } catch (const LimitExceeded&) {
-      ++limits;
+// The up-front estimate is an upper range: with the cap set to it, growth never runs out of
+// vertices, across alpha and L/r (including just below sqrt(2) r, the worst ratio measured).
+TEST(GrowAggregate, CapAtTheEstimateIsEnough) {
+  int grown = 0;
+  for (const double edge_over_radius : {0.08, 0.2, 0.35, 0.5, 0.7, 1.0, 1.4}) {
+    for (const double alpha : {0.0, 0.5, 0.9, 0.95, 1.0}) {
+      const double radius = 0.1;
+      GrowthParams params{.alpha = alpha, .radius = radius, .edge_length = edge_over_radius * radius};
+      params.max_vertices = static_cast<std::uint32_t>(
+          std::ceil(estimated_vertex_count(radius, params.edge_length)));
+      ASSERT_NO_THROW(validate(params));
+      const int count = edge_over_radius < 0.1 ? 5 : 60;
+      for (int i = 0; i < count; ++i) {
+        Rng rng(31, static_cast<std::uint64_t>(i));
+        ConvexPolyhedron body;
+        ASSERT_NO_THROW(body = grow_aggregate(params, rng))
+            << "alpha " << alpha << " L/r " << edge_over_radius << " particle " << i;
+        ASSERT_LE(body.vertex_count(), params.max_vertices);
+        ++grown;
+      }
     }
   }
-  EXPECT_GT(limits, 0);
+  EXPECT_EQ(grown, 5 * 5 + 6 * 5 * 60);
 }
 
 }  // namespace

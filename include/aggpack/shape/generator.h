@@ -33,11 +33,14 @@ using GrowthLimit = std::function<double(const Vec3& direction, double s_lo, dou
 double eq3_distance(double alpha, double radius, double u);
 
 /// Throws InvalidInput naming the field unless every parameter is in range, and LimitExceeded
-/// if the estimated vertex count for (radius, edge_length) exceeds max_vertices.
+/// if estimated_vertex_count(radius, edge_length) exceeds max_vertices (the message names the
+/// smallest edge_length that fits).
 void validate(const GrowthParams& params);
 
-/// Estimated vertex count of a grown particle: a sphere of radius r tiled by equilateral
-/// triangles of side L (an upper-range estimate; used to reject hopeless inputs up front).
+/// Upper-range estimate of a grown particle's vertex count, used to reject hopeless inputs up
+/// front: 3 times the vertex count of a sphere of radius r tiled by equilateral triangles of
+/// side L (measured counts stay below 2.8 times that tiling), and 6 when L >= sqrt(2) r (no
+/// growth). The cap is also enforced during growth.
 double estimated_vertex_count(double radius, double edge_length);
 
 /// Grows one particle centred at the origin, drawing every random number from `rng`.
