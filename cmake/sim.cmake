@@ -1,0 +1,45 @@
+# Physics (issue 6): the Bullet bridge, gravity settling, the angle-of-repose trough test and
+# sweeps, as the library aggpack_sim (src/sim/*.cpp). Optional: ON by default when Bullet's
+# double-precision build is found (Debian libbullet-dev ships it as bullet-float64); without it
+# the rest of aggpack builds and the CLI has no settle/repose/sweep commands.
+# Included from the top-level CMakeLists.txt after the `aggpack` executable is defined.
+
+find_package(PkgConfig QUIET)
+if(PkgConfig_FOUND)
+  # Double precision: particles of 10 mm in a metre-scale trough, and exact-geometry checks.
+  pkg_check_modules(BULLET IMPORTED_TARGET bullet-float64)
+endif()
+set(_aggpack_sim_default OFF)
+if(BULLET_FOUND)
+  set(_aggpack_sim_default ON)
+endif()
+option(AGGPACK_BUILD_SIM "Build the Bullet physics module (settle, repose, sweep)"
+       ${_aggpack_sim_default})
+
+if(AGGPACK_BUILD_SIM)
+  if(NOT BULLET_FOUND)
+    message(FATAL_ERROR "AGGPACK_BUILD_SIM=ON needs Bullet (apt-get install libbullet-dev)")
+  endif()
+  find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb)
+  if(NOT STB_INCLUDE_DIR)
+    message(FATAL_ERROR "AGGPACK_BUILD_SIM=ON needs stb_image_write.h (apt-get install libstb-dev)")
+  endif()
+  find_package(nlohmann_json REQUIRED)
+  message(STATUS "Bullet ${BULLET_VERSION} (double precision): building aggpack_sim")
+
+  file(GLOB AGGPACK_SIM_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/sim/*.cpp)
+  add_library(aggpack_sim ${AGGPACK_SIM_SOURCES})
+  add_library(aggpack::sim ALIAS aggpack_sim)
+  target_link_libraries(aggpack_sim PUBLIC aggpack_core
+                        PRIVATE PkgConfig::BULLET nlohmann_json::nlohmann_json)
+  target_include_directories(aggpack_sim SYSTEM PRIVATE ${STB_INCLUDE_DIR})
+  target_compile_definitions(aggpack_sim PUBLIC AGGPACK_HAS_SIM=1)
+
+  target_link_libraries(aggpack PRIVATE aggpack_sim)
+  find_package(tomlplusplus QUIET)
+  if(tomlplusplus_FOUND)
+    # `aggpack repose CONFIG.toml` and `aggpack sweep CONFIG.toml` parse their own tables.
+    target_link_libraries(aggpack PRIVATE tomlplusplus::tomlplusplus)
+    target_compile_definitions(aggpack PRIVATE AGGPACK_HAS_TOML=1)
+  endif()
+endif()

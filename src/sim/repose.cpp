@@ -1,0 +1,307 @@
+#include "aggpack/sim/repose.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "aggpack/core/error.h"
+#include "aggpack/geom/mass_properties.h"
+#include "aggpack/pack/lattice_packer.h"
+#include "aggpack/shape/descriptors.h"
+
+namespace aggpack {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Running median of three; the ends keep their own value.
+std::vector<double> median3(const std::vector<double>& values) {
+  std::vector<double> smoothed = values;
+  for (std::size_t i = 1; i + 1 < values.size(); ++i) {
+    double a = values[i - 1];
+    double b = values[i];
+    double c = values[i + 1];
+    if (a > b) std::swap(a, b);
+    if (b > c) std::swap(b, c);
+    if (a > b) std::swap(a, b);
+    smoothed[i] = b;
+  }
+  return smoothed;
+}
+
+double largest_size(const Packing& packing) {
+  double largest = 0.0;
+  for (const auto& particle : packing.particles) {
+    const Aabb box = packing.shapes[particle.shape].bounds();
+    largest = std::max(largest, particle.scale * box.extent().norm());
+  }
+  return largest;
+}
+
+}  // namespace
+
+void validate(const ReposeOptions& options) {
+  require_positive("repose.trough_length", options.trough_length);
+  require_positive("repose.trough_width", options.trough_width);
+  require_positive("repose.trough_height", options.trough_height);
+  require_positive("repose.baffle_thickness", options.baffle_thickness);
+  if (!(options.baffle_position > 0.0) ||
+      !(options.baffle_position + options.baffle_thickness < options.trough_length)) {
+    throw InvalidInput("repose.baffle_position", format_value(options.baffle_position),
+                       "(0, trough_length - baffle_thickness)");
+  }
+  require_positive("repose.baffle_speed", options.baffle_speed);
+  require_in_range("repose.baffle_clear_time", options.baffle_clear_time, 0.0, 1e3);
+  require_in_range("repose.alpha", options.alpha, 0.0, 1.0);
+  require_positive("repose.radius", options.radius);
+  require_positive("repose.edge_length", options.edge_length);
+  require_positive("repose.fill_height", options.fill_height);
+  require_in_range("repose.bin_width", options.bin_width, 0.0, options.trough_length);
+  require_in_range("repose.fit_upper", options.fit_upper, 1e-6, 1.0);
+  require_in_range("repose.fit_lower", options.fit_lower, 0.0, options.fit_upper - 1e-6);
+  validate(options.physics);
+  validate(options.rest);
+}
+
+SurfaceProfile surface_profile(const Packing& packing, double lower, double upper,
+                               double bin_width) {
+  require_positive("bin_width", bin_width);
+  if (!(lower < upper)) {
+    throw InvalidInput("profile range", format_value(lower) + " .. " + format_value(upper),
+                       "lower < upper");
+  }
+  SurfaceProfile profile;
+  profile.lower = lower;
+  profile.bin_width = bin_width;
+  const auto bins = static_cast<std::size_t>(std::ceil((upper - lower) / bin_width - 1e-9));
+  profile.height.assign(std::max<std::size_t>(bins, 1), 0.0);
+  const auto bin_of = [&](double x) -> std::ptrdiff_t {
+    return static_cast<std::ptrdiff_t>(std::floor((x - lower) / bin_width));
+  };
+  const auto last = static_cast<std::ptrdiff_t>(profile.height.size()) - 1;
+  auto raise = [&](std::ptrdiff_t bin, double z) {
+    if (bin < 0 || bin > last) return;
+    auto& h = profile.height[static_cast<std::size_t>(bin)];
+    h = std::max(h, z);
+  };
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    const ConvexPolyhedron body = packing.placed(i);
+    const auto& vertices = body.vertices();
+    // The maximum of z over a convex body cut to a slab lies at a vertex inside the slab or where
+    // an edge crosses one of the slab's planes.
+    for (const auto& v : vertices) raise(bin_of(v.x()), v.z());
+    for (const auto& t : body.triangles()) {
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& a = vertices[t[static_cast<std::size_t>(k)]];
+        const Vec3& b = vertices[t[static_cast<std::size_t>((k + 1) % 3)]];
+        if (a.x() == b.x()) continue;
+        const Vec3& left = a.x() < b.x() ? a : b;
+        const Vec3& right = a.x() < b.x() ? b : a;
+        for (std::ptrdiff_t plane = bin_of(left.x()) + 1; plane <= bin_of(right.x()); ++plane) {
+          const double x = lower + static_cast<double>(plane) * bin_width;
+          const double s = (x - left.x()) / (right.x() - left.x());
+          const double z = left.z() + s * (right.z() - left.z());
+          raise(plane - 1, z);  // the plane is the right edge of bin plane-1 ...
+          raise(plane, z);      // ... and the left edge of bin plane
+        }
+      }
+    }
+  }
+  return profile;
+}
+
+SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper, double fit_lower) {
+  require_in_range("fit_upper", fit_upper, 1e-6, 1.0);
+  require_in_range("fit_lower", fit_lower, 0.0, fit_upper - 1e-6);
+  SlopeFit fit;
+  const std::size_t n = profile.height.size();
+  if (n < 3) {
+    fit.message = "profile has fewer than 3 bins";
+    return fit;
+  }
+  const std::vector<double> smooth = median3(profile.height);
+  const auto crest = static_cast<std::size_t>(
+      std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
+  const double top = smooth[crest];
+  fit.pile_height = top;
+  if (!(top > 0.0)) {
+    fit.message = "empty profile";
+    return fit;
+  }
+  std::size_t first = crest;
+  while (first < n && smooth[first] >= fit_upper * top) ++first;
+  std::size_t end = first;  // exclusive
+  double lowest = std::numeric_limits<double>::infinity();
+  while (end < n && smooth[end] >= fit_lower * top) {
+    lowest = std::min(lowest, smooth[end]);
+    if (smooth[end] > lowest + 0.1 * top) break;  // rising again: a heap against a wall
+    ++end;
+  }
+  if (end < first + 3) {
+    fit.message = "slope region has fewer than 3 bins";
+    fit.first_bin = first;
+    fit.last_bin = end > 0 ? end - 1 : 0;
+    return fit;
+  }
+  fit.first_bin = first;
+  fit.last_bin = end - 1;
+  fit.bin_count = end - first;
+  double sx = 0.0;
+  double sz = 0.0;
+  for (std::size_t i = first; i < end; ++i) {
+    sx += profile.centre(i);
+    sz += profile.height[i];
+  }
+  const double count = static_cast<double>(fit.bin_count);
+  const double mx = sx / count;
+  const double mz = sz / count;
+  double sxx = 0.0;
+  double sxz = 0.0;
+  double szz = 0.0;
+  for (std::size_t i = first; i < end; ++i) {
+    const double dx = profile.centre(i) - mx;
+    const double dz = profile.height[i] - mz;
+    sxx += dx * dx;
+    sxz += dx * dz;
+    szz += dz * dz;
+  }
+  fit.slope = sxz / sxx;
+  fit.intercept = mz - fit.slope * mx;
+  fit.angle_degrees = std::atan(-fit.slope) * 180.0 / std::numbers::pi;
+  fit.r_squared = szz > 0.0 ? (sxz * sxz) / (sxx * szz) : 1.0;
+  fit.is_valid = true;
+  return fit;
+}
+
+ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& progress) {
+  validate(options);
+  ReposeResult result;
+  const auto start = Clock::now();
+
+  // The paper's placement in the half behind the baffle.
+  LatticeOptions lattice;
+  lattice.container.kind = ContainerKind::kBox;
+  lattice.container.length = options.baffle_position;
+  lattice.container.width = options.trough_width;
+  lattice.container.depth = options.fill_height;
+  lattice.container.wall_gap = 0.0;
+  lattice.alpha = options.alpha;
+  lattice.radius = options.radius;
+  lattice.edge_length = options.edge_length;
+  lattice.seed = options.seed;
+  PackResult placed = pack_lattice(lattice);
+  Packing packing = std::move(placed.packing);
+  packing.container.length = options.trough_length;
+  packing.container.width = options.trough_width;
+  packing.container.depth = options.trough_height;
+  packing.provenance.packer = "lattice+repose";
+  result.initial = packing;
+  result.particle_count = packing.particles.size();
+  result.solid_volume = placed.report.solid_volume;
+  {
+    double sum = 0.0;
+    for (const auto& particle : packing.particles) {
+      sum += describe(packing.shapes[particle.shape]).measured_alpha;
+    }
+    result.mean_measured_alpha = sum / static_cast<double>(packing.particles.size());
+  }
+
+  // Stage 1: fill and settle behind the baffle. Walls reach above the lattice while it falls.
+  const double wall_height = std::max(options.trough_height, options.fill_height);
+  World world(packing, options.physics, wall_height);
+  result.time_step = world.time_step();
+  result.smallest_size = world.smallest_size();
+  const double thickness = options.baffle_thickness;
+  const std::size_t baffle = world.add_wall(
+      {.box = {Vec3(options.baffle_position, 0.0, 0.0),
+               Vec3(options.baffle_position + thickness, options.trough_width, wall_height)},
+       .is_kinematic = true});
+  RestCriterion stage1 = options.rest;
+  const double g = std::max(1e-9, options.physics.gravity.norm());
+  stage1.min_time += std::sqrt(2.0 * options.fill_height / g);
+  result.is_stage1_at_rest =
+      run_until_rest(world, stage1, [&](double time, double energy, double threshold) {
+        if (progress) progress(1, time, energy, threshold);
+      });
+  result.stage1_time = world.time();
+  result.settled = world.packing();
+  result.stage1_height = packing_height(result.settled);
+  result.stage1_seconds = seconds_since(start);
+
+  // Stage 2: move the baffle toward +x until it clears the pile, then wait for rest.
+  const auto stage2_start = Clock::now();
+  const double stage2_begin = world.time();
+  const double far_stop = options.trough_length - thickness;
+  const double clear_gap = largest_size(packing);
+  world.set_wall_velocity(baffle, Vec3(options.baffle_speed, 0.0, 0.0));
+  double untouched_since = world.time();
+  const auto check_steps = static_cast<std::size_t>(
+      std::max(1.0, std::round(options.rest.check_interval / world.time_step())));
+  while (true) {
+    const double x = world.wall_box(baffle).lower.x();
+    const double remaining = far_stop - x;
+    // Do not overshoot the far wall: the last move is shortened to land exactly on it.
+    const double step_length = options.baffle_speed * world.time_step();
+    if (remaining <= step_length * 0.5) {
+      world.set_wall_velocity(baffle, Vec3::Zero());
+      break;
+    }
+    const std::size_t steps = std::min<std::size_t>(
+        check_steps, static_cast<std::size_t>(std::max(1.0, std::floor(remaining / step_length))));
+    world.step(steps);
+    if (progress) {
+      progress(2, world.time() - stage2_begin, world.kinetic_energy(), 0.0);
+    }
+    if (world.is_wall_touched(baffle, 0.0)) {
+      untouched_since = world.time();
+      continue;
+    }
+    if (world.time() - untouched_since < options.baffle_clear_time) continue;
+    double toe = 0.0;
+    for (std::size_t i = 0; i < world.particle_count(); ++i) {
+      toe = std::max(toe, world.pose(i).position.x());
+    }
+    if (world.wall_box(baffle).lower.x() - toe > clear_gap) {
+      world.remove_wall(baffle);
+      result.is_baffle_removed = true;
+      break;
+    }
+  }
+  result.baffle_travel = world.wall_box(baffle).lower.x() - options.baffle_position;
+  result.is_stage2_at_rest =
+      run_until_rest(world, options.rest, [&](double time, double energy, double threshold) {
+        if (progress) progress(2, time - stage2_begin, energy, threshold);
+      });
+  result.stage2_time = world.time() - stage2_begin;
+  result.final = world.packing();
+  result.final.provenance.packer = "lattice+repose";
+  const OverlapStatistics overlap = world.overlap_statistics();
+  result.max_overlap_fraction = overlap.max_depth_fraction;
+  result.max_contact_penetration_fraction =
+      world.contact_statistics().max_contact_penetration / world.smallest_size();
+  result.stage2_seconds = seconds_since(stage2_start);
+
+  for (std::size_t i = 0; i < result.final.particles.size(); ++i) {
+    const Aabb box = result.final.placed(i).bounds();
+    const double tolerance = 0.01 * result.smallest_size;
+    if (box.lower.x() < -tolerance || box.upper.x() > options.trough_length + tolerance ||
+        box.lower.y() < -tolerance || box.upper.y() > options.trough_width + tolerance ||
+        box.lower.z() < -tolerance) {
+      ++result.escaped_particles;
+    }
+  }
+
+  const double bin_width = options.bin_width > 0.0 ? options.bin_width : 0.5 * options.radius;
+  result.profile = surface_profile(result.final, 0.0, options.trough_length, bin_width);
+  result.fit = fit_slope(result.profile, options.fit_upper, options.fit_lower);
+  return result;
+}
+
+}  // namespace aggpack

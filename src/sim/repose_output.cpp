@@ -1,0 +1,330 @@
+// Output of the repose test: JSON result, profile CSV and the side-view PNG.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#endif
+#include <stb_easy_font.h>
+#include <stb_image_write.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+#include "aggpack/core/atomic_file.h"
+#include "aggpack/core/error.h"
+#include "aggpack/sim/repose.h"
+
+namespace aggpack {
+
+namespace {
+
+std::string number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+using Rgb = std::array<std::uint8_t, 3>;
+
+class Image {
+ public:
+  Image(int width, int height) : width_(width), height_(height), pixels_(3 * width * height, 255) {}
+
+  void set(int x, int y, const Rgb& colour) {
+    if (x < 0 || y < 0 || x >= width_ || y >= height_) return;
+    auto* p = &pixels_[3 * (static_cast<std::size_t>(y) * width_ + x)];
+    p[0] = colour[0];
+    p[1] = colour[1];
+    p[2] = colour[2];
+  }
+
+  void fill_rect(int x0, int y0, int x1, int y1, const Rgb& colour) {
+    for (int y = std::max(0, y0); y < std::min(height_, y1); ++y) {
+      for (int x = std::max(0, x0); x < std::min(width_, x1); ++x) set(x, y, colour);
+    }
+  }
+
+  // Thick line by stamping squares along it (Bresenham-free: the lines are few).
+  void line(double x0, double y0, double x1, double y1, int thickness, const Rgb& colour) {
+    const double length = std::hypot(x1 - x0, y1 - y0);
+    const int steps = std::max(1, static_cast<int>(std::ceil(length * 2.0)));
+    const int half = thickness / 2;
+    for (int k = 0; k <= steps; ++k) {
+      const double t = static_cast<double>(k) / steps;
+      const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0)));
+      const int y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
+      fill_rect(x - half, y - half, x - half + thickness, y - half + thickness, colour);
+    }
+  }
+
+  // Fills a convex polygon given counter-clockwise or clockwise, by scanlines.
+  void fill_convex(const std::vector<std::array<double, 2>>& polygon, const Rgb& colour) {
+    if (polygon.size() < 3) return;
+    double top = polygon[0][1];
+    double bottom = polygon[0][1];
+    for (const auto& p : polygon) {
+      top = std::min(top, p[1]);
+      bottom = std::max(bottom, p[1]);
+    }
+    for (int y = std::max(0, static_cast<int>(std::floor(top)));
+         y <= std::min(height_ - 1, static_cast<int>(std::ceil(bottom))); ++y) {
+      const double yc = y + 0.5;
+      double left = 1e300;
+      double right = -1e300;
+      for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const auto& a = polygon[i];
+        const auto& b = polygon[(i + 1) % polygon.size()];
+        if ((a[1] <= yc && b[1] > yc) || (b[1] <= yc && a[1] > yc)) {
+          const double x = a[0] + (yc - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
+          left = std::min(left, x);
+          right = std::max(right, x);
+        }
+      }
+      if (left > right) continue;
+      for (int x = std::max(0, static_cast<int>(std::lround(left)));
+           x < std::min(width_, static_cast<int>(std::lround(right))); ++x) {
+        set(x, y, colour);
+      }
+    }
+  }
+
+  // Text with stb_easy_font, magnified `scale` times; (x, y) is the top-left corner.
+  void text(const std::string& message, int x, int y, int scale, const Rgb& colour) {
+    std::vector<char> buffer(message.size() * 300 + 1000);
+    std::string copy = message;
+    const int quads = stb_easy_font_print(0.0F, 0.0F, copy.data(), nullptr, buffer.data(),
+                                          static_cast<int>(buffer.size()));
+    const auto* vertices = reinterpret_cast<const float*>(buffer.data());
+    for (int q = 0; q < quads; ++q) {
+      const float* v = vertices + static_cast<std::ptrdiff_t>(q) * 4 * 4;  // 4 vertices x 16 bytes
+      const int qx0 = static_cast<int>(v[0]);
+      const int qy0 = static_cast<int>(v[1]);
+      const int qx1 = static_cast<int>(v[8]);
+      const int qy1 = static_cast<int>(v[9]);
+      fill_rect(x + scale * qx0, y + scale * qy0, x + scale * qx1, y + scale * qy1, colour);
+    }
+  }
+
+  [[nodiscard]] int width() const { return width_; }
+  [[nodiscard]] int height() const { return height_; }
+  [[nodiscard]] const std::vector<std::uint8_t>& pixels() const { return pixels_; }
+
+ private:
+  int width_;
+  int height_;
+  std::vector<std::uint8_t> pixels_;
+};
+
+// 2D convex hull (Andrew's monotone chain), counter-clockwise.
+std::vector<std::array<double, 2>> convex_hull(std::vector<std::array<double, 2>> points) {
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() < 3) return points;
+  std::vector<std::array<double, 2>> hull(2 * points.size());
+  std::size_t k = 0;
+  auto cross = [](const auto& o, const auto& a, const auto& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  for (const auto& p : points) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0.0) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+void write_png(const std::string& path, const Image& image) {
+  AtomicFile file(path);
+  auto writer = [](void* context, void* data, int size) {
+    static_cast<std::ofstream*>(context)->write(static_cast<const char*>(data), size);
+  };
+  if (stbi_write_png_to_func(writer, &file.stream(), image.width(), image.height(), 3,
+                             image.pixels().data(), image.width() * 3) == 0) {
+    throw IoError("cannot encode PNG " + path);
+  }
+  file.commit();
+}
+
+}  // namespace
+
+void write_repose_json(const std::string& path, const ReposeOptions& options,
+                       const ReposeResult& result) {
+  nlohmann::ordered_json json;
+  json["aggpack_version"] = AGGPACK_VERSION;
+  json["options"] = {
+      {"trough_length_m", options.trough_length},
+      {"trough_width_m", options.trough_width},
+      {"trough_height_m", options.trough_height},
+      {"baffle_position_m", options.baffle_position},
+      {"baffle_thickness_m", options.baffle_thickness},
+      {"baffle_speed_m_per_s", options.baffle_speed},
+      {"alpha", options.alpha},
+      {"radius_m", options.radius},
+      {"edge_length_m", options.edge_length},
+      {"fill_height_m", options.fill_height},
+      {"seed", options.seed},
+      {"density_kg_per_m3", options.physics.density},
+      {"friction", options.physics.friction},
+      {"wall_friction", options.physics.wall_friction.value_or(options.physics.friction)},
+      {"restitution", options.physics.restitution},
+      {"rolling_friction", options.physics.rolling_friction},
+      {"time_step_s", result.time_step},
+      {"solver_iterations", options.physics.solver_iterations},
+      {"margin_fraction", options.physics.margin_fraction},
+      {"kinetic_energy_ratio", options.rest.kinetic_energy_ratio},
+      {"bin_width_m", result.profile.bin_width},
+      {"fit_upper", options.fit_upper},
+      {"fit_lower", options.fit_lower},
+  };
+  json["particles"] = {
+      {"count", result.particle_count},
+      {"solid_volume_m3", result.solid_volume},
+      {"mean_measured_alpha", result.mean_measured_alpha},
+      {"smallest_equivalent_diameter_m", result.smallest_size},
+  };
+  json["stage1"] = {
+      {"at_rest", result.is_stage1_at_rest},
+      {"simulated_time_s", result.stage1_time},
+      {"pile_height_m", result.stage1_height},
+  };
+  json["stage2"] = {
+      {"at_rest", result.is_stage2_at_rest},
+      {"simulated_time_s", result.stage2_time},
+      {"baffle_travel_m", result.baffle_travel},
+      {"baffle_removed", result.is_baffle_removed},
+  };
+  json["final"] = {
+      {"max_overlap_fraction_of_d_min", result.max_overlap_fraction},
+      {"max_contact_penetration_fraction_of_d_min", result.max_contact_penetration_fraction},
+      {"escaped_particles", result.escaped_particles},
+  };
+  const SlopeFit& fit = result.fit;
+  json["fit"] = {
+      {"valid", fit.is_valid},
+      {"message", fit.message},
+      {"angle_degrees", fit.angle_degrees},
+      {"r_squared", fit.r_squared},
+      {"slope", fit.slope},
+      {"intercept_m", fit.intercept},
+      {"pile_height_m", fit.pile_height},
+      {"x_start_m", fit.bin_count > 0 ? result.profile.centre(fit.first_bin) : 0.0},
+      {"x_end_m", fit.bin_count > 0 ? result.profile.centre(fit.last_bin) : 0.0},
+      {"bins", fit.bin_count},
+  };
+  AtomicFile file(path, Overwrite::kAllow, std::ios::out);
+  file.stream() << json.dump(2) << '\n';
+  file.commit();
+}
+
+void write_profile_csv(const std::string& path, const ReposeResult& result) {
+  AtomicFile file(path, Overwrite::kAllow, std::ios::out);
+  auto& out = file.stream();
+  out << "x_m,height_m,in_fit,fit_height_m\n";
+  const SlopeFit& fit = result.fit;
+  for (std::size_t i = 0; i < result.profile.height.size(); ++i) {
+    const bool in_fit = fit.is_valid && i >= fit.first_bin && i <= fit.last_bin;
+    const double x = result.profile.centre(i);
+    out << number(x) << ',' << number(result.profile.height[i]) << ',' << (in_fit ? 1 : 0) << ','
+        << (fit.is_valid ? number(fit.intercept + fit.slope * x) : std::string()) << '\n';
+  }
+  file.commit();
+}
+
+void write_side_view_png(const std::string& path, const Packing& packing,
+                         const SurfaceProfile& profile, const SlopeFit& fit, int width) {
+  if (width < 64 || width > 16384) {
+    throw InvalidInput("width", std::to_string(width), "[64, 16384] pixels");
+  }
+  check_writable(path, Overwrite::kAllow);
+  const Aabb bounds = packing.container.bounds();
+  double top = bounds.upper.z();
+  for (const double h : profile.height) top = std::max(top, h);
+  const double span = bounds.extent().x();
+  const double pad = 0.04 * span;
+  const double scale = width / (span + 2.0 * pad);
+  const int height = static_cast<int>(std::ceil((top + 2.0 * pad) * scale)) + 40;
+  Image image(width, height);
+  auto px = [&](double x) { return (x - bounds.lower.x() + pad) * scale; };
+  auto py = [&](double z) { return height - (z + pad) * scale; };
+
+  // Particles from far (large y) to near, shaded by depth.
+  std::vector<std::size_t> order(packing.particles.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::vector<double> depth(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) depth[i] = packing.particles[i].pose.position.y();
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return depth[a] > depth[b]; });
+  const double y_span = std::max(1e-12, bounds.extent().y());
+  for (const std::size_t i : order) {
+    const ConvexPolyhedron body = packing.placed(i);
+    std::vector<std::array<double, 2>> points;
+    points.reserve(body.vertex_count());
+    for (const auto& v : body.vertices()) points.push_back({px(v.x()), py(v.z())});
+    const auto hull = convex_hull(points);
+    const double t = std::clamp((depth[i] - bounds.lower.y()) / y_span, 0.0, 1.0);
+    const auto shade = [&](double near, double far) {
+      return static_cast<std::uint8_t>(std::lround(near + t * (far - near)));
+    };
+    image.fill_convex(hull, {shade(120, 215), shade(100, 200), shade(80, 185)});
+    for (std::size_t k = 0; k < hull.size(); ++k) {
+      const auto& a = hull[k];
+      const auto& b = hull[(k + 1) % hull.size()];
+      image.line(a[0], a[1], b[0], b[1], 1, {shade(60, 150), shade(50, 140), shade(40, 130)});
+    }
+  }
+  // Trough: floor and end walls.
+  const Rgb wall{30, 30, 30};
+  image.line(px(bounds.lower.x()), py(0.0), px(bounds.upper.x()), py(0.0), 3, wall);
+  image.line(px(bounds.lower.x()), py(0.0), px(bounds.lower.x()), py(bounds.upper.z()), 3, wall);
+  image.line(px(bounds.upper.x()), py(0.0), px(bounds.upper.x()), py(bounds.upper.z()), 3, wall);
+  // Profile: blue, the bins of the fit green.
+  const int dot = std::max(3, width / 400);
+  for (std::size_t i = 0; i < profile.height.size(); ++i) {
+    const bool in_fit = fit.is_valid && i >= fit.first_bin && i <= fit.last_bin;
+    const Rgb colour = in_fit ? Rgb{0, 150, 0} : Rgb{30, 60, 220};
+    const int x = static_cast<int>(std::lround(px(profile.centre(i))));
+    const int y = static_cast<int>(std::lround(py(profile.height[i])));
+    image.fill_rect(x - dot / 2, y - dot / 2, x - dot / 2 + dot, y - dot / 2 + dot, colour);
+  }
+  std::string caption;
+  if (fit.is_valid) {
+    // The fitted line over the slope region, extended by a third of its length each way.
+    const double x0 = profile.centre(fit.first_bin);
+    const double x1 = profile.centre(fit.last_bin);
+    const double extra = (x1 - x0) / 3.0;
+    const double a = x0 - extra;
+    const double b = x1 + extra;
+    image.line(px(a), py(fit.intercept + fit.slope * a), px(b), py(fit.intercept + fit.slope * b),
+               std::max(2, width / 500), {220, 20, 20});
+    char buffer[160];
+    std::snprintf(buffer, sizeof buffer, "angle of repose %.1f deg  (R^2 %.3f, %zu bins)  %zu particles",
+                  fit.angle_degrees, fit.r_squared, fit.bin_count, packing.particles.size());
+    caption = buffer;
+  } else {
+    caption = "no slope fit: " + fit.message;
+  }
+  image.text(caption, 10, 10, std::max(2, width / 600), {0, 0, 0});
+  write_png(path, image);
+}
+
+}  // namespace aggpack
