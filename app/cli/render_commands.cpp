@@ -44,8 +44,7 @@ void parse_size(const std::string& text, RenderImageOptions& options) {
   }
   options.width = std::stoi(text.substr(0, x));
   options.height = std::stoi(text.substr(x + 1));
-  if (options.width < 16 || options.width > 8192 || options.height < 16 ||
-      options.height > 8192) {
+  if (options.width < 16 || options.width > 8192 || options.height < 16 || options.height > 8192) {
     throw InvalidInput("--size", text, allowed);
   }
 }
@@ -62,17 +61,16 @@ void run_render(const RenderFlags& flags) {
   options.samples = flags.samples;
   validate(options);
   const std::string output =
-      flags.output.empty()
-          ? std::filesystem::path(flags.input).replace_extension(".png").string()
-          : flags.output;
+      flags.output.empty() ? std::filesystem::path(flags.input).replace_extension(".png").string()
+                           : flags.output;
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   check_writable(output, overwrite);  // fail before the (slower) load and render
   const Packing packing = read_packing(flags.input);
   const Image image = render_image(packing, options);
   write_png(image, output, overwrite);
   fmt::print("wrote {} ({}x{}, {} particles, view {}, colour {}{})\n", output, image.width,
-             image.height, packing.particles.size(), flags.view, color_mode_name(options.style.color),
-             flags.is_wireframe ? ", wireframe" : "");
+             image.height, packing.particles.size(), flags.view,
+             color_mode_name(options.style.color), flags.is_wireframe ? ", wireframe" : "");
 }
 
 }  // namespace
@@ -87,24 +85,28 @@ void register_render(CLI::App& app) {
                       "PNG file to write (default: the packing's name with extension .png)");
   command->add_option("--size", flags->size, "image size WxH in pixels, each in [16, 8192]")
       ->capture_default_str();
-  command->add_option("--view", flags->view,
-                      "camera direction: iso (front-right-top corner), front (along +y), side "
-                      "(along -x), top (down -z)")
+  command
+      ->add_option("--view", flags->view,
+                   "camera direction: iso (front-right-top corner), front (along +y), side "
+                   "(along -x), top (down -z)")
       ->capture_default_str();
-  command->add_option("--color", flags->color,
-                      "particle colours: id (one hue per particle), size (equivalent diameter), "
-                      "alpha (measured shape parameter, Eq. 2)")
+  command
+      ->add_option("--color", flags->color,
+                   "particle colours: id (one hue per particle), size (equivalent diameter), "
+                   "alpha (measured shape parameter, Eq. 2)")
       ->capture_default_str();
   command->add_flag("--wireframe", flags->is_wireframe, "draw triangle edges only");
   command->add_flag("--ortho", flags->is_orthographic,
                     "orthographic projection (parallel lines stay parallel; for measuring)");
   command->add_flag("--no-container", flags->has_no_container, "leave out the container outline");
-  command->add_option("--samples", flags->samples,
-                      "anti-aliasing samples per pixel, [0, 16] (0 = off)")
+  command
+      ->add_option("--samples", flags->samples,
+                   "anti-aliasing samples per pixel, [0, 16] (0 = off)")
       ->capture_default_str();
-  command->add_option("--coarse-below", flags->coarse_below_pixels,
-                      "draw particles smaller than this many pixels with a 24-triangle coarse "
-                      "shape (0 = full detail always)")
+  command
+      ->add_option("--coarse-below", flags->coarse_below_pixels,
+                   "draw particles smaller than this many pixels with a 24-triangle coarse "
+                   "shape (0 = full detail always)")
       ->capture_default_str();
   command->add_flag("-f,--force", flags->is_forced, "replace an existing output file");
   command->callback([flags] { run_render(*flags); });

@@ -16,8 +16,8 @@ namespace aggpack::gui {
 /// What a finished job hands back to the window thread.
 struct JobResult {
   bool is_ok = false;
-  std::string message;                      ///< status line: summary or error
-  std::shared_ptr<const Packing> packing;   ///< new packing to show, or null (export)
+  std::string message;                     ///< status line: summary or error
+  std::shared_ptr<const Packing> packing;  ///< new packing to show, or null (export)
 };
 
 class BackgroundJob {

@@ -155,9 +155,9 @@ std::vector<std::string> overrides_from_fields(const Fields& f) {
 GuiApp::GuiApp(GLFWwindow* window, GuiOptions options)
     : window_(window), options_(std::move(options)) {
   // The configuration fills the fields (defaults: the paper's case); errors are the CLI's.
-  const PackConfig config =
-      options_.config_path ? load_pack_config(*options_.config_path, options_.overrides)
-                           : parse_pack_config("", "defaults", options_.overrides);
+  const PackConfig config = options_.config_path
+                                ? load_pack_config(*options_.config_path, options_.overrides)
+                                : parse_pack_config("", "defaults", options_.overrides);
   fields_ = fields_from_config(config);
   style_ = options_.style;
   view_ = options_.view;
@@ -303,10 +303,10 @@ void GuiApp::show_packing(std::shared_ptr<const Packing> packing) {
   // Keep the user's camera when the scene did not move (re-pack with new shape parameters);
   // refit when the container changed.
   const Aabb& bounds = renderer_->scene_bounds();
-  const bool is_same_scene = !old_bounds.is_empty() && !bounds.is_empty() &&
-                             (old_bounds.lower - bounds.lower).norm() +
-                                     (old_bounds.upper - bounds.upper).norm() <
-                                 1e-3 * bounds.extent().norm();
+  const bool is_same_scene =
+      !old_bounds.is_empty() && !bounds.is_empty() &&
+      (old_bounds.lower - bounds.lower).norm() + (old_bounds.upper - bounds.upper).norm() <
+          1e-3 * bounds.extent().norm();
   if (!is_same_scene) reset_view();
   is_scene_dirty_ = true;
 }
@@ -342,7 +342,8 @@ void GuiApp::render_scene_if_needed(int width, int height) {
   is_preview_ = is_interacting();
   if (is_preview_) {
     const std::size_t light = std::max<std::size_t>(20000, style.triangle_budget / 5);
-    style.triangle_budget = style.triangle_budget == 0 ? 50000 : std::min(style.triangle_budget, light);
+    style.triangle_budget =
+        style.triangle_budget == 0 ? 50000 : std::min(style.triangle_budget, light);
   }
   last_stats_ = renderer_->draw(camera_, width, height, style);
   // Finish here so the time measures the scene, not whatever comes later in the frame.
@@ -387,8 +388,8 @@ void GuiApp::frame() {
         "triangles) in a %dx%d view: %.1f ms/frame (%.1f frames/s), scene %.1f ms/frame\n",
         frames, renderer_->particle_count(), last_stats_.particles_drawn,
         last_stats_.coarse_particles, last_stats_.point_particles, last_stats_.triangles,
-        view_width, view_height,
-        1e3 * seconds / frames, frames / seconds, 1e3 * benchmark_scene_seconds_ / frames);
+        view_width, view_height, 1e3 * seconds / frames, frames / seconds,
+        1e3 * benchmark_scene_seconds_ / frames);
     std::fflush(stdout);
   }
   if (frames_since_job_ >= 0) ++frames_since_job_;
@@ -592,7 +593,8 @@ void GuiApp::draw_view_section() {
     is_changed = true;
   }
   int budget = static_cast<int>(style_.triangle_budget / 1000);
-  if (ImGui::SliderInt("triangle budget (k)", &budget, 0, 5000, budget == 0 ? "no limit" : "%d k")) {
+  if (ImGui::SliderInt("triangle budget (k)", &budget, 0, 5000,
+                       budget == 0 ? "no limit" : "%d k")) {
     style_.triangle_budget = static_cast<std::size_t>(budget) * 1000;
     is_scene_dirty_ = true;
   }

@@ -21,20 +21,20 @@ namespace aggpack::gui {
 /// The editable packing parameters. They become `--set` overrides of the pack configuration, so
 /// the GUI validates and reports errors exactly as `aggpack pack` does.
 struct Fields {
-  int container_kind = 0;  // 0 box, 1 cylinder
-  double length = 3.0, width = 1.0, depth = 2.8;  // box (m)
+  int container_kind = 0;                                // 0 box, 1 cylinder
+  double length = 3.0, width = 1.0, depth = 2.8;         // box (m)
   double cylinder_radius = 0.05, cylinder_height = 0.1;  // cylinder (m)
-  double wall_gap = 0.0;  // m
+  double wall_gap = 0.0;                                 // m
   double alpha = 0.5;
   bool has_radius_range = false;  // random + uniform grading: r in [radius_min, radius_max]
   double radius = 0.1, radius_min = 0.1, radius_max = 0.1;  // m
-  double edge_length = 0.1;        // m; random: 0 = relative (edge_length_ratio * r)
-  double edge_length_ratio = 1.0;  // random with edge_length 0
-  int packer = 0;  // 0 lattice, 1 random
+  double edge_length = 0.1;         // m; random: 0 = relative (edge_length_ratio * r)
+  double edge_length_ratio = 1.0;   // random with edge_length 0
+  int packer = 0;                   // 0 lattice, 1 random
   double spacing = 0.0, gap = 0.0;  // m
-  int grading = 0;  // 0 uniform, 1 fuller
+  int grading = 0;                  // 0 uniform, 1 fuller
   double size_min = 0.005, size_max = 0.02, exponent = 0.5;  // fuller (m, m, -)
-  int target = 0;  // 0 volume fraction, 1 count
+  int target = 0;                                            // 0 volume fraction, 1 count
   double target_fraction = 0.35;
   int target_count = 1000;
   int shape_library = 0;
@@ -48,13 +48,13 @@ std::vector<std::string> overrides_from_fields(const Fields& fields);
 
 /// Start-up options (from the command line).
 struct GuiOptions {
-  std::optional<std::string> config_path;  ///< TOML configuration to fill the fields from
-  std::vector<std::string> overrides;      ///< --set key=value, applied to the configuration
-  std::optional<std::string> open_path;    ///< native packing to open at start
-  bool is_pack_at_start = false;           ///< press Pack once at start
+  std::optional<std::string> config_path;      ///< TOML configuration to fill the fields from
+  std::vector<std::string> overrides;          ///< --set key=value, applied to the configuration
+  std::optional<std::string> open_path;        ///< native packing to open at start
+  bool is_pack_at_start = false;               ///< press Pack once at start
   std::optional<std::string> screenshot_path;  ///< save the window once the first job is done
-  bool is_quit_when_done = false;          ///< exit after the screenshot / benchmark
-  int benchmark_frames = 0;                ///< rotate and redraw this many frames, print fps
+  bool is_quit_when_done = false;              ///< exit after the screenshot / benchmark
+  int benchmark_frames = 0;                    ///< rotate and redraw this many frames, print fps
   ViewPreset view = ViewPreset::kIso;
   RenderStyle style;
   std::string export_base = "aggpack_out";  ///< export file name without extension

@@ -93,8 +93,8 @@ int main(int argc, char** argv) {
     }
     options.view = aggpack::parse_view_preset(view, "--view");
     options.style.color = aggpack::parse_color_mode(color, "--color");
-    if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2 || width < 320 ||
-        height < 240 || width > 8192 || height > 8192) {
+    if (std::sscanf(size.c_str(), "%dx%d", &width, &height) != 2 || width < 320 || height < 240 ||
+        width > 8192 || height > 8192) {
       throw aggpack::InvalidInput("--size", size, "WxH with W in [320, 8192], H in [240, 8192]");
     }
   } catch (const aggpack::Error& error) {
@@ -104,8 +104,9 @@ int main(int argc, char** argv) {
 
   glfwSetErrorCallback(on_glfw_error);
   if (glfwInit() == GLFW_FALSE) {
-    std::fprintf(stderr, "aggpack-gui: error: cannot open a display (is DISPLAY set? For no "
-                         "display use `aggpack render` or run under xvfb-run)\n");
+    std::fprintf(stderr,
+                 "aggpack-gui: error: cannot open a display (is DISPLAY set? For no "
+                 "display use `aggpack render` or run under xvfb-run)\n");
     return 3;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);

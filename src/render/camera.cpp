@@ -41,16 +41,19 @@ ViewPreset parse_view_preset(const std::string& text, const std::string& field) 
 
 const char* view_preset_name(ViewPreset view) {
   switch (view) {
-    case ViewPreset::kIso: return "iso";
-    case ViewPreset::kFront: return "front";
-    case ViewPreset::kSide: return "side";
-    case ViewPreset::kTop: return "top";
+    case ViewPreset::kIso:
+      return "iso";
+    case ViewPreset::kFront:
+      return "front";
+    case ViewPreset::kSide:
+      return "side";
+    case ViewPreset::kTop:
+      return "top";
   }
   return "iso";
 }
 
-Camera Camera::framing(const Aabb& bounds, ViewPreset view, double aspect,
-                       bool is_orthographic) {
+Camera Camera::framing(const Aabb& bounds, ViewPreset view, double aspect, bool is_orthographic) {
   Camera camera;
   camera.is_orthographic_ = is_orthographic;
   camera.scene_ = bounds;

@@ -25,12 +25,18 @@ Rgb hsv(double h, double s, double v) {
   const double f = sector - std::floor(sector);
   const double p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
   switch (i) {
-    case 0: return to_rgb(v, t, p);
-    case 1: return to_rgb(q, v, p);
-    case 2: return to_rgb(p, v, t);
-    case 3: return to_rgb(p, q, v);
-    case 4: return to_rgb(t, p, v);
-    default: return to_rgb(v, p, q);
+    case 0:
+      return to_rgb(v, t, p);
+    case 1:
+      return to_rgb(q, v, p);
+    case 2:
+      return to_rgb(p, v, t);
+    case 3:
+      return to_rgb(p, q, v);
+    case 4:
+      return to_rgb(t, p, v);
+    default:
+      return to_rgb(v, p, q);
   }
 }
 
@@ -62,9 +68,12 @@ ColorMode parse_color_mode(const std::string& text, const std::string& field) {
 
 const char* color_mode_name(ColorMode mode) {
   switch (mode) {
-    case ColorMode::kParticle: return "id";
-    case ColorMode::kSize: return "size";
-    case ColorMode::kAlpha: return "alpha";
+    case ColorMode::kParticle:
+      return "id";
+    case ColorMode::kSize:
+      return "size";
+    case ColorMode::kAlpha:
+      return "alpha";
   }
   return "id";
 }
@@ -111,8 +120,8 @@ ParticleColors particle_colors(const Packing& packing, const ShapeMeasures& meas
     if (mode == ColorMode::kSize) value *= particle.scale;
     values.push_back(value);
   }
-  return scale_colors(values, mode == ColorMode::kSize ? "equivalent diameter (m)"
-                                                       : "measured alpha (Eq. 2)");
+  return scale_colors(
+      values, mode == ColorMode::kSize ? "equivalent diameter (m)" : "measured alpha (Eq. 2)");
 }
 
 Rgb scale_color(double t) {

@@ -171,8 +171,8 @@ Image read_framebuffer(int x, int y, int width, int height) {
   // OpenGL's rows run bottom to top; images run top to bottom.
   const std::size_t row_bytes = static_cast<std::size_t>(width) * 4;
   for (int row = 0; row < height / 2; ++row) {
-    auto top = image.rgba.begin() +
-               static_cast<std::ptrdiff_t>(static_cast<std::size_t>(row) * row_bytes);
+    auto top =
+        image.rgba.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(row) * row_bytes);
     auto bottom = image.rgba.begin() + static_cast<std::ptrdiff_t>(
                                            static_cast<std::size_t>(height - 1 - row) * row_bytes);
     std::swap_ranges(top, top + static_cast<std::ptrdiff_t>(row_bytes), bottom);
@@ -197,9 +197,9 @@ Image render_image(const Packing& packing, const RenderImageOptions& options) {
     // Renderer and framebuffer must go before the context does.
     PackingRenderer renderer;
     renderer.set_packing(packing);
-    const Camera camera =
-        Camera::framing(renderer.scene_bounds(), options.view,
-                        static_cast<double>(options.width) / options.height, options.is_orthographic);
+    const Camera camera = Camera::framing(renderer.scene_bounds(), options.view,
+                                          static_cast<double>(options.width) / options.height,
+                                          options.is_orthographic);
     OffscreenTarget target(options.width, options.height, options.samples);
     target.bind();
     renderer.draw(camera, options.width, options.height, options.style);
@@ -210,8 +210,8 @@ Image render_image(const Packing& packing, const RenderImageOptions& options) {
 
 void write_png(const Image& image, const std::string& path, Overwrite overwrite) {
   if (image.width <= 0 || image.height <= 0 ||
-      image.rgba.size() != static_cast<std::size_t>(image.width) *
-                               static_cast<std::size_t>(image.height) * 4) {
+      image.rgba.size() !=
+          static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 4) {
     throw InvalidInput("image", std::to_string(image.width) + "x" + std::to_string(image.height),
                        "a non-empty RGBA image");
   }

@@ -48,9 +48,9 @@ struct ParticleSphere {
 
 // A particle in the view, for culling and level-of-detail decisions.
 struct Candidate {
-  float near_depth;  // view depth of the nearest point of the bounding sphere (m)
-  float depth;       // view depth of the centre (m)
-  float pixels;      // projected diameter of the bounding sphere (px)
+  float near_depth;          // view depth of the nearest point of the bounding sphere (m)
+  float depth;               // view depth of the centre (m)
+  float pixels;              // projected diameter of the bounding sphere (px)
   float screen_x, screen_y;  // projected centre (px, origin lower left)
   std::uint32_t particle;
 };
@@ -82,14 +82,14 @@ void main() {
 // (position is linear across a triangle) and needs no per-face vertices. Two lights fixed to the
 // camera (key from the upper left, weaker fill from the lower right) plus ambient, and a small
 // specular term so neighbouring facets of similar orientation still read as separate.
-#define AGGPACK_SHADE_GLSL                                                                      \
-  "vec3 shade(vec3 color, vec3 n) {\n"                                                          \
-  "  vec3 key = normalize(vec3(-0.45, 0.6, 0.65));\n"                                           \
-  "  vec3 fill = normalize(vec3(0.55, -0.35, 0.55));\n"                                         \
-  "  float diffuse = 0.28 + 0.62 * max(dot(n, key), 0.0) + 0.22 * max(dot(n, fill), 0.0);\n"    \
-  "  vec3 half_vector = normalize(key + vec3(0.0, 0.0, 1.0));\n"                                \
-  "  float specular = 0.22 * pow(max(dot(n, half_vector), 0.0), 32.0);\n"                       \
-  "  return color * diffuse + vec3(specular);\n"                                                \
+#define AGGPACK_SHADE_GLSL                                                                   \
+  "vec3 shade(vec3 color, vec3 n) {\n"                                                       \
+  "  vec3 key = normalize(vec3(-0.45, 0.6, 0.65));\n"                                        \
+  "  vec3 fill = normalize(vec3(0.55, -0.35, 0.55));\n"                                      \
+  "  float diffuse = 0.28 + 0.62 * max(dot(n, key), 0.0) + 0.22 * max(dot(n, fill), 0.0);\n" \
+  "  vec3 half_vector = normalize(key + vec3(0.0, 0.0, 1.0));\n"                             \
+  "  float specular = 0.22 * pow(max(dot(n, half_vector), 0.0), 32.0);\n"                    \
+  "  return color * diffuse + vec3(specular);\n"                                             \
   "}\n"
 
 constexpr const char* kParticleFragmentShader = "#version 330 core\n" AGGPACK_SHADE_GLSL R"(
@@ -160,9 +160,7 @@ out vec4 fragment;
 void main() { fragment = vec4(u_color, 1.0); }
 )";
 
-[[noreturn]] void throw_gl(const std::string& message) {
-  throw IoError("OpenGL: " + message);
-}
+[[noreturn]] void throw_gl(const std::string& message) { throw IoError("OpenGL: " + message); }
 
 GLuint compile_shader(GLenum type, const char* source) {
   const GLuint shader = glCreateShader(type);
@@ -382,8 +380,13 @@ PackingRenderer::~PackingRenderer() {
   glDeleteProgram(s.point_program);
   glDeleteBuffers(1, &s.point_buffer);
   glDeleteVertexArrays(1, &s.point_array);
-  const std::array<GLuint, 7> buffers = {s.vertex_buffer,    s.index_buffer, s.instance_buffer,
-                                         s.transform_buffer, s.color_buffer, s.line_buffer, 0};
+  const std::array<GLuint, 7> buffers = {s.vertex_buffer,
+                                         s.index_buffer,
+                                         s.instance_buffer,
+                                         s.transform_buffer,
+                                         s.color_buffer,
+                                         s.line_buffer,
+                                         0};
   glDeleteBuffers(6, buffers.data());
   const std::array<GLuint, 2> textures = {s.transform_texture, s.color_texture};
   glDeleteTextures(2, textures.data());
@@ -482,10 +485,10 @@ void PackingRenderer::set_packing(const Packing& packing) {
     s.impostor_radius[i] = transforms[16 * i + 12];
     const double radius = s.shapes[particle.shape].radius * particle.scale;
     s.particle_shape[i] = particle.shape;
-    s.particle_sphere[i] = {static_cast<float>(t.x()), static_cast<float>(t.y()),
-                            static_cast<float>(t.z()), static_cast<float>(radius),
-                            static_cast<float>(s.shapes[particle.shape].inner_radius *
-                                               particle.scale)};
+    s.particle_sphere[i] = {
+        static_cast<float>(t.x()), static_cast<float>(t.y()), static_cast<float>(t.z()),
+        static_cast<float>(radius),
+        static_cast<float>(s.shapes[particle.shape].inner_radius * particle.scale)};
     s.bounds.expand(t - Vec3::Constant(radius));
     s.bounds.expand(t + Vec3::Constant(radius));
   }
@@ -543,7 +546,8 @@ void PackingRenderer::set_packing(const Packing& packing) {
     const Aabb box = container.bounds();
     if (!box.is_empty()) {
       auto corner = [&box](int c) {
-        return Vec3((c & 1) ? box.upper.x() : box.lower.x(), (c & 2) ? box.upper.y() : box.lower.y(),
+        return Vec3((c & 1) ? box.upper.x() : box.lower.x(),
+                    (c & 2) ? box.upper.y() : box.lower.y(),
                     (c & 4) ? box.upper.z() : box.lower.z());
       };
       for (int c = 0; c < 8; ++c) {
@@ -555,8 +559,8 @@ void PackingRenderer::set_packing(const Packing& packing) {
   }
   s.line_vertex_count = static_cast<GLsizei>(lines.size() / 3);
   glBindBuffer(GL_ARRAY_BUFFER, s.line_buffer);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(lines.size() * sizeof(float)),
-               lines.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(lines.size() * sizeof(float)), lines.data(),
+               GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
@@ -626,11 +630,9 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
     s.candidates.push_back(candidate);
   }
   // Front to back: lets the rasteriser's early depth test reject hidden fragments.
-  std::sort(s.candidates.begin(), s.candidates.end(),
-            [](const Candidate& a, const Candidate& b) {
-              return a.near_depth < b.near_depth ||
-                     (a.near_depth == b.near_depth && a.particle < b.particle);
-            });
+  std::sort(s.candidates.begin(), s.candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return a.near_depth < b.near_depth || (a.near_depth == b.near_depth && a.particle < b.particle);
+  });
 
   const std::size_t kept = s.candidates.size();
 
@@ -745,10 +747,9 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
                s.instance_list.data(), GL_STREAM_DRAW);
   glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
   if (!s.single_counts.empty()) {
-    glMultiDrawElementsBaseVertex(GL_TRIANGLES, s.single_counts.data(), GL_UNSIGNED_INT,
-                                  s.single_offsets.data(),
-                                  static_cast<GLsizei>(s.single_counts.size()),
-                                  s.single_base_vertices.data());
+    glMultiDrawElementsBaseVertex(
+        GL_TRIANGLES, s.single_counts.data(), GL_UNSIGNED_INT, s.single_offsets.data(),
+        static_cast<GLsizei>(s.single_counts.size()), s.single_base_vertices.data());
     ++stats.draw_calls;
   }
   // GL 3.3 has no base instance: point the per-instance attribute at each group's block.
@@ -787,7 +788,7 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
       const ParticleSphere& sphere = s.particle_sphere[particle];
       const Rgb color = particle < colors.size() ? colors[particle] : Rgb{255, 255, 255};
       s.points[k] = {sphere.x, sphere.y, sphere.z, s.impostor_radius[particle],
-                     color.r, color.g, color.b, 255};
+                     color.r,  color.g,  color.b,  255};
     }
     glBindVertexArray(s.point_array);
     glBindBuffer(GL_ARRAY_BUFFER, s.point_buffer);
@@ -801,8 +802,8 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   if (style.show_container && s.line_vertex_count > 0) {
     glUseProgram(s.line_program);
     glUniformMatrix4fv(s.u_view_projection, 1, GL_FALSE, view_projection.data());
-    glUniform3f(s.u_line_color, style.container_color.r / 255.0f,
-                style.container_color.g / 255.0f, style.container_color.b / 255.0f);
+    glUniform3f(s.u_line_color, style.container_color.r / 255.0f, style.container_color.g / 255.0f,
+                style.container_color.b / 255.0f);
     glBindVertexArray(s.line_array);
     glDrawArrays(GL_LINES, 0, s.line_vertex_count);
     glBindVertexArray(0);

@@ -18,17 +18,17 @@ Aabb box(const Vec3& lower, const Vec3& upper) {
 }
 
 Eigen::Vector3d to_ndc(const Camera& camera, double aspect, const Vec3& point) {
-  const Eigen::Vector4f clip = camera.projection_matrix(aspect) * camera.view_matrix() *
-                               Eigen::Vector4f(static_cast<float>(point.x()),
-                                               static_cast<float>(point.y()),
-                                               static_cast<float>(point.z()), 1.0f);
+  const Eigen::Vector4f clip =
+      camera.projection_matrix(aspect) * camera.view_matrix() *
+      Eigen::Vector4f(static_cast<float>(point.x()), static_cast<float>(point.y()),
+                      static_cast<float>(point.z()), 1.0f);
   return Eigen::Vector3d(clip.x() / clip.w(), clip.y() / clip.w(), clip.z() / clip.w());
 }
 
 TEST(Camera, FramingKeepsEveryCornerOfTheBoxInView) {
   const Aabb bounds = box(Vec3(0, 0, 0), Vec3(3.0, 1.0, 2.8));
-  for (ViewPreset view : {ViewPreset::kIso, ViewPreset::kFront, ViewPreset::kSide,
-                          ViewPreset::kTop}) {
+  for (ViewPreset view :
+       {ViewPreset::kIso, ViewPreset::kFront, ViewPreset::kSide, ViewPreset::kTop}) {
     for (int variant = 0; variant < 4; ++variant) {
       const bool is_orthographic = (variant & 1) != 0;
       const double aspect = (variant & 2) ? 2.0 : 1.0;
@@ -64,8 +64,8 @@ TEST(Camera, PresetsLookAlongTheDocumentedAxes) {
 }
 
 TEST(Camera, ParsesViewNamesAndRejectsOthers) {
-  for (ViewPreset view : {ViewPreset::kIso, ViewPreset::kFront, ViewPreset::kSide,
-                          ViewPreset::kTop}) {
+  for (ViewPreset view :
+       {ViewPreset::kIso, ViewPreset::kFront, ViewPreset::kSide, ViewPreset::kTop}) {
     EXPECT_EQ(parse_view_preset(view_preset_name(view)), view);
   }
   try {
@@ -129,8 +129,8 @@ TEST(Camera, PixelsPerMetreMatchesTheProjection) {
   const Vec3 a = camera.target();
   const Vec3 b = a + 0.1 * camera.up();
   const double ndc_step = to_ndc(camera, 1.0, b).y() - to_ndc(camera, 1.0, a).y();
-  EXPECT_NEAR(ndc_step * 0.5 * height,
-              0.1 * camera.pixels_per_metre(camera.distance(), height), 1e-3);
+  EXPECT_NEAR(ndc_step * 0.5 * height, 0.1 * camera.pixels_per_metre(camera.distance(), height),
+              1e-3);
 }
 
 TEST(Camera, EmptyBoundsFrameTheUnitCube) {

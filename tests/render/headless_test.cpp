@@ -132,7 +132,8 @@ TEST(Headless, CubeCoversExactlyItsProjectedSquare) {
   }
   EXPECT_NEAR(static_cast<double>(inside), (x1 - x0) * (y1 - y0), 2.0 * (x1 - x0 + y1 - y0));
   // The top face faces the viewer: lit, so brighter than its unlit colour would be dark.
-  const Rgb centre = image.pixel(static_cast<int>(0.5 * (x0 + x1)), static_cast<int>(0.5 * (y0 + y1)));
+  const Rgb centre =
+      image.pixel(static_cast<int>(0.5 * (x0 + x1)), static_cast<int>(0.5 * (y0 + y1)));
   EXPECT_GT(centre.r + centre.g + centre.b, 200);
 }
 
@@ -150,11 +151,10 @@ TEST(Headless, ParticlesCoverTheRegionTheyOccupy) {
   Aabb scene = packing.container.bounds();
   const Camera camera = Camera::framing(scene, ViewPreset::kFront, 320.0 / 240.0, true);
   const double margin = 0.01;  // grid_packing's margin is 0.1 r = 0.01 m
-  const Eigen::Vector2d low = project(camera, image.width, image.height,
-                                      Vec3(margin, 0.0, margin));
-  const Eigen::Vector2d high = project(camera, image.width, image.height,
-                                       Vec3(filled_length - margin, 0.0,
-                                            packing.container.depth - margin));
+  const Eigen::Vector2d low = project(camera, image.width, image.height, Vec3(margin, 0.0, margin));
+  const Eigen::Vector2d high =
+      project(camera, image.width, image.height,
+              Vec3(filled_length - margin, 0.0, packing.container.depth - margin));
   std::size_t covered_left = 0, pixels_left = 0, covered_right = 0;
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {
@@ -163,8 +163,7 @@ TEST(Headless, ParticlesCoverTheRegionTheyOccupy) {
       if (cx > low.x() + 1 && cx < high.x() - 1 && cy > high.y() + 1 && cy < low.y() - 1) {
         ++pixels_left;
         covered_left += is_covered;
-      } else if (cx > high.x() + 1 || cx < low.x() - 1 || cy < high.y() - 1 ||
-                 cy > low.y() + 1) {
+      } else if (cx > high.x() + 1 || cx < low.x() - 1 || cy < high.y() - 1 || cy > low.y() + 1) {
         covered_right += is_covered;  // outside the occupied block
       }
     }

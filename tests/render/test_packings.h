@@ -15,7 +15,8 @@ namespace aggpack::test {
 /// reuse that many shapes (instanced drawing), each randomly rotated; otherwise each particle has
 /// its own shape. Particle i is at grid cell (i % nx, (i / nx) % ny, i / (nx ny)).
 inline Packing grid_packing(int nx, int ny, int nz, double radius = 0.1,
-                            std::uint32_t library_size = 0, std::uint64_t seed = 7, double edge_ratio = 1.0) {
+                            std::uint32_t library_size = 0, std::uint64_t seed = 7,
+                            double edge_ratio = 1.0) {
   Packing packing;
   const double spacing = 2.2 * radius;
   const double margin = 0.1 * radius;
@@ -37,9 +38,9 @@ inline Packing grid_packing(int nx, int ny, int nz, double radius = 0.1,
     Particle particle;
     particle.shape = static_cast<std::uint32_t>(i % shape_count);
     particle.control_radius = radius;
-    particle.pose.position = Vec3(margin + spacing * (0.5 + i % nx),
-                                  margin + spacing * (0.5 + (i / nx) % ny),
-                                  margin + spacing * (0.5 + i / (nx * ny)));
+    particle.pose.position =
+        Vec3(margin + spacing * (0.5 + i % nx), margin + spacing * (0.5 + (i / nx) % ny),
+             margin + spacing * (0.5 + i / (nx * ny)));
     if (library_size > 0) {
       Rng rng(seed + 1, static_cast<std::uint64_t>(i));
       particle.pose.rotation =

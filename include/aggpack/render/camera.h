@@ -26,8 +26,8 @@ class Camera {
   /// Camera looking at `bounds` from `view`, at a distance where the whole box is in sight in a
   /// viewport of `aspect` = width / height (> 0), with perspective or orthographic projection.
   /// An empty box is treated as the unit cube at the origin.
-  static Camera framing(const Aabb& bounds, ViewPreset view = ViewPreset::kIso,
-                        double aspect = 1.0, bool is_orthographic = false);
+  static Camera framing(const Aabb& bounds, ViewPreset view = ViewPreset::kIso, double aspect = 1.0,
+                        bool is_orthographic = false);
 
   /// Orients the camera to `view` and refits the distance and target to the scene bounds for a
   /// viewport of `aspect` = width / height (> 0; other values are taken as 1) and the current
@@ -72,11 +72,11 @@ class Camera {
   void set_orthographic(bool is_orthographic) { is_orthographic_ = is_orthographic; }
 
  private:
-  Aabb scene_;                 // bounds the camera was fitted to
-  Vec3 target_ = Vec3::Zero(); // point the camera orbits (m)
-  double distance_ = 1.0;      // eye to target (m)
-  double scene_radius_ = 1.0;  // half the diagonal of scene_ (m)
-  Quat orientation_ = Quat::Identity();  // camera axes in world coordinates
+  Aabb scene_;                                 // bounds the camera was fitted to
+  Vec3 target_ = Vec3::Zero();                 // point the camera orbits (m)
+  double distance_ = 1.0;                      // eye to target (m)
+  double scene_radius_ = 1.0;                  // half the diagonal of scene_ (m)
+  Quat orientation_ = Quat::Identity();        // camera axes in world coordinates
   double field_of_view_ = 0.5235987755982988;  // 30 degrees
   bool is_orthographic_ = false;
 };

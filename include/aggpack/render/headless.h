@@ -83,12 +83,12 @@ Image read_framebuffer(int x, int y, int width, int height);
 
 /// Options of render_image. Sizes in pixels.
 struct RenderImageOptions {
-  int width = 1600;                  ///< image width, [16, 8192]
-  int height = 1000;                 ///< image height, [16, 8192]
+  int width = 1600;                    ///< image width, [16, 8192]
+  int height = 1000;                   ///< image height, [16, 8192]
   ViewPreset view = ViewPreset::kIso;  ///< camera direction (the camera frames the scene)
-  bool is_orthographic = false;      ///< orthographic instead of perspective projection
-  int samples = 4;                   ///< multisample anti-aliasing samples, [0, 16] (0 = off)
-  RenderStyle style;                 ///< colours, wireframe, container outline, detail
+  bool is_orthographic = false;        ///< orthographic instead of perspective projection
+  int samples = 4;                     ///< multisample anti-aliasing samples, [0, 16] (0 = off)
+  RenderStyle style;                   ///< colours, wireframe, container outline, detail
 };
 
 /// Throws InvalidInput naming the field ("width", "height", "samples",
