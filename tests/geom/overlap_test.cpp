@@ -610,7 +610,8 @@ TEST(Overlap, EllipsoidsHillClimbAndAgreeWithScan) {
 TEST(Overlap, SupportShapeKeepsEverySupportValue) {
   // Dropping non-hull vertices and hill-climbing must not change any support value: compare with
   // a scan over every original vertex, for generated particles (most of whose vertices lie on
-  // hull faces) and polyhedral ellipsoids (large ones hill-climb).
+  // hull faces, so their climbing graph runs through dropped vertices) and polyhedral
+  // ellipsoids, with each search method.
   Rng rng(5, 5);
   std::vector<ConvexPolyhedron> bodies;
   for (double edge : {1.0, 0.5, 0.25, 0.15}) {
@@ -624,13 +625,18 @@ TEST(Overlap, SupportShapeKeepsEverySupportValue) {
   }
   bodies.push_back(make_ellipsoid(12, 24, Vec3(1.0, 0.8, 0.6)));
   bodies.push_back(make_ellipsoid(30, 60, Vec3(1.0, 1.0, 0.2)));
-  {
+  for (const SupportSearch search :
+       {SupportSearch::kAuto, SupportSearch::kScan, SupportSearch::kHillClimb}) {
     for (const ConvexPolyhedron& body : bodies) {
-      const SupportShape shape(body);
+      const SupportShape shape(body, search);
+      ASSERT_EQ(shape.uses_hill_climbing(), search == SupportSearch::kHillClimb ||
+                                                (search == SupportSearch::kAuto &&
+                                                 shape.vertex_count() >
+                                                     SupportShape::kHillClimbMinVertices));
       ASSERT_LE(shape.vertex_count(), body.vertex_count());
       ASSERT_GE(shape.vertex_count(), 4u);
       std::uint32_t hint = SupportShape::kNoHint;
-      for (int k = 0; k < 2000; ++k) {
+      for (int k = 0; k < 1000; ++k) {
         const Vec3 direction = random_unit(rng);
         double best = -1e300;
         for (const auto& v : body.vertices()) best = std::max(best, direction.dot(v));

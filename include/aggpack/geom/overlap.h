@@ -58,7 +58,7 @@ class SupportShape {
  public:
   /// Shapes with more hull vertices than this use hill-climbing over the adjacency graph;
   /// smaller ones use a linear scan (measured crossover, see bench/RESULTS.md).
-  static constexpr std::uint32_t kHillClimbMinVertices = 64;
+  static constexpr std::uint32_t kHillClimbMinVertices = 400;
 
   SupportShape() = default;
   /// \throw InvalidInput if `body` is empty or not a closed 2-manifold.
