@@ -421,8 +421,9 @@ void GuiApp::after_render() {
   // status line and the scene are then drawn) and any benchmark is over.
   if (frames_since_job_ < 2 || benchmark_left_ > 0 || is_script_done_) return;
   is_script_done_ = true;
-  if (options_.screenshot_path) save_screenshot(*options_.screenshot_path);
+  // The status line of the finished job (a screenshot below replaces it on screen).
   std::printf("status: %s\n", status_.c_str());
+  if (options_.screenshot_path) save_screenshot(*options_.screenshot_path);
   std::fflush(stdout);
   if (options_.is_quit_when_done) should_quit_ = true;
 }
