@@ -15,6 +15,16 @@
 
 #include "aggpack/core/error.h"
 
+// LeakSanitizer (the sanitizer CI run): Mesa's EGL/GLX/llvmpipe and the X11 libraries keep
+// driver singletons and the LLVM JIT until process exit; they are not aggpack's. Every program
+// that renders links this file, so the suppressions live here; aggpack's own code is still
+// checked. Ignored in builds without LeakSanitizer.
+extern "C" const char* __lsan_default_suppressions() {
+  return "leak:libEGL_mesa\nleak:libGLX_mesa\nleak:libgallium\nleak:libLLVM\nleak:libglapi\n"
+         "leak:libGLdispatch\nleak:swrast_dri\nleak:libdrm\nleak:libexpat\nleak:libX11\n"
+         "leak:libxcb\nleak:libglfw\nleak:libdbus\nleak:libfontconfig\n";
+}
+
 namespace aggpack {
 
 namespace {

@@ -14,13 +14,6 @@
 #include "aggpack/render/headless.h"
 #include "test_packings.h"
 
-// Mesa's EGL/llvmpipe keeps some allocations until process exit (driver singletons, the LLVM
-// JIT); they are not ours. Suppress only those libraries so LeakSanitizer still checks aggpack.
-extern "C" const char* __lsan_default_suppressions() {
-  return "leak:libEGL_mesa\nleak:libgallium\nleak:libLLVM\nleak:libglapi\nleak:libGLdispatch\n"
-         "leak:swrast_dri\nleak:libdrm\nleak:libexpat\n";
-}
-
 namespace aggpack {
 namespace {
 
