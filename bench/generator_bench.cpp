@@ -53,11 +53,8 @@ BENCHMARK(BM_GrowAggregate)->Apply(grid);
 
 // generate_particle adds the radius draw and the options check on top of grow_aggregate.
 void BM_GenerateParticle(benchmark::State& state) {
-  const aggpack::GeneratorOptions options{.alpha = 0.5,
-                                          .radius_min = 0.05,
-                                          .radius_max = 0.1,
-                                          .edge_length = 0.05,
-                                          .seed = 7};
+  const aggpack::GeneratorOptions options{
+      .alpha = 0.5, .radius_min = 0.05, .radius_max = 0.1, .edge_length = 0.05, .seed = 7};
   std::uint64_t index = 0;
   for (auto _ : state) {
     auto particle = aggpack::generate_particle(options, index++);
@@ -71,7 +68,8 @@ BENCHMARK(BM_GenerateParticle);
 // Measuring a particle: mass properties + principal axes (what `aggpack shapes` adds per particle).
 void BM_Describe(benchmark::State& state) {
   aggpack::Rng rng(1, 0);
-  const auto body = aggpack::grow_aggregate({.alpha = 0.5, .radius = 0.1, .edge_length = 0.05}, rng);
+  const auto body =
+      aggpack::grow_aggregate({.alpha = 0.5, .radius = 0.1, .edge_length = 0.05}, rng);
   for (auto _ : state) {
     auto descriptors = aggpack::describe(body);
     benchmark::DoNotOptimize(descriptors);
@@ -84,7 +82,8 @@ BENCHMARK(BM_Describe);
 
 void BM_MassProperties(benchmark::State& state) {
   aggpack::Rng rng(1, 0);
-  const auto body = aggpack::grow_aggregate({.alpha = 0.5, .radius = 0.1, .edge_length = 0.05}, rng);
+  const auto body =
+      aggpack::grow_aggregate({.alpha = 0.5, .radius = 0.1, .edge_length = 0.05}, rng);
   for (auto _ : state) benchmark::DoNotOptimize(aggpack::mass_properties(body));
   state.SetItemsProcessed(state.iterations());
 }
@@ -93,7 +92,8 @@ BENCHMARK(BM_MassProperties);
 // The structural checks used by the tests (O(V F) for convexity).
 void BM_CheckClosedManifold(benchmark::State& state) {
   aggpack::Rng rng(1, 0);
-  const auto body = aggpack::grow_aggregate({.alpha = 0.5, .radius = 0.1, .edge_length = 0.05}, rng);
+  const auto body =
+      aggpack::grow_aggregate({.alpha = 0.5, .radius = 0.1, .edge_length = 0.05}, rng);
   for (auto _ : state) benchmark::DoNotOptimize(aggpack::check_closed_manifold(body));
   state.SetItemsProcessed(state.iterations());
 }
@@ -101,7 +101,8 @@ BENCHMARK(BM_CheckClosedManifold);
 
 void BM_CheckConvex(benchmark::State& state) {
   aggpack::Rng rng(1, 0);
-  const auto body = aggpack::grow_aggregate({.alpha = 0.5, .radius = 0.1, .edge_length = 0.05}, rng);
+  const auto body =
+      aggpack::grow_aggregate({.alpha = 0.5, .radius = 0.1, .edge_length = 0.05}, rng);
   for (auto _ : state) benchmark::DoNotOptimize(aggpack::check_convex(body, 1e-10));
   state.SetItemsProcessed(state.iterations());
 }

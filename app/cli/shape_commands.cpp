@@ -42,19 +42,22 @@ void add_generator_options(CLI::App& command, ShapeFlags& flags) {
   auto& g = flags.generator;
   command.add_option("--alpha", g.alpha, "Eq. 3 shape control alpha, in [0, 1]")
       ->capture_default_str();
-  command.add_option("-r,--radius", flags.radius,
-                     "control radius r (m), > 0; sets --radius-min and --radius-max (default: unset)");
+  command.add_option(
+      "-r,--radius", flags.radius,
+      "control radius r (m), > 0; sets --radius-min and --radius-max (default: unset)");
   command.add_option("--radius-min", g.radius_min, "smallest control radius (m), > 0")
       ->capture_default_str();
   command.add_option("--radius-max", g.radius_max, "largest control radius (m), >= radius-min")
       ->capture_default_str();
-  command.add_option("-L,--edge-length", g.edge_length,
-                     "maximum edge length L (m), > 0: growth stops when every edge <= L")
+  command
+      .add_option("-L,--edge-length", g.edge_length,
+                  "maximum edge length L (m), > 0: growth stops when every edge <= L")
       ->capture_default_str();
   command.add_option("--max-vertices", g.max_vertices, "vertex cap per particle, [6, 1000000]")
       ->check(kNotNegative)
       ->capture_default_str();
-  command.add_option("--seed", g.seed, "master seed, [0, 2^64-1]; particle i uses stream (seed, i)")
+  command
+      .add_option("--seed", g.seed, "master seed, [0, 2^64-1]; particle i uses stream (seed, i)")
       ->check(kNotNegative)
       ->capture_default_str();
 }
@@ -111,9 +114,10 @@ void register_particle(CLI::App& app) {
   auto is_ascii = std::make_shared<bool>(false);
   auto is_forced = std::make_shared<bool>(false);
   auto scale = std::make_shared<double>(1.0);
-  auto* command = app.add_subcommand(
-      "particle", "Generate one random aggregate particle, print its shape descriptors and "
-                  "optionally write it as STL.");
+  auto* command =
+      app.add_subcommand("particle",
+                         "Generate one random aggregate particle, print its shape descriptors and "
+                         "optionally write it as STL.");
   add_generator_options(*command, *flags);
   command->add_option("--index", *index, "particle index within the seed's family, >= 0")
       ->check(kNotNegative)
@@ -148,8 +152,9 @@ void register_shapes(CLI::App& app) {
   auto count = std::make_shared<std::uint64_t>(1000);
   auto is_forced = std::make_shared<bool>(false);
   auto* command = app.add_subcommand(
-      "shapes", "Generate N particles in parallel; write a CSV of their descriptors and print a "
-                "summary (mean, std, min, max).");
+      "shapes",
+      "Generate N particles in parallel; write a CSV of their descriptors and print a "
+      "summary (mean, std, min, max).");
   add_generator_options(*command, *flags);
   command->add_option("-n,--count", *count, "number of particles, [1, 100000000]")
       ->check(kNotNegative)
@@ -190,7 +195,8 @@ void register_shapes(CLI::App& app) {
       out << '\n';
       for (std::size_t i = 0; i < n; ++i) {
         out << i << ',' << fmt::format("{:.17g}", radii[i]);
-        for (const auto& column : columns) out << ',' << fmt::format("{:.17g}", column.get(descriptors[i]));
+        for (const auto& column : columns)
+          out << ',' << fmt::format("{:.17g}", column.get(descriptors[i]));
         out << '\n';
       }
       file.commit();

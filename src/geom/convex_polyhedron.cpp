@@ -168,7 +168,8 @@ ConvexPolyhedron make_box(const Vec3& lower, const Vec3& upper) {
   }
   std::vector<Vec3> vertices;
   for (int i = 0; i < 8; ++i) {
-    vertices.emplace_back((i & 1) != 0 ? upper.x() : lower.x(), (i & 2) != 0 ? upper.y() : lower.y(),
+    vertices.emplace_back((i & 1) != 0 ? upper.x() : lower.x(),
+                          (i & 2) != 0 ? upper.y() : lower.y(),
                           (i & 4) != 0 ? upper.z() : lower.z());
   }
   // Two CCW-from-outside triangles per face; vertex bit 0 = x, bit 1 = y, bit 2 = z.
@@ -186,17 +187,17 @@ ConvexPolyhedron make_box(const Vec3& lower, const Vec3& upper) {
 ConvexPolyhedron make_octahedron(const std::array<double, 6>& distances) {
   for (std::size_t i = 0; i < 6; ++i) require_positive("octahedron distance", distances[i]);
   std::vector<Vec3> vertices = {
-      {distances[0], 0, 0}, {-distances[1], 0, 0}, {0, distances[2], 0},
-      {0, -distances[3], 0}, {0, 0, distances[4]}, {0, 0, -distances[5]},
+      {distances[0], 0, 0},  {-distances[1], 0, 0}, {0, distances[2], 0},
+      {0, -distances[3], 0}, {0, 0, distances[4]},  {0, 0, -distances[5]},
   };
   std::vector<Triangle> triangles;
   // One face per octant; (x, y, z) is CCW from outside when the octant's sign product is +.
   for (int sx = 0; sx < 2; ++sx) {
     for (int sy = 0; sy < 2; ++sy) {
       for (int sz = 0; sz < 2; ++sz) {
-        const auto x = static_cast<std::uint32_t>(sx);       // 0: +x, 1: -x
-        const auto y = static_cast<std::uint32_t>(2 + sy);   // 2: +y, 3: -y
-        const auto z = static_cast<std::uint32_t>(4 + sz);   // 4: +z, 5: -z
+        const auto x = static_cast<std::uint32_t>(sx);      // 0: +x, 1: -x
+        const auto y = static_cast<std::uint32_t>(2 + sy);  // 2: +y, 3: -y
+        const auto z = static_cast<std::uint32_t>(4 + sz);  // 4: +z, 5: -z
         const bool is_positive = ((sx + sy + sz) % 2) == 0;
         triangles.push_back(is_positive ? Triangle{x, y, z} : Triangle{x, z, y});
       }

@@ -60,7 +60,8 @@ PointLocation locate_point(const ConvexPolyhedron& body, const Vec3& point, doub
   bool is_on_boundary = false;
   const auto& vertices = body.vertices();
   for (const auto& t : body.triangles()) {
-    const double volume = signed_tetra_volume(point, vertices[t[0]], vertices[t[1]], vertices[t[2]]);
+    const double volume =
+        signed_tetra_volume(point, vertices[t[0]], vertices[t[1]], vertices[t[2]]);
     if (volume > tolerance) return PointLocation::kOutside;
     if (volume >= -tolerance) is_on_boundary = true;
   }

@@ -81,7 +81,8 @@ void write_stl(const std::string& path, const std::vector<ConvexPolyhedron>& bod
 
 StlMesh read_stl(const std::string& path) {
   std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw IoError("cannot read " + path + ": it is a folder");
+  if (std::filesystem::is_directory(path, error))
+    throw IoError("cannot read " + path + ": it is a folder");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open " + path);
   std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

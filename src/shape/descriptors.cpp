@@ -22,9 +22,8 @@ ShapeDescriptors describe(const ConvexPolyhedron& body) {
   result.sphericity =
       (4.0 * pi / mass.surface_area) * std::pow(3.0 * mass.volume / (4.0 * pi), 2.0 / 3.0);
   const double equal_surface_radius = std::sqrt(mass.surface_area / (4.0 * pi));
-  result.measured_alpha =
-      mass.volume / (4.0 / 3.0 * pi * equal_surface_radius * equal_surface_radius *
-                     equal_surface_radius);
+  result.measured_alpha = mass.volume / (4.0 / 3.0 * pi * equal_surface_radius *
+                                         equal_surface_radius * equal_surface_radius);
   result.vertex_count = body.vertex_count();
   result.face_count = body.triangle_count();
   result.edge_count = body.vertex_count() + body.triangle_count() - 2;  // Euler, closed genus 0

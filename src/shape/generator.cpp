@@ -119,8 +119,8 @@ class GrowingMesh {
     corner_faces_.reserve(expected_vertices);
     heap_.reserve(expected_faces);
     // The octahedron of make_octahedron, same vertex and triangle order.
-    vertices_ = {{distances[0], 0, 0}, {-distances[1], 0, 0}, {0, distances[2], 0},
-                 {0, -distances[3], 0}, {0, 0, distances[4]}, {0, 0, -distances[5]}};
+    vertices_ = {{distances[0], 0, 0},  {-distances[1], 0, 0}, {0, distances[2], 0},
+                 {0, -distances[3], 0}, {0, 0, distances[4]},  {0, 0, -distances[5]}};
     triangles_.assign(kBase.triangles.begin(), kBase.triangles.end());
     twins_.assign(kBase.twins.begin(), kBase.twins.end());
     corner_faces_.assign(kBase.corner_faces.begin(), kBase.corner_faces.end());
@@ -176,7 +176,8 @@ class GrowingMesh {
     double distance = std::max(drawn, midpoint_distance);
     for (const std::uint32_t across : {across_bc, across_ca, across_ad, across_db}) {
       const auto& t = triangles_[face_of(across)];
-      const Vec3 normal = (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
+      const Vec3 normal =
+          (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
       const double approach = normal.dot(direction);
       if (approach > 0.0) distance = std::min(distance, normal.dot(vertices_[t[0]]) / approach);
     }
@@ -293,8 +294,8 @@ double estimated_vertex_count(double radius, double edge_length) {
   // Growth ends with edges between about L/2 and L, so real counts exceed this tiling: measured
   // over alpha in [0, 1] and L/r in [0.05, 1.41] they reach 2.77 times it (alpha 1, L/r 1.4; 2.0
   // to 2.5 times for L/r <= 0.5), hence the factor 3.
-  const double faces = 4.0 * std::numbers::pi * radius * radius /
-                       (std::sqrt(3.0) / 4.0 * edge_length * edge_length);
+  const double faces =
+      4.0 * std::numbers::pi * radius * radius / (std::sqrt(3.0) / 4.0 * edge_length * edge_length);
   return std::max(6.0, kVertexCountMargin * (faces / 2.0 + 2.0));
 }
 
@@ -312,11 +313,10 @@ void validate(const GrowthParams& params) {
     const double no_growth = std::sqrt(2.0) * params.radius * (1.0 + 1e-12);
     const double half_faces = params.max_vertices / kVertexCountMargin - 2.0;
     const double smallest =
-        half_faces <= 0.0
-            ? no_growth
-            : std::min(no_growth, params.radius * std::sqrt(4.0 * std::numbers::pi /
-                                                            (std::sqrt(3.0) / 4.0) /
-                                                            (2.0 * half_faces)));
+        half_faces <= 0.0 ? no_growth
+                          : std::min(no_growth, params.radius * std::sqrt(4.0 * std::numbers::pi /
+                                                                          (std::sqrt(3.0) / 4.0) /
+                                                                          (2.0 * half_faces)));
     throw LimitExceeded("edge_length", format_value(params.edge_length),
                         ">= about " + format_value(smallest) + " m for radius " +
                             format_value(params.radius) + " m: may need up to " +
@@ -340,8 +340,8 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const Grow
     if (mesh.vertex_count() >= params.max_vertices) {
       throw LimitExceeded("max_vertices", std::to_string(params.max_vertices),
                           "a larger cap or a longer edge_length (growth still had edges of " +
-                              format_value(std::sqrt(longest.length_squared)) + " m > L = " +
-                              format_value(params.edge_length) + " m)");
+                              format_value(std::sqrt(longest.length_squared)) +
+                              " m > L = " + format_value(params.edge_length) + " m)");
     }
     mesh.split(longest, eq3_distance(params.alpha, params.radius, rng.uniform()), limit);
   }

@@ -53,8 +53,8 @@ class ShapeCliTest : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() / (std::string("aggpack_shape_cli_") + info->name() +
-                                           "_" + std::to_string(::getpid()));
+    folder_ = fs::temp_directory_path() /
+              (std::string("aggpack_shape_cli_") + info->name() + "_" + std::to_string(::getpid()));
     fs::remove_all(folder_);
     fs::create_directories(folder_);
   }
@@ -95,8 +95,8 @@ double reported(const std::string& report, const std::string& name) {
 }
 
 TEST_F(ShapeCliTest, ParticleWritesBinaryAndAsciiStlMatchingTheLibrary) {
-  const GeneratorOptions options{.alpha = 0.3, .radius_min = 0.08, .radius_max = 0.08,
-                                 .edge_length = 0.04, .seed = 5};
+  const GeneratorOptions options{
+      .alpha = 0.3, .radius_min = 0.08, .radius_max = 0.08, .edge_length = 0.04, .seed = 5};
   const auto expected = generate_particle(options, 7);
   const std::string flags = "--alpha 0.3 -r 0.08 -L 0.04 --seed 5 --index 7";
 
@@ -132,7 +132,8 @@ TEST_F(ShapeCliTest, ParticleWritesBinaryAndAsciiStlMatchingTheLibrary) {
 }
 
 TEST_F(ShapeCliTest, ShapesCsvIsByteIdenticalForOneAndTwoThreads) {
-  const std::string flags = "-n 3000 --alpha 0.6 --radius-min 0.05 --radius-max 0.1 -L 0.04 --seed 11";
+  const std::string flags =
+      "-n 3000 --alpha 0.6 --radius-min 0.05 --radius-max 0.1 -L 0.04 --seed 11";
   const auto one = run("shapes " + flags + " -j 1 -o one.csv");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   const auto two = run("shapes " + flags + " --threads 2 -o two.csv");
@@ -152,8 +153,8 @@ TEST_F(ShapeCliTest, ShapesCsvIsByteIdenticalForOneAndTwoThreads) {
   for (std::size_t c = 0; c < descriptor_columns().size(); ++c) {
     EXPECT_EQ(header[2 + c], descriptor_columns()[c].name);
   }
-  const GeneratorOptions options{.alpha = 0.6, .radius_min = 0.05, .radius_max = 0.1,
-                                 .edge_length = 0.04, .seed = 11};
+  const GeneratorOptions options{
+      .alpha = 0.6, .radius_min = 0.05, .radius_max = 0.1, .edge_length = 0.04, .seed = 11};
   std::vector<double> alphas;
   for (std::size_t i = 0; i < 3000; ++i) {
     const auto row = split(lines[i + 1], ',');
@@ -240,7 +241,8 @@ TEST_F(ShapeCliTest, BadInputFailsWithOneLineAndNoFile) {
   };
   for (const char* command : {"shapes -n 5", "particle"}) {
     for (const auto& bad : cases) {
-      const std::string output = std::string(command).rfind("shapes", 0) == 0 ? "out.csv" : "out.stl";
+      const std::string output =
+          std::string(command).rfind("shapes", 0) == 0 ? "out.csv" : "out.stl";
       const auto result = run(std::string(command) + " " + bad.arguments + " -o " + output);
       SCOPED_TRACE(std::string(command) + " " + bad.arguments);
       EXPECT_NE(result.exit_code, 0);

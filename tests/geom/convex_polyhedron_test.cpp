@@ -239,8 +239,7 @@ TEST(ConvexPolyhedron, TransformsAreValuesAndExact) {
   const auto placed = body.transformed(pose);
   for (std::size_t v = 0; v < body.vertex_count(); ++v) {
     EXPECT_NEAR((placed.vertices()[v] - pose.apply(body.vertices()[v])).norm(), 0.0, 1e-15);
-    EXPECT_NEAR((pose.apply_inverse(placed.vertices()[v]) - body.vertices()[v]).norm(), 0.0,
-                1e-15);
+    EXPECT_NEAR((pose.apply_inverse(placed.vertices()[v]) - body.vertices()[v]).norm(), 0.0, 1e-15);
   }
   EXPECT_TRUE(check_convex(placed, 1e-12).is_ok);
   EXPECT_NEAR(placed.longest_edge(), body.longest_edge(), 1e-15);

@@ -83,7 +83,8 @@ TEST(MassProperties, IrregularOctahedronVolume) {
     for (int sy = 0; sy < 2; ++sy) {
       for (int sz = 0; sz < 2; ++sz) {
         const double v = d[sx] * d[2 + sy] * d[4 + sz] / 6;
-        moment += v * Vec3(sx == 0 ? d[0] : -d[1], sy == 0 ? d[2] : -d[3], sz == 0 ? d[4] : -d[5]) / 4;
+        moment +=
+            v * Vec3(sx == 0 ? d[0] : -d[1], sy == 0 ? d[2] : -d[3], sz == 0 ? d[4] : -d[5]) / 4;
       }
     }
   }
@@ -188,7 +189,8 @@ TEST(LocatePoint, AgreesWithAnalyticTestOnRotatedOctahedron) {
     const double l1 = local.cwiseAbs().sum();
     if (std::abs(l1 - r) < 1e-9) continue;  // too close to call
     const auto where = locate_point(body, pose.apply(local), 1e-15);
-    ASSERT_EQ(where, l1 < r ? PointLocation::kInside : PointLocation::kOutside) << local.transpose();
+    ASSERT_EQ(where, l1 < r ? PointLocation::kInside : PointLocation::kOutside)
+        << local.transpose();
     (l1 < r ? inside : outside)++;
   }
   EXPECT_GT(inside, 3000);  // the octahedron fills 1/6 of its bounding cube

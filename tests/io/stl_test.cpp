@@ -59,9 +59,9 @@ void write_bytes(const std::string& path, const std::string& bytes) {
 }
 
 ConvexPolyhedron particle(std::uint64_t index = 0) {
-  return generate_particle({.alpha = 0.4, .radius_min = 0.05, .radius_max = 0.1,
-                            .edge_length = 0.04, .seed = 9},
-                           index)
+  return generate_particle(
+             {.alpha = 0.4, .radius_min = 0.05, .radius_max = 0.1, .edge_length = 0.04, .seed = 9},
+             index)
       .body;
 }
 
@@ -214,7 +214,8 @@ CommandResult run(const std::string& command) {
   if (pipe == nullptr) return result;
   char buffer[4096];
   std::size_t count = 0;
-  while ((count = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.output.append(buffer, count);
+  while ((count = std::fread(buffer, 1, sizeof buffer, pipe)) > 0)
+    result.output.append(buffer, count);
   const int status = ::pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
@@ -267,9 +268,8 @@ TEST(StlAdmesh, ParticleIsCleanAndHasItsVolume) {
       EXPECT_EQ(report.at("facets"), static_cast<double>(body.triangle_count()));
       EXPECT_EQ(report.at("parts"), 1.0);
       EXPECT_EQ(report.at("disconnected"), 0.0);
-      for (const char* key : {"Degenerate facets", "Edges fixed", "Facets removed",
-                              "Facets added", "Facets reversed", "Backwards edges",
-                              "Normals fixed"}) {
+      for (const char* key : {"Degenerate facets", "Edges fixed", "Facets removed", "Facets added",
+                              "Facets reversed", "Backwards edges", "Normals fixed"}) {
         EXPECT_EQ(report.at(key), 0.0) << key;
       }
       const double volume = mass_properties(body).volume * 1e9;

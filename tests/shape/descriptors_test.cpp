@@ -88,7 +88,8 @@ TEST(Describe, RegularTetrahedron) {
   EXPECT_NEAR(d.surface_area, surface, 1e-14 * surface);
   EXPECT_NEAR(d.sphericity, eq1_sphericity(volume, surface), 1e-14);
   // Closed form: SI = 4 pi^(1/3) / (sqrt(3) 2^(7/3)) = 0.6711...
-  EXPECT_NEAR(d.sphericity, 4 * std::cbrt(kPi) / (std::sqrt(3.0) * std::pow(2.0, 7.0 / 3.0)), 1e-14);
+  EXPECT_NEAR(d.sphericity, 4 * std::cbrt(kPi) / (std::sqrt(3.0) * std::pow(2.0, 7.0 / 3.0)),
+              1e-14);
   EXPECT_NEAR(d.measured_alpha, eq2_alpha(volume, surface), 1e-14);
   EXPECT_NEAR(d.circumscribed_radius, radius, 1e-14);
   EXPECT_EQ(d.edge_count, 6u);
@@ -100,8 +101,7 @@ TEST(Describe, RelationsOverGeneratedParticles) {
   for (std::uint64_t i = 0; i < 600; ++i) {
     const double alpha = static_cast<double>(i % 11) / 10.0;
     const auto particle = generate_particle(
-        {.alpha = alpha, .radius_min = 0.02, .radius_max = 0.2, .edge_length = 0.06, .seed = 5},
-        i);
+        {.alpha = alpha, .radius_min = 0.02, .radius_max = 0.2, .edge_length = 0.06, .seed = 5}, i);
     const auto d = describe(particle.body);
     SCOPED_TRACE(i);
     ASSERT_NEAR(d.sphericity, std::pow(d.measured_alpha, 2.0 / 3.0), 1e-12);
@@ -175,9 +175,9 @@ TEST(DescriptorColumns, NamedUniquelyWithUnitsAndReadTheRightField) {
     EXPECT_TRUE(names.insert(column.name).second) << column.name;
     EXPECT_NE(std::string(column.unit), "");
   }
-  for (const char* required : {"volume", "surface_area", "sphericity", "measured_alpha",
-                               "vertices", "faces", "elongation", "flatness",
-                               "circumscribed_radius", "long", "intermediate", "short"}) {
+  for (const char* required :
+       {"volume", "surface_area", "sphericity", "measured_alpha", "vertices", "faces", "elongation",
+        "flatness", "circumscribed_radius", "long", "intermediate", "short"}) {
     EXPECT_EQ(names.count(required), 1u) << required;
   }
   // Every column reads the right field: known values of a 4 x 2 x 1 box.

@@ -18,10 +18,10 @@ namespace aggpack {
 
 /// Controls of one growth run. Lengths in metres.
 struct GrowthParams {
-  double alpha = 0.5;                 ///< Eq. 3 shape control, in [0, 1]
-  double radius = 0.1;                ///< control radius r (m), > 0; every vertex lies within r
-  double edge_length = 0.1;           ///< L (m), > 0: growth stops when every edge <= L
-  std::uint32_t max_vertices = 20000; ///< cap on the vertex count, in [6, 10^6]
+  double alpha = 0.5;                  ///< Eq. 3 shape control, in [0, 1]
+  double radius = 0.1;                 ///< control radius r (m), > 0; every vertex lies within r
+  double edge_length = 0.1;            ///< L (m), > 0: growth stops when every edge <= L
+  std::uint32_t max_vertices = 20000;  ///< cap on the vertex count, in [6, 10^6]
 };
 
 /// Optional limit on how far out a new vertex may be placed along a ray from the particle centre:
@@ -51,12 +51,12 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng,
 
 /// Controls of a family of particles (e.g. `aggpack shapes`).
 struct GeneratorOptions {
-  double alpha = 0.5;                 ///< Eq. 3 shape control, in [0, 1]
-  double radius_min = 0.1;            ///< smallest control radius (m), > 0
-  double radius_max = 0.1;            ///< largest control radius (m), >= radius_min
-  double edge_length = 0.1;           ///< L (m), > 0
-  std::uint32_t max_vertices = 20000; ///< vertex cap per particle
-  std::uint64_t seed = 1;             ///< master seed
+  double alpha = 0.5;                  ///< Eq. 3 shape control, in [0, 1]
+  double radius_min = 0.1;             ///< smallest control radius (m), > 0
+  double radius_max = 0.1;             ///< largest control radius (m), >= radius_min
+  double edge_length = 0.1;            ///< L (m), > 0
+  std::uint32_t max_vertices = 20000;  ///< vertex cap per particle
+  std::uint64_t seed = 1;              ///< master seed
 };
 
 /// Throws InvalidInput / LimitExceeded naming the field unless the options are usable.
@@ -64,8 +64,8 @@ void validate(const GeneratorOptions& options);
 
 /// One generated particle with the control radius it was grown with.
 struct GeneratedParticle {
-  ConvexPolyhedron body;       ///< centred on its growth centre (the origin)
-  double control_radius = 0;   ///< m
+  ConvexPolyhedron body;      ///< centred on its growth centre (the origin)
+  double control_radius = 0;  ///< m
 };
 
 /// Particle number `index` of the family: its radius (uniform in [radius_min, radius_max]) and
