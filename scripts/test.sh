@@ -6,6 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ "${AGGPACK_SKIP_INSTALL:-0}" != 1 ]; then scripts/install-deps.sh; fi
 if [ "${1:-}" = "--sanitize" ]; then
+  shift
   export AGGPACK_BUILD_DIR=build-asan AGGPACK_BUILD_TYPE=RelWithDebInfo
   # Our own code only: OpenGL (Mesa) and Bullet are left out of the sanitized build.
   scripts/build.sh -DAGGPACK_WERROR=ON -DAGGPACK_SANITIZE=ON -DAGGPACK_BUILD_BENCH=OFF \
@@ -14,6 +15,6 @@ if [ "${1:-}" = "--sanitize" ]; then
   export AGGPACK_SANITIZED=1
   ctest --test-dir build-asan --output-on-failure -j "$(nproc)"
 else
-  scripts/build.sh -DAGGPACK_WERROR=ON
+  scripts/build.sh -DAGGPACK_WERROR=ON "$@"
   ctest --test-dir build --output-on-failure -j "$(nproc)"
 fi
