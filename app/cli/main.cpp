@@ -24,6 +24,9 @@ int main(int argc, char** argv) {
 #endif
   aggpack::cli::register_export(app);
 #endif
+#ifdef AGGPACK_HAS_SIM
+  aggpack::cli::register_sim(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/rng.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/shape/descriptors.h"
@@ -21,17 +22,18 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Running median of three; the ends keep their own value.
-std::vector<double> median3(const std::vector<double>& values) {
-  std::vector<double> smoothed = values;
-  for (std::size_t i = 1; i + 1 < values.size(); ++i) {
-    double a = values[i - 1];
-    double b = values[i];
-    double c = values[i + 1];
-    if (a > b) std::swap(a, b);
-    if (b > c) std::swap(b, c);
-    if (a > b) std::swap(a, b);
-    smoothed[i] = b;
+// Running median over `window` bins (odd); near the ends the window shrinks symmetrically.
+std::vector<double> running_median(const std::vector<double>& values, std::size_t window) {
+  const std::size_t half = window / 2;
+  std::vector<double> smoothed(values.size());
+  std::vector<double> scratch;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::size_t reach = std::min({half, i, values.size() - 1 - i});
+    scratch.assign(values.begin() + static_cast<std::ptrdiff_t>(i - reach),
+                   values.begin() + static_cast<std::ptrdiff_t>(i + reach + 1));
+    std::nth_element(scratch.begin(), scratch.begin() + static_cast<std::ptrdiff_t>(reach),
+                     scratch.end());
+    smoothed[i] = scratch[reach];
   }
   return smoothed;
 }
@@ -43,6 +45,86 @@ double largest_size(const Packing& packing) {
     largest = std::max(largest, particle.scale * box.extent().norm());
   }
   return largest;
+}
+
+// Sites of the lattice packer: x fastest, then y, then z; along each axis
+// n = floor((extent - 2 R) / 2R) + 1 sites centred in the box (lattice_packer.h).
+void randomise_orientations(Packing& packing, const LatticeOptions& lattice) {
+  const auto counts = lattice_counts(lattice);
+  const double spacing = 2.0 * lattice.radius;
+  const Vec3 extent = lattice.container.bounds().extent();
+  Vec3 start;
+  for (int axis = 0; axis < 3; ++axis) {
+    start[axis] = 0.5 * (extent[axis] - (counts[static_cast<std::size_t>(axis)] - 1.0) * spacing);
+  }
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    const std::size_t ix = i % counts[0];
+    const std::size_t iy = (i / counts[0]) % counts[1];
+    const std::size_t iz = i / (static_cast<std::size_t>(counts[0]) * counts[1]);
+    const Vec3 site = start + spacing * Vec3(static_cast<double>(ix), static_cast<double>(iy),
+                                             static_cast<double>(iz));
+    Particle& particle = packing.particles[i];
+    if ((particle.pose.position - site).norm() > lattice.radius) {
+      throw InvalidInput("repose lattice site " + std::to_string(i), "mismatch",
+                         "particles numbered as lattice_packer.h documents");
+    }
+    Rng rng(lattice.seed ^ 0x726f74ULL, i);
+    const Quat turn = Quat(rng.normal(), rng.normal(), rng.normal(), rng.normal()).normalized();
+    particle.pose.position = site + turn * (particle.pose.position - site);
+    particle.pose.rotation = (turn * particle.pose.rotation).normalized();
+  }
+}
+
+// Stage 2 ends when the pile is at rest by the energy criterion, or when its surface has stopped
+// changing: a few full particles rolling away over the floor at low friction can keep the energy
+// up for a long time without changing the pile. The surface counts as unchanged while every bin
+// above fit_lower x the pile height stays within surface_tolerance x d of where it was at the
+// start of the quiet window.
+bool wait_until_stable(World& world, const ReposeOptions& options, double bin_width,
+                       const SettleProgress& progress) {
+  const RestCriterion& rest = options.rest;
+  const double threshold =
+      rest.kinetic_energy_ratio * world.total_mass() * 9.81 * world.median_size();
+  const double tolerance = options.surface_tolerance * world.median_size();
+  const auto steps_per_check = static_cast<std::size_t>(
+      std::max(1.0, std::round(rest.check_interval / world.time_step())));
+  const double start = world.time();
+  double energy_quiet_since = -1.0;
+  SurfaceProfile reference;
+  double reference_time = -1.0;
+  while (world.time() - start < rest.max_time) {
+    world.step(steps_per_check);
+    const double now = world.time();
+    const double energy = world.kinetic_energy();
+    if (progress) progress(now, energy, threshold);
+    if (now - start < rest.min_time) continue;
+    if (energy < threshold) {
+      if (energy_quiet_since < 0.0) energy_quiet_since = now;
+      if (now - energy_quiet_since >= rest.quiet_time) return true;
+    } else {
+      energy_quiet_since = -1.0;
+    }
+    const SurfaceProfile profile =
+        surface_profile(world.packing(), 0.0, options.trough_length, bin_width);
+    bool is_same = reference_time >= 0.0;
+    if (is_same) {
+      const double top = *std::max_element(reference.height.begin(), reference.height.end());
+      for (std::size_t i = 0; i < profile.height.size() && is_same; ++i) {
+        const double high = std::max(profile.height[i], reference.height[i]);
+        if (high >= options.fit_lower * top &&
+            std::abs(profile.height[i] - reference.height[i]) > tolerance) {
+          is_same = false;
+        }
+      }
+    }
+    if (!is_same) {
+      reference = profile;
+      reference_time = now;
+    } else if (now - reference_time >= rest.quiet_time) {
+      return true;
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -66,6 +148,7 @@ void validate(const ReposeOptions& options) {
   require_in_range("repose.bin_width", options.bin_width, 0.0, options.trough_length);
   require_in_range("repose.fit_upper", options.fit_upper, 1e-6, 1.0);
   require_in_range("repose.fit_lower", options.fit_lower, 0.0, options.fit_upper - 1e-6);
+  require_in_range("repose.surface_tolerance", options.surface_tolerance, 0.0, 10.0);
   validate(options.physics);
   validate(options.rest);
 }
@@ -96,7 +179,12 @@ SurfaceProfile surface_profile(const Packing& packing, double lower, double uppe
     const auto& vertices = body.vertices();
     // The maximum of z over a convex body cut to a slab lies at a vertex inside the slab or where
     // an edge crosses one of the slab's planes.
-    for (const auto& v : vertices) raise(bin_of(v.x()), v.z());
+    for (const auto& v : vertices) {
+      const std::ptrdiff_t bin = bin_of(v.x());
+      raise(bin, v.z());
+      // Bins are closed intervals: a vertex on a bin plane belongs to both sides.
+      if (lower + static_cast<double>(bin) * bin_width == v.x()) raise(bin - 1, v.z());
+    }
     for (const auto& t : body.triangles()) {
       for (int k = 0; k < 3; ++k) {
         const Vec3& a = vertices[t[static_cast<std::size_t>(k)]];
@@ -117,16 +205,20 @@ SurfaceProfile surface_profile(const Packing& packing, double lower, double uppe
   return profile;
 }
 
-SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper, double fit_lower) {
+SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper, double fit_lower,
+                   std::size_t smoothing_bins) {
   require_in_range("fit_upper", fit_upper, 1e-6, 1.0);
   require_in_range("fit_lower", fit_lower, 0.0, fit_upper - 1e-6);
+  if (smoothing_bins < 1 || smoothing_bins % 2 == 0) {
+    throw InvalidInput("smoothing_bins", std::to_string(smoothing_bins), "odd and >= 1");
+  }
   SlopeFit fit;
   const std::size_t n = profile.height.size();
   if (n < 3) {
     fit.message = "profile has fewer than 3 bins";
     return fit;
   }
-  const std::vector<double> smooth = median3(profile.height);
+  const std::vector<double> smooth = running_median(profile.height, smoothing_bins);
   const auto crest = static_cast<std::size_t>(
       std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
   const double top = smooth[crest];
@@ -135,15 +227,23 @@ SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper, double fit_l
     fit.message = "empty profile";
     return fit;
   }
-  std::size_t first = crest;
-  while (first < n && smooth[first] >= fit_upper * top) ++first;
-  std::size_t end = first;  // exclusive
-  double lowest = std::numeric_limits<double>::infinity();
-  while (end < n && smooth[end] >= fit_lower * top) {
-    lowest = std::min(lowest, smooth[end]);
-    if (smooth[end] > lowest + 0.1 * top) break;  // rising again: a heap against a wall
-    ++end;
+  // The toe: the first bin after the crest below fit_lower x crest; if the pile never gets that
+  // low (it leans on the far wall), the lowest bin after the crest.
+  std::size_t toe = crest + 1;
+  while (toe < n && smooth[toe] >= fit_lower * top) ++toe;
+  if (toe >= n) {
+    toe = static_cast<std::size_t>(
+        std::min_element(smooth.begin() + static_cast<std::ptrdiff_t>(crest), smooth.end()) -
+        smooth.begin());
+    if (smooth[toe] >= fit_upper * top) {
+      fit.message = "no descending slope after the crest";
+      return fit;
+    }
   }
+  // The slope: back from the toe while the surface stays at or below fit_upper x crest.
+  std::size_t first = toe;
+  while (first > crest + 1 && smooth[first - 1] <= fit_upper * top) --first;
+  const std::size_t end = toe;  // exclusive
   if (end < first + 3) {
     fit.message = "slope region has fewer than 3 bins";
     fit.first_bin = first;
@@ -198,6 +298,7 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
   lattice.seed = options.seed;
   PackResult placed = pack_lattice(lattice);
   Packing packing = std::move(placed.packing);
+  if (options.is_orientation_random) randomise_orientations(packing, lattice);
   packing.container.length = options.trough_length;
   packing.container.width = options.trough_width;
   packing.container.depth = options.trough_height;
@@ -275,8 +376,8 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
     }
   }
   result.baffle_travel = world.wall_box(baffle).lower.x() - options.baffle_position;
-  result.is_stage2_at_rest =
-      run_until_rest(world, options.rest, [&](double time, double energy, double threshold) {
+  const double bin_width = options.bin_width > 0.0 ? options.bin_width : 0.5 * options.radius;
+  result.is_stage2_at_rest = wait_until_stable(world, options, bin_width, [&](double time, double energy, double threshold) {
         if (progress) progress(2, time - stage2_begin, energy, threshold);
       });
   result.stage2_time = world.time() - stage2_begin;
@@ -298,9 +399,12 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
     }
   }
 
-  const double bin_width = options.bin_width > 0.0 ? options.bin_width : 0.5 * options.radius;
   result.profile = surface_profile(result.final, 0.0, options.trough_length, bin_width);
-  result.fit = fit_slope(result.profile, options.fit_upper, options.fit_lower);
+  // Smooth over one particle diameter so that a single particle sitting high (often against a
+  // wall) is not taken for the crest.
+  auto smoothing = static_cast<std::size_t>(std::ceil(2.0 * options.radius / bin_width));
+  smoothing = std::max<std::size_t>(3, smoothing | 1u);
+  result.fit = fit_slope(result.profile, options.fit_upper, options.fit_lower, smoothing);
   return result;
 }
 

@@ -43,11 +43,19 @@ struct ReposeOptions {
   double edge_length = 0.1;    ///< L (m), > 0
   double fill_height = 2.8;    ///< m, height of the lattice region (14 layers of 2R = 0.2 m)
   std::uint64_t seed = 1;      ///< master seed; particle i draws from Rng(seed, i)
+  /// Turn each particle by a uniformly random rotation about its lattice site (stream
+  /// Rng(seed ^ 0x726f74, i)); it stays inside its site's sphere, so nothing overlaps. Without it
+  /// identical shapes (alpha = 1 grows the same body every time) stack into a stable crystal.
+  bool is_orientation_random = true;
 
   /// Materials. `friction` is the mu_s of the sweep; walls default to the same value.
   PhysicsOptions physics;
   /// Rest criterion of both stages (stage 1 adds the free-fall time of the highest particle).
   RestCriterion rest{};
+  /// Stage 2 also ends when the pile's surface profile (bins above fit_lower x its height) has
+  /// moved less than this fraction of the median particle size for rest.quiet_time: a few
+  /// particles rolling away over the floor do not keep the test running. [0, 10].
+  double surface_tolerance = 0.05;
 
   // Angle measurement.
   double bin_width = 0.0;    ///< m, profile bin width; 0 = radius / 2
@@ -89,12 +97,15 @@ struct SlopeFit {
   double r_squared = 0.0;       ///< coefficient of determination of the line, [0, 1]
 };
 
-/// Chooses the slope region and fits a line. The crest is the highest point of the profile
-/// smoothed by a 3-bin running median; the region starts at the first bin after the crest whose
-/// smoothed height is below fit_upper x crest and ends before the first bin below
-/// fit_lower x crest (or where the surface rises again by more than 10% of the crest, e.g. a heap
-/// against the far wall). \throw InvalidInput unless 0 <= fit_lower < fit_upper <= 1.
-SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper = 0.8, double fit_lower = 0.2);
+/// Chooses the slope region and fits a line to the profile's heights there. The profile is
+/// smoothed by a running median over `smoothing_bins` (odd; run_repose uses one particle
+/// diameter) only to choose the region: the crest is the highest smoothed point, the toe the
+/// first bin after it below fit_lower x crest (or the lowest bin after it when the pile leans on
+/// the far wall), and the slope runs back from the toe while the smoothed surface stays at or
+/// below fit_upper x crest. Plateau and toe are thereby left out.
+/// \throw InvalidInput unless 0 <= fit_lower < fit_upper <= 1 and smoothing_bins is odd.
+SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper = 0.8, double fit_lower = 0.2,
+                   std::size_t smoothing_bins = 3);
 
 /// Progress of a repose run: stage (1 or 2), simulated time of the stage (s), kinetic energy (J),
 /// rest threshold (J). Must not throw.

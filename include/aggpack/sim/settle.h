@@ -30,8 +30,8 @@ void validate(const RestCriterion& criterion);
 
 /// Options of settle().
 struct SettleOptions {
-  PhysicsOptions physics;  ///< materials, gravity, time step
-  RestCriterion rest;      ///< when to stop
+  PhysicsOptions physics{};  ///< materials, gravity, time step
+  RestCriterion rest{};      ///< when to stop
   /// A particle counts as having left the container when a vertex lies farther than this
   /// fraction of d_min outside it (Bullet lets walls be penetrated slightly), >= 0.
   double containment_tolerance = 0.01;

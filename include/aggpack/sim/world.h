@@ -31,7 +31,7 @@ struct PhysicsOptions {
   double friction = 0.5;
   /// Coulomb sliding friction between a particle and a wall (container, baffle), in [0, 10];
   /// empty = same as `friction`.
-  std::optional<double> wall_friction;
+  std::optional<double> wall_friction{};
   /// Coefficient of restitution (particle-particle and particle-wall), in [0, 1].
   double restitution = 0.1;
   /// Dimensionless rolling friction mu_r, in [0, 1]: the rolling resistance torque is at most

@@ -1,0 +1,242 @@
+// The repose test: exact surface profiles, the slope fit, settling, and the physical trends of a
+// reduced sweep (angle rises with mu_s and as alpha falls).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "aggpack/core/error.h"
+#include "aggpack/pack/lattice_packer.h"
+#include "aggpack/sim/repose.h"
+#include "aggpack/sim/settle.h"
+#include "aggpack/sim/sweep.h"
+
+namespace aggpack {
+namespace {
+
+Packing one_box(const Vec3& lower, const Vec3& upper) {
+  Packing packing;
+  packing.container.length = 4.0;
+  packing.container.width = 1.0;
+  packing.container.depth = 1.0;
+  const Vec3 centre = 0.5 * (lower + upper);
+  packing.shapes.push_back(make_box(lower - centre, upper - centre));
+  packing.particles.push_back({.shape = 0, .pose = {.position = centre}});
+  return packing;
+}
+
+TEST(SurfaceProfile, BoxGivesItsTopInEveryBinItCovers) {
+  const Packing packing = one_box(Vec3(1.0, 0.2, 0.0), Vec3(2.0, 0.8, 0.3));
+  const SurfaceProfile profile = surface_profile(packing, 0.0, 4.0, 0.25);
+  ASSERT_EQ(profile.height.size(), 16u);
+  for (std::size_t i = 0; i < profile.height.size(); ++i) {
+    const bool is_covered = i >= 4 && i < 8;
+    // Bins 3 and 8 share only the box's end faces with it (x = 1 and x = 2 are bin edges).
+    const bool is_touched = i == 3 || i == 8;
+    EXPECT_DOUBLE_EQ(profile.height[i], is_covered || is_touched ? 0.3 : 0.0) << "bin " << i;
+  }
+  EXPECT_DOUBLE_EQ(profile.centre(0), 0.125);
+}
+
+TEST(SurfaceProfile, TiltedBodyUsesEdgeCrossingsNotOnlyVertices) {
+  // A box rotated 45 degrees about y: its top ridge is an edge, so the height over a bin between
+  // two vertices comes from where the edges cross the bin planes.
+  Packing packing = one_box(Vec3(-0.5, 0.0, -0.5), Vec3(0.5, 1.0, 0.5));
+  packing.particles[0].pose.position = Vec3(2.0, 0.5, 1.0);
+  packing.particles[0].pose.rotation = Quat(Eigen::AngleAxisd(std::numbers::pi / 4, Vec3::UnitY()));
+  const double half_diagonal = std::sqrt(0.5);
+  const SurfaceProfile profile = surface_profile(packing, 0.0, 4.0, 0.1);
+  for (std::size_t i = 0; i < profile.height.size(); ++i) {
+    const double left = 0.1 * static_cast<double>(i);
+    const double right = left + 0.1;
+    // The roof is z = 1 + h - |x - 2| over |x - 2| <= h; its maximum over [left, right].
+    double expected = 0.0;
+    if (right >= 2.0 - half_diagonal && left <= 2.0 + half_diagonal) {
+      const double nearest = std::clamp(2.0, left, right);
+      expected = 1.0 + half_diagonal - std::abs(nearest - 2.0);
+    }
+    EXPECT_NEAR(profile.height[i], expected, 1e-12) << "bin " << i;
+  }
+}
+
+SurfaceProfile synthetic(double plateau, double slope_start, double angle_degrees, double bins) {
+  SurfaceProfile profile;
+  profile.lower = 0.0;
+  profile.bin_width = 0.05;
+  const double tangent = std::tan(angle_degrees * std::numbers::pi / 180.0);
+  for (int i = 0; i < bins; ++i) {
+    const double x = profile.centre(static_cast<std::size_t>(i));
+    profile.height.push_back(std::max(0.0, std::min(plateau, plateau - tangent * (x - slope_start))));
+  }
+  return profile;
+}
+
+TEST(SlopeFit, RecoversTheAngleOfAnExactSlopeAndLeavesOutPlateauAndToe) {
+  for (const double angle : {10.0, 25.0, 33.0, 45.0}) {
+    const SurfaceProfile profile = synthetic(0.8, 2.0, angle, 120);
+    const SlopeFit fit = fit_slope(profile, 0.8, 0.2, 3);
+    ASSERT_TRUE(fit.is_valid) << fit.message;
+    EXPECT_NEAR(fit.angle_degrees, angle, 1e-9);
+    EXPECT_NEAR(fit.r_squared, 1.0, 1e-12);
+    EXPECT_DOUBLE_EQ(fit.pile_height, 0.8);
+    // Every fitted bin lies strictly between 20% and 80% of the height.
+    for (std::size_t i = fit.first_bin; i <= fit.last_bin; ++i) {
+      EXPECT_GE(profile.height[i], 0.2 * 0.8);
+      EXPECT_LE(profile.height[i], 0.8 * 0.8 + 1e-12);
+    }
+  }
+}
+
+TEST(SlopeFit, IgnoresASingleHighParticleAndAHeapAgainstTheFarWall) {
+  SurfaceProfile profile = synthetic(0.6, 1.0, 30.0, 100);
+  profile.height[1] = 0.9;  // one particle sitting high against the near wall
+  for (std::size_t i = 95; i < 100; ++i) profile.height[i] = 0.3;  // heap at the far wall
+  const SlopeFit fit = fit_slope(profile, 0.8, 0.2, 5);
+  ASSERT_TRUE(fit.is_valid) << fit.message;
+  EXPECT_NEAR(fit.angle_degrees, 30.0, 1e-9);
+  EXPECT_LT(fit.last_bin, 95u);
+}
+
+TEST(SlopeFit, ReportsWhyItCannotFit) {
+  SurfaceProfile flat;
+  flat.bin_width = 0.1;
+  flat.height.assign(20, 0.0);
+  EXPECT_FALSE(fit_slope(flat).is_valid);
+  flat.height.assign(20, 0.5);
+  const SlopeFit fit = fit_slope(flat);
+  EXPECT_FALSE(fit.is_valid);
+  EXPECT_FALSE(fit.message.empty());
+  EXPECT_THROW(fit_slope(flat, 0.2, 0.5), InvalidInput);
+  EXPECT_THROW(fit_slope(flat, 0.8, 0.2, 4), InvalidInput);
+}
+
+TEST(Settle, LatticeFallsToADenserPackingInsideItsContainer) {
+  LatticeOptions lattice;
+  lattice.container.length = 0.6;
+  lattice.container.width = 0.4;
+  lattice.container.depth = 1.0;
+  lattice.radius = 0.05;
+  lattice.edge_length = 0.05;
+  lattice.spacing = 0.14;  // loose: the particles have room to fall and rearrange
+  const Packing packing = pack_lattice(lattice).packing;
+  ASSERT_GT(packing.particles.size(), 40u);
+  const SettleResult result = settle(packing, {.physics = {.friction = 0.3}, .rest = {}});
+  const SettleReport& r = result.report;
+  EXPECT_TRUE(r.is_at_rest);
+  EXPECT_LT(r.height_after, r.height_before);
+  EXPECT_GT(r.solid_fraction_after, 1.3 * r.solid_fraction_before);
+  EXPECT_EQ(r.escaped_particles, 0u);
+  EXPECT_LT(r.max_overlap_fraction, 0.01);
+  EXPECT_LT(r.max_contact_penetration, 0.01 * r.smallest_size);
+  EXPECT_LE(r.kinetic_energy, r.kinetic_energy_threshold);
+  EXPECT_EQ(result.packing.particles.size(), packing.particles.size());
+  EXPECT_EQ(result.packing.provenance.packer, packing.provenance.packer + "+settled");
+  // Deterministic: the same input settles to the same poses.
+  const SettleResult again = settle(packing, {.physics = {.friction = 0.3}, .rest = {}});
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    EXPECT_EQ(again.packing.particles[i].pose.position, result.packing.particles[i].pose.position);
+  }
+}
+
+// A small trough: R = 5 cm particles, 5 x 3 x 10 = 150 behind the baffle. The time step factor
+// is doubled and the solver iterations cut to keep the test quick; the trends do not need more.
+ReposeOptions small_trough() {
+  ReposeOptions options;
+  options.trough_length = 1.6;
+  options.trough_width = 0.3;
+  options.trough_height = 0.5;
+  options.baffle_position = 0.5;
+  options.baffle_speed = 0.25;
+  options.radius = 0.05;
+  options.edge_length = 0.05;
+  options.fill_height = 1.0;
+  options.physics.time_step_factor = 0.08;
+  options.physics.solver_iterations = 40;
+  options.rest.quiet_time = 0.15;
+  options.rest.max_time = 10.0;
+  return options;
+}
+
+TEST(Repose, AngleRisesWithFrictionAndAsAlphaFalls) {
+  SweepOptions sweep;
+  sweep.base = small_trough();
+  sweep.alphas = {0.9, 0.4};
+  sweep.frictions = {0.1, 0.6};
+  const auto cases = run_sweep(sweep);
+  ASSERT_EQ(cases.size(), 4u);
+  for (const auto& c : cases) {
+    EXPECT_TRUE(c.is_valid) << "alpha " << c.alpha << " mu " << c.friction;
+    EXPECT_EQ(c.particle_count, 150u);
+  }
+  const auto angle = [&](std::size_t alpha, std::size_t mu) {
+    return cases[alpha * 2 + mu].angle_degrees;
+  };
+  // mu_s 0.1 -> 0.6 raises the angle for both shapes, by far more than the scatter.
+  EXPECT_GT(angle(0, 1), angle(0, 0) + 8.0);
+  EXPECT_GT(angle(1, 1), angle(1, 0) + 8.0);
+  // At mu_s 0.6 the sharper particles (alpha 0.4) stand steeper than the fuller ones (0.9).
+  EXPECT_GT(angle(1, 1), angle(0, 1));
+  // Cases are ordered alpha-major, and the measured alpha follows the input alpha.
+  EXPECT_DOUBLE_EQ(cases[2].alpha, 0.4);
+  EXPECT_DOUBLE_EQ(cases[1].friction, 0.6);
+  EXPECT_GT(cases[0].mean_measured_alpha, cases[2].mean_measured_alpha);
+}
+
+TEST(Repose, WritesJsonCsvAndPng) {
+  ReposeOptions options = small_trough();
+  options.fill_height = 0.4;  // 60 particles: only the files are under test here
+  const ReposeResult result = run_repose(options);
+  EXPECT_EQ(result.particle_count, 60u);
+  EXPECT_EQ(result.escaped_particles, 0u);
+  const auto folder = std::filesystem::temp_directory_path() / "aggpack_repose_test";
+  std::filesystem::create_directories(folder);
+  const std::string json = (folder / "r.json").string();
+  const std::string csv = (folder / "p.csv").string();
+  const std::string png = (folder / "s.png").string();
+  write_repose_json(json, options, result);
+  write_profile_csv(csv, result);
+  write_side_view_png(png, result.final, result.profile, result.fit, 400);
+  std::ifstream json_in(json);
+  const std::string json_text((std::istreambuf_iterator<char>(json_in)), {});
+  EXPECT_NE(json_text.find("\"angle_degrees\""), std::string::npos);
+  EXPECT_NE(json_text.find("\"count\": 60"), std::string::npos);
+  std::ifstream csv_in(csv);
+  std::string header;
+  std::getline(csv_in, header);
+  EXPECT_EQ(header, "x_m,height_m,in_fit,fit_height_m");
+  std::size_t rows = 0;
+  for (std::string line; std::getline(csv_in, line);) ++rows;
+  EXPECT_EQ(rows, result.profile.height.size());
+  std::ifstream png_in(png, std::ios::binary);
+  char signature[8] = {};
+  png_in.read(signature, 8);
+  EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+  std::filesystem::remove_all(folder);
+}
+
+TEST(Repose, RejectsBadOptions) {
+  ReposeOptions options;
+  options.baffle_speed = 0.0;
+  try {
+    run_repose(options);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& error) {
+    EXPECT_EQ(error.field(), "repose.baffle_speed");
+  }
+  options = ReposeOptions{};
+  options.baffle_position = 6.0;
+  EXPECT_THROW(run_repose(options), InvalidInput);
+  options = ReposeOptions{};
+  options.fit_lower = 0.9;
+  EXPECT_THROW(run_repose(options), InvalidInput);
+  SweepOptions sweep;
+  sweep.alphas.clear();
+  EXPECT_THROW(run_sweep(sweep), InvalidInput);
+}
+
+}  // namespace
+}  // namespace aggpack
