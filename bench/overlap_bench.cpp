@@ -116,7 +116,8 @@ void BM_IsSeparated_Shape(benchmark::State& state) {
   std::size_t i = 0, positives = 0, calls = 0;
   for (auto _ : state) {
     const Pair& p = pairs[i];
-    const bool separated = is_separated(pool.shapes[p.a], p.pose_a, pool.shapes[p.b], p.pose_b, 0.0);
+    const bool separated =
+        is_separated(pool.shapes[p.a], p.pose_a, pool.shapes[p.b], p.pose_b, 0.0);
     benchmark::DoNotOptimize(separated);
     positives += separated ? 1 : 0;
     ++calls;
@@ -232,7 +233,9 @@ void BM_EllipsoidIsSeparated(benchmark::State& state) {
   Rng rng(23, 0);
   std::vector<Pair> pairs;
   for (int k = 0; k < 4096; ++k) {
-    pairs.push_back({0, 0, {Vec3::Zero(), random_rotation(rng)},
+    pairs.push_back({0,
+                     0,
+                     {Vec3::Zero(), random_rotation(rng)},
                      {rng.uniform(0.5, 2.0) * random_unit(rng), random_rotation(rng)}});
   }
   std::size_t i = 0, positives = 0, calls = 0;

@@ -43,10 +43,10 @@ namespace {
 // ---- repose / sweep configuration: one TOML table per group, every key typed and documented --
 
 struct ConfigKey {
-  const char* name;     // "trough.length"
-  const char* unit;     // "m", "-", ...
+  const char* name;  // "trough.length"
+  const char* unit;  // "m", "-", ...
   const char* help;
-  std::function<std::string(const SweepOptions&)> show;       // value as TOML
+  std::function<std::string(const SweepOptions&)> show;        // value as TOML
   std::function<void(SweepOptions&, const std::string&)> set;  // from TOML text
 };
 
@@ -95,10 +95,10 @@ std::string show_list(const std::vector<double>& values) {
   return text + "]";
 }
 
-#define AGGPACK_DOUBLE_KEY(key, unit, help, member)                                              \
-  ConfigKey {                                                                                    \
-    key, unit, help, [](const SweepOptions& o) { return show_double(o.member); },               \
-        [](SweepOptions& o, const std::string& text) { o.member = parse_double(key, text); }     \
+#define AGGPACK_DOUBLE_KEY(key, unit, help, member)                                          \
+  ConfigKey {                                                                                \
+    key, unit, help, [](const SweepOptions& o) { return show_double(o.member); },            \
+        [](SweepOptions& o, const std::string& text) { o.member = parse_double(key, text); } \
   }
 
 const std::vector<ConfigKey>& config_keys() {
@@ -117,12 +117,10 @@ const std::vector<ConfigKey>& config_keys() {
       AGGPACK_DOUBLE_KEY("trough.baffle_clear_time", "s",
                          "baffle removed once untouched this long and clear of the pile",
                          base.baffle_clear_time),
-      AGGPACK_DOUBLE_KEY("particles.alpha", "-", "Eq. 3 shape control alpha, [0, 1]",
-                         base.alpha),
+      AGGPACK_DOUBLE_KEY("particles.alpha", "-", "Eq. 3 shape control alpha, [0, 1]", base.alpha),
       AGGPACK_DOUBLE_KEY("particles.radius", "m", "control radius R; lattice spacing 2R",
                          base.radius),
-      AGGPACK_DOUBLE_KEY("particles.edge_length", "m", "maximum edge length L",
-                         base.edge_length),
+      AGGPACK_DOUBLE_KEY("particles.edge_length", "m", "maximum edge length L", base.edge_length),
       AGGPACK_DOUBLE_KEY("particles.fill_height", "m", "height of the lattice region",
                          base.fill_height),
       ConfigKey{"particles.seed", "-", "master seed; particle i uses stream (seed, i)",
@@ -140,8 +138,7 @@ const std::vector<ConfigKey>& config_keys() {
                   return std::string(o.base.is_orientation_random ? "true" : "false");
                 },
                 [](SweepOptions& o, const std::string& text) {
-                  o.base.is_orientation_random =
-                      parse_bool("particles.random_orientation", text);
+                  o.base.is_orientation_random = parse_bool("particles.random_orientation", text);
                 }},
       AGGPACK_DOUBLE_KEY("physics.density", "kg/m^3", "particle density", base.physics.density),
       AGGPACK_DOUBLE_KEY("physics.friction", "-", "sliding friction mu_s particle-particle",
@@ -166,21 +163,21 @@ const std::vector<ConfigKey>& config_keys() {
       AGGPACK_DOUBLE_KEY("physics.time_step_factor", "-",
                          "automatic time step = factor * sqrt(d_min / g)",
                          base.physics.time_step_factor),
-      ConfigKey{"physics.solver_iterations", "-", "solver iterations per step, [1, 1000]",
-                [](const SweepOptions& o) {
-                  return std::to_string(o.base.physics.solver_iterations);
-                },
-                [](SweepOptions& o, const std::string& text) {
-                  const double value = parse_double("physics.solver_iterations", text);
-                  if (value != std::floor(value) || value < 1.0 || value > 1000.0) {
-                    throw InvalidInput("physics.solver_iterations", text, "an integer in [1, 1000]");
-                  }
-                  o.base.physics.solver_iterations = static_cast<int>(value);
-                }},
+      ConfigKey{
+          "physics.solver_iterations", "-", "solver iterations per step, [1, 1000]",
+          [](const SweepOptions& o) { return std::to_string(o.base.physics.solver_iterations); },
+          [](SweepOptions& o, const std::string& text) {
+            const double value = parse_double("physics.solver_iterations", text);
+            if (value != std::floor(value) || value < 1.0 || value > 1000.0) {
+              throw InvalidInput("physics.solver_iterations", text, "an integer in [1, 1000]");
+            }
+            o.base.physics.solver_iterations = static_cast<int>(value);
+          }},
       AGGPACK_DOUBLE_KEY("physics.margin_fraction", "-", "collision margin / d_min",
                          base.physics.margin_fraction),
       AGGPACK_DOUBLE_KEY("rest.kinetic_energy_ratio", "-",
-                         "at rest when kinetic energy < ratio * M g d", base.rest.kinetic_energy_ratio),
+                         "at rest when kinetic energy < ratio * M g d",
+                         base.rest.kinetic_energy_ratio),
       AGGPACK_DOUBLE_KEY("rest.quiet_time", "s", "time the rest criterion must hold",
                          base.rest.quiet_time),
       AGGPACK_DOUBLE_KEY("rest.check_interval", "s", "time between rest checks",
@@ -266,8 +263,8 @@ std::string resolved_config(const SweepOptions& options) {
       text += (section.empty() ? "" : "\n") + ("[" + group + "]\n");
       section = group;
     }
-    text += fmt::format("{} = {}  # {} ({})\n", name.substr(name.find('.') + 1), entry.show(options),
-                        entry.help, entry.unit);
+    text += fmt::format("{} = {}  # {} ({})\n", name.substr(name.find('.') + 1),
+                        entry.show(options), entry.help, entry.unit);
   }
   return text;
 }
@@ -357,7 +354,8 @@ void add_config_options(CLI::App& command, ReposeFlags& flags) {
                      "tables (omit for the paper's case; see --print-config)");
   command.add_option("--set", flags.overrides, "override a key: --set physics.friction=0.3")
       ->take_all();
-  command.add_option("--mu", flags.friction, "sliding friction mu_s, same as --set physics.friction");
+  command.add_option("--mu", flags.friction,
+                     "sliding friction mu_s, same as --set physics.friction");
   command.add_option("--alpha", flags.alpha, "shape control alpha, same as --set particles.alpha");
   command.add_option("--seed", flags.seed, "master seed, same as --set particles.seed");
   command.add_option("-o,--output", flags.output, "output folder (created if missing)")
@@ -396,19 +394,21 @@ void print_result(const ReposeResult& r) {
   fmt::print("stage 1 (settle)     {:.2f} s simulated, {}, pile height {:.3f} m, {:.1f} s wall\n",
              r.stage1_time, r.is_stage1_at_rest ? "at rest" : "NOT at rest (max_time)",
              r.stage1_height, r.stage1_seconds);
-  fmt::print("stage 2 (baffle)     {:.2f} s simulated, baffle moved {:.3f} m ({}), {}, {:.1f} s wall\n",
-             r.stage2_time, r.baffle_travel, r.is_baffle_removed ? "then removed" : "to the far wall",
-             r.is_stage2_at_rest ? "stable" : "NOT stable (max_time)", r.stage2_seconds);
-  fmt::print("final pile           max overlap {:.3f}% of d_min, max contact penetration {:.3f}%, "
-             "{} particles outside\n",
-             100.0 * r.max_overlap_fraction, 100.0 * r.max_contact_penetration_fraction,
-             r.escaped_particles);
+  fmt::print(
+      "stage 2 (baffle)     {:.2f} s simulated, baffle moved {:.3f} m ({}), {}, {:.1f} s wall\n",
+      r.stage2_time, r.baffle_travel, r.is_baffle_removed ? "then removed" : "to the far wall",
+      r.is_stage2_at_rest ? "stable" : "NOT stable (max_time)", r.stage2_seconds);
+  fmt::print(
+      "final pile           max overlap {:.3f}% of d_min, max contact penetration {:.3f}%, "
+      "{} particles outside\n",
+      100.0 * r.max_overlap_fraction, 100.0 * r.max_contact_penetration_fraction,
+      r.escaped_particles);
   if (r.fit.is_valid) {
-    fmt::print("angle of repose      {:.2f} deg (R^2 {:.3f}, {} bins from x = {:.3f} to {:.3f} m, "
-               "pile height {:.3f} m)\n",
-               r.fit.angle_degrees, r.fit.r_squared, r.fit.bin_count,
-               r.profile.centre(r.fit.first_bin), r.profile.centre(r.fit.last_bin),
-               r.fit.pile_height);
+    fmt::print(
+        "angle of repose      {:.2f} deg (R^2 {:.3f}, {} bins from x = {:.3f} to {:.3f} m, "
+        "pile height {:.3f} m)\n",
+        r.fit.angle_degrees, r.fit.r_squared, r.fit.bin_count, r.profile.centre(r.fit.first_bin),
+        r.profile.centre(r.fit.last_bin), r.fit.pile_height);
   } else {
     fmt::print("angle of repose      not measured: {}\n", r.fit.message);
   }
@@ -432,17 +432,17 @@ void run_repose_command(const ReposeFlags& flags) {
   }
   double last_print = -1.0;
   int last_stage = 0;
-  const ReposeResult result = run_repose(
-      options.base, [&](int stage, double time, double energy, double threshold) {
-        if (style == ProgressStyle::kNone) return;
-        if (stage != last_stage || time - last_print >= 0.5) {
-          last_stage = stage;
-          last_print = time;
-          std::fprintf(stderr, "stage %d  t = %6.2f s  kinetic energy %.3g J%s\n", stage, time,
-                       energy, threshold > 0.0 ? fmt::format(" (rest < {:.3g})", threshold).c_str()
-                                               : "  (baffle moving)");
-        }
-      });
+  const ReposeResult result = run_repose(options.base, [&](int stage, double time, double energy,
+                                                           double threshold) {
+    if (style == ProgressStyle::kNone) return;
+    if (stage != last_stage || time - last_print >= 0.5) {
+      last_stage = stage;
+      last_print = time;
+      std::fprintf(stderr, "stage %d  t = %6.2f s  kinetic energy %.3g J%s\n", stage, time, energy,
+                   threshold > 0.0 ? fmt::format(" (rest < {:.3g})", threshold).c_str()
+                                   : "  (baffle moving)");
+    }
+  });
   print_result(result);
   write_repose_json(in_folder(folder, "repose.json"), options.base, result);
   write_profile_csv(in_folder(folder, "profile.csv"), result);
@@ -522,22 +522,22 @@ void run_sweep_command(const ReposeFlags& flags) {
       repose.physics.friction = c.friction;
       if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
       write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
-      write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final,
-                          result.profile, result.fit, std::min(flags.image_width, 1200));
+      write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final, result.profile,
+                          result.fit, std::min(flags.image_width, 1200));
     } catch (const Error& error) {
       std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
     }
-    bar.update(static_cast<double>(done) / static_cast<double>(count), done, count,
-               fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction,
-                           c.angle_degrees));
+    bar.update(
+        static_cast<double>(done) / static_cast<double>(count), done, count,
+        fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction, c.angle_degrees));
   });
   bar.finish();
   write_sweep_csv(in_folder(folder, "sweep.csv"), cases);
   fmt::print("{:>6} {:>6} {:>9} {:>7} {:>6}\n", "alpha", "mu_s", "angle", "R^2", "rest");
   for (const auto& c : cases) {
     fmt::print("{:6.2f} {:6.2f} {:>9} {:7.3f} {:>6}\n", c.alpha, c.friction,
-               c.is_valid ? fmt::format("{:.2f}", c.angle_degrees) : std::string("-"),
-               c.r_squared, c.is_at_rest ? "yes" : "no");
+               c.is_valid ? fmt::format("{:.2f}", c.angle_degrees) : std::string("-"), c.r_squared,
+               c.is_at_rest ? "yes" : "no");
   }
   {
     AtomicFile script(in_folder(folder, "sweep.gp"), Overwrite::kAllow, std::ios::out);
@@ -583,19 +583,22 @@ void run_settle_command(const SettleFlags& flags) {
   const SettleReport& r = result.report;
   write_packing(flags.output, result.packing, {.overwrite = overwrite});
   fmt::print("{} after {:.2f} s simulated ({} steps of {:.4g} s, {:.1f} s wall)\n",
-             r.is_at_rest ? "at rest" : "NOT at rest (max time reached)", r.simulated_time,
-             r.steps, r.time_step, r.wall_seconds);
-  fmt::print("solid fraction       {:.4f} -> {:.4f} (bulk: solid {:.4g} m^3 / footprint x height "
-             "{:.4g} -> {:.4g} m)\n",
-             r.solid_fraction_before, r.solid_fraction_after, r.solid_volume, r.height_before,
-             r.height_after);
-  fmt::print("largest overlap      {:.4g} m = {:.3f}% of d_min ({} touching pairs); deepest "
-             "contact {:.4g} m\n",
-             r.max_overlap, 100.0 * r.max_overlap_fraction, r.overlapping_pairs,
-             r.max_contact_penetration);
-  fmt::print("containment          {} particles left the container (min wall clearance {:.3g} "
-             "m)\n",
-             r.escaped_particles, r.min_wall_clearance);
+             r.is_at_rest ? "at rest" : "NOT at rest (max time reached)", r.simulated_time, r.steps,
+             r.time_step, r.wall_seconds);
+  fmt::print(
+      "solid fraction       {:.4f} -> {:.4f} (bulk: solid {:.4g} m^3 / footprint x height "
+      "{:.4g} -> {:.4g} m)\n",
+      r.solid_fraction_before, r.solid_fraction_after, r.solid_volume, r.height_before,
+      r.height_after);
+  fmt::print(
+      "largest overlap      {:.4g} m = {:.3f}% of d_min ({} touching pairs); deepest "
+      "contact {:.4g} m\n",
+      r.max_overlap, 100.0 * r.max_overlap_fraction, r.overlapping_pairs,
+      r.max_contact_penetration);
+  fmt::print(
+      "containment          {} particles left the container (min wall clearance {:.3g} "
+      "m)\n",
+      r.escaped_particles, r.min_wall_clearance);
   fmt::print("wrote {}\n", flags.output);
 }
 #endif
@@ -609,9 +612,10 @@ void register_sim(CLI::App& app) {
     auto& physics = flags->options.physics;
     auto& rest = flags->options.rest;
     auto* command = app.add_subcommand(
-        "settle", "Let a saved packing fall under gravity in its container (Bullet) until it is "
-                  "at rest; write the dense packing and report solid fraction before/after, the "
-                  "largest overlap and containment.");
+        "settle",
+        "Let a saved packing fall under gravity in its container (Bullet) until it is "
+        "at rest; write the dense packing and report solid fraction before/after, the "
+        "largest overlap and containment.");
     command->add_option("input", flags->input, "native packing file (.h5)")->required();
     command->add_option("-o,--output", flags->output, "settled packing file (.h5)")->required();
     command->add_option("--mu", physics.friction, "sliding friction particle-particle, [0, 10]")
@@ -620,20 +624,23 @@ void register_sim(CLI::App& app) {
                         "sliding friction particle-wall, [0, 10] (default: --mu)");
     command->add_option("--restitution", physics.restitution, "restitution, [0, 1]")
         ->capture_default_str();
-    command->add_option("--rolling", physics.rolling_friction,
-                        "rolling friction mu_r, [0, 1] (0 = off)")
+    command
+        ->add_option("--rolling", physics.rolling_friction,
+                     "rolling friction mu_r, [0, 1] (0 = off)")
         ->capture_default_str();
     command->add_option("--density", physics.density, "particle density (kg/m^3)")
         ->capture_default_str();
     command->add_option("--dt", physics.time_step, "time step (s), 0 = automatic")
         ->capture_default_str();
-    command->add_option("--dt-factor", physics.time_step_factor,
-                        "automatic time step = factor * sqrt(d_min / g)")
+    command
+        ->add_option("--dt-factor", physics.time_step_factor,
+                     "automatic time step = factor * sqrt(d_min / g)")
         ->capture_default_str();
     command->add_option("--iterations", physics.solver_iterations, "solver iterations, [1, 1000]")
         ->capture_default_str();
-    command->add_option("--energy-ratio", rest.kinetic_energy_ratio,
-                        "at rest when kinetic energy < ratio * M g d for --quiet-time")
+    command
+        ->add_option("--energy-ratio", rest.kinetic_energy_ratio,
+                     "at rest when kinetic energy < ratio * M g d for --quiet-time")
         ->capture_default_str();
     command->add_option("--quiet-time", rest.quiet_time, "s the rest criterion must hold")
         ->capture_default_str();
@@ -648,10 +655,11 @@ void register_sim(CLI::App& app) {
   {
     auto flags = std::make_shared<ReposeFlags>();
     auto* command = app.add_subcommand(
-        "repose", "The paper's angle-of-repose test: lattice fill behind a baffle, settle, move "
-                  "the baffle away, measure the slope (profile + least-squares line). Default: "
-                  "the paper's case (trough 6 x 1 x 1 m, alpha 0.5, R 0.1 m, L 0.1 m, 1,050 "
-                  "particles). Writes repose.json, profile.csv, side.png (and final.h5).");
+        "repose",
+        "The paper's angle-of-repose test: lattice fill behind a baffle, settle, move "
+        "the baffle away, measure the slope (profile + least-squares line). Default: "
+        "the paper's case (trough 6 x 1 x 1 m, alpha 0.5, R 0.1 m, L 0.1 m, 1,050 "
+        "particles). Writes repose.json, profile.csv, side.png (and final.h5).");
     add_config_options(*command, *flags);
     command->callback([flags]() { run_repose_command(*flags); });
   }
@@ -659,9 +667,10 @@ void register_sim(CLI::App& app) {
     auto flags = std::make_shared<ReposeFlags>();
     flags->output = "sweep-out";
     auto* command = app.add_subcommand(
-        "sweep", "The repose test over alpha x mu_s (default: the paper's 5 x 13 = 65 cases), "
-                 "cases in parallel; writes sweep.csv, sweep.gp, sweep.png (gnuplot) and "
-                 "cases/*.json|png.");
+        "sweep",
+        "The repose test over alpha x mu_s (default: the paper's 5 x 13 = 65 cases), "
+        "cases in parallel; writes sweep.csv, sweep.gp, sweep.png (gnuplot) and "
+        "cases/*.json|png.");
     add_config_options(*command, *flags);
     command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
         ->capture_default_str();

@@ -24,8 +24,7 @@ void check_writable(const std::string& path, Overwrite overwrite) {
     throw IoError("cannot write " + path + ": folder " + folder.string() + " does not exist");
   }
   if (::access(folder.c_str(), W_OK) != 0) {
-    throw IoError("cannot write " + path + ": no permission to write in folder " +
-                  folder.string());
+    throw IoError("cannot write " + path + ": no permission to write in folder " + folder.string());
   }
   if (fs::is_directory(target, error)) {
     throw IoError("cannot write " + path + ": it is a folder");

@@ -243,7 +243,8 @@ void closest_on_tetrahedron(const Vec3* p, SubResult& out) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// GJK on A - B in A's local frame. B's local frame maps into A's by x -> rotation * x + translation.
+// GJK on A - B in A's local frame. B's local frame maps into A's by x -> rotation * x +
+// translation.
 
 struct Simplex {
   std::array<Vec3, 4> points;
@@ -387,8 +388,7 @@ GjkResult run_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
   // rad, may point just outside the cone. The faces next to the edge are planes that the
   // segment and the last support point span; their normals are accurate, and the distance to
   // their planes is within (cone width)^2 of |v|. Bound along them.
-  for (int polish = 0; polish < 4 && result.outcome == GjkOutcome::kConverged &&
-                       simplex.size == 2;
+  for (int polish = 0; polish < 4 && result.outcome == GjkOutcome::kConverged && simplex.size == 2;
        ++polish) {
     const double v_norm = std::sqrt(v_squared);
     if (v_norm - lower_bound <= std::max(kRelativeGap * v_norm, 0.1 * tolerance)) break;
@@ -604,8 +604,8 @@ template <class SupportA, class SupportB>
 DistanceResult distance_query(const SupportA& a, const Pose& pose_a, const SupportB& b,
                               const Pose& pose_b, double scale) {
   const RelativeFrame frame = relative_frame(pose_a, pose_b);
-  const GjkResult run = run_gjk(a, b, frame.rotation, frame.translation,
-                                kProximityTolerance * scale, -1.0);
+  const GjkResult run =
+      run_gjk(a, b, frame.rotation, frame.translation, kProximityTolerance * scale, -1.0);
   DistanceResult result;
   result.iterations = run.iterations;
   if (run.outcome == GjkOutcome::kIntersecting) {
@@ -625,8 +625,8 @@ DistanceResult distance_query(const SupportA& a, const Pose& pose_a, const Suppo
 }
 
 template <class SupportA, class SupportB>
-bool separation_query(const SupportA& a, const Pose& pose_a, const SupportB& b,
-                      const Pose& pose_b, double scale, double gap) {
+bool separation_query(const SupportA& a, const Pose& pose_a, const SupportB& b, const Pose& pose_b,
+                      double scale, double gap) {
   const RelativeFrame frame = relative_frame(pose_a, pose_b);
   const double tolerance = kProximityTolerance * scale;
   const FastAnswer fast = boolean_gjk(a, b, frame.rotation, frame.translation, gap + tolerance);
@@ -670,10 +670,9 @@ __attribute__((target("avx2"), always_inline)) inline void merge_avx2(__m256d& v
                                                                       __m256d& index,
                                                                       __m256d other_value,
                                                                       __m256d other_index) {
-  const __m256d take =
-      _mm256_or_pd(_mm256_cmp_pd(other_value, value, _CMP_GT_OQ),
-                   _mm256_and_pd(_mm256_cmp_pd(other_value, value, _CMP_EQ_OQ),
-                                 _mm256_cmp_pd(other_index, index, _CMP_LT_OQ)));
+  const __m256d take = _mm256_or_pd(_mm256_cmp_pd(other_value, value, _CMP_GT_OQ),
+                                    _mm256_and_pd(_mm256_cmp_pd(other_value, value, _CMP_EQ_OQ),
+                                                  _mm256_cmp_pd(other_index, index, _CMP_LT_OQ)));
   value = _mm256_blendv_pd(value, other_value, take);
   index = _mm256_blendv_pd(index, other_index, take);
 }
@@ -694,14 +693,14 @@ __attribute__((target("avx2"))) std::uint32_t scan_avx2(const double* x, const d
   __m256d best_index_low = index_low;
   __m256d best_index_high = index_high;
   for (std::uint32_t i = 0; i < stride; i += 8) {
-    const __m256d value_low = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(dx, _mm256_loadu_pd(x + i)),
-                      _mm256_mul_pd(dy, _mm256_loadu_pd(y + i))),
-        _mm256_mul_pd(dz, _mm256_loadu_pd(z + i)));
-    const __m256d value_high = _mm256_add_pd(
-        _mm256_add_pd(_mm256_mul_pd(dx, _mm256_loadu_pd(x + i + 4)),
-                      _mm256_mul_pd(dy, _mm256_loadu_pd(y + i + 4))),
-        _mm256_mul_pd(dz, _mm256_loadu_pd(z + i + 4)));
+    const __m256d value_low =
+        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, _mm256_loadu_pd(x + i)),
+                                    _mm256_mul_pd(dy, _mm256_loadu_pd(y + i))),
+                      _mm256_mul_pd(dz, _mm256_loadu_pd(z + i)));
+    const __m256d value_high =
+        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, _mm256_loadu_pd(x + i + 4)),
+                                    _mm256_mul_pd(dy, _mm256_loadu_pd(y + i + 4))),
+                      _mm256_mul_pd(dz, _mm256_loadu_pd(z + i + 4)));
     const __m256d is_greater_low = _mm256_cmp_pd(value_low, best_low, _CMP_GT_OQ);
     const __m256d is_greater_high = _mm256_cmp_pd(value_high, best_high, _CMP_GT_OQ);
     best_low = _mm256_blendv_pd(best_low, value_low, is_greater_low);
@@ -856,9 +855,9 @@ std::uint32_t SupportShape::scan(const Vec3& direction) const {
   __m128d best_index_low = index_low;
   __m128d best_index_high = index_high;
   const auto dot = [&](std::uint32_t i) {
-    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, _mm_loadu_pd(x + i)),
-                                 _mm_mul_pd(dy, _mm_loadu_pd(y + i))),
-                      _mm_mul_pd(dz, _mm_loadu_pd(z + i)));
+    return _mm_add_pd(
+        _mm_add_pd(_mm_mul_pd(dx, _mm_loadu_pd(x + i)), _mm_mul_pd(dy, _mm_loadu_pd(y + i))),
+        _mm_mul_pd(dz, _mm_loadu_pd(z + i)));
   };
   const auto select = [](__m128d mask, __m128d if_true, __m128d if_false) {
     return _mm_or_pd(_mm_and_pd(mask, if_true), _mm_andnot_pd(mask, if_false));
@@ -972,8 +971,8 @@ bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a
   // The spheres' test is widened by tol like GJK's, so that both agree at exact touching.
   const double reach = (radius_a + radius_b) * (1.0 + kProximityTolerance) + gap;
   if ((pose_b.position - pose_a.position).squaredNorm() > reach * reach) return true;
-  return separation_query(PolyhedronSupport{a.vertices()}, pose_a,
-                          PolyhedronSupport{b.vertices()}, pose_b, radius_a + radius_b, gap);
+  return separation_query(PolyhedronSupport{a.vertices()}, pose_a, PolyhedronSupport{b.vertices()},
+                          pose_b, radius_a + radius_b, gap);
 }
 
 bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape& b,
@@ -985,8 +984,8 @@ bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape&
   require_valid(pose_a, "pose_a");
   require_valid(pose_b, "pose_b");
   const double centre_distance_squared = (pose_b.position - pose_a.position).squaredNorm();
-  const double reach = (a.bounding_radius() + b.bounding_radius()) * (1.0 + kProximityTolerance) +
-                       gap;
+  const double reach =
+      (a.bounding_radius() + b.bounding_radius()) * (1.0 + kProximityTolerance) + gap;
   if (centre_distance_squared > reach * reach) return true;
   // The inner balls (inside the bodies) are closer than gap, so the bodies are too.
   if (a.inner_radius() > 0.0 && b.inner_radius() > 0.0) {

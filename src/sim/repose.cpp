@@ -86,8 +86,8 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
   const double threshold =
       rest.kinetic_energy_ratio * world.total_mass() * 9.81 * world.median_size();
   const double tolerance = options.surface_tolerance * world.median_size();
-  const auto steps_per_check = static_cast<std::size_t>(
-      std::max(1.0, std::round(rest.check_interval / world.time_step())));
+  const auto steps_per_check =
+      static_cast<std::size_t>(std::max(1.0, std::round(rest.check_interval / world.time_step())));
   const double start = world.time();
   double energy_quiet_since = -1.0;
   SurfaceProfile reference;
@@ -219,8 +219,8 @@ SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper, double fit_l
     return fit;
   }
   const std::vector<double> smooth = running_median(profile.height, smoothing_bins);
-  const auto crest = static_cast<std::size_t>(
-      std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
+  const auto crest =
+      static_cast<std::size_t>(std::max_element(smooth.begin(), smooth.end()) - smooth.begin());
   const double top = smooth[crest];
   fit.pile_height = top;
   if (!(top > 0.0)) {
@@ -377,7 +377,8 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
   }
   result.baffle_travel = world.wall_box(baffle).lower.x() - options.baffle_position;
   const double bin_width = options.bin_width > 0.0 ? options.bin_width : 0.5 * options.radius;
-  result.is_stage2_at_rest = wait_until_stable(world, options, bin_width, [&](double time, double energy, double threshold) {
+  result.is_stage2_at_rest = wait_until_stable(
+      world, options, bin_width, [&](double time, double energy, double threshold) {
         if (progress) progress(2, time - stage2_begin, energy, threshold);
       });
   result.stage2_time = world.time() - stage2_begin;

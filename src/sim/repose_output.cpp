@@ -317,7 +317,8 @@ void write_side_view_png(const std::string& path, const Packing& packing,
     image.line(px(a), py(fit.intercept + fit.slope * a), px(b), py(fit.intercept + fit.slope * b),
                std::max(2, width / 500), {220, 20, 20});
     char buffer[160];
-    std::snprintf(buffer, sizeof buffer, "angle of repose %.1f deg  (R^2 %.3f, %zu bins)  %zu particles",
+    std::snprintf(buffer, sizeof buffer,
+                  "angle of repose %.1f deg  (R^2 %.3f, %zu bins)  %zu particles",
                   fit.angle_degrees, fit.r_squared, fit.bin_count, packing.particles.size());
     caption = buffer;
   } else {

@@ -64,8 +64,7 @@ double bulk_solid_fraction(const Packing& packing, double height) {
   return solid_volume(packing) / (footprint_area(packing.container) * height);
 }
 
-bool run_until_rest(World& world, const RestCriterion& criterion,
-                    const SettleProgress& progress) {
+bool run_until_rest(World& world, const RestCriterion& criterion, const SettleProgress& progress) {
   validate(criterion);
   const double threshold = criterion.kinetic_energy_ratio * energy_scale(world);
   const auto steps_per_check = static_cast<std::size_t>(

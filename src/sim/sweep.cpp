@@ -71,10 +71,9 @@ void write_sweep_csv(const std::string& path, const std::vector<SweepCase>& case
          "measured_alpha,simulated_s\n";
   char line[512];
   for (const auto& c : cases) {
-    std::snprintf(line, sizeof line, "%.6g,%.6g,%.6f,%.6f,%zu,%d,%d,%zu,%.6f,%.4f\n",
-                  c.alpha, c.friction, c.angle_degrees, c.r_squared, c.fit_bins,
-                  c.is_valid ? 1 : 0, c.is_at_rest ? 1 : 0, c.particle_count,
-                  c.mean_measured_alpha, c.simulated_time);
+    std::snprintf(line, sizeof line, "%.6g,%.6g,%.6f,%.6f,%zu,%d,%d,%zu,%.6f,%.4f\n", c.alpha,
+                  c.friction, c.angle_degrees, c.r_squared, c.fit_bins, c.is_valid ? 1 : 0,
+                  c.is_at_rest ? 1 : 0, c.particle_count, c.mean_measured_alpha, c.simulated_time);
     out << line;
   }
   file.commit();

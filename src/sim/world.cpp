@@ -1,18 +1,18 @@
 #include "aggpack/sim/world.h"
 
-#include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionDispatch/btManifoldResult.h>
 #include <BulletCollision/NarrowPhaseCollision/btGjkEpa2.h>
 #include <LinearMath/btConvexHullComputer.h>
+#include <btBulletDynamicsCommon.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
-#include <utility>
-#include <cmath>
 #include <mutex>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 
@@ -115,8 +115,7 @@ void validate(const PhysicsOptions& options) {
   require_in_range("time_step", options.time_step, 0.0, 1.0);
   require_in_range("time_step_factor", options.time_step_factor, 1e-6, 1.0);
   if (options.solver_iterations < 1 || options.solver_iterations > 1000) {
-    throw InvalidInput("solver_iterations", std::to_string(options.solver_iterations),
-                       "[1, 1000]");
+    throw InvalidInput("solver_iterations", std::to_string(options.solver_iterations), "[1, 1000]");
   }
   require_in_range("margin_fraction", options.margin_fraction, 1e-4, 0.1);
 }
@@ -130,15 +129,15 @@ struct World::Impl {
   std::size_t steps = 0;
   double smallest_size = 0.0;
   double median_size = 0.0;
-  double margin = 0.0;  // sim units
+  double margin = 0.0;          // sim units
   double wall_thickness = 0.0;  // m
 
-  std::vector<double> bounding_radius;    // per particle, about its centroid (sim units)
+  std::vector<double> bounding_radius;  // per particle, about its centroid (sim units)
   // Bullet keeps contact points up to gContactBreakingThreshold (0.02) x the shape's angular
   // motion disc (at most sqrt(3) x its bounding radius + margin); reach 10% beyond the spheres.
   static constexpr double kPairReach = 1.1;
-  std::vector<ShapeData> shapes;          // one per distinct (shape, scale)
-  std::vector<std::uint32_t> body_shape;  // per particle: index into shapes
+  std::vector<ShapeData> shapes;                     // one per distinct (shape, scale)
+  std::vector<std::uint32_t> body_shape;             // per particle: index into shapes
   std::vector<std::unique_ptr<btRigidBody>> bodies;  // one per particle, index = particle index
   std::vector<Wall> walls;
 
@@ -187,8 +186,8 @@ void World::Impl::near_callback(btBroadphasePair& pair, btCollisionDispatcher& d
     if (index_a >= 0 && index_b >= 0) {
       const double reach = kPairReach * (impl->bounding_radius[static_cast<std::size_t>(index_a)] +
                                          impl->bounding_radius[static_cast<std::size_t>(index_b)]);
-      is_far = (a->getWorldTransform().getOrigin() - b->getWorldTransform().getOrigin())
-                   .length2() > reach * reach;
+      is_far = (a->getWorldTransform().getOrigin() - b->getWorldTransform().getOrigin()).length2() >
+               reach * reach;
     } else {
       const auto* particle = index_a >= 0 ? a : b;
       const auto* wall = index_a >= 0 ? b : a;
@@ -304,13 +303,14 @@ void World::Impl::build_shapes() {
     }
     const btScalar factor = 1.0 - margin / nearest_face;
     btAlignedObjectArray<btVector3> scaled;
-    for (int v = 0; v < computer.vertices.size(); ++v) scaled.push_back(factor * computer.vertices[v]);
-    shape.hull = std::make_unique<btConvexHullShape>(&scaled[0].x(), scaled.size(),
-                                                     sizeof(btVector3));
+    for (int v = 0; v < computer.vertices.size(); ++v)
+      scaled.push_back(factor * computer.vertices[v]);
+    shape.hull =
+        std::make_unique<btConvexHullShape>(&scaled[0].x(), scaled.size(), sizeof(btVector3));
     shape.hull->setMargin(margin);
     shape.exact = SupportShape(shape.scale == 1.0 ? stored : stored.scaled(shape.scale));
-    shape.exact_hull = std::make_unique<btConvexHullShape>(points.data(), count,
-                                                           3 * sizeof(btScalar));
+    shape.exact_hull =
+        std::make_unique<btConvexHullShape>(points.data(), count, 3 * sizeof(btScalar));
     shape.exact_hull->optimizeConvexHull();
     shape.exact_hull->setMargin(0.0);
   }
@@ -418,11 +418,11 @@ void World::Impl::add_container_walls(double wall_height) {
     const double l = container.length;
     const double w = container.width;
     const double h = std::max(container.depth, wall_height);
-    add_wall({.box = {Vec3(-t, -t, -t), Vec3(l + t, w + t, 0.0)}});         // floor
-    add_wall({.box = {Vec3(-t, -t, 0.0), Vec3(0.0, w + t, h)}});            // x = 0
-    add_wall({.box = {Vec3(l, -t, 0.0), Vec3(l + t, w + t, h)}});           // x = length
-    add_wall({.box = {Vec3(0.0, -t, 0.0), Vec3(l, 0.0, h)}});               // y = 0
-    add_wall({.box = {Vec3(0.0, w, 0.0), Vec3(l, w + t, h)}});              // y = width
+    add_wall({.box = {Vec3(-t, -t, -t), Vec3(l + t, w + t, 0.0)}});  // floor
+    add_wall({.box = {Vec3(-t, -t, 0.0), Vec3(0.0, w + t, h)}});     // x = 0
+    add_wall({.box = {Vec3(l, -t, 0.0), Vec3(l + t, w + t, h)}});    // x = length
+    add_wall({.box = {Vec3(0.0, -t, 0.0), Vec3(l, 0.0, h)}});        // y = 0
+    add_wall({.box = {Vec3(0.0, w, 0.0), Vec3(l, w + t, h)}});       // y = width
     return;
   }
   const double r = container.radius;
@@ -442,12 +442,11 @@ void World::Impl::add_container_walls(double wall_height) {
     wall.exact_shape->setMargin(0.0);
     btTransform transform;
     transform.setIdentity();
-    transform.setOrigin(to_bt(scale * Vec3((r + 0.5 * t) * std::cos(angle),
-                                           (r + 0.5 * t) * std::sin(angle), 0.5 * h)));
+    transform.setOrigin(to_bt(
+        scale * Vec3((r + 0.5 * t) * std::cos(angle), (r + 0.5 * t) * std::sin(angle), 0.5 * h)));
     transform.setRotation(btQuaternion(btVector3(0, 0, 1), angle));
     wall.motion = std::make_unique<btDefaultMotionState>(transform);
-    btRigidBody::btRigidBodyConstructionInfo construction(0.0, wall.motion.get(),
-                                                          wall.shape.get());
+    btRigidBody::btRigidBodyConstructionInfo construction(0.0, wall.motion.get(), wall.shape.get());
     construction.m_friction = wall_friction();
     construction.m_restitution = options.restitution;
     wall.body = std::make_unique<btRigidBody>(construction);
@@ -473,10 +472,9 @@ World::World(const Packing& packing, const PhysicsOptions& options, double wall_
     largest = std::max(largest, impl.shapes[index].size);
   }
   impl.wall_thickness = 2.0 * largest;
-  impl.time_step = options.time_step > 0.0
-                       ? options.time_step
-                       : options.time_step_factor *
-                             std::sqrt(impl.smallest_size / kStandardGravity);
+  impl.time_step = options.time_step > 0.0 ? options.time_step
+                                           : options.time_step_factor *
+                                                 std::sqrt(impl.smallest_size / kStandardGravity);
   impl.build_world();
   impl.add_container_walls(wall_height);
   impl.add_particles();
@@ -535,7 +533,8 @@ void World::step(std::size_t count) {
       if (!wall.is_kinematic || wall.is_removed) continue;
       btTransform transform;
       wall.motion->getWorldTransform(transform);
-      transform.setOrigin(transform.getOrigin() + to_bt(impl.scale * impl.time_step * wall.velocity));
+      transform.setOrigin(transform.getOrigin() +
+                          to_bt(impl.scale * impl.time_step * wall.velocity));
       wall.motion->setWorldTransform(transform);
     }
     // maxSubSteps = 0: exactly one internal step of time_step, no interpolation.

@@ -131,7 +131,7 @@ TEST(Overlap, CubesTouchingAndOverlappingIntersect) {
     expect_intersecting(edge_edge(s));
     expect_intersecting(vertex_face(s));
   }
-  expect_intersecting({{}, {}});                         // identical placement
+  expect_intersecting({{}, {}});                                 // identical placement
   expect_intersecting({{}, {Vec3(1, 1, 1), Quat::Identity()}});  // corner to corner
   expect_intersecting({{}, {Vec3(1, 1, 0), Quat::Identity()}});  // edge to edge, parallel
 }
@@ -161,8 +161,9 @@ TEST(Overlap, NearlyCoplanarFacesKnownDistance) {
 TEST(Overlap, RigidMotionOfBothBodiesKeepsDistance) {
   Rng rng(11, 0);
   for (int trial = 0; trial < 100; ++trial) {
-    const CubePair base = trial % 3 == 0 ? face_face(0.25) : trial % 3 == 1 ? edge_edge(0.25)
-                                                                           : vertex_face(0.25);
+    const CubePair base = trial % 3 == 0   ? face_face(0.25)
+                          : trial % 3 == 1 ? edge_edge(0.25)
+                                           : vertex_face(0.25);
     const Quat motion = random_rotation(rng);
     const Vec3 shift = Vec3(rng.uniform(-1e3, 1e3), rng.uniform(-1e3, 1e3), rng.uniform(-1e3, 1e3));
     const Pose a{motion * base.a.position + shift, motion * base.a.rotation};
@@ -302,7 +303,8 @@ bool brute_overlap_one_way(const ConvexPolyhedron& a, const std::vector<Edge>& a
   }
   std::vector<double> side(av.size() * faces);
   for (std::size_t v = 0; v < av.size(); ++v) {
-    for (std::size_t f = 0; f < faces; ++f) side[v * faces + f] = normals[f].dot(av[v]) - offsets[f];
+    for (std::size_t f = 0; f < faces; ++f)
+      side[v * faces + f] = normals[f].dot(av[v]) - offsets[f];
   }
   const double tolerance = 6.0 * volume_tolerance;
   for (const auto& edge : a_edges) {
@@ -343,7 +345,8 @@ double brute_distance(const ConvexPolyhedron& a, const std::vector<Edge>& a_edge
     const auto& bv = body.vertices();
     for (const auto& p : points.vertices()) {
       for (const auto& t : body.triangles()) {
-        best = std::min(best, (p - closest_on_triangle(p, bv[t[0]], bv[t[1]], bv[t[2]])).squaredNorm());
+        best = std::min(best,
+                        (p - closest_on_triangle(p, bv[t[0]], bv[t[1]], bv[t[2]])).squaredNorm());
       }
     }
   };
@@ -383,7 +386,8 @@ Feature random_feature(const Particle& particle, Rng& rng) {
   if (kind == 1) {  // edge
     const auto& e = particle.edges[static_cast<std::size_t>(rng.uniform() * particle.edges.size())];
     const double u = rng.uniform();
-    const Vec3 point = (1 - u) * body.vertices()[e.vertices[0]] + u * body.vertices()[e.vertices[1]];
+    const Vec3 point =
+        (1 - u) * body.vertices()[e.vertices[0]] + u * body.vertices()[e.vertices[1]];
     return {point, (body.face_normal(e.faces[0]) + body.face_normal(e.faces[1])).normalized()};
   }
   const auto v = static_cast<std::uint32_t>(rng.uniform() * body.vertex_count());
@@ -412,7 +416,8 @@ Contact touching_pair(const Particle& a, const Particle& b, Rng& rng) {
   contact.normal = contact.pose_a.rotation * fa.direction;
   const Vec3 touch = contact.pose_a.apply(fa.point);
   const Quat spin = axis_angle(contact.normal, rng.uniform(0, 2 * std::numbers::pi));
-  contact.pose_b.rotation = (spin * Quat::FromTwoVectors(fb.direction, -contact.normal)).normalized();
+  contact.pose_b.rotation =
+      (spin * Quat::FromTwoVectors(fb.direction, -contact.normal)).normalized();
   contact.pose_b.position = touch - contact.pose_b.rotation * fb.point;
   return contact;
 }
@@ -458,9 +463,9 @@ TEST(Overlap, AgreesWithBruteForceOnRandomPairs) {
     const ConvexPolyhedron world_a = a.body.transformed(pose_a);
     const ConvexPolyhedron world_b = b.body.transformed(pose_b);
     const bool brute = brute_overlap(world_a, a.edges, world_b, b.edges, volume_tolerance);
-    SCOPED_TRACE(testing::Message() << "trial " << trial << " category " << category << " eps "
-                                    << eps << " brute " << brute << " gjk distance "
-                                    << by_shape.distance);
+    SCOPED_TRACE(testing::Message()
+                 << "trial " << trial << " category " << category << " eps " << eps << " brute "
+                 << brute << " gjk distance " << by_shape.distance);
     ASSERT_TRUE(std::isfinite(by_polyhedron.distance) && std::isfinite(by_shape.distance));
     // Both APIs and both query kinds agree with each other.
     ASSERT_EQ(by_polyhedron.is_intersecting, by_shape.is_intersecting);
@@ -504,10 +509,11 @@ TEST(Overlap, AgreesWithBruteForceOnRandomPairs) {
   EXPECT_GT(counts.pushed_in_overlap, counts.pushed_in / 2);
   RecordProperty("random_overlap", counts.random_overlap);
   RecordProperty("ambiguous", counts.ambiguous);
-  std::printf("random: %d overlapping, %d separate; touching %d; +eps %d; -eps %d (%d overlap); "
-              "contact without strict crossing %d\n",
-              counts.random_overlap, counts.random_separate, counts.touching, counts.separated,
-              counts.pushed_in, counts.pushed_in_overlap, counts.ambiguous);
+  std::printf(
+      "random: %d overlapping, %d separate; touching %d; +eps %d; -eps %d (%d overlap); "
+      "contact without strict crossing %d\n",
+      counts.random_overlap, counts.random_separate, counts.touching, counts.separated,
+      counts.pushed_in, counts.pushed_in_overlap, counts.ambiguous);
 }
 
 TEST(Overlap, DistanceMatchesBruteForceDistance) {
@@ -532,9 +538,9 @@ TEST(Overlap, DistanceMatchesBruteForceDistance) {
     const double expected = brute_distance(world_a, a.edges, world_b, b.edges);
     ASSERT_GE(expected, shift * (1 - 1e-9));
     for (int api = 0; api < 2; ++api) {
-      const DistanceResult r =
-          api == 0 ? gjk_distance(a.body, contact.pose_a, b.body, contact.pose_b)
-                   : gjk_distance(a.shape, contact.pose_a, b.shape, contact.pose_b);
+      const DistanceResult r = api == 0
+                                   ? gjk_distance(a.body, contact.pose_a, b.body, contact.pose_b)
+                                   : gjk_distance(a.shape, contact.pose_a, b.shape, contact.pose_b);
       SCOPED_TRACE(testing::Message() << "trial " << trial << " api " << api);
       ASSERT_FALSE(r.is_intersecting);
       ASSERT_NEAR(r.distance, expected, 1e-9 * expected);
@@ -617,7 +623,9 @@ TEST(Overlap, SupportShapeKeepsEverySupportValue) {
   for (double edge : {1.0, 0.5, 0.25, 0.15}) {
     for (std::uint64_t i = 0; i < 6; ++i) {
       bodies.push_back(generate_particle({.alpha = 0.1 + 0.15 * static_cast<double>(i),
-                                          .radius_min = 1, .radius_max = 1, .edge_length = edge,
+                                          .radius_min = 1,
+                                          .radius_max = 1,
+                                          .edge_length = edge,
                                           .seed = 9},
                                          i)
                            .body);
@@ -629,10 +637,10 @@ TEST(Overlap, SupportShapeKeepsEverySupportValue) {
        {SupportSearch::kAuto, SupportSearch::kScan, SupportSearch::kHillClimb}) {
     for (const ConvexPolyhedron& body : bodies) {
       const SupportShape shape(body, search);
-      ASSERT_EQ(shape.uses_hill_climbing(), search == SupportSearch::kHillClimb ||
-                                                (search == SupportSearch::kAuto &&
-                                                 shape.vertex_count() >
-                                                     SupportShape::kHillClimbMinVertices));
+      ASSERT_EQ(shape.uses_hill_climbing(),
+                search == SupportSearch::kHillClimb ||
+                    (search == SupportSearch::kAuto &&
+                     shape.vertex_count() > SupportShape::kHillClimbMinVertices));
       ASSERT_LE(shape.vertex_count(), body.vertex_count());
       ASSERT_GE(shape.vertex_count(), 4u);
       std::uint32_t hint = SupportShape::kNoHint;

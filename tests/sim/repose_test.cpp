@@ -70,7 +70,8 @@ SurfaceProfile synthetic(double plateau, double slope_start, double angle_degree
   const double tangent = std::tan(angle_degrees * std::numbers::pi / 180.0);
   for (int i = 0; i < bins; ++i) {
     const double x = profile.centre(static_cast<std::size_t>(i));
-    profile.height.push_back(std::max(0.0, std::min(plateau, plateau - tangent * (x - slope_start))));
+    profile.height.push_back(
+        std::max(0.0, std::min(plateau, plateau - tangent * (x - slope_start))));
   }
   return profile;
 }

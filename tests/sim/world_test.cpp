@@ -31,8 +31,8 @@ ConvexPolyhedron centred(const ConvexPolyhedron& body) {
 }
 
 ConvexPolyhedron aggregate(std::uint64_t index, double alpha = 0.5, double radius = 0.1) {
-  const GeneratorOptions options{.alpha = alpha, .radius_min = radius, .radius_max = radius,
-                                 .edge_length = radius, .seed = 7};
+  const GeneratorOptions options{
+      .alpha = alpha, .radius_min = radius, .radius_max = radius, .edge_length = radius, .seed = 7};
   return centred(generate_particle(options, index).body);
 }
 
@@ -237,7 +237,7 @@ TEST(World, KineticEnergyNeverGrowsWithoutInput) {
       if (energy < previous * (1.0 - 1e-6)) ++collisions;
       previous = energy;
     }
-    EXPECT_GT(collisions, 10);                  // the test did exercise collisions
+    EXPECT_GT(collisions, 10);  // the test did exercise collisions
     EXPECT_LT(previous, 0.9 * initial);
   }
 }

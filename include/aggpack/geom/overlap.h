@@ -43,11 +43,11 @@ inline constexpr double kProximityTolerance = 1e-12;
 
 /// Result of a distance query between two placed bodies.
 struct DistanceResult {
-  double distance = 0.0;        ///< Euclidean distance (m); 0 when the bodies intersect
-  bool is_intersecting = false; ///< true when they share a point (touching within tol counts)
-  Vec3 point_a = Vec3::Zero();  ///< closest point on A (world), valid when not intersecting
-  Vec3 point_b = Vec3::Zero();  ///< closest point on B (world), valid when not intersecting
-  int iterations = 0;           ///< GJK iterations used
+  double distance = 0.0;         ///< Euclidean distance (m); 0 when the bodies intersect
+  bool is_intersecting = false;  ///< true when they share a point (touching within tol counts)
+  Vec3 point_a = Vec3::Zero();   ///< closest point on A (world), valid when not intersecting
+  Vec3 point_b = Vec3::Zero();   ///< closest point on B (world), valid when not intersecting
+  int iterations = 0;            ///< GJK iterations used
 };
 
 /// Largest distance from the local origin to a vertex (bounding-sphere radius about the origin).
@@ -55,9 +55,9 @@ double bounding_radius(const ConvexPolyhedron& body);
 
 /// How SupportShape finds the vertex farthest along a direction.
 enum class SupportSearch {
-  kAuto,       ///< hill-climbing above kHillClimbMinVertices hull vertices, else a linear scan
-  kScan,       ///< always a linear scan over the hull vertices
-  kHillClimb   ///< always hill-climbing over the hull adjacency
+  kAuto,      ///< hill-climbing above kHillClimbMinVertices hull vertices, else a linear scan
+  kScan,      ///< always a linear scan over the hull vertices
+  kHillClimb  ///< always hill-climbing over the hull adjacency
 };
 
 /// A convex polyhedron prepared for fast support queries: only its hull vertices (a vertex within
@@ -100,11 +100,11 @@ class SupportShape {
   [[nodiscard]] std::uint32_t climb(const Vec3& direction, std::uint32_t start) const;
 
   std::uint32_t count_ = 0;
-  std::uint32_t stride_ = 0;             // padded count: x at [0, stride), y, z follow
-  std::vector<double> coordinates_;      // x..., y..., z... (padding repeats the last vertex)
+  std::uint32_t stride_ = 0;         // padded count: x at [0, stride), y, z follow
+  std::vector<double> coordinates_;  // x..., y..., z... (padding repeats the last vertex)
   std::vector<std::uint32_t> neighbour_offsets_;  // CSR adjacency of hull vertices
   std::vector<std::uint32_t> neighbours_;
-  std::vector<std::uint8_t> is_blunt_;   // walk ending here is re-checked by a scan
+  std::vector<std::uint8_t> is_blunt_;                   // walk ending here is re-checked by a scan
   std::uint32_t axis_extremes_[6] = {0, 0, 0, 0, 0, 0};  // start vertices for +x,-x,+y,-y,+z,-z
   double bounding_radius_ = 0.0;
   double inner_radius_ = 0.0;

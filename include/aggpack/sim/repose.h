@@ -24,25 +24,25 @@ namespace aggpack {
 /// Options of the repose test. Defaults = the paper's case: trough 6 x 1 x 1 m, baffle at the
 /// middle, alpha 0.5, R 0.1 m, L 0.1 m, lattice 15 x 5 x 14 = 1,050 particles behind the baffle.
 struct ReposeOptions {
-  double trough_length = 6.0;     ///< m, x extent, > 0
-  double trough_width = 1.0;      ///< m, y extent, > 0
+  double trough_length = 6.0;  ///< m, x extent, > 0
+  double trough_width = 1.0;   ///< m, y extent, > 0
   /// m, z extent of the trough walls, > 0. While particles are placed above it (stage 1) the
   /// walls and the baffle reach up to the top of the lattice region.
   double trough_height = 1.0;
-  double baffle_position = 3.0;   ///< m, x of the baffle's face; particles fill [0, this]
-  double baffle_thickness = 0.05; ///< m, > 0
-  double baffle_speed = 0.5;      ///< m/s toward +x in stage 2, > 0
+  double baffle_position = 3.0;    ///< m, x of the baffle's face; particles fill [0, this]
+  double baffle_thickness = 0.05;  ///< m, > 0
+  double baffle_speed = 0.5;       ///< m/s toward +x in stage 2, > 0
   /// The baffle is removed once no particle has touched it for this long (s) and it stands one
   /// largest particle size beyond the pile; if it reaches the far wall first it stops there.
   double baffle_clear_time = 0.2;
 
   // Particles: the paper's lattice placement (aggpack::pack_lattice) in the box
   // [0, baffle_position] x [0, trough_width] x [0, fill_height].
-  double alpha = 0.5;          ///< Eq. 3 shape control, [0, 1]
-  double radius = 0.1;         ///< control radius R (m), > 0; lattice spacing 2R
-  double edge_length = 0.1;    ///< L (m), > 0
-  double fill_height = 2.8;    ///< m, height of the lattice region (14 layers of 2R = 0.2 m)
-  std::uint64_t seed = 1;      ///< master seed; particle i draws from Rng(seed, i)
+  double alpha = 0.5;        ///< Eq. 3 shape control, [0, 1]
+  double radius = 0.1;       ///< control radius R (m), > 0; lattice spacing 2R
+  double edge_length = 0.1;  ///< L (m), > 0
+  double fill_height = 2.8;  ///< m, height of the lattice region (14 layers of 2R = 0.2 m)
+  std::uint64_t seed = 1;    ///< master seed; particle i draws from Rng(seed, i)
   /// Turn each particle by a uniformly random rotation about its lattice site (stream
   /// Rng(seed ^ 0x726f74, i)); it stays inside its site's sphere, so nothing overlaps. Without it
   /// identical shapes (alpha = 1 grows the same body every time) stack into a stable crystal.
@@ -58,9 +58,9 @@ struct ReposeOptions {
   double surface_tolerance = 0.05;
 
   // Angle measurement.
-  double bin_width = 0.0;    ///< m, profile bin width; 0 = radius / 2
-  double fit_upper = 0.8;    ///< slope region: below this fraction of the pile height, (0, 1]
-  double fit_lower = 0.2;    ///< and above this fraction, [0, fit_upper)
+  double bin_width = 0.0;  ///< m, profile bin width; 0 = radius / 2
+  double fit_upper = 0.8;  ///< slope region: below this fraction of the pile height, (0, 1]
+  double fit_lower = 0.2;  ///< and above this fraction, [0, fit_upper)
 };
 
 /// Throws InvalidInput naming the field ("repose.baffle_speed", ...) unless usable.
@@ -68,9 +68,9 @@ void validate(const ReposeOptions& options);
 
 /// Height of the pile surface along x: the highest particle point in each bin (0 = bare floor).
 struct SurfaceProfile {
-  double lower = 0.0;           ///< x of the first bin's left edge (m)
-  double bin_width = 0.0;       ///< m
-  std::vector<double> height;   ///< m, one per bin
+  double lower = 0.0;          ///< x of the first bin's left edge (m)
+  double bin_width = 0.0;      ///< m
+  std::vector<double> height;  ///< m, one per bin
 
   [[nodiscard]] double centre(std::size_t bin) const {
     return lower + (static_cast<double>(bin) + 0.5) * bin_width;
@@ -85,16 +85,16 @@ SurfaceProfile surface_profile(const Packing& packing, double lower, double uppe
 
 /// The least-squares line through the slope region of a profile.
 struct SlopeFit {
-  bool is_valid = false;        ///< false when fewer than 3 bins qualified
-  std::string message;          ///< why not valid, else empty
-  double pile_height = 0.0;     ///< m, crest height (largest smoothed profile value)
-  std::size_t first_bin = 0;    ///< slope region, inclusive
-  std::size_t last_bin = 0;     ///< inclusive
+  bool is_valid = false;      ///< false when fewer than 3 bins qualified
+  std::string message;        ///< why not valid, else empty
+  double pile_height = 0.0;   ///< m, crest height (largest smoothed profile value)
+  std::size_t first_bin = 0;  ///< slope region, inclusive
+  std::size_t last_bin = 0;   ///< inclusive
   std::size_t bin_count = 0;
-  double slope = 0.0;           ///< dz/dx of the line (negative: descending toward +x)
-  double intercept = 0.0;       ///< z at x = 0 (m)
-  double angle_degrees = 0.0;   ///< atan(-slope) in degrees: the angle of repose
-  double r_squared = 0.0;       ///< coefficient of determination of the line, [0, 1]
+  double slope = 0.0;          ///< dz/dx of the line (negative: descending toward +x)
+  double intercept = 0.0;      ///< z at x = 0 (m)
+  double angle_degrees = 0.0;  ///< atan(-slope) in degrees: the angle of repose
+  double r_squared = 0.0;      ///< coefficient of determination of the line, [0, 1]
 };
 
 /// Chooses the slope region and fits a line to the profile's heights there. The profile is
@@ -114,25 +114,25 @@ using ReposeProgress =
 
 /// Everything a repose run measured.
 struct ReposeResult {
-  Packing initial;   ///< the lattice placement in the trough
-  Packing settled;   ///< after stage 1
-  Packing final;     ///< after stage 2
+  Packing initial;  ///< the lattice placement in the trough
+  Packing settled;  ///< after stage 1
+  Packing final;    ///< after stage 2
   SurfaceProfile profile;
   SlopeFit fit;
   std::size_t particle_count = 0;
-  double solid_volume = 0.0;        ///< m^3
-  double mean_measured_alpha = 0.0; ///< Eq. 2 alpha of the particles, mean
-  double time_step = 0.0;           ///< s
-  double smallest_size = 0.0;       ///< d_min, m
+  double solid_volume = 0.0;         ///< m^3
+  double mean_measured_alpha = 0.0;  ///< Eq. 2 alpha of the particles, mean
+  double time_step = 0.0;            ///< s
+  double smallest_size = 0.0;        ///< d_min, m
   bool is_stage1_at_rest = false;
-  double stage1_time = 0.0;         ///< simulated s
-  double stage1_height = 0.0;       ///< m, top of the settled pile
-  double stage1_seconds = 0.0;      ///< wall-clock s (not reproducible)
+  double stage1_time = 0.0;     ///< simulated s
+  double stage1_height = 0.0;   ///< m, top of the settled pile
+  double stage1_seconds = 0.0;  ///< wall-clock s (not reproducible)
   bool is_stage2_at_rest = false;
-  double stage2_time = 0.0;         ///< simulated s, baffle motion + waiting
-  double baffle_travel = 0.0;       ///< m the baffle moved
-  bool is_baffle_removed = false;   ///< false: it reached the far wall and stayed there
-  double stage2_seconds = 0.0;      ///< wall-clock s
+  double stage2_time = 0.0;           ///< simulated s, baffle motion + waiting
+  double baffle_travel = 0.0;         ///< m the baffle moved
+  bool is_baffle_removed = false;     ///< false: it reached the far wall and stayed there
+  double stage2_seconds = 0.0;        ///< wall-clock s
   double max_overlap_fraction = 0.0;  ///< deepest exact overlap / d_min in the final pile
   double max_contact_penetration_fraction = 0.0;  ///< deepest Bullet contact / d_min, final
   std::size_t escaped_particles = 0;  ///< particles outside the trough (x, y) or below the floor

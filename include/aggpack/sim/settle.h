@@ -17,7 +17,7 @@ struct RestCriterion {
   /// in [1e-12, 1]. 3e-5 is an r.m.s. speed of 0.8% of sqrt(g d): 8 mm/s for the paper's
   /// particles, above the residual jitter of Bullet's iterative solver in a deep pile.
   double kinetic_energy_ratio = 3e-5;
-  double quiet_time = 0.25;    ///< s the energy must stay below the threshold, >= 0
+  double quiet_time = 0.25;      ///< s the energy must stay below the threshold, >= 0
   double check_interval = 0.02;  ///< s between energy checks, > 0
   /// Simulated time (s) before rest is tested at all, >= 0; settle() adds the free-fall time of
   /// the highest particle to the floor.
@@ -40,16 +40,16 @@ struct SettleOptions {
 /// What a settling run measured. Fractions are bulk (height-based): solid volume over
 /// footprint area x height of the highest particle point above the floor.
 struct SettleReport {
-  bool is_at_rest = false;          ///< false when max_time ran out first
-  double simulated_time = 0.0;      ///< s
+  bool is_at_rest = false;      ///< false when max_time ran out first
+  double simulated_time = 0.0;  ///< s
   std::size_t steps = 0;
-  double time_step = 0.0;           ///< s
-  double wall_seconds = 0.0;        ///< wall-clock time of the simulation (not reproducible)
-  double kinetic_energy = 0.0;      ///< J at the end
+  double time_step = 0.0;                 ///< s
+  double wall_seconds = 0.0;              ///< wall-clock time of the simulation (not reproducible)
+  double kinetic_energy = 0.0;            ///< J at the end
   double kinetic_energy_threshold = 0.0;  ///< J
-  double solid_volume = 0.0;        ///< m^3
-  double height_before = 0.0;       ///< m, highest particle point before
-  double height_after = 0.0;        ///< m
+  double solid_volume = 0.0;              ///< m^3
+  double height_before = 0.0;             ///< m, highest particle point before
+  double height_after = 0.0;              ///< m
   double solid_fraction_before = 0.0;
   double solid_fraction_after = 0.0;
   std::size_t overlapping_pairs = 0;     ///< pairs whose exact polyhedra touch or overlap

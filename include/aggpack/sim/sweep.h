@@ -27,12 +27,12 @@ void validate(const SweepOptions& options);
 
 /// One case of a sweep.
 struct SweepCase {
-  std::size_t index = 0;        ///< row-major: alpha index * frictions + friction index
-  double alpha = 0.0;           ///< Eq. 3 input alpha
-  double friction = 0.0;        ///< mu_s
+  std::size_t index = 0;             ///< row-major: alpha index * frictions + friction index
+  double alpha = 0.0;                ///< Eq. 3 input alpha
+  double friction = 0.0;             ///< mu_s
   double mean_measured_alpha = 0.0;  ///< Eq. 2 alpha of the particles
   std::size_t particle_count = 0;
-  bool is_valid = false;        ///< the slope fit succeeded
+  bool is_valid = false;  ///< the slope fit succeeded
   double angle_degrees = 0.0;
   double r_squared = 0.0;
   std::size_t fit_bins = 0;

@@ -61,13 +61,13 @@ void validate(const PhysicsOptions& options);
 
 /// An axis-aligned wall box in world coordinates (m). Kinematic walls move with a set velocity.
 struct WallBox {
-  Aabb box;                       ///< lower < upper on every axis
-  bool is_kinematic = false;      ///< moved by set_wall_velocity (a baffle), else static
+  Aabb box;                   ///< lower < upper on every axis
+  bool is_kinematic = false;  ///< moved by set_wall_velocity (a baffle), else static
 };
 
 /// Contact statistics of the current state.
 struct ContactStatistics {
-  std::size_t contact_count = 0;       ///< Bullet contact points with distance <= 0
+  std::size_t contact_count = 0;  ///< Bullet contact points with distance <= 0
   /// Largest penetration among Bullet's contact points (m, >= 0): the depth the solver sees.
   double max_contact_penetration = 0.0;
 };
