@@ -13,6 +13,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/io/config.h"
+#include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "aggpack/io/packing_stats_json.h"
 #include "aggpack/pack/lattice_packer.h"
@@ -129,13 +130,18 @@ void run_pack(const PackFlags& flags) {
   // Fail before the (possibly long) run, not after it.
   check_writable(output, overwrite);
   if (flags.has_xdmf) check_writable(xdmf_path_for(output), overwrite);
+  // output.<format> = path: written with the exporters' defaults after the native file (for
+  // other options, e.g. mm or C3D10, use `aggpack export` on the native file).
+  std::vector<std::pair<std::string, ExportOptions>> exports;
   for (const auto& [format, path] : config.outputs) {
-    if (format != "native") {
-      warn(
-          fmt::format("output.{} = {} is not written by `aggpack pack`; run `aggpack export {} "
-                      "-o {}` after packing",
-                      format, path, output, path));
+    if (format == "native") continue;
+    ExportOptions options{.format = parse_export_format(format), .overwrite = overwrite};
+    if (path == output) {
+      throw InvalidInput("output." + format, path, "a path other than the native file's");
     }
+    validate(options, options.format);
+    check_writable(path, overwrite);
+    exports.emplace_back(path, options);
   }
   set_thread_count(config.threads);
 
@@ -176,6 +182,13 @@ void run_pack(const PackFlags& flags) {
       output, packing,
       {.overwrite = overwrite, .compression = flags.compression, .write_xdmf = flags.has_xdmf});
 
+  std::vector<std::string> written;
+  for (const auto& [path, options] : exports) {
+    const ExportSummary summary = write(packing, path, options);
+    written.push_back(fmt::format("{} ({}, {} nodes, {} elements)", path,
+                                  format_name(summary.format), summary.nodes, summary.elements));
+  }
+
   const PackReport& report = result.report;
   if (flags.is_json) {
     fmt::print("{{\n  \"output\": {},\n  \"report\": {}\n}}\n", json_string(output),
@@ -189,6 +202,7 @@ void run_pack(const PackFlags& flags) {
                report.placement_seconds);
     fmt::print("wrote {}{}\n", output,
                flags.has_xdmf ? " and " + xdmf_path_for(output) : std::string());
+    for (const auto& line : written) fmt::print("wrote {}\n", line);
   }
   if (!report.is_target_reached) {
     warn("target not reached (" + to_string(report.stop_reason) + "): placed " +

@@ -15,6 +15,7 @@
 
 #include "aggpack/io/config.h"
 #include "aggpack/io/native.h"
+#include "aggpack/io/stl.h"
 #include "aggpack/pack/verify.h"
 
 namespace aggpack {
@@ -227,6 +228,42 @@ TEST_F(PackCliTest, WarningsForIneffectiveKeysGoToStderr) {
                           "ignored (used only when container.kind = cylinder)"),
             std::string::npos)
       << pack.err;
+}
+
+TEST_F(PackCliTest, OutputTableWritesEveryListedFormat) {
+  std::ofstream(path("run.toml")) << "[container]\ndepth = 0.4\n\n[output]\nnative = \"run.h5\"\n"
+                                     "stl = \"run.stl\"\ninp = \"run.inp\"\ndat = \"rock.dat\"\n";
+  const CliRun pack = run("pack run.toml --progress none");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  EXPECT_EQ(files(),
+            (std::vector<std::string>{"rock.dat", "run.h5", "run.inp", "run.stl", "run.toml"}));
+  EXPECT_NE(pack.out.find("wrote run.stl (stl, "), std::string::npos) << pack.out;
+  const Packing packing = read_packing(path("run.h5"));
+  ASSERT_GT(packing.particles.size(), 0U);
+  // The STL holds every particle's surface triangles, and the .inp one element set each.
+  std::size_t triangles = 0;
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    triangles += packing.placed(i).triangle_count();
+  }
+  EXPECT_EQ(read_stl(path("run.stl")).triangles.size(), triangles);
+  const std::string inp = read_text(folder_ / "run.inp");
+  EXPECT_NE(inp.find("ELSET=P" + std::to_string(packing.particles.size()) + "\n"),
+            std::string::npos);
+  EXPECT_EQ(inp.find("ELSET=P" + std::to_string(packing.particles.size() + 1) + "\n"),
+            std::string::npos);
+
+  // Without --force nothing is replaced and the run stops before packing.
+  const std::string before = read_text(folder_ / "run.stl");
+  fs::remove(folder_ / "run.h5");
+  const CliRun again = run("pack run.toml --progress none --seed 3");
+  EXPECT_EQ(again.exit_code, 3) << again.err;
+  EXPECT_NE(again.err.find("file exists"), std::string::npos) << again.err;
+  EXPECT_TRUE(before == read_text(folder_ / "run.stl"));
+  EXPECT_EQ(files(), (std::vector<std::string>{"rock.dat", "run.inp", "run.stl", "run.toml"}));
+
+  const CliRun clash = run("pack run.toml --progress none --force --set output.vtu=run.h5");
+  EXPECT_EQ(clash.exit_code, 2);
+  EXPECT_NE(clash.err.find("invalid output.vtu = run.h5"), std::string::npos) << clash.err;
 }
 
 }  // namespace
