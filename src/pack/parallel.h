@@ -2,6 +2,7 @@
 // Internal: a deterministic parallel loop over indices (TBB when available, else sequential).
 // Each index must write only its own output slot, so the result never depends on the schedule.
 
+#include <algorithm>
 #include <cstddef>
 
 #ifdef AGGPACK_HAS_TBB
@@ -25,6 +26,16 @@ void parallel_for_index(std::size_t begin, std::size_t end, Function&& function)
   }
 #endif
   for (std::size_t i = begin; i < end; ++i) function(i);
+}
+
+/// This worker's slot, in [0, concurrency()] (0 outside a parallel loop): an index for
+/// per-thread scratch space.
+inline std::size_t worker_slot() {
+#ifdef AGGPACK_HAS_TBB
+  return static_cast<std::size_t>(std::max(0, tbb::this_task_arena::current_thread_index()));
+#else
+  return 0;
+#endif
 }
 
 /// Worker threads available to parallel_for_index (1 without TBB).

@@ -28,6 +28,15 @@ constexpr std::uint64_t kMaxLibrary = 1000000;                   // shape-librar
 constexpr std::uint64_t kPlacementSalt = 0x5851F42D4C957F2DULL;  // placement streams
 constexpr std::uint64_t kLibrarySalt = 0x6C62272E07BB0142ULL;    // library shape streams
 constexpr std::size_t kMaxBatch = 64;  // parallel attempts evaluated together for one particle
+constexpr std::size_t kMaxGroup = 32;  // consecutive particles searched together
+
+// The outcome of a particle's search: the first feasible attempt and its pose, or none.
+struct Found {
+  static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
+  std::uint64_t attempt = kNone;
+  Pose pose;
+  [[nodiscard]] bool is_found() const { return attempt != kNone; }
+};
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -156,20 +165,20 @@ class Placement {
     // Closest first: the likeliest to conflict, so a rejection costs the fewest GJK calls.
     std::sort(close.begin(), close.end());
     for (const auto& [distance_squared, id] : close) {
-      const Item& other = items_[placed_items_[id]];
-      const Pose& other_pose = poses_[id];
-      if (other.scale == 1.0) {
-        if (!is_separated(body, pose, item.outer_radius, shapes_[other.shape].body, other_pose,
-                          other.outer_radius, gap)) {
-          return false;
-        }
-      } else {
-        const ConvexPolyhedron other_body = shapes_[other.shape].body.scaled(other.scale);
-        if (!is_separated(body, pose, item.outer_radius, other_body, other_pose, other.outer_radius,
-                          gap)) {
-          return false;
-        }
-      }
+      if (!is_separated_from(id, item, body, pose)) return false;
+    }
+    return true;
+  }
+
+  // Whether a pose is at least `gap` from every particle placed as number `first` or later (the
+  // ones placed since a group of searches started).
+  [[nodiscard]] bool is_clear_of_since(const Item& item, const ConvexPolyhedron& body,
+                                       const Pose& pose, std::size_t first) const {
+    for (std::size_t id = first; id < placed_items_.size(); ++id) {
+      const double reach =
+          item.outer_radius + items_[placed_items_[id]].outer_radius + options_.gap;
+      if ((poses_[id].position - pose.position).squaredNorm() >= reach * reach) continue;
+      if (!is_separated_from(static_cast<std::uint32_t>(id), item, body, pose)) return false;
     }
     return true;
   }
@@ -185,6 +194,20 @@ class Placement {
   [[nodiscard]] const std::vector<Pose>& poses() const { return poses_; }
 
  private:
+  // The exact test of a candidate against placed particle `id`.
+  [[nodiscard]] bool is_separated_from(std::uint32_t id, const Item& item,
+                                       const ConvexPolyhedron& body, const Pose& pose) const {
+    const Item& other = items_[placed_items_[id]];
+    const Pose& other_pose = poses_[id];
+    if (other.scale == 1.0) {
+      return is_separated(body, pose, item.outer_radius, shapes_[other.shape].body, other_pose,
+                          other.outer_radius, options_.gap);
+    }
+    const ConvexPolyhedron other_body = shapes_[other.shape].body.scaled(other.scale);
+    return is_separated(body, pose, item.outer_radius, other_body, other_pose, other.outer_radius,
+                        options_.gap);
+  }
+
   static double min_outer(const std::vector<Item>& items) {
     double value = std::numeric_limits<double>::infinity();
     for (const auto& item : items) value = std::min(value, item.outer_radius);
@@ -413,14 +436,26 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
 
   // --- 3. Placement
   // -------------------------------------------------------------------------------
+  // Each particle takes the first attempt (in attempt order) that is feasible against every
+  // particle placed before it. Two kinds of parallelism keep exactly that result:
+  //  - a group of consecutive particles searches at once, each against the particles placed
+  //    before the group; they are then committed in order, and a particle whose found pose
+  //    touches one committed earlier in the same group resumes its search from the next attempt
+  //    (its earlier attempts failed against a subset, so they fail against the whole);
+  //  - a single particle evaluates batches of attempts at once (used when the attempt budget is
+  //    nearly spent, or with one worker).
   const auto placement_start = Clock::now();
   Placement placement(options, shapes, items);
   const int threads = detail::concurrency();
-  std::vector<std::vector<std::pair<double, std::uint32_t>>> scratch(
-      static_cast<std::size_t>(std::max(1, threads)) + 1);
+  const std::size_t slots = static_cast<std::size_t>(std::max(1, threads)) + 1;
+  std::vector<std::vector<std::pair<double, std::uint32_t>>> scratch(slots);
   std::vector<std::pair<double, std::uint32_t>> sequential_scratch;
   std::vector<Pose> batch_poses(kMaxBatch);
   std::vector<char> batch_ok(kMaxBatch);
+  const std::size_t group_size =
+      threads > 1 ? std::min<std::size_t>(kMaxGroup, 8 * static_cast<std::size_t>(threads)) : 1;
+  std::vector<Found> found(group_size);
+  std::vector<ConvexPolyhedron> group_bodies(group_size);
   double placed_volume = 0.0;
   std::uint64_t consecutive_failures = 0;
   StopReason stop = StopReason::kSizeListExhausted;
@@ -428,7 +463,71 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   if (is_cancelled) stop = StopReason::kCancelled;
   std::uint64_t tried = 0;
 
-  for (std::size_t rank = 0; rank < order.size() && !is_stopped; ++rank) {
+  // Attempts [first, limit) of one particle, one by one, against everything placed so far.
+  auto search = [&](const Item& item, const ConvexPolyhedron& body, std::uint64_t first,
+                    std::uint64_t limit,
+                    std::vector<std::pair<double, std::uint32_t>>& close) -> Found {
+    Found outcome;
+    const Aabb region = centre_region(options.container, item.inner_radius);
+    if (region.is_empty()) return outcome;
+    for (std::uint64_t attempt = first; attempt < limit; ++attempt) {
+      Pose pose;
+      if (make_candidate(options.container, region, item, options.seed, attempt, pose) &&
+          placement.is_feasible(item, body, pose, close)) {
+        outcome.attempt = attempt;
+        outcome.pose = pose;
+        return outcome;
+      }
+    }
+    return outcome;
+  };
+
+  // Attempts [0, limit) of one particle, in parallel batches that double in size.
+  auto search_batched = [&](const Item& item, const ConvexPolyhedron& body,
+                            std::uint64_t limit) -> Found {
+    if (threads <= 1) return search(item, body, 0, limit, sequential_scratch);
+    Found outcome;
+    const Aabb region = centre_region(options.container, item.inner_radius);
+    if (region.is_empty()) return outcome;
+    std::uint64_t attempt = 0;
+    std::size_t batch = 1;
+    while (attempt < limit && !outcome.is_found()) {
+      const std::size_t count =
+          static_cast<std::size_t>(std::min<std::uint64_t>(batch, limit - attempt));
+      if (count == 1) {
+        outcome = search(item, body, attempt, attempt + 1, sequential_scratch);
+      } else {
+        // The lowest successful attempt index wins, exactly as if tried one by one.
+        std::atomic<std::uint64_t> best{Found::kNone};
+        std::fill(batch_ok.begin(), batch_ok.begin() + static_cast<std::ptrdiff_t>(count), 0);
+        detail::parallel_for_index(0, count, [&](std::size_t k) {
+          if (attempt + k > best.load(std::memory_order_relaxed)) return;
+          auto& close = scratch[detail::worker_slot() % slots];
+          Pose pose;
+          if (make_candidate(options.container, region, item, options.seed, attempt + k, pose) &&
+              placement.is_feasible(item, body, pose, close)) {
+            batch_poses[k] = pose;
+            batch_ok[k] = 1;
+            std::uint64_t current = best.load();
+            while (attempt + k < current && !best.compare_exchange_weak(current, attempt + k)) {
+            }
+          }
+        });
+        for (std::size_t k = 0; k < count; ++k) {
+          if (batch_ok[k]) {
+            outcome.attempt = attempt + k;
+            outcome.pose = batch_poses[k];
+            break;
+          }
+        }
+      }
+      attempt += count;
+      batch = std::min(batch * 2, kMaxBatch);
+    }
+    return outcome;
+  };
+
+  for (std::size_t rank = 0; rank < order.size() && !is_stopped;) {
     if (progress.is_cancelled()) {
       stop = StopReason::kCancelled;
       break;
@@ -438,95 +537,75 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
       stop = StopReason::kAttemptBudget;
       break;
     }
-    const Item& item = items[order[rank]];
-    const ConvexPolyhedron body = placement.body_of(item);
-    const Aabb region = centre_region(options.container, item.inner_radius);
-    const std::uint64_t limit = std::min(options.max_attempts_per_particle, remaining_budget);
-    std::uint64_t success = std::numeric_limits<std::uint64_t>::max();
-    Pose accepted;
-    if (!region.is_empty()) {
-      std::uint64_t attempt = 0;
-      std::size_t batch = 1;
-      while (attempt < limit && success == std::numeric_limits<std::uint64_t>::max()) {
-        const std::size_t count =
-            static_cast<std::size_t>(std::min<std::uint64_t>(batch, limit - attempt));
-        if (count == 1 || threads <= 1) {
-          for (std::size_t k = 0; k < count; ++k) {
-            Pose pose;
-            if (make_candidate(options.container, region, item, options.seed, attempt + k, pose) &&
-                placement.is_feasible(item, body, pose, sequential_scratch)) {
-              success = attempt + k;
-              accepted = pose;
-              break;
-            }
-          }
-        } else {
-          // Several attempts at once; the lowest successful attempt index wins, exactly as if
-          // they had been tried one by one.
-          std::atomic<std::uint64_t> best{std::numeric_limits<std::uint64_t>::max()};
-          std::fill(batch_ok.begin(), batch_ok.begin() + static_cast<std::ptrdiff_t>(count), 0);
-          detail::parallel_for_index(0, count, [&](std::size_t k) {
-            if (attempt + k > best.load(std::memory_order_relaxed)) return;
-#ifdef AGGPACK_HAS_TBB
-            const int slot = std::max(0, tbb::this_task_arena::current_thread_index());
-#else
-            const int slot = 0;
-#endif
-            auto& close = scratch[static_cast<std::size_t>(slot) % scratch.size()];
-            Pose pose;
-            if (make_candidate(options.container, region, item, options.seed, attempt + k, pose) &&
-                placement.is_feasible(item, body, pose, close)) {
-              batch_poses[k] = pose;
-              batch_ok[k] = 1;
-              std::uint64_t current = best.load();
-              while (attempt + k < current && !best.compare_exchange_weak(current, attempt + k)) {
-              }
-            }
-          });
-          for (std::size_t k = 0; k < count; ++k) {
-            if (batch_ok[k]) {
-              success = attempt + k;
-              accepted = batch_poses[k];
-              break;
-            }
-          }
+    // A group only while the budget cannot run out inside it (the per-particle limit then does
+    // not depend on what the group's earlier members used).
+    std::size_t group = std::min(group_size, order.size() - rank);
+    if (static_cast<double>(remaining_budget) <
+        static_cast<double>(group) * static_cast<double>(options.max_attempts_per_particle)) {
+      group = 1;
+    }
+    const std::size_t first_new = placement.placed_items().size();
+    if (group > 1) {
+      detail::parallel_for_index(0, group, [&](std::size_t k) {
+        const Item& item = items[order[rank + k]];
+        group_bodies[k] = placement.body_of(item);
+        found[k] = search(item, group_bodies[k], 0, options.max_attempts_per_particle,
+                          scratch[detail::worker_slot() % slots]);
+      });
+    }
+    for (std::size_t k = 0; k < group && !is_stopped; ++k) {
+      if (k > 0 && progress.is_cancelled()) {
+        stop = StopReason::kCancelled;
+        is_stopped = true;
+        break;
+      }
+      const Item& item = items[order[rank + k]];
+      const std::uint64_t limit =
+          std::min(options.max_attempts_per_particle, options.max_total_attempts - report.attempts);
+      Found outcome;
+      if (group == 1) {
+        outcome = search_batched(item, placement.body_of(item), limit);
+      } else {
+        outcome = found[k];
+        if (outcome.is_found() &&
+            !placement.is_clear_of_since(item, group_bodies[k], outcome.pose, first_new)) {
+          outcome = search(item, group_bodies[k], outcome.attempt + 1, limit, sequential_scratch);
         }
-        attempt += count;
-        batch = std::min(batch * 2, kMaxBatch);
       }
+      ++tried;
+      if (outcome.is_found()) {
+        report.attempts += outcome.attempt + 1;
+        placement.add(order[rank + k], outcome.pose);
+        placed_volume += item.volume;
+        consecutive_failures = 0;
+        if (is_by_volume && placed_volume >= target_volume) {
+          stop = StopReason::kTargetReached;
+          is_stopped = true;
+        }
+      } else {
+        report.attempts += limit;
+        ++report.rejected;
+        ++consecutive_failures;
+        if (limit < options.max_attempts_per_particle) {
+          stop = StopReason::kAttemptBudget;
+          is_stopped = true;
+        } else if (consecutive_failures >= options.max_consecutive_failures) {
+          stop = StopReason::kConsecutiveFailures;
+          is_stopped = true;
+        }
+      }
+      const std::uint64_t placed = placement.placed_items().size();
+      progress.report({.stage = PackStage::kPlacement,
+                       .fraction = is_by_volume ? std::min(1.0, placed_volume / target_volume)
+                                                : static_cast<double>(placed) /
+                                                      static_cast<double>(options.count),
+                       .placed = placed,
+                       .attempted = tried,
+                       .total = items.size(),
+                       .solid_fraction = placed_volume / container_volume},
+                      false);
     }
-    ++tried;
-    if (success != std::numeric_limits<std::uint64_t>::max()) {
-      report.attempts += success + 1;
-      placement.add(order[rank], accepted);
-      placed_volume += item.volume;
-      consecutive_failures = 0;
-      if (is_by_volume && placed_volume >= target_volume) {
-        stop = StopReason::kTargetReached;
-        is_stopped = true;
-      }
-    } else {
-      report.attempts += limit;
-      ++report.rejected;
-      ++consecutive_failures;
-      if (limit < options.max_attempts_per_particle) {
-        stop = StopReason::kAttemptBudget;
-        is_stopped = true;
-      } else if (consecutive_failures >= options.max_consecutive_failures) {
-        stop = StopReason::kConsecutiveFailures;
-        is_stopped = true;
-      }
-    }
-    const std::uint64_t placed = placement.placed_items().size();
-    progress.report({.stage = PackStage::kPlacement,
-                     .fraction = is_by_volume ? std::min(1.0, placed_volume / target_volume)
-                                              : static_cast<double>(placed) /
-                                                    static_cast<double>(options.count),
-                     .placed = placed,
-                     .attempted = tried,
-                     .total = items.size(),
-                     .solid_fraction = placed_volume / container_volume},
-                    false);
+    rank += group;
   }
   if (!is_by_volume && stop == StopReason::kSizeListExhausted && report.rejected == 0 &&
       placement.placed_items().size() == items.size()) {
