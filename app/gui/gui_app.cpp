@@ -384,11 +384,11 @@ void GuiApp::frame() {
     const double seconds = glfwGetTime() - benchmark_start_;
     const int frames = options_.benchmark_frames;
     std::printf(
-        "benchmark: %d frames of %zu particles (%zu in view: %zu coarse, %zu points; %zu "
-        "triangles) in a %dx%d view: %.1f ms/frame (%.1f frames/s), scene %.1f ms/frame\n",
-        frames, renderer_->particle_count(), last_stats_.particles_drawn,
-        last_stats_.coarse_particles, last_stats_.point_particles, last_stats_.triangles,
-        view_width, view_height, 1e3 * seconds / frames, frames / seconds,
+        "benchmark: %d frames of %zu particles (%zu in view, %zu drawn: %zu coarse, %zu points; "
+        "%zu triangles) in a %dx%d view: %.1f ms/frame (%.1f frames/s), scene %.1f ms/frame\n",
+        frames, renderer_->particle_count(), last_stats_.particles_in_frustum,
+        last_stats_.particles_drawn, last_stats_.coarse_particles, last_stats_.point_particles,
+        last_stats_.triangles, view_width, view_height, 1e3 * seconds / frames, frames / seconds,
         1e3 * benchmark_scene_seconds_ / frames);
     std::fflush(stdout);
   }
@@ -604,7 +604,8 @@ void GuiApp::draw_view_section() {
   }
   ImGui::TextDisabled("%zu particles, %zu distinct shapes", renderer_->particle_count(),
                       renderer_->shape_count());
-  ImGui::TextDisabled("in view %zu (%zu coarse, %zu points)", last_stats_.particles_drawn,
+  ImGui::TextDisabled("in view %zu, drawn %zu (%zu coarse, %zu points)",
+                      last_stats_.particles_in_frustum, last_stats_.particles_drawn,
                       last_stats_.coarse_particles, last_stats_.point_particles);
   ImGui::TextDisabled("%.2f M triangles", last_stats_.triangles / 1e6);
   ImGui::TextDisabled("scene %.1f ms; UI %.0f frames/s", 1e3 * last_scene_seconds_,

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -49,6 +50,7 @@ struct ParticleSphere {
 // A particle in the view, for culling and level-of-detail decisions.
 struct Candidate {
   float near_depth;          // view depth of the nearest point of the bounding sphere (m)
+  float footprint;           // half-width of a screen square holding the bounding sphere (px)
   float depth;               // view depth of the centre (m)
   float pixels;              // projected diameter of the bounding sphere (px)
   float screen_x, screen_y;  // projected centre (px, origin lower left)
@@ -88,7 +90,9 @@ void main() {
   "  vec3 fill = normalize(vec3(0.55, -0.35, 0.55));\n"                                      \
   "  float diffuse = 0.28 + 0.62 * max(dot(n, key), 0.0) + 0.22 * max(dot(n, fill), 0.0);\n" \
   "  vec3 half_vector = normalize(key + vec3(0.0, 0.0, 1.0));\n"                             \
-  "  float specular = 0.22 * pow(max(dot(n, half_vector), 0.0), 32.0);\n"                    \
+  "  float power = max(dot(n, half_vector), 0.0);\n"                                         \
+  "  power *= power; power *= power; power *= power; power *= power; power *= power;\n"      \
+  "  float specular = 0.22 * power;\n"                                                       \
   "  return color * diffuse + vec3(specular);\n"                                             \
   "}\n"
 
@@ -107,11 +111,11 @@ void main() {
 // Impostor for particles a few pixels across: one view-facing triangle circumscribing a disc of
 // the volume-equivalent radius, shaded as a ball with the same lights as the facets. One
 // triangle, not a point sprite: llvmpipe expands wide points into two triangles on a slow path.
-// Per-impostor data comes as instanced attributes, not buffer-texture fetches, which llvmpipe
-// runs far slower in vertex shaders.
+// Per-impostor data comes as vertex attributes (repeated on the triangle's three vertices), not
+// buffer-texture fetches, which llvmpipe runs far slower in vertex shaders.
 constexpr const char* kPointVertexShader = R"(#version 330 core
-layout(location = 0) in vec4 a_sphere;  // centre (m), impostor radius (m); per instance
-layout(location = 1) in vec4 a_color;   // normalised RGBA8; per instance
+layout(location = 0) in vec4 a_sphere;  // centre (m), impostor radius (m)
+layout(location = 1) in vec4 a_color;   // normalised RGBA8
 uniform mat4 u_view;
 uniform mat4 u_projection;
 flat out vec3 v_color;
@@ -119,7 +123,7 @@ out vec2 v_disc;  // position in units of the disc radius
 void main() {
   // Corners of the equilateral triangle whose inscribed circle is the unit circle.
   const vec2 corners[3] = vec2[3](vec2(0.0, 2.0), vec2(-1.7320508, -1.0), vec2(1.7320508, -1.0));
-  v_disc = corners[gl_VertexID];
+  v_disc = corners[gl_VertexID % 3];
   vec4 view = u_view * vec4(a_sphere.xyz, 1.0);
   // Bring the billboard forward by the radius so it is not hidden inside neighbouring facets.
   view.xyz += vec3(v_disc * a_sphere.w, 0.0) + normalize(-view.xyz) * a_sphere.w * 0.5;
@@ -241,7 +245,142 @@ std::vector<std::uint32_t> coarse_indices(const ConvexPolyhedron& shape) {
   return indices;
 }
 
+// Unsigned key that orders like the float (negative values first).
+std::uint32_t float_order_key(float value) {
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &value, sizeof(bits));
+  return (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
+}
+
+// Sorts by near_depth, ties in their present order, with two 16-bit radix passes: linear in the
+// count, where std::sort on 10^5 candidates cost several milliseconds a frame.
+void sort_front_to_back(std::vector<Candidate>& candidates, std::vector<std::uint64_t>& keys,
+                        std::vector<Candidate>& scratch) {
+  const std::size_t n = candidates.size();
+  keys.resize(2 * n);
+  std::uint64_t* from = keys.data();
+  std::uint64_t* to = keys.data() + n;
+  for (std::size_t c = 0; c < n; ++c) {
+    from[c] = (static_cast<std::uint64_t>(float_order_key(candidates[c].near_depth)) << 32) | c;
+  }
+  std::vector<std::uint32_t> counts(65536);
+  for (int shift : {32, 48}) {
+    std::fill(counts.begin(), counts.end(), 0u);
+    for (std::size_t c = 0; c < n; ++c) ++counts[(from[c] >> shift) & 0xffffu];
+    std::uint32_t sum = 0;
+    for (auto& count : counts) {
+      const std::uint32_t here = count;
+      count = sum;
+      sum += here;
+    }
+    for (std::size_t c = 0; c < n; ++c) to[counts[(from[c] >> shift) & 0xffffu]++] = from[c];
+    std::swap(from, to);
+  }
+  scratch.resize(n);
+  for (std::size_t c = 0; c < n; ++c) scratch[c] = candidates[from[c] & 0xffffffffu];
+  candidates.swap(scratch);
+}
+
+// Occlusion test against the depth buffer: the drawn depth read back and reduced to a pyramid
+// of maxima (each level halves the resolution), so a screen rectangle is tested with a few
+// texels of the level where it spans at most four.
+class DepthPyramid {
+ public:
+  // Reads the depth of the bound framebuffer's pixels (0, 0) to (width, height) (window depth in
+  // [0, 1]) and builds the levels.
+  void build(int width, int height) {
+    widths_.assign(1, width);
+    heights_.assign(1, height);
+    levels_.resize(1);
+    levels_[0].resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, levels_[0].data());
+    int w = width, h = height;
+    for (std::size_t level = 1; w > 1 || h > 1; ++level) {
+      const int nw = (w + 1) / 2, nh = (h + 1) / 2;
+      if (levels_.size() <= level) levels_.emplace_back();
+      const std::vector<float>& fine = levels_[level - 1];
+      std::vector<float>& coarse = levels_[level];
+      coarse.resize(static_cast<std::size_t>(nw) * static_cast<std::size_t>(nh));
+      for (int y = 0; y < nh; ++y) {
+        const float* row0 = fine.data() + static_cast<std::size_t>(2 * y) * w;
+        const float* row1 = fine.data() + static_cast<std::size_t>(std::min(2 * y + 1, h - 1)) * w;
+        float* out = coarse.data() + static_cast<std::size_t>(y) * nw;
+        for (int x = 0; x < nw; ++x) {
+          const int x1 = std::min(2 * x + 1, w - 1);
+          out[x] = std::max(std::max(row0[2 * x], row0[x1]), std::max(row1[2 * x], row1[x1]));
+        }
+      }
+      widths_.push_back(nw);
+      heights_.push_back(nh);
+      w = nw;
+      h = nh;
+    }
+    levels_.resize(widths_.size());
+  }
+
+  // True if every pixel of the square of half-width `radius` about (x, y) (pixels, lower-left
+  // origin; the part outside the image is ignored) holds a depth nearer than `depth`.
+  [[nodiscard]] bool is_hidden(float x, float y, float radius, float depth) const {
+    const int ix0 = std::max(0, static_cast<int>(std::floor(x - radius)));
+    const int iy0 = std::max(0, static_cast<int>(std::floor(y - radius)));
+    const int ix1 = std::min(widths_[0] - 1, static_cast<int>(std::floor(x + radius)));
+    const int iy1 = std::min(heights_[0] - 1, static_cast<int>(std::floor(y + radius)));
+    if (ix0 > ix1 || iy0 > iy1) return false;
+    // A well hidden particle is hidden at a coarse level already (a small, cache-friendly
+    // array); otherwise test the level where the square spans <= 8 texels.
+    if (is_hidden_at(level_spanning(ix0, iy0, ix1, iy1, 2), ix0, iy0, ix1, iy1, depth)) return true;
+    // Texels of the fine level that meet the disc of `radius` (the square's corners hold
+    // neighbours' gaps more often than not).
+    const std::size_t level = level_spanning(ix0, iy0, ix1, iy1, 8);
+    const int w = widths_[level];
+    const float size = static_cast<float>(1 << level);
+    const float radius2 = radius * radius;
+    const std::vector<float>& texels = levels_[level];
+    for (int ty = iy0 >> level; ty <= iy1 >> level; ++ty) {
+      const float dy = std::max({0.0f, ty * size - y, y - (ty + 1) * size});
+      const float* row = texels.data() + static_cast<std::size_t>(ty) * w;
+      for (int tx = ix0 >> level; tx <= ix1 >> level; ++tx) {
+        const float dx = std::max({0.0f, tx * size - x, x - (tx + 1) * size});
+        if (dx * dx + dy * dy < radius2 && !(row[tx] < depth)) return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  // The finest level where pixels [x0, x1] x [y0, y1] span at most `span` texels each way.
+  [[nodiscard]] std::size_t level_spanning(int x0, int y0, int x1, int y1, int span) const {
+    std::size_t level = 0;
+    while (level + 1 < levels_.size() &&
+           ((x1 >> level) - (x0 >> level) >= span || (y1 >> level) - (y0 >> level) >= span)) {
+      ++level;
+    }
+    return level;
+  }
+
+  [[nodiscard]] bool is_hidden_at(std::size_t level, int x0, int y0, int x1, int y1,
+                                  float depth) const {
+    const int w = widths_[level];
+    const std::vector<float>& texels = levels_[level];
+    for (int y = y0 >> level; y <= y1 >> level; ++y) {
+      const float* row = texels.data() + static_cast<std::size_t>(y) * w;
+      for (int x = x0 >> level; x <= x1 >> level; ++x) {
+        if (!(row[x] < depth)) return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  std::vector<std::vector<float>> levels_;
+  std::vector<int> widths_, heights_;
+};
+
 }  // namespace
+
+// Below this many particles in view, drawing them all costs less than a depth read-back.
+constexpr std::size_t kOcclusionMinParticles = 4000;
 
 struct PackingRenderer::State {
   GLuint particle_program = 0;
@@ -271,15 +410,28 @@ struct PackingRenderer::State {
 
   // Per-frame scratch, kept to avoid reallocating.
   std::vector<Candidate> candidates;
+  std::vector<Candidate> sorted;
+  std::vector<std::uint64_t> sort_keys;
   std::vector<std::uint8_t> level;  // per candidate: 0 full, 1 coarse, 2 point
+  DepthPyramid depth_pyramid;
+  // Per particle: not found hidden when last drawn (drawn first next frame, as occluders).
+  std::vector<std::uint8_t> was_visible;
+  bool has_visibility = false;  // was_visible holds a frame's result
   std::vector<std::uint32_t> point_list;
   std::vector<GpuPoint> points;
   std::vector<float> impostor_radius;  // per particle (m)
   std::vector<std::uint32_t> instance_list;
   std::vector<std::uint32_t> group_counts;
+  std::vector<std::uint32_t> group_start, cursor;
   std::vector<GLsizei> single_counts;
   std::vector<const void*> single_offsets;
   std::vector<GLint> single_base_vertices;
+
+  // Draws candidates [begin, end) (front to back) with levels of detail chosen by size and at
+  // most `budget` mesh triangles (0 = no limit); adds to `stats`; returns the mesh triangles.
+  std::size_t submit(std::size_t begin, std::size_t end, std::size_t budget,
+                     const RenderStyle& style, const Eigen::Matrix4f& view,
+                     const Eigen::Matrix4f& projection, DrawStats& stats);
 
   void upload_colors(ColorMode mode) {
     const auto& source = colors[static_cast<std::size_t>(mode)].colors;
@@ -325,11 +477,9 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   glBindBuffer(GL_ARRAY_BUFFER, s.point_buffer);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(GpuPoint), nullptr);
-  glVertexAttribDivisor(0, 1);
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(GpuPoint),
                         reinterpret_cast<const void*>(offsetof(GpuPoint, r)));
-  glVertexAttribDivisor(1, 1);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 
@@ -564,6 +714,202 @@ void PackingRenderer::set_packing(const Packing& packing) {
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
+std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, std::size_t budget,
+                                           const RenderStyle& style, const Eigen::Matrix4f& view,
+                                           const Eigen::Matrix4f& projection, DrawStats& stats) {
+  if (begin >= end) return 0;
+  const std::size_t count = end - begin;
+
+  // Level of detail: full, coarse or point by projected size; then, over the triangle budget,
+  // the smallest particles become points.
+  level.assign(count, 0);
+  auto triangles_of = [&](std::size_t k) -> std::size_t {
+    const ShapeRange& range = shapes[particle_shape[candidates[begin + k].particle]];
+    if (level[k] == 2) return 0;
+    return static_cast<std::size_t>((level[k] == 1 ? range.coarse_count : range.full_count) / 3);
+  };
+  std::size_t mesh_triangles = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const float pixels = candidates[begin + k].pixels;
+    if (pixels < style.point_below_pixels) {
+      level[k] = 2;
+    } else if (pixels < style.coarse_below_pixels) {
+      level[k] = 1;
+    }
+    mesh_triangles += triangles_of(k);
+  }
+  if (budget > 0 && mesh_triangles > budget) {
+    // Smallest first (ties: nearest first), as 64-bit keys: pixels are >= 0, so their float
+    // bits order like the values.
+    sort_keys.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      sort_keys[k] =
+          (static_cast<std::uint64_t>(float_order_key(candidates[begin + k].pixels)) << 32) | k;
+    }
+    std::sort(sort_keys.begin(), sort_keys.end());
+    for (std::uint64_t key : sort_keys) {
+      if (mesh_triangles <= budget) break;
+      const auto k = static_cast<std::size_t>(key & 0xffffffffu);
+      mesh_triangles -= triangles_of(k);
+      level[k] = 2;
+    }
+  }
+
+  // Draw lists: single-use shapes in one multi-draw, instanced shapes by (shape, level),
+  // points in one draw; all in front-to-back order.
+  const std::size_t shape_count = shapes.size();
+  group_counts.assign(2 * shape_count, 0);
+  single_counts.clear();
+  single_offsets.clear();
+  single_base_vertices.clear();
+  point_list.clear();
+  std::size_t coarse = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint32_t particle = candidates[begin + k].particle;
+    const std::uint32_t shape = particle_shape[particle];
+    const ShapeRange& range = shapes[shape];
+    const std::uint8_t lod = level[k];
+    if (lod == 2) {
+      point_list.push_back(particle);
+      continue;
+    }
+    coarse += lod;
+    if (range.instances >= 2) {
+      ++group_counts[2 * shape + lod];
+    } else {
+      single_counts.push_back(lod == 1 ? range.coarse_count : range.full_count);
+      single_offsets.push_back(reinterpret_cast<const void*>(
+          static_cast<std::uintptr_t>(lod == 1 ? range.coarse_offset : range.full_offset) * 4u));
+      single_base_vertices.push_back(range.base_vertex);
+    }
+  }
+  stats.particles_drawn += count;
+  stats.point_particles += point_list.size();
+  stats.coarse_particles += coarse;
+  stats.triangles += mesh_triangles;
+
+  // Instance list: element 0 stays 0 (what single-use shapes read through the per-instance
+  // attribute), then one block per (shape, level) group.
+  group_start.assign(2 * shape_count, 0);
+  std::uint32_t next = 1;
+  for (std::uint32_t shape : instanced_shapes) {
+    for (std::size_t lod = 0; lod < 2; ++lod) {
+      group_start[2 * shape + lod] = next;
+      next += group_counts[2 * shape + lod];
+    }
+  }
+  instance_list.assign(next, 0);
+  cursor = group_start;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint32_t particle = candidates[begin + k].particle;
+    const std::uint32_t shape = particle_shape[particle];
+    if (level[k] == 2 || shapes[shape].instances < 2) continue;
+    instance_list[cursor[2 * shape + level[k]]++] = particle;
+  }
+
+  if (next > 1 || !single_counts.empty()) {
+    glUseProgram(particle_program);
+    glUniformMatrix4fv(u_view, 1, GL_FALSE, view.data());
+    glUniformMatrix4fv(u_projection, 1, GL_FALSE, projection.data());
+    glUniform1i(u_lit, style.is_wireframe ? 0 : 1);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_BUFFER, transform_texture);
+    glUniform1i(u_transforms, 0);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, color_texture);
+    glUniform1i(u_colors, 1);
+    if (style.is_wireframe) {
+      glDisable(GL_CULL_FACE);
+      glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    } else {
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_BACK);
+      glFrontFace(GL_CCW);
+    }
+    glBindVertexArray(vertex_array);
+    glBindBuffer(GL_ARRAY_BUFFER, instance_buffer);
+    glBufferData(GL_ARRAY_BUFFER,
+                 static_cast<GLsizeiptr>(instance_list.size() * sizeof(std::uint32_t)),
+                 instance_list.data(), GL_STREAM_DRAW);
+    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+    if (!single_counts.empty()) {
+      glMultiDrawElementsBaseVertex(
+          GL_TRIANGLES, single_counts.data(), GL_UNSIGNED_INT, single_offsets.data(),
+          static_cast<GLsizei>(single_counts.size()), single_base_vertices.data());
+      ++stats.draw_calls;
+    }
+    // GL 3.3 has no base instance: point the per-instance attribute at each group's block.
+    constexpr std::size_t kFlushTriangles = 16384;
+    std::size_t unflushed = 0;
+    for (std::uint32_t shape : instanced_shapes) {
+      const ShapeRange& range = shapes[shape];
+      for (std::size_t lod = 0; lod < 2; ++lod) {
+        const std::size_t group = 2 * shape + lod;
+        const auto instances = static_cast<GLsizei>(group_counts[group]);
+        if (instances == 0) continue;
+        glVertexAttribIPointer(
+            2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t),
+            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(group_start[group]) * 4u));
+        const GLsizei index_count = lod == 1 ? range.coarse_count : range.full_count;
+        const GLuint offset = lod == 1 ? range.coarse_offset : range.full_offset;
+        glDrawElementsInstancedBaseVertex(
+            GL_TRIANGLES, index_count, GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset) * 4u), instances,
+            range.base_vertex);
+        ++stats.draw_calls;
+        // Hand what is set up to the rasteriser threads now and then (see the impostors).
+        unflushed +=
+            static_cast<std::size_t>(index_count / 3) * static_cast<std::size_t>(instances);
+        if (unflushed >= kFlushTriangles) {
+          glFlush();
+          unflushed = 0;
+        }
+      }
+    }
+    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+    glBindVertexArray(0);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    glDisable(GL_CULL_FACE);
+  }
+
+  if (!point_list.empty()) {
+    // Three vertices per impostor (not instanced: llvmpipe runs its whole vertex pipeline once
+    // per instance, which costs more than the copies).
+    glUseProgram(point_program);
+    glUniformMatrix4fv(p_view, 1, GL_FALSE, view.data());
+    glUniformMatrix4fv(p_projection, 1, GL_FALSE, projection.data());
+    glUniform1i(p_lit, style.is_wireframe ? 0 : 1);
+    const auto& particle_colors = colors[static_cast<std::size_t>(style.color)].colors;
+    points.resize(3 * point_list.size());
+    for (std::size_t k = 0; k < point_list.size(); ++k) {
+      const std::uint32_t particle = point_list[k];
+      const ParticleSphere& sphere = particle_sphere[particle];
+      const Rgb color =
+          particle < particle_colors.size() ? particle_colors[particle] : Rgb{255, 255, 255};
+      const GpuPoint point = {sphere.x, sphere.y, sphere.z, impostor_radius[particle],
+                              color.r,  color.g,  color.b,  255};
+      points[3 * k] = point;
+      points[3 * k + 1] = point;
+      points[3 * k + 2] = point;
+    }
+    glBindVertexArray(point_array);
+    glBindBuffer(GL_ARRAY_BUFFER, point_buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(points.size() * sizeof(GpuPoint)),
+                 points.data(), GL_STREAM_DRAW);
+    // In chunks with a flush before each, so llvmpipe's rasteriser threads start on one chunk
+    // while this thread sets up the next (it rasterises only what was flushed).
+    constexpr std::size_t kChunk = 3 * 2048;
+    for (std::size_t first = 0; first < points.size(); first += kChunk) {
+      glFlush();
+      glDrawArrays(GL_TRIANGLES, static_cast<GLint>(first),
+                   static_cast<GLsizei>(std::min(kChunk, points.size() - first)));
+    }
+    glBindVertexArray(0);
+    ++stats.draw_calls;
+  }
+  return mesh_triangles;
+}
+
 DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
                                 const RenderStyle& style) {
   State& s = *state_;
@@ -624,179 +970,88 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
     const bool is_in_front = is_orthographic || candidate.near_depth > 0.0f;
     candidate.pixels = is_in_front ? 2.0f * sphere.radius * pixels_per_metre(candidate.depth)
                                    : std::numeric_limits<float>::infinity();
+    // The outline of the bounding sphere: orthographic, a disc of the projected radius; in
+    // perspective an ellipse stretched by 1 / cos^2 of the off-axis angle (cos = depth /
+    // distance) whose centre moves outward by a second-order amount that 2 % and half a pixel
+    // cover.
+    candidate.footprint = sphere.radius * pixel_scale;
+    if (!is_orthographic && is_in_front) {
+      const float distance = (view * centre).head<3>().norm();
+      const float sine = std::min(sphere.radius / std::max(distance, 1e-9f), 0.99f);
+      candidate.footprint = pixel_scale * sphere.radius * distance /
+                            (candidate.depth * candidate.depth * std::sqrt(1.0f - sine * sine));
+    }
+    candidate.footprint = 1.02f * candidate.footprint + 0.5f;
     const float w = clip.w() > 1e-9f ? clip.w() : 1e-9f;
     candidate.screen_x = (clip.x() / w + 1.0f) * 0.5f * static_cast<float>(width);
     candidate.screen_y = (clip.y() / w + 1.0f) * 0.5f * static_cast<float>(height);
     s.candidates.push_back(candidate);
   }
   // Front to back: lets the rasteriser's early depth test reject hidden fragments.
-  std::sort(s.candidates.begin(), s.candidates.end(), [](const Candidate& a, const Candidate& b) {
-    return a.near_depth < b.near_depth || (a.near_depth == b.near_depth && a.particle < b.particle);
-  });
+  sort_front_to_back(s.candidates, s.sort_keys, s.sorted);
+  const std::size_t in_frustum = s.candidates.size();
+  stats.particles_in_frustum = in_frustum;
 
-  const std::size_t kept = s.candidates.size();
-
-  // 2. Level of detail: full, coarse or point by projected size; then, over the triangle
-  //    budget, the smallest particles become points.
-  s.level.assign(kept, 0);
-  auto triangles_of = [&](std::size_t c) -> std::size_t {
-    const ShapeRange& range = s.shapes[s.particle_shape[s.candidates[c].particle]];
-    if (s.level[c] == 2) return 0;
-    return static_cast<std::size_t>((s.level[c] == 1 ? range.coarse_count : range.full_count) / 3);
-  };
-  std::size_t mesh_triangles = 0;
-  for (std::size_t c = 0; c < kept; ++c) {
-    const float pixels = s.candidates[c].pixels;
-    if (pixels < style.point_below_pixels) {
-      s.level[c] = 2;
-    } else if (pixels < style.coarse_below_pixels) {
-      s.level[c] = 1;
-    }
-    mesh_triangles += triangles_of(c);
+  // 2. Draw, with occlusion culling when it can pay: llvmpipe pays per primitive, and in a
+  //    packing of many small particles the view sees only the first few layers. Particles not
+  //    hidden last frame are drawn first; the depth they leave is read back, and the others
+  //    are drawn only if some pixel under their bounding sphere lies behind the sphere's nearest
+  //    point. Exact (never drops a particle that would show), whatever last frame was.
+  GLint samples = 0;
+  glGetIntegerv(GL_SAMPLES, &samples);
+  const bool is_culled = style.is_occlusion_culled && !style.is_wireframe && samples <= 1 &&
+                         in_frustum >= kOcclusionMinParticles;
+  if (s.was_visible.size() != particle_count) {
+    s.was_visible.assign(particle_count, 0);
+    s.has_visibility = false;
   }
-  if (style.triangle_budget > 0 && mesh_triangles > style.triangle_budget) {
-    std::vector<std::uint32_t> by_size(kept);
-    for (std::size_t c = 0; c < kept; ++c) by_size[c] = static_cast<std::uint32_t>(c);
-    std::sort(by_size.begin(), by_size.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return s.candidates[a].pixels < s.candidates[b].pixels ||
-             (s.candidates[a].pixels == s.candidates[b].pixels && a < b);
-    });
-    for (std::uint32_t c : by_size) {
-      if (mesh_triangles <= style.triangle_budget) break;
-      mesh_triangles -= triangles_of(c);
-      s.level[c] = 2;
-    }
-  }
-
-  // 3. Draw lists: single-use shapes in one multi-draw, instanced shapes by (shape, level),
-  //    points in one draw; all in front-to-back order.
-  const std::size_t shape_count = s.shapes.size();
-  s.group_counts.assign(2 * shape_count, 0);
-  s.single_counts.clear();
-  s.single_offsets.clear();
-  s.single_base_vertices.clear();
-  s.point_list.clear();
-  for (std::size_t c = 0; c < kept; ++c) {
-    const std::uint32_t particle = s.candidates[c].particle;
-    const std::uint32_t shape = s.particle_shape[particle];
-    const ShapeRange& range = s.shapes[shape];
-    const std::uint8_t level = s.level[c];
-    if (level == 2) {
-      s.point_list.push_back(particle);
-      continue;
-    }
-    if (range.instances >= 2) {
-      ++s.group_counts[2 * shape + level];
-    } else {
-      s.single_counts.push_back(level == 1 ? range.coarse_count : range.full_count);
-      s.single_offsets.push_back(reinterpret_cast<const void*>(
-          static_cast<std::uintptr_t>(level == 1 ? range.coarse_offset : range.full_offset) * 4u));
-      s.single_base_vertices.push_back(range.base_vertex);
-    }
-  }
-  stats.particles_drawn = kept;
-  stats.point_particles = s.point_list.size();
-  stats.coarse_particles =
-      static_cast<std::size_t>(std::count(s.level.begin(), s.level.end(), std::uint8_t{1}));
-  stats.triangles = mesh_triangles;
-
-  // Instance list: element 0 stays 0 (what single-use shapes read through the per-instance
-  // attribute), then one block per (shape, level) group.
-  std::vector<std::uint32_t> group_start(2 * shape_count, 0);
-  std::uint32_t next = 1;
-  for (std::uint32_t shape : s.instanced_shapes) {
-    for (std::size_t level = 0; level < 2; ++level) {
-      group_start[2 * shape + level] = next;
-      next += s.group_counts[2 * shape + level];
-    }
-  }
-  s.instance_list.assign(next, 0);
-  {
-    std::vector<std::uint32_t> cursor = group_start;
-    for (std::size_t c = 0; c < kept; ++c) {
-      const std::uint32_t particle = s.candidates[c].particle;
-      const std::uint32_t shape = s.particle_shape[particle];
-      if (s.level[c] == 2 || s.shapes[shape].instances < 2) continue;
-      s.instance_list[cursor[2 * shape + s.level[c]]++] = particle;
-    }
-  }
-
-  glUseProgram(s.particle_program);
-  glUniformMatrix4fv(s.u_view, 1, GL_FALSE, view.data());
-  glUniformMatrix4fv(s.u_projection, 1, GL_FALSE, projection.data());
-  glUniform1i(s.u_lit, style.is_wireframe ? 0 : 1);
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_BUFFER, s.transform_texture);
-  glUniform1i(s.u_transforms, 0);
-  glActiveTexture(GL_TEXTURE1);
-  glBindTexture(GL_TEXTURE_BUFFER, s.color_texture);
-  glUniform1i(s.u_colors, 1);
-  if (style.is_wireframe) {
-    glDisable(GL_CULL_FACE);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  if (!is_culled) {
+    s.submit(0, in_frustum, style.triangle_budget, style, view, projection, stats);
+    s.has_visibility = false;
   } else {
-    glEnable(GL_CULL_FACE);
-    glCullFace(GL_BACK);
-    glFrontFace(GL_CCW);
-  }
-
-  glBindVertexArray(s.vertex_array);
-  glBindBuffer(GL_ARRAY_BUFFER, s.instance_buffer);
-  glBufferData(GL_ARRAY_BUFFER,
-               static_cast<GLsizeiptr>(s.instance_list.size() * sizeof(std::uint32_t)),
-               s.instance_list.data(), GL_STREAM_DRAW);
-  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
-  if (!s.single_counts.empty()) {
-    glMultiDrawElementsBaseVertex(
-        GL_TRIANGLES, s.single_counts.data(), GL_UNSIGNED_INT, s.single_offsets.data(),
-        static_cast<GLsizei>(s.single_counts.size()), s.single_base_vertices.data());
-    ++stats.draw_calls;
-  }
-  // GL 3.3 has no base instance: point the per-instance attribute at each group's block.
-  for (std::uint32_t shape : s.instanced_shapes) {
-    const ShapeRange& range = s.shapes[shape];
-    for (std::size_t level = 0; level < 2; ++level) {
-      const std::size_t group = 2 * shape + level;
-      const GLsizei instances = static_cast<GLsizei>(s.group_counts[group]);
-      if (instances == 0) continue;
-      glVertexAttribIPointer(
-          2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t),
-          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(group_start[group]) * 4u));
-      const GLsizei count = level == 1 ? range.coarse_count : range.full_count;
-      const GLuint offset = level == 1 ? range.coarse_offset : range.full_offset;
-      glDrawElementsInstancedBaseVertex(
-          GL_TRIANGLES, count, GL_UNSIGNED_INT,
-          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset) * 4u), instances,
-          range.base_vertex);
-      ++stats.draw_calls;
+    // First the particles seen last frame (all of them when there is no last frame).
+    std::size_t first = in_frustum;
+    if (s.has_visibility) {
+      first =
+          static_cast<std::size_t>(std::stable_partition(s.candidates.begin(), s.candidates.end(),
+                                                         [&](const Candidate& c) {
+                                                           return s.was_visible[c.particle] != 0;
+                                                         }) -
+                                   s.candidates.begin());
     }
-  }
-  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
-  glBindVertexArray(0);
-  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  glDisable(GL_CULL_FACE);
-
-  if (!s.point_list.empty()) {
-    glUseProgram(s.point_program);
-    glUniformMatrix4fv(s.p_view, 1, GL_FALSE, view.data());
-    glUniformMatrix4fv(s.p_projection, 1, GL_FALSE, projection.data());
-    glUniform1i(s.p_lit, style.is_wireframe ? 0 : 1);
-    const auto& colors = s.colors[static_cast<std::size_t>(style.color)].colors;
-    s.points.resize(s.point_list.size());
-    for (std::size_t k = 0; k < s.point_list.size(); ++k) {
-      const std::uint32_t particle = s.point_list[k];
-      const ParticleSphere& sphere = s.particle_sphere[particle];
-      const Rgb color = particle < colors.size() ? colors[particle] : Rgb{255, 255, 255};
-      s.points[k] = {sphere.x, sphere.y, sphere.z, s.impostor_radius[particle],
-                     color.r,  color.g,  color.b,  255};
+    const std::size_t used =
+        s.submit(0, first, style.triangle_budget, style, view, projection, stats);
+    s.depth_pyramid.build(width, height);
+    // Window depth of a view depth (both projections map view depth alone to window depth).
+    auto window_depth = [&](float depth) {
+      const float clip_z = -projection(2, 2) * depth + projection(2, 3);
+      const float clip_w = -projection(3, 2) * depth + projection(3, 3);
+      return 0.5f * clip_z / clip_w + 0.5f;
+    };
+    auto is_hidden = [&](const Candidate& c) {
+      if (!is_orthographic && !(c.near_depth > 1e-6f)) return false;
+      return s.depth_pyramid.is_hidden(c.screen_x, c.screen_y, c.footprint,
+                                       window_depth(c.near_depth));
+    };
+    // Seen now: the first group unless hidden behind the rest of it, the others unless hidden.
+    std::fill(s.was_visible.begin(), s.was_visible.end(), std::uint8_t{0});
+    for (std::size_t c = 0; c < first; ++c) {
+      if (!is_hidden(s.candidates[c])) s.was_visible[s.candidates[c].particle] = 1;
     }
-    glBindVertexArray(s.point_array);
-    glBindBuffer(GL_ARRAY_BUFFER, s.point_buffer);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.points.size() * sizeof(GpuPoint)),
-                 s.points.data(), GL_STREAM_DRAW);
-    glDrawArraysInstanced(GL_TRIANGLES, 0, 3, static_cast<GLsizei>(s.point_list.size()));
-    glBindVertexArray(0);
-    ++stats.draw_calls;
+    std::size_t kept = first;
+    for (std::size_t c = first; c < in_frustum; ++c) {
+      if (is_hidden(s.candidates[c])) continue;
+      s.was_visible[s.candidates[c].particle] = 1;
+      s.candidates[kept++] = s.candidates[c];
+    }
+    s.candidates.resize(kept);
+    s.has_visibility = true;
+    std::size_t rest_budget = 0;
+    if (style.triangle_budget > 0) {
+      // All of it used: the newly seen are points this frame (and first next frame).
+      rest_budget = used < style.triangle_budget ? style.triangle_budget - used : 1;
+    }
+    s.submit(first, kept, rest_budget, style, view, projection, stats);
   }
 
   if (style.show_container && s.line_vertex_count > 0) {

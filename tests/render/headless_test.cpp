@@ -319,6 +319,45 @@ TEST(Headless, TriangleBudgetTurnsTheSmallestParticlesIntoPoints) {
   EXPECT_LT(covered_points, covered_full * 2);
 }
 
+TEST(Headless, OcclusionCullingSkipsHiddenParticlesAndKeepsThePicture) {
+  // 4,800 particles in a lattice block: from the iso view the inner ones hide behind the outer
+  // layers (not all: there are lines of sight along the lattice gaps).
+  const Packing packing = test::grid_packing(20, 12, 20, 0.1, 4);
+  HeadlessContext context;
+  PackingRenderer renderer;
+  renderer.set_packing(packing);
+  OffscreenTarget target(320, 240);
+  Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kIso, 320.0 / 240.0);
+  RenderStyle style;
+  style.is_occlusion_culled = false;
+  target.bind();
+  const DrawStats all = renderer.draw(camera, 320, 240, style);
+  const Image expected = target.read();
+  EXPECT_EQ(all.particles_drawn, all.particles_in_frustum);
+  style.is_occlusion_culled = true;
+  // The first frame learns what is visible, the next ones draw that first and test the rest;
+  // every one must give the same picture.
+  for (int frame = 0; frame < 3; ++frame) {
+    target.bind();
+    const DrawStats culled = renderer.draw(camera, 320, 240, style);
+    EXPECT_EQ(culled.particles_in_frustum, all.particles_in_frustum);
+    if (frame > 0) {
+      EXPECT_LT(culled.particles_drawn, all.particles_drawn * 9 / 10) << "frame " << frame;
+    }
+    EXPECT_EQ(differing_pixels(target.read(), expected), 0u) << "frame " << frame;
+  }
+  // After the camera turns, last frame's visible set is stale: still the same picture as
+  // drawing everything.
+  camera.rotate_arcball(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.6, 0.2));
+  target.bind();
+  renderer.draw(camera, 320, 240, style);
+  const Image turned = target.read();
+  style.is_occlusion_culled = false;
+  target.bind();
+  renderer.draw(camera, 320, 240, style);
+  EXPECT_EQ(differing_pixels(turned, target.read()), 0u);
+}
+
 TEST(Headless, PngRoundTripsThroughAnIndependentDecoder) {
   const Packing packing = test::grid_packing(3, 2, 2);
   RenderImageOptions options = small_options();

@@ -11,6 +11,9 @@
 // (frustum test of the bounding sphere) and the rest are drawn front to back. Particles
 // that cover few pixels are drawn with a coarse 24-triangle version of their shape or as one
 // shaded point (an impostor), and a triangle budget turns the smallest ones into points first.
+// With many particles in view, particles hidden behind others are skipped: those seen last
+// frame are drawn first, the depth buffer is read back, and the rest are drawn only if part of
+// their bounding sphere could show (exact: the picture is the same as drawing all).
 
 #include <cstddef>
 #include <cstdint>
@@ -40,15 +43,19 @@ struct RenderStyle {
   /// Most triangles to submit per frame; when the visible particles need more, the smallest on
   /// screen are drawn as points instead. 0 = no limit.
   std::size_t triangle_budget = 0;
+  /// Skip particles hidden behind nearer ones (a conservative test on the CPU against the
+  /// inscribed balls of particles already drawn; off in wireframe).
+  bool is_occlusion_culled = true;
 };
 
 /// What one draw() did (for the GUI's status line and benchmarks).
 struct DrawStats {
-  std::size_t particles_drawn = 0;   ///< particles in the view
-  std::size_t coarse_particles = 0;  ///< of those drawn, with the coarse shape
-  std::size_t point_particles = 0;   ///< of those drawn, as points
-  std::size_t triangles = 0;         ///< triangles submitted
-  std::size_t draw_calls = 0;        ///< OpenGL draw calls issued
+  std::size_t particles_in_frustum = 0;  ///< particles inside the view volume
+  std::size_t particles_drawn = 0;       ///< of those, drawn (not hidden behind others)
+  std::size_t coarse_particles = 0;      ///< of those drawn, with the coarse shape
+  std::size_t point_particles = 0;       ///< of those drawn, as points
+  std::size_t triangles = 0;             ///< triangles submitted
+  std::size_t draw_calls = 0;            ///< OpenGL draw calls issued
 };
 
 /// Draws one packing with OpenGL 3.3 core. Construct, use and destroy it only while the same
