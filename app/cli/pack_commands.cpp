@@ -12,6 +12,7 @@
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/text.h"
 #include "aggpack/io/config.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
@@ -39,36 +40,6 @@ struct PackFlags {
   bool is_print_config = false;
   bool is_json = false;
 };
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          out += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
 
 // Re-indents a pretty-printed JSON value so it can sit at `indent` inside another object.
 std::string nest_json(const std::string& json, int indent) {
@@ -191,7 +162,7 @@ void run_pack(const PackFlags& flags) {
 
   const PackReport& report = result.report;
   if (flags.is_json) {
-    fmt::print("{{\n  \"output\": {},\n  \"report\": {}\n}}\n", json_string(output),
+    fmt::print("{{\n  \"output\": {},\n  \"report\": {}\n}}\n", aggpack::quoted(output),
                nest_json(to_json(report, 2), 2));
   } else {
     fmt::print("{}\n", report.summary());
@@ -232,8 +203,8 @@ void run_info(const std::string& path, bool is_json, int bins, bool has_descript
     fmt::print(
         "{{\n  \"file\": {},\n  \"format_version\": {},\n  \"aggpack_version\": {},\n"
         "  \"packer\": {},\n  \"seed\": {},\n  \"container\": {},\n  \"statistics\": {}\n}}\n",
-        json_string(path), kNativeFormatVersion, json_string(p.aggpack_version),
-        json_string(p.packer), p.seed, container_json(packing.container),
+        aggpack::quoted(path), kNativeFormatVersion, aggpack::quoted(p.aggpack_version),
+        aggpack::quoted(p.packer), p.seed, container_json(packing.container),
         nest_json(to_json(statistics, 2), 2));
     return;
   }

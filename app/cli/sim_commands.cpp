@@ -24,6 +24,7 @@
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/text.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/settle.h"
 #include "aggpack/sim/sweep.h"
@@ -216,22 +217,6 @@ const std::vector<ConfigKey>& config_keys() {
 
 #undef AGGPACK_DOUBLE_KEY
 
-// Edit distance, for "did you mean" on unknown keys.
-std::size_t distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 void set_key(SweepOptions& options, const std::string& key, const std::string& value) {
   for (const auto& entry : config_keys()) {
     if (key == entry.name) {
@@ -242,7 +227,7 @@ void set_key(SweepOptions& options, const std::string& key, const std::string& v
   std::string best;
   std::size_t best_distance = 1000;
   for (const auto& entry : config_keys()) {
-    const std::size_t d = distance(key, entry.name);
+    const std::size_t d = edit_distance(key, entry.name);
     if (d < best_distance) {
       best_distance = d;
       best = entry.name;

@@ -10,6 +10,8 @@
 
 #include <toml++/toml.h>
 
+#include "aggpack/core/text.h"
+
 namespace aggpack {
 
 namespace {
@@ -424,21 +426,6 @@ const char* scope_text(Scope scope) {
 
 // ---- helpers ----------------------------------------------------------------------------------
 
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 std::string last_component(std::string_view name) {
   const auto dot = name.rfind('.');
   return std::string(dot == std::string_view::npos ? name : name.substr(dot + 1));
@@ -514,42 +501,10 @@ std::string format_double(double value) {
   return text;
 }
 
-std::string quote(std::string_view text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-          char escape[8];
-          std::snprintf(escape, sizeof escape, "\\u%04x", static_cast<unsigned>(c));
-          out += escape;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
 std::string node_text(const toml::node& node) {
   if (const auto* value = node.as_floating_point()) return format_value(value->get());
   if (const auto* value = node.as_integer()) return std::to_string(value->get());
-  if (const auto* value = node.as_string()) return quote(value->get());
+  if (const auto* value = node.as_string()) return aggpack::quoted(value->get());
   if (const auto* value = node.as_boolean()) return value->get() ? "true" : "false";
   std::ostringstream out;
   if (const auto* array = node.as_array()) {
@@ -648,8 +603,8 @@ class Resolver {
     std::vector<std::string> words(spec.words.begin(), spec.words.end());
     if (std::find(words.begin(), words.end(), text) == words.end()) {
       const std::string suggestion = closest(text, words);
-      fail(key, "invalid " + key + " = " + quote(text) + " (allowed: " + spec.allowed + ")" +
-                    (suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?"));
+      fail(key, "invalid " + key + " = " + aggpack::quoted(text) + " (allowed: " + spec.allowed +
+                    ")" + (suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?"));
     }
     return text;
   }
@@ -851,7 +806,7 @@ class TomlWriter {
   }
   void number(const char* key, double value) { line(key, format_double(value)); }
   void integer(const char* key, std::uint64_t value) { line(key, std::to_string(value)); }
-  void word(const char* key, std::string_view value) { line(key, quote(value)); }
+  void word(const char* key, std::string_view value) { line(key, aggpack::quoted(value)); }
   void line(const char* key, const std::string& value) {
     text_ += std::string(key) + " = " + value + "\n";
   }

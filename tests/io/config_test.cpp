@@ -69,7 +69,11 @@ TEST(Config, EveryExampleParsesAndItsResolvedTextIsAFixedPoint) {
   int count = 0;
   for (const auto& entry :
        std::filesystem::directory_iterator(std::string(AGGPACK_SOURCE_DIR) + "/examples")) {
-    if (entry.path().extension() != ".toml") continue;
+    // Pack configs; repose-*.toml are `aggpack repose` configs (tested by test_sim).
+    if (entry.path().extension() != ".toml" ||
+        entry.path().filename().string().rfind("repose", 0) == 0) {
+      continue;
+    }
     ++count;
     SCOPED_TRACE(entry.path().string());
     const PackConfig config = load_pack_config(entry.path().string());
