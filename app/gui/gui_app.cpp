@@ -34,6 +34,8 @@ const char* kContainerKinds[] = {"box", "cylinder"};
 const char* kPackers[] = {"lattice", "random"};
 const char* kGradings[] = {"uniform", "fuller"};
 constexpr float kPanelWidth = 360.0f;
+// Full-detail frames timed after the moving ones in --benchmark-frames.
+constexpr int kBenchmarkStillFrames = 5;
 
 // Input for a length in metres with a sensible step; returns true when changed.
 bool input_metres(const char* label, double* value, double step = 0.01) {
@@ -186,7 +188,8 @@ GuiApp::~GuiApp() {
 }
 
 bool GuiApp::is_busy() const {
-  return job_.is_running() || benchmark_left_ > 0 || is_waiting_for_first_job_ || is_preview_ ||
+  return job_.is_running() || benchmark_phase_ != BenchmarkPhase::kOff ||
+         is_waiting_for_first_job_ || is_preview_ ||
          (frames_since_job_ >= 0 && frames_since_job_ < 3) || dragging_button_ >= 0;
 }
 
@@ -320,11 +323,7 @@ void GuiApp::poll_job() {
     is_waiting_for_first_job_ = false;
     frames_since_job_ = 0;
     if (!result.is_ok) exit_code_ = 2;
-    if (options_.benchmark_frames > 0) {
-      benchmark_left_ = options_.benchmark_frames;
-      benchmark_start_ = glfwGetTime();
-      benchmark_scene_seconds_ = 0.0;
-    }
+    if (options_.benchmark_frames > 0) start_benchmark();
   }
 }
 
@@ -336,15 +335,18 @@ void GuiApp::render_scene_if_needed(int width, int height) {
   if (!is_scene_dirty_) return;
   const double start = glfwGetTime();
   scene_target_->bind();
-  // While the view moves, a lighter frame (a fifth of the triangle budget, the rest as
-  // impostors); the full frame follows when the mouse rests.
+  // While the view moves, a light frame whose detail the controller fits to the frame-time
+  // target (fewer mesh triangles, then fewer particles); the full frame follows when the view
+  // rests.
   RenderStyle style = style_;
   is_preview_ = is_interacting();
+  detail_.set_full_budget(style_.triangle_budget);
   if (is_preview_) {
-    const std::size_t light = std::max<std::size_t>(20000, style.triangle_budget / 5);
-    style.triangle_budget =
-        style.triangle_budget == 0 ? 50000 : std::min(style.triangle_budget, light);
+    const DetailLevel level = detail_.level();
+    style.triangle_budget = level.triangle_budget;
+    style.max_particles = level.max_particles;
   }
+  was_light_frame_ = is_preview_;
   last_stats_ = renderer_->draw(camera_, width, height, style);
   // Finish here so the time measures the scene, not whatever comes later in the frame.
   glFinish();
@@ -353,11 +355,80 @@ void GuiApp::render_scene_if_needed(int width, int height) {
 }
 
 bool GuiApp::is_interacting() const {
-  return dragging_button_ >= 0 || glfwGetTime() - last_scroll_time_ < 0.3;
+  return dragging_button_ >= 0 || glfwGetTime() - last_scroll_time_ < 0.3 ||
+         benchmark_phase_ == BenchmarkPhase::kMoving;
+}
+
+void GuiApp::start_benchmark() {
+  benchmark_phase_ = BenchmarkPhase::kMoving;
+  benchmark_left_ = options_.benchmark_frames;
+  benchmark_frame_start_ = glfwGetTime();
+  moving_times_ = FrameTimes{};
+  still_times_ = FrameTimes{};
+  detail_.reset();  // start from full detail, as a drag does after a long rest
+}
+
+void GuiApp::print_benchmark(const char* label, const FrameTimes& t) const {
+  const double n = std::max(1, t.frames);
+  std::printf(
+      "benchmark: %s: %d frames of %zu particles, on average %.0f drawn (%.0f as impostors, "
+      "%.0f mesh triangles): %.1f ms/frame (%.1f frames/s)",
+      label, t.frames, renderer_->particle_count(), t.drawn / n, t.points / n, t.triangles / n,
+      1e3 * t.wall / n, n / t.wall);
+  if (t.settled_frames > 0) {
+    std::printf("; second half %.1f ms/frame (%.1f frames/s)",
+                1e3 * t.settled_wall / t.settled_frames, t.settled_frames / t.settled_wall);
+  }
+  std::printf(
+      "\n  ms/frame: scene %.1f (frustum+sort %.1f, submit %.1f, depth read-back %.1f, occlusion "
+      "test %.1f, rest = waiting for the rasteriser), blit %.1f, panel build %.1f, panel draw "
+      "%.1f, swap %.1f\n",
+      1e3 * t.scene / n, 1e3 * t.frustum_sort / n, 1e3 * t.submit / n, 1e3 * t.depth_readback / n,
+      1e3 * t.occlusion_test / n, 1e3 * t.blit / n, 1e3 * t.panel / n, 1e3 * t.ui_draw / n,
+      1e3 * t.swap / n);
+  std::fflush(stdout);
+}
+
+void GuiApp::note_present_times(double ui_draw_seconds, double swap_seconds) {
+  if (benchmark_phase_ == BenchmarkPhase::kOff) return;
+  FrameTimes& t = benchmark_phase_ == BenchmarkPhase::kMoving ? moving_times_ : still_times_;
+  const double now = glfwGetTime();
+  const double wall = now - benchmark_frame_start_;
+  benchmark_frame_start_ = now;
+  const bool is_moving = benchmark_phase_ == BenchmarkPhase::kMoving;
+  t.ui_draw += ui_draw_seconds;
+  t.swap += swap_seconds;
+  t.wall += wall;
+  if (is_moving && t.frames >= options_.benchmark_frames / 2) {
+    t.settled_wall += wall;
+    ++t.settled_frames;
+  }
+  ++t.frames;
+  if (--benchmark_left_ > 0) return;
+  if (benchmark_phase_ == BenchmarkPhase::kMoving) {
+    const DetailLevel level = detail_.level();
+    print_benchmark("camera moving (light frames, adaptive detail)", t);
+    std::printf(
+        "  detail reached: triangle budget %zu, at most %zu particles (0 = all); target "
+        "%.0f ms/frame\n",
+        level.triangle_budget, level.max_particles, 1e3 * detail_.target_seconds());
+    benchmark_phase_ = BenchmarkPhase::kStill;
+    benchmark_left_ = kBenchmarkStillFrames;
+  } else {
+    print_benchmark("view still (full detail, each frame redrawn)", t);
+    benchmark_phase_ = BenchmarkPhase::kOff;
+  }
 }
 
 void GuiApp::frame() {
   poll_job();
+  const double frame_start = glfwGetTime();
+  if (was_light_frame_ && last_frame_start_ >= 0.0) {
+    detail_.update(frame_start - last_frame_start_, last_stats_.triangles,
+                   last_stats_.particles_drawn);
+  }
+  was_light_frame_ = false;
+  last_frame_start_ = frame_start;
   if (is_preview_ && !is_interacting()) is_scene_dirty_ = true;  // refine after the move
   int fb_width = 0, fb_height = 0;
   glfwGetFramebufferSize(window_, &fb_width, &fb_height);
@@ -368,30 +439,33 @@ void GuiApp::frame() {
   const int view_width = std::max(1, fb_width - view_x);
   const int view_height = std::max(1, fb_height);
 
-  if (benchmark_left_ > 0) {
+  const bool is_benchmark = benchmark_phase_ != BenchmarkPhase::kOff;
+  if (is_benchmark) {
     // Turn the scene a little every frame so every frame redraws it.
     camera_.rotate_arcball(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.02, 0.0));
     is_scene_dirty_ = true;
   }
   const double scene_start = glfwGetTime();
   render_scene_if_needed(view_width, view_height);
+  const double blit_start = glfwGetTime();
   scene_target_->blit(0, view_x, 0);
-  if (benchmark_left_ > 0) benchmark_scene_seconds_ += glfwGetTime() - scene_start;
-
+  if (is_benchmark) glFinish();
+  const double panel_start = glfwGetTime();
   draw_panel();
-
-  if (benchmark_left_ > 0 && --benchmark_left_ == 0) {
-    const double seconds = glfwGetTime() - benchmark_start_;
-    const int frames = options_.benchmark_frames;
-    std::printf(
-        "benchmark: %d frames of %zu particles (%zu in view, %zu drawn: %zu coarse, %zu points; "
-        "%zu triangles) in a %dx%d view: %.1f ms/frame (%.1f frames/s), scene %.1f ms/frame\n",
-        frames, renderer_->particle_count(), last_stats_.particles_in_frustum,
-        last_stats_.particles_drawn, last_stats_.coarse_particles, last_stats_.point_particles,
-        last_stats_.triangles, view_width, view_height, 1e3 * seconds / frames, frames / seconds,
-        1e3 * benchmark_scene_seconds_ / frames);
-    std::fflush(stdout);
+  if (is_benchmark) {
+    FrameTimes& t = benchmark_phase_ == BenchmarkPhase::kMoving ? moving_times_ : still_times_;
+    t.scene += blit_start - scene_start;
+    t.blit += panel_start - blit_start;
+    t.panel += glfwGetTime() - panel_start;
+    t.frustum_sort += last_stats_.frustum_sort_seconds;
+    t.submit += last_stats_.submit_seconds;
+    t.depth_readback += last_stats_.depth_readback_seconds;
+    t.occlusion_test += last_stats_.occlusion_test_seconds;
+    t.drawn += last_stats_.particles_drawn;
+    t.points += last_stats_.point_particles;
+    t.triangles += last_stats_.triangles;
   }
+
   if (frames_since_job_ >= 0) ++frames_since_job_;
 }
 
@@ -413,13 +487,22 @@ void GuiApp::save_screenshot(const std::string& path) {
 }
 
 void GuiApp::after_render() {
+  // --benchmark-frames with --screenshot: also the last moving (light) frame, FILE-moving.png.
+  if (benchmark_phase_ == BenchmarkPhase::kMoving && benchmark_left_ == 1 &&
+      options_.screenshot_path) {
+    std::filesystem::path path(*options_.screenshot_path);
+    path.replace_filename(path.stem().string() + "-moving" + path.extension().string());
+    save_screenshot(path.string());
+  }
   if (is_screenshot_requested_) {
     is_screenshot_requested_ = false;
     save_screenshot(options_.screenshot_path.value_or("aggpack-gui.png"));
   }
   // Scripted runs: act once the first job's result has been on screen for two frames (the
   // status line and the scene are then drawn) and any benchmark is over.
-  if (frames_since_job_ < 2 || benchmark_left_ > 0 || is_script_done_) return;
+  if (frames_since_job_ < 2 || benchmark_phase_ != BenchmarkPhase::kOff || is_script_done_) {
+    return;
+  }
   is_script_done_ = true;
   // The status line of the finished job (a screenshot below replaces it on screen).
   std::printf("status: %s\n", status_.c_str());
@@ -608,8 +691,13 @@ void GuiApp::draw_view_section() {
                       last_stats_.particles_in_frustum, last_stats_.particles_drawn,
                       last_stats_.coarse_particles, last_stats_.point_particles);
   ImGui::TextDisabled("%.2f M triangles", last_stats_.triangles / 1e6);
-  ImGui::TextDisabled("scene %.1f ms; UI %.0f frames/s", 1e3 * last_scene_seconds_,
-                      ImGui::GetIO().Framerate);
+  ImGui::TextDisabled("scene %.1f ms%s; UI %.0f frames/s", 1e3 * last_scene_seconds_,
+                      is_preview_ ? " (light frame)" : "", ImGui::GetIO().Framerate);
+  const DetailLevel level = detail_.level();
+  ImGui::TextDisabled(
+      "moving: %zu k triangles, %s particles (%.0f ms target)", level.triangle_budget / 1000,
+      level.max_particles == 0 ? "all" : fmt::format("{} k", level.max_particles / 1000).c_str(),
+      1e3 * detail_.target_seconds());
   ImGui::TextDisabled("left drag: rotate, right drag: pan, wheel: zoom,");
   ImGui::TextDisabled("R: reset view, Enter: pack, Esc: cancel, F12: screenshot");
   if (is_changed) is_scene_dirty_ = true;

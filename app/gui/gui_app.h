@@ -10,6 +10,7 @@
 
 #include "aggpack/io/config.h"
 #include "aggpack/render/camera.h"
+#include "aggpack/render/detail_controller.h"
 #include "aggpack/render/headless.h"
 #include "aggpack/render/renderer.h"
 #include "background_job.h"
@@ -54,7 +55,7 @@ struct GuiOptions {
   bool is_pack_at_start = false;               ///< press Pack once at start
   std::optional<std::string> screenshot_path;  ///< save the window once the first job is done
   bool is_quit_when_done = false;              ///< exit after the screenshot / benchmark
-  int benchmark_frames = 0;                    ///< rotate and redraw this many frames, print fps
+  int benchmark_frames = 0;  ///< redraw the turning scene this many frames (moving), print fps
   ViewPreset view = ViewPreset::kIso;
   RenderStyle style;
   std::string export_base = "aggpack_out";  ///< export file name without extension
@@ -76,6 +77,11 @@ class GuiApp {
   /// True while something changes on screen by itself (job running, benchmark), so the main
   /// loop polls instead of waiting for events.
   [[nodiscard]] bool is_busy() const;
+  /// True during --benchmark-frames: main then finishes the GPU work after the panels and
+  /// reports how long they and the buffer swap took (note_present_times).
+  [[nodiscard]] bool is_timing_frames() const { return benchmark_phase_ != BenchmarkPhase::kOff; }
+  /// Time (s) of drawing the panels (ImGui's draw data, finished) and of the buffer swap.
+  void note_present_times(double ui_draw_seconds, double swap_seconds);
   /// Exit code for main: non-zero when a --pack/--open/--screenshot step failed.
   [[nodiscard]] int exit_code() const { return exit_code_; }
 
@@ -119,6 +125,10 @@ class GuiApp {
   bool is_scene_dirty_ = true;
   DrawStats last_stats_;
   double last_scene_seconds_ = 0.0;
+  // Light frames while the view moves: their detail follows the frame time.
+  DetailController detail_;
+  double last_frame_start_ = -1.0;
+  bool was_light_frame_ = false;  // the last frame redrew the scene as a light frame
 
   std::string status_ = "Set the parameters and press Pack.";
   bool is_status_error_ = false;
@@ -134,9 +144,23 @@ class GuiApp {
   // Scripted runs (--pack/--open, --screenshot, --benchmark-frames, --quit).
   bool is_waiting_for_first_job_ = false;
   int frames_since_job_ = -1;
+  // --benchmark-frames: first the camera turns as if dragged (light frames, adaptive detail),
+  // then a few full-detail frames (the scene as it is drawn once the view rests).
+  enum class BenchmarkPhase { kOff, kMoving, kStill };
+  struct FrameTimes {  // sums over a phase's frames (s)
+    int frames = 0;
+    double wall = 0.0, scene = 0.0, frustum_sort = 0.0, submit = 0.0, depth_readback = 0.0,
+           occlusion_test = 0.0, blit = 0.0, panel = 0.0, ui_draw = 0.0, swap = 0.0;
+    std::size_t drawn = 0, points = 0, triangles = 0;
+    double settled_wall = 0.0;  // over the second half of the frames
+    int settled_frames = 0;
+  };
+  void start_benchmark();
+  void print_benchmark(const char* label, const FrameTimes& times) const;
+  BenchmarkPhase benchmark_phase_ = BenchmarkPhase::kOff;
   int benchmark_left_ = 0;
-  double benchmark_start_ = 0.0;
-  double benchmark_scene_seconds_ = 0.0;
+  double benchmark_frame_start_ = 0.0;
+  FrameTimes moving_times_, still_times_;
   bool is_script_done_ = false;
   bool is_screenshot_requested_ = false;  // F12
   bool should_quit_ = false;

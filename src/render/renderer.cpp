@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -243,6 +244,10 @@ std::vector<std::uint32_t> coarse_indices(const ConvexPolyhedron& shape) {
     }
   }
   return indices;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 // Unsigned key that orders like the float (negative values first).
@@ -717,7 +722,20 @@ void PackingRenderer::set_packing(const Packing& packing) {
 std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, std::size_t budget,
                                            const RenderStyle& style, const Eigen::Matrix4f& view,
                                            const Eigen::Matrix4f& projection, DrawStats& stats) {
+  if (style.max_particles > 0) {
+    // Over the particle cap: leave out the farthest (candidates are front to back).
+    const std::size_t room = style.max_particles > stats.particles_drawn
+                                 ? style.max_particles - stats.particles_drawn
+                                 : 0;
+    end = std::min(end, begin + room);
+  }
   if (begin >= end) return 0;
+  const auto start = std::chrono::steady_clock::now();
+  struct AddTime {
+    std::chrono::steady_clock::time_point start;
+    double& total;
+    ~AddTime() { total += seconds_since(start); }
+  } add_time{start, stats.submit_seconds};
   const std::size_t count = end - begin;
 
   // Level of detail: full, coarse or point by projected size; then, over the triangle budget,
@@ -934,6 +952,7 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
 
+  auto start = std::chrono::steady_clock::now();
   // 1. Frustum: keep a particle unless its bounding sphere is wholly outside a plane of the
   //    view volume (planes from the combined matrix, Gribb-Hartmann).
   std::array<Eigen::Vector4f, 6> planes;
@@ -991,6 +1010,7 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   sort_front_to_back(s.candidates, s.sort_keys, s.sorted);
   const std::size_t in_frustum = s.candidates.size();
   stats.particles_in_frustum = in_frustum;
+  stats.frustum_sort_seconds = seconds_since(start);
 
   // 2. Draw, with occlusion culling when it can pay: llvmpipe pays per primitive, and in a
   //    packing of many small particles the view sees only the first few layers. Particles not
@@ -1021,7 +1041,10 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
     }
     const std::size_t used =
         s.submit(0, first, style.triangle_budget, style, view, projection, stats);
+    start = std::chrono::steady_clock::now();
     s.depth_pyramid.build(width, height);
+    stats.depth_readback_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
     // Window depth of a view depth (both projections map view depth alone to window depth).
     auto window_depth = [&](float depth) {
       const float clip_z = -projection(2, 2) * depth + projection(2, 3);
@@ -1046,6 +1069,7 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
     }
     s.candidates.resize(kept);
     s.has_visibility = true;
+    stats.occlusion_test_seconds = seconds_since(start);
     std::size_t rest_budget = 0;
     if (style.triangle_budget > 0) {
       // All of it used: the newly seen are points this frame (and first next frame).

@@ -43,9 +43,12 @@ struct RenderStyle {
   /// Most triangles to submit per frame; when the visible particles need more, the smallest on
   /// screen are drawn as points instead. 0 = no limit.
   std::size_t triangle_budget = 0;
-  /// Skip particles hidden behind nearer ones (a conservative test on the CPU against the
-  /// inscribed balls of particles already drawn; off in wireframe).
+  /// Skip particles hidden behind nearer ones (exact: tested against the depth read back after
+  /// drawing the particles seen last frame; off in wireframe).
   bool is_occlusion_culled = true;
+  /// Most particles to draw per frame (nearest first among those seen last frame); the rest are
+  /// left out. For light frames while the view moves. 0 = no limit.
+  std::size_t max_particles = 0;
 };
 
 /// What one draw() did (for the GUI's status line and benchmarks).
@@ -56,6 +59,12 @@ struct DrawStats {
   std::size_t point_particles = 0;       ///< of those drawn, as points
   std::size_t triangles = 0;             ///< triangles submitted
   std::size_t draw_calls = 0;            ///< OpenGL draw calls issued
+  // Where the time went on the calling thread (s). llvmpipe rasterises on worker threads, so
+  // these do not add up to the frame: the read-back also waits for the first pass to finish.
+  double frustum_sort_seconds = 0.0;    ///< frustum test, projection, front-to-back sort
+  double submit_seconds = 0.0;          ///< draw lists, uploads and draw calls
+  double depth_readback_seconds = 0.0;  ///< glReadPixels of depth (waits) and the pyramid
+  double occlusion_test_seconds = 0.0;  ///< testing the other particles against the pyramid
 };
 
 /// Draws one packing with OpenGL 3.3 core. Construct, use and destroy it only while the same
