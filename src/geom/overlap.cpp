@@ -57,6 +57,17 @@ struct PolyhedronSupport {
   [[nodiscard]] Vec3 vertex(std::uint32_t index) const { return vertices[index]; }
 };
 
+// A polyhedron scaled by a positive factor about its local origin, without copying it (the
+// farthest vertex along a direction does not change with the scale).
+struct ScaledPolyhedronSupport {
+  const std::vector<Vec3>& vertices;
+  double scale;
+  [[nodiscard]] std::uint32_t support(const Vec3& direction, std::uint32_t hint) const {
+    return PolyhedronSupport{vertices}.support(direction, hint);
+  }
+  [[nodiscard]] Vec3 vertex(std::uint32_t index) const { return scale * vertices[index]; }
+};
+
 struct ShapeSupport {
   const SupportShape& shape;
   [[nodiscard]] std::uint32_t support(const Vec3& direction, std::uint32_t hint) const {
@@ -973,6 +984,25 @@ bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a
   if ((pose_b.position - pose_a.position).squaredNorm() > reach * reach) return true;
   return separation_query(PolyhedronSupport{a.vertices()}, pose_a, PolyhedronSupport{b.vertices()},
                           pose_b, radius_a + radius_b, gap);
+}
+
+bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a,
+                  const ConvexPolyhedron& b, double scale_b, const Pose& pose_b, double radius_b,
+                  double gap) {
+  if (a.is_empty() || b.is_empty()) {
+    throw InvalidInput("is_separated", "empty polyhedron", ">= 4 vertices");
+  }
+  if (!(scale_b > 0.0) || !std::isfinite(scale_b)) {
+    throw InvalidInput("scale_b", format_value(scale_b), "finite and > 0");
+  }
+  require_valid_gap(gap);
+  require_valid(pose_a, "pose_a");
+  require_valid(pose_b, "pose_b");
+  const double reach = (radius_a + radius_b) * (1.0 + kProximityTolerance) + gap;
+  if ((pose_b.position - pose_a.position).squaredNorm() > reach * reach) return true;
+  return separation_query(PolyhedronSupport{a.vertices()}, pose_a,
+                          ScaledPolyhedronSupport{b.vertices(), scale_b}, pose_b,
+                          radius_a + radius_b, gap);
 }
 
 bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape& b,

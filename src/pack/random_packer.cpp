@@ -203,9 +203,8 @@ class Placement {
       return is_separated(body, pose, item.outer_radius, shapes_[other.shape].body, other_pose,
                           other.outer_radius, options_.gap);
     }
-    const ConvexPolyhedron other_body = shapes_[other.shape].body.scaled(other.scale);
-    return is_separated(body, pose, item.outer_radius, other_body, other_pose, other.outer_radius,
-                        options_.gap);
+    return is_separated(body, pose, item.outer_radius, shapes_[other.shape].body, other.scale,
+                        other_pose, other.outer_radius, options_.gap);
   }
 
   static double min_outer(const std::vector<Item>& items) {

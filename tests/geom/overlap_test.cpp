@@ -189,6 +189,47 @@ TEST(Overlap, IsSeparatedHonoursGap) {
   EXPECT_FALSE(is_separated(shape, Pose{}, shape, Pose{Vec3(10, 0, 0), Quat::Identity()}, 9.5));
 }
 
+TEST(Overlap, ScaledBodyWithoutCopyMatchesTheScaledCopy) {
+  // Known answers: a unit cube scaled by 2 spans [-1, 1]; one at x = 1.5 + s is s away.
+  const double radius = bounding_radius(unit_cube());
+  const Pose origin{};
+  for (const double s : {0.05, 0.3}) {
+    const Pose b{Vec3(1.5 + s, 0.1, 0.0), Quat::Identity()};
+    EXPECT_TRUE(
+        is_separated(unit_cube(), b, radius, unit_cube(), 2.0, origin, 2.0 * radius, s * 0.99));
+    EXPECT_FALSE(
+        is_separated(unit_cube(), b, radius, unit_cube(), 2.0, origin, 2.0 * radius, s * 1.01));
+  }
+  // Generated particles at random scales, poses and gaps: the same answer as an explicit copy.
+  Rng rng(41, 0);
+  int separated = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const GeneratedParticle a = generate_particle(
+        {.alpha = 0.5, .radius_min = 0.5, .radius_max = 1.0, .edge_length = 0.5, .seed = 3},
+        static_cast<std::uint64_t>(i));
+    const GeneratedParticle b = generate_particle(
+        {.alpha = 0.3, .radius_min = 0.5, .radius_max = 1.0, .edge_length = 0.5, .seed = 4},
+        static_cast<std::uint64_t>(i));
+    const double scale = 0.3 + 2.0 * rng.uniform();
+    const ConvexPolyhedron copy = b.body.scaled(scale);
+    const Pose pose_a{Vec3::Zero(), random_rotation(rng)};
+    const Pose pose_b{random_unit(rng) * (0.5 + 2.5 * rng.uniform()), random_rotation(rng)};
+    const double gap = 0.1 * rng.uniform();
+    const double radius_a = bounding_radius(a.body);
+    const double radius_b = bounding_radius(copy);
+    const bool expected = is_separated(a.body, pose_a, radius_a, copy, pose_b, radius_b, gap);
+    EXPECT_EQ(is_separated(a.body, pose_a, radius_a, b.body, scale, pose_b, radius_b, gap),
+              expected)
+        << "pair " << i;
+    separated += expected ? 1 : 0;
+  }
+  EXPECT_GT(separated, 200);  // both answers occur
+  EXPECT_LT(separated, 1800);
+  EXPECT_THROW(
+      (void)is_separated(unit_cube(), origin, radius, unit_cube(), 0.0, origin, radius, 0.0),
+      InvalidInput);
+}
+
 TEST(Overlap, BadInputThrowsInvalidInput) {
   const SupportShape shape(unit_cube());
   const double radius = bounding_radius(unit_cube());

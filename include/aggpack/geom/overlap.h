@@ -126,6 +126,12 @@ DistanceResult gjk_distance(const SupportShape& a, const Pose& pose_a, const Sup
 /// \throw InvalidInput if gap is negative or not finite, or as gjk_distance.
 bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a,
                   const ConvexPolyhedron& b, const Pose& pose_b, double radius_b, double gap);
+/// As above, with `b` scaled by `scale_b` (> 0) about its local origin before it is placed, without
+/// copying it (a shape library reused at many sizes). radius_b is the scaled body's bounding
+/// radius. \throw InvalidInput also for a scale that is not finite and positive.
+bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a,
+                  const ConvexPolyhedron& b, double scale_b, const Pose& pose_b, double radius_b,
+                  double gap);
 /// As above, for prepared shapes (radii come from the shapes; also uses their inner radii to
 /// answer "certainly overlapping" without GJK).
 bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape& b,
