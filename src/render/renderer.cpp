@@ -250,6 +250,16 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A well-mixed 32-bit hash of an index (Wellons' lowbias32).
+std::uint32_t mix_hash(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
 // Unsigned key that orders like the float (negative values first).
 std::uint32_t float_order_key(float value) {
   std::uint32_t bits = 0;
@@ -722,13 +732,6 @@ void PackingRenderer::set_packing(const Packing& packing) {
 std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, std::size_t budget,
                                            const RenderStyle& style, const Eigen::Matrix4f& view,
                                            const Eigen::Matrix4f& projection, DrawStats& stats) {
-  if (style.max_particles > 0) {
-    // Over the particle cap: leave out the farthest (candidates are front to back).
-    const std::size_t room = style.max_particles > stats.particles_drawn
-                                 ? style.max_particles - stats.particles_drawn
-                                 : 0;
-    end = std::min(end, begin + room);
-  }
   if (begin >= end) return 0;
   const auto start = std::chrono::steady_clock::now();
   struct AddTime {
@@ -738,17 +741,38 @@ std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, s
   } add_time{start, stats.submit_seconds};
   const std::size_t count = end - begin;
 
+  // Over the particle cap: thin the particles evenly over the picture (not the farthest: that
+  // cuts the pile with a plane) and the same ones from frame to frame: keep a particle when a
+  // hash of its index falls below the fraction that fits (a mixing hash: the golden-ratio
+  // sequence would pick particles of one colour, as colours follow it).
+  std::uint64_t keep_below = std::uint64_t{1} << 32;
+  if (style.max_particles > 0) {
+    const std::size_t room = style.max_particles > stats.particles_drawn
+                                 ? style.max_particles - stats.particles_drawn
+                                 : 0;
+    if (room < count) {
+      keep_below = static_cast<std::uint64_t>(static_cast<double>(room) /
+                                              static_cast<double>(count) * 4294967296.0);
+    }
+  }
+
   // Level of detail: full, coarse or point by projected size; then, over the triangle budget,
-  // the smallest particles become points.
+  // the smallest particles become points. 3: left out (particle cap).
   level.assign(count, 0);
   auto triangles_of = [&](std::size_t k) -> std::size_t {
     const ShapeRange& range = shapes[particle_shape[candidates[begin + k].particle]];
-    if (level[k] == 2) return 0;
+    if (level[k] >= 2) return 0;
     return static_cast<std::size_t>((level[k] == 1 ? range.coarse_count : range.full_count) / 3);
   };
   std::size_t mesh_triangles = 0;
+  std::size_t left_out = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const float pixels = candidates[begin + k].pixels;
+    if (mix_hash(candidates[begin + k].particle) >= keep_below) {
+      level[k] = 3;
+      ++left_out;
+      continue;
+    }
     if (pixels < style.point_below_pixels) {
       level[k] = 2;
     } else if (pixels < style.coarse_below_pixels) {
@@ -768,6 +792,7 @@ std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, s
     for (std::uint64_t key : sort_keys) {
       if (mesh_triangles <= budget) break;
       const auto k = static_cast<std::size_t>(key & 0xffffffffu);
+      if (level[k] == 3) continue;
       mesh_triangles -= triangles_of(k);
       level[k] = 2;
     }
@@ -787,6 +812,7 @@ std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, s
     const std::uint32_t shape = particle_shape[particle];
     const ShapeRange& range = shapes[shape];
     const std::uint8_t lod = level[k];
+    if (lod == 3) continue;
     if (lod == 2) {
       point_list.push_back(particle);
       continue;
@@ -801,7 +827,7 @@ std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, s
       single_base_vertices.push_back(range.base_vertex);
     }
   }
-  stats.particles_drawn += count;
+  stats.particles_drawn += count - left_out;
   stats.point_particles += point_list.size();
   stats.coarse_particles += coarse;
   stats.triangles += mesh_triangles;
@@ -821,7 +847,7 @@ std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, s
   for (std::size_t k = 0; k < count; ++k) {
     const std::uint32_t particle = candidates[begin + k].particle;
     const std::uint32_t shape = particle_shape[particle];
-    if (level[k] == 2 || shapes[shape].instances < 2) continue;
+    if (level[k] >= 2 || shapes[shape].instances < 2) continue;
     instance_list[cursor[2 * shape + level[k]]++] = particle;
   }
 
@@ -1025,9 +1051,13 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
     s.was_visible.assign(particle_count, 0);
     s.has_visibility = false;
   }
-  if (!is_culled) {
+  // A thinned light frame (particle cap) skips the culling, whose read-back and test cost more
+  // than drawing the few particles; it keeps the last full frame's visible set for the next
+  // (culling is exact with any set; a recent one only makes it faster).
+  const bool is_thinned = style.max_particles > 0 && in_frustum > style.max_particles;
+  if (!is_culled || is_thinned) {
     s.submit(0, in_frustum, style.triangle_budget, style, view, projection, stats);
-    s.has_visibility = false;
+    if (!is_thinned) s.has_visibility = false;
   } else {
     // First the particles seen last frame (all of them when there is no last frame).
     std::size_t first = in_frustum;

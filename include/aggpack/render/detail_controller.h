@@ -16,8 +16,8 @@ struct DetailLevel {
 
 /// Chooses the detail of the frames drawn while the view moves from the time the last ones
 /// took. First the triangle budget falls (more particles drawn as one-triangle impostors) down
-/// to 1 (all impostors); if that is still too slow, the number of particles drawn falls (the
-/// farthest are left out). Both rise again, in the opposite order, when frames are well under
+/// to 1 (all impostors); if that is still too slow, the number of particles drawn falls (an even
+/// thinning of those in view). Both rise again, in the opposite order, when frames are well under
 /// the target. Steps are proportional to target / measured time, bounded to [1/2, 2] per frame
 /// and with a dead band between 0.75 and 1 times the target, so the level settles instead of
 /// oscillating.

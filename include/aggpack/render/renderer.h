@@ -46,8 +46,8 @@ struct RenderStyle {
   /// Skip particles hidden behind nearer ones (exact: tested against the depth read back after
   /// drawing the particles seen last frame; off in wireframe).
   bool is_occlusion_culled = true;
-  /// Most particles to draw per frame (nearest first among those seen last frame); the rest are
-  /// left out. For light frames while the view moves. 0 = no limit.
+  /// Most particles to draw per frame, for light frames while the view moves: over it, an even
+  /// thinning of the particles in view is drawn (the same particles frame to frame). 0 = all.
   std::size_t max_particles = 0;
 };
 
