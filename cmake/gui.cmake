@@ -32,7 +32,7 @@ if(AGGPACK_BUILD_GUI)
     enable_testing()
     add_test(NAME gui_smoke
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/smoke_test.sh $<TARGET_FILE:aggpack-gui>
-                     ${CMAKE_CURRENT_BINARY_DIR}/gui_smoke)
+                     ${CMAKE_CURRENT_BINARY_DIR}/gui_smoke $<TARGET_FILE:aggpack>)
     set_tests_properties(gui_smoke PROPERTIES TIMEOUT 300)
   endif()
 endif()

@@ -18,6 +18,8 @@ struct JobResult {
   bool is_ok = false;
   std::string message;                     ///< status line: summary or error
   std::shared_ptr<const Packing> packing;  ///< new packing to show, or null (export)
+  /// Open only: the configuration stored in the file, to fill the panel ("" = none).
+  std::string config_toml;
 };
 
 class BackgroundJob {

@@ -271,6 +271,7 @@ void GuiApp::start_open(const std::string& path) {
     const double volume = packing->container.volume();
     out.message = fmt::format("Opened {}: {} particles, solid fraction {:.2f} %.", path,
                               packing->particles.size(), volume > 0 ? 100.0 * solid / volume : 0.0);
+    out.config_toml = packing->provenance.config_toml;
     out.packing = std::move(packing);
     return out;
   });
@@ -317,7 +318,17 @@ void GuiApp::show_packing(std::shared_ptr<const Packing> packing) {
 void GuiApp::poll_job() {
   JobResult result;
   if (!job_.take_result(result)) return;
-  set_status(result.message, !result.is_ok);
+  std::string message = result.message;
+  if (!result.config_toml.empty()) {
+    // An opened file: its stored configuration fills the panel, so Pack repeats or varies it.
+    try {
+      fields_ = fields_from_config(parse_pack_config(result.config_toml, "stored config"));
+      message += " The panel shows its configuration.";
+    } catch (const Error&) {
+      message += " Its stored configuration is not readable; the panel is unchanged.";
+    }
+  }
+  set_status(message, !result.is_ok);
   if (result.packing) show_packing(result.packing);
   if (is_waiting_for_first_job_) {
     is_waiting_for_first_job_ = false;
@@ -504,8 +515,12 @@ void GuiApp::after_render() {
     return;
   }
   is_script_done_ = true;
-  // The status line of the finished job (a screenshot below replaces it on screen).
+  // The status line of the finished job (a screenshot below replaces it on screen) and the
+  // configuration the panel would pack next (the keys of `aggpack pack --set`).
   std::printf("status: %s\n", status_.c_str());
+  std::string panel;
+  for (const auto& entry : overrides_from_fields(fields_)) panel += " " + entry;
+  std::printf("panel:%s\n", panel.c_str());
   if (options_.screenshot_path) save_screenshot(*options_.screenshot_path);
   std::fflush(stdout);
   if (options_.is_quit_when_done) should_quit_ = true;
