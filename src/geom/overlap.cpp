@@ -647,6 +647,25 @@ bool separation_query(const SupportA& a, const Pose& pose_a, const SupportB& b, 
   return run.outcome == GjkOutcome::kSeparated;
 }
 
+// The polyhedron overloads of is_separated: input checks, the bounding spheres, then GJK with
+// `support_b` (b's vertices as stored, or scaled).
+template <class SupportB>
+bool separated_polyhedra(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a,
+                         const ConvexPolyhedron& b, const SupportB& support_b, const Pose& pose_b,
+                         double radius_b, double gap) {
+  if (a.is_empty() || b.is_empty()) {
+    throw InvalidInput("is_separated", "empty polyhedron", ">= 4 vertices");
+  }
+  require_valid_gap(gap);
+  require_valid(pose_a, "pose_a");
+  require_valid(pose_b, "pose_b");
+  // The spheres' test is widened by tol like GJK's, so that both agree at exact touching.
+  const double reach = (radius_a + radius_b) * (1.0 + kProximityTolerance) + gap;
+  if ((pose_b.position - pose_a.position).squaredNorm() > reach * reach) return true;
+  return separation_query(PolyhedronSupport{a.vertices()}, pose_a, support_b, pose_b,
+                          radius_a + radius_b, gap);
+}
+
 // Largest |det| of three unit normals: 0 when they all lie in one plane (the vertex is not a
 // corner), up to 1 for three orthogonal faces.
 double corner_sharpness(const std::vector<Vec3>& normals) {
@@ -973,36 +992,18 @@ DistanceResult gjk_distance(const SupportShape& a, const Pose& pose_a, const Sup
 
 bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a,
                   const ConvexPolyhedron& b, const Pose& pose_b, double radius_b, double gap) {
-  if (a.is_empty() || b.is_empty()) {
-    throw InvalidInput("is_separated", "empty polyhedron", ">= 4 vertices");
-  }
-  require_valid_gap(gap);
-  require_valid(pose_a, "pose_a");
-  require_valid(pose_b, "pose_b");
-  // The spheres' test is widened by tol like GJK's, so that both agree at exact touching.
-  const double reach = (radius_a + radius_b) * (1.0 + kProximityTolerance) + gap;
-  if ((pose_b.position - pose_a.position).squaredNorm() > reach * reach) return true;
-  return separation_query(PolyhedronSupport{a.vertices()}, pose_a, PolyhedronSupport{b.vertices()},
-                          pose_b, radius_a + radius_b, gap);
+  return separated_polyhedra(a, pose_a, radius_a, b, PolyhedronSupport{b.vertices()}, pose_b,
+                             radius_b, gap);
 }
 
 bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a,
                   const ConvexPolyhedron& b, double scale_b, const Pose& pose_b, double radius_b,
                   double gap) {
-  if (a.is_empty() || b.is_empty()) {
-    throw InvalidInput("is_separated", "empty polyhedron", ">= 4 vertices");
-  }
   if (!(scale_b > 0.0) || !std::isfinite(scale_b)) {
     throw InvalidInput("scale_b", format_value(scale_b), "finite and > 0");
   }
-  require_valid_gap(gap);
-  require_valid(pose_a, "pose_a");
-  require_valid(pose_b, "pose_b");
-  const double reach = (radius_a + radius_b) * (1.0 + kProximityTolerance) + gap;
-  if ((pose_b.position - pose_a.position).squaredNorm() > reach * reach) return true;
-  return separation_query(PolyhedronSupport{a.vertices()}, pose_a,
-                          ScaledPolyhedronSupport{b.vertices(), scale_b}, pose_b,
-                          radius_a + radius_b, gap);
+  return separated_polyhedra(a, pose_a, radius_a, b, ScaledPolyhedronSupport{b.vertices(), scale_b},
+                             pose_b, radius_b, gap);
 }
 
 bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape& b,

@@ -174,10 +174,9 @@ class Placement {
   // ones placed since a group of searches started).
   [[nodiscard]] bool is_clear_of_since(const Item& item, const ConvexPolyhedron& body,
                                        const Pose& pose, std::size_t first) const {
+    // is_separated's own bounding-sphere test answers the far ones, with the same tolerance as
+    // the grid path of is_feasible.
     for (std::size_t id = first; id < placed_items_.size(); ++id) {
-      const double reach =
-          item.outer_radius + items_[placed_items_[id]].outer_radius + options_.gap;
-      if ((poses_[id].position - pose.position).squaredNorm() >= reach * reach) continue;
       if (!is_separated_from(static_cast<std::uint32_t>(id), item, body, pose)) return false;
     }
     return true;
@@ -197,14 +196,10 @@ class Placement {
   // The exact test of a candidate against placed particle `id`.
   [[nodiscard]] bool is_separated_from(std::uint32_t id, const Item& item,
                                        const ConvexPolyhedron& body, const Pose& pose) const {
+    // Unique shapes have scale 1 (exact: 1 * x == x), library shapes their control radius.
     const Item& other = items_[placed_items_[id]];
-    const Pose& other_pose = poses_[id];
-    if (other.scale == 1.0) {
-      return is_separated(body, pose, item.outer_radius, shapes_[other.shape].body, other_pose,
-                          other.outer_radius, options_.gap);
-    }
     return is_separated(body, pose, item.outer_radius, shapes_[other.shape].body, other.scale,
-                        other_pose, other.outer_radius, options_.gap);
+                        poses_[id], other.outer_radius, options_.gap);
   }
 
   static double min_outer(const std::vector<Item>& items) {
