@@ -3,7 +3,9 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -104,11 +106,19 @@ void run_pack(const PackFlags& flags) {
   // output.<format> = path: written with the exporters' defaults after the native file (for
   // other options, e.g. mm or C3D10, use `aggpack export` on the native file).
   std::vector<std::pair<std::string, ExportOptions>> exports;
+  // Spelled differently ("./run.h5", "run.h5") is still the same file.
+  auto same_file = [](const std::string& a, const std::string& b) {
+    return std::filesystem::weakly_canonical(a) == std::filesystem::weakly_canonical(b);
+  };
   for (const auto& [format, path] : config.outputs) {
     if (format == "native") continue;
     ExportOptions options{.format = parse_export_format(format), .overwrite = overwrite};
-    if (path == output) {
-      throw InvalidInput("output." + format, path, "a path other than the native file's");
+    const bool is_taken = same_file(path, output) ||
+                          std::any_of(exports.begin(), exports.end(),
+                                      [&](const auto& e) { return same_file(path, e.first); });
+    if (is_taken) {
+      throw InvalidInput("output." + format, path,
+                         "a path other than the native file's and the other outputs'");
     }
     validate(options, options.format);
     check_writable(path, overwrite);

@@ -264,6 +264,10 @@ TEST_F(PackCliTest, OutputTableWritesEveryListedFormat) {
   const CliRun clash = run("pack run.toml --progress none --force --set output.vtu=run.h5");
   EXPECT_EQ(clash.exit_code, 2);
   EXPECT_NE(clash.err.find("invalid output.vtu = run.h5"), std::string::npos) << clash.err;
+  const CliRun twice = run("pack run.toml --progress none --force --set output.obj=./run.stl");
+  EXPECT_EQ(twice.exit_code, 2);
+  // Keys are taken in name order, so the later one (stl) is named as the clash.
+  EXPECT_NE(twice.err.find("invalid output.stl = run.stl"), std::string::npos) << twice.err;
 }
 
 }  // namespace
