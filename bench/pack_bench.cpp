@@ -64,26 +64,12 @@ void BM_LatticePaperCase(benchmark::State& state) {
 }
 BENCHMARK(BM_LatticePaperCase)->Unit(benchmark::kMillisecond)->Iterations(1);
 
-// 100,000 graded particles (Fuller, d_max/d_min = 4, q = 0.5) to 35 % solid, unique shapes.
-void BM_Random100kFuller35(benchmark::State& state) {
-  const RandomPackOptions options{.container = cube_for(fuller4(), 1.0e5, 0.35),
-                                  .grading = fuller4(),
-                                  .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
-                                  .volume_fraction = 0.35,
-                                  .seed = 1};
-  PackResult result;
-  for (auto _ : state) result = pack_random(options);
-  check(result, 0.0);
-  record(state, result);
-}
-BENCHMARK(BM_Random100kFuller35)->Unit(benchmark::kSecond)->Iterations(1);
-
-// 1,000,000 particles, same grading, shape library of 1,000 shapes.
-void BM_Random1MFuller35Library(benchmark::State& state) {
+// Fuller 4 to 35 % solid in a cube sized for `particles`; library_size 0 = unique shapes.
+void run_fuller35(benchmark::State& state, double particles, std::uint32_t library_size) {
   const RandomPackOptions options{
-      .container = cube_for(fuller4(), 1.0e6, 0.35),
+      .container = cube_for(fuller4(), particles, 0.35),
       .grading = fuller4(),
-      .shape = {.alpha = 0.5, .edge_length_ratio = 1.0, .library_size = 1000},
+      .shape = {.alpha = 0.5, .edge_length_ratio = 1.0, .library_size = library_size},
       .volume_fraction = 0.35,
       .seed = 1};
   PackResult result;
@@ -91,6 +77,13 @@ void BM_Random1MFuller35Library(benchmark::State& state) {
   check(result, 0.0);
   record(state, result);
 }
+
+// 100,000 graded particles (Fuller, d_max/d_min = 4, q = 0.5) to 35 % solid, unique shapes.
+void BM_Random100kFuller35(benchmark::State& state) { run_fuller35(state, 1.0e5, 0); }
+BENCHMARK(BM_Random100kFuller35)->Unit(benchmark::kSecond)->Iterations(1);
+
+// 1,000,000 particles, same grading, shape library of 1,000 shapes.
+void BM_Random1MFuller35Library(benchmark::State& state) { run_fuller35(state, 1.0e6, 1000); }
 BENCHMARK(BM_Random1MFuller35Library)->Unit(benchmark::kSecond)->Iterations(1);
 
 // Highest fraction: aim at 0.9 (unreachable) and let the failure rule stop the run. The size
