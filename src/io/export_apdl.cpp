@@ -25,10 +25,10 @@ void write_ansys(const ExportModel& model, std::ostream& out) {
   head += "\nTYPE,1\nMAT,1\n";
   out << head;
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
-    TetMesh mesh;
-    model.tetrahedra(k, mesh);
+    std::vector<Vec3> nodes;
+    model.linear_nodes(k, nodes);
     std::uint64_t id = model.node_offset(k) + 1;
-    for (const Vec3& node : mesh.nodes) {
+    for (const Vec3& node : nodes) {
       buffer += "N,";
       append_number(buffer, id++);
       for (int axis = 0; axis < 3; ++axis) {
@@ -39,11 +39,10 @@ void write_ansys(const ExportModel& model, std::ostream& out) {
     }
   });
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
-    TetMesh mesh;
-    model.tetrahedra(k, mesh);
+    std::vector<Tetrahedron> scratch;
     const std::uint64_t first_node = model.node_offset(k) + 1;
     std::uint64_t id = model.element_offset(k) + 1;
-    for (const auto& t : mesh.tetrahedra) {
+    for (const auto& t : model.tetrahedra(k, scratch)) {
       buffer += "EN,";
       append_number(buffer, id++);
       for (auto index : t) {

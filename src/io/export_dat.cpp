@@ -8,10 +8,10 @@ namespace aggpack::detail {
 
 void write_rock_dat(const ExportModel& model, std::ostream& out) {
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
-    TetMesh mesh;
-    model.tetrahedra(k, mesh);
+    std::vector<Vec3> nodes;
+    model.linear_nodes(k, nodes);
     std::uint64_t id = model.node_offset(k) + 1;
-    for (const Vec3& node : mesh.nodes) {
+    for (const Vec3& node : nodes) {
       append_number(buffer, id++);
       for (int axis = 0; axis < 3; ++axis) {
         buffer += ", ";
@@ -21,11 +21,10 @@ void write_rock_dat(const ExportModel& model, std::ostream& out) {
     }
   });
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
-    TetMesh mesh;
-    model.tetrahedra(k, mesh);
+    std::vector<Tetrahedron> scratch;
     const std::uint64_t first_node = model.node_offset(k) + 1;
     std::uint64_t id = model.element_offset(k) + 1;
-    for (const auto& tet : mesh.tetrahedra) {
+    for (const auto& tet : model.tetrahedra(k, scratch)) {
       append_number(buffer, id++);
       for (auto index : tet) {
         buffer += ", ";

@@ -30,8 +30,11 @@ struct ShapeInfo {
 };
 
 /// A read-only view of particles [first, last) of a packing, meshed on demand in world
-/// coordinates times the export scale. Holds per-shape data only (TetGen meshes are made once per
-/// shape); per-particle geometry is produced when a writer asks for it and not kept.
+/// coordinates times the export scale. Holds per-shape data only: each shape is tetrahedralised
+/// once, here (TetGen), or is its own fan (its triangles and centroid). A particle's mesh is its
+/// shape's, so writers ask for the part each pass writes: a node pass places the particle's nodes
+/// (linear_nodes) and an element pass reads the shape's connectivity (tetrahedra), which needs no
+/// coordinates; nothing per particle is kept.
 class ExportModel {
  public:
   ExportModel(const Packing& packing, const ExportOptions& options, ElementMode mode,
@@ -66,10 +69,21 @@ class ExportModel {
   void surface_nodes(std::size_t k, std::vector<Vec3>& nodes) const;
   /// Particle k's surface triangles (0-based, local to the particle, outward CCW).
   [[nodiscard]] const std::vector<Triangle>& triangles(std::size_t k) const;
-  /// Particle k's linear tetrahedra in output coordinates.
-  void tetrahedra(std::size_t k, TetMesh& mesh) const;
-  /// Particle k's 10-node tetrahedra in output coordinates.
-  void quadratic_tetrahedra(std::size_t k, QuadraticTetMesh& mesh) const;
+  /// Particle k's nodes of the linear mesh in output coordinates: the surface vertices, then for
+  /// tetrahedra the centroid (fan) or TetGen's added nodes. A quadratic writer appends the
+  /// mid-side nodes (append_midside_nodes).
+  void linear_nodes(std::size_t k, std::vector<Vec3>& nodes) const;
+  /// Particle k's linear tetrahedra (0-based, local to the particle): the shape's TetGen mesh, or
+  /// its centroid fan built into `scratch` (fan_tetrahedron of every surface triangle, the
+  /// centroid being node vertex_count). No coordinates are computed.
+  [[nodiscard]] const std::vector<Tetrahedron>& tetrahedra(std::size_t k,
+                                                           std::vector<Tetrahedron>& scratch) const;
+  /// Particle k's 10-node elements (quadratic mode; empty otherwise): a function of its shape's
+  /// tetrahedra only, so it costs an edge map per call and no coordinates.
+  [[nodiscard]] QuadraticTopology quadratic_topology(std::size_t k) const;
+  /// Particle k's surface faces per tetrahedron (TetMesh::boundary_faces). TetGen meshes only:
+  /// a fan's surface is face S1 of every tetrahedron (is_fan()).
+  [[nodiscard]] const std::vector<std::uint8_t>& boundary_faces(std::size_t k) const;
 
   /// Particle k's volume in output units (m^3 times scale^3), sphericity (Eq. 1), measured alpha
   /// (Eq. 2), control radius in output units, size class.

@@ -32,9 +32,9 @@ void append_heading(const ExportModel& model, std::string& out) {
 }
 
 // Element lines "id, n1, ..., n4|n10" for particle k, ids from first_element, nodes from
-// first_node (both 1-based).
-void append_elements(const ExportModel& model, std::size_t k, std::uint64_t first_node,
-                     std::uint64_t first_element, std::string& out) {
+// first_node (both 1-based). `quadratic` is model.quadratic_topology(k).
+void append_elements(const ExportModel& model, std::size_t k, const QuadraticTopology& quadratic,
+                     std::uint64_t first_node, std::uint64_t first_element, std::string& out) {
   std::uint64_t id = first_element;
   auto append_element = [&](const auto& element) {
     append_number(out, id++);
@@ -45,28 +45,20 @@ void append_elements(const ExportModel& model, std::size_t k, std::uint64_t firs
     out += '\n';
   };
   if (model.mode() == ElementMode::kQuadraticTetrahedra) {
-    QuadraticTetMesh mesh;
-    model.quadratic_tetrahedra(k, mesh);
-    for (const auto& element : mesh.tetrahedra) append_element(element);
+    for (const auto& element : quadratic.tetrahedra) append_element(element);
   } else {
-    TetMesh mesh;
-    model.tetrahedra(k, mesh);
-    for (const auto& element : mesh.tetrahedra) append_element(element);
+    std::vector<Tetrahedron> scratch;
+    for (const auto& element : model.tetrahedra(k, scratch)) append_element(element);
   }
 }
 
-void append_nodes(const ExportModel& model, std::size_t k, std::uint64_t first_node,
-                  std::string& out) {
+// Node lines "id, x, y, z" for particle k: its linear nodes, then the mid-side nodes of
+// `quadratic` (model.quadratic_topology(k), empty for C3D4).
+void append_nodes(const ExportModel& model, std::size_t k, const QuadraticTopology& quadratic,
+                  std::uint64_t first_node, std::string& out) {
   std::vector<Vec3> nodes;
-  if (model.mode() == ElementMode::kQuadraticTetrahedra) {
-    QuadraticTetMesh mesh;
-    model.quadratic_tetrahedra(k, mesh);
-    nodes = std::move(mesh.nodes);
-  } else {
-    TetMesh mesh;
-    model.tetrahedra(k, mesh);
-    nodes = std::move(mesh.nodes);
-  }
+  model.linear_nodes(k, nodes);
+  append_midside_nodes(quadratic, nodes);
   std::uint64_t id = first_node;
   for (const Vec3& node : nodes) {
     append_number(out, id++);
@@ -97,14 +89,13 @@ void append_surface(const ExportModel& model, std::size_t k, const std::string& 
     out += "*SURFACE, TYPE=ELEMENT, NAME=" + name + "_SURFACE\n" + name + ", S1\n";
     return;
   }
-  TetMesh mesh;
-  model.tetrahedra(k, mesh);
+  const std::vector<std::uint8_t>& boundary_faces = model.boundary_faces(k);
   std::string lines;
   for (int face = 0; face < 4; ++face) {
     std::string ids;
     int on_line = 0;
-    for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
-      if (((mesh.boundary_faces[e] >> face) & 1U) == 0) continue;
+    for (std::size_t e = 0; e < boundary_faces.size(); ++e) {
+      if (((boundary_faces[e] >> face) & 1U) == 0) continue;
       if (on_line == kSetEntriesPerLine) {
         ids += '\n';
         on_line = 0;
@@ -136,7 +127,7 @@ void append_material(const ExportModel& model, std::string& out) {
 void write_element_sets(const ExportModel& model, std::ostream& out) {
   out << "*NODE, NSET=ALLNODES\n";
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
-    append_nodes(model, k, model.node_offset(k) + 1, buffer);
+    append_nodes(model, k, model.quadratic_topology(k), model.node_offset(k) + 1, buffer);
   });
   const std::string type = element_type(model);
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
@@ -145,7 +136,8 @@ void write_element_sets(const ExportModel& model, std::ostream& out) {
     buffer += ", ELSET=";
     buffer += model.particle_name(k);
     buffer += '\n';
-    append_elements(model, k, model.node_offset(k) + 1, model.element_offset(k) + 1, buffer);
+    append_elements(model, k, model.quadratic_topology(k), model.node_offset(k) + 1,
+                    model.element_offset(k) + 1, buffer);
   });
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     const std::string name = model.particle_name(k);
@@ -169,10 +161,11 @@ void write_parts(const ExportModel& model, std::ostream& out) {
   const std::string& material = model.options().material.name;
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     const std::string name = model.particle_name(k);
+    const QuadraticTopology quadratic = model.quadratic_topology(k);
     buffer += "*PART, NAME=" + name + "\n*NODE\n";
-    append_nodes(model, k, 1, buffer);
+    append_nodes(model, k, quadratic, 1, buffer);
     buffer += "*ELEMENT, TYPE=" + type + ", ELSET=" + name + "\n";
-    append_elements(model, k, 1, 1, buffer);
+    append_elements(model, k, quadratic, 1, 1, buffer);
     append_generated_set("*NSET, NSET=", name, 1, model.nodes_of(k), buffer);
     buffer += "*SOLID SECTION, ELSET=" + name + ", MATERIAL=" + material + "\n";
     append_surface(model, k, name, 1, buffer);

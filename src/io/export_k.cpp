@@ -41,10 +41,10 @@ void write_lsdyna(const ExportModel& model, std::ostream& out) {
   });
   out << "*NODE\n$#   nid               x               y               z      tc      rc\n";
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
-    TetMesh mesh;
-    model.tetrahedra(k, mesh);
+    std::vector<Vec3> nodes;
+    model.linear_nodes(k, nodes);
     std::uint64_t id = model.node_offset(k) + 1;
-    for (const Vec3& node : mesh.nodes) {
+    for (const Vec3& node : nodes) {
       append_field(buffer, id++, 8);
       for (int axis = 0; axis < 3; ++axis) append_field(buffer, node[axis], 16);
       buffer += "       0       0\n";
@@ -53,12 +53,11 @@ void write_lsdyna(const ExportModel& model, std::ostream& out) {
   out << "*ELEMENT_SOLID\n"
          "$#   eid     pid      n1      n2      n3      n4      n5      n6      n7      n8\n";
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
-    TetMesh mesh;
-    model.tetrahedra(k, mesh);
+    std::vector<Tetrahedron> scratch;
     const std::uint64_t first_node = model.node_offset(k) + 1;
     const auto part = static_cast<std::uint64_t>(model.particle_number(k));
     std::uint64_t id = model.element_offset(k) + 1;
-    for (const auto& t : mesh.tetrahedra) {
+    for (const auto& t : model.tetrahedra(k, scratch)) {
       append_field(buffer, id++, 8);
       append_field(buffer, part, 8);
       for (int n = 0; n < 8; ++n) append_field(buffer, first_node + t[std::min(n, 3)], 8);

@@ -18,14 +18,6 @@ void write_gmsh(const ExportModel& model, std::ostream& out) {
   const bool is_surface = model.mode() == ElementMode::kSurface;
   const int dimension = is_surface ? 2 : 3;
   const std::string dim = std::to_string(dimension);
-  auto particle_nodes = [&](std::size_t k, std::vector<Vec3>& nodes, TetMesh& mesh) {
-    if (is_surface) {
-      model.surface_nodes(k, nodes);
-    } else {
-      model.tetrahedra(k, mesh);
-      nodes.swap(mesh.nodes);
-    }
-  };
 
   out << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n" << model.size() << '\n';
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
@@ -38,8 +30,7 @@ void write_gmsh(const ExportModel& model, std::ostream& out) {
   // Entity line: tag, bounding box, 1 physical tag (= entity tag), 0 bounding entities.
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     std::vector<Vec3> nodes;
-    TetMesh mesh;
-    particle_nodes(k, nodes, mesh);
+    model.linear_nodes(k, nodes);
     Aabb box;
     for (const Vec3& node : nodes) box.expand(node);
     const std::uint64_t tag = model.particle_number(k);
@@ -58,8 +49,7 @@ void write_gmsh(const ExportModel& model, std::ostream& out) {
       << model.size() << ' ' << model.node_count() << " 1 " << model.node_count() << '\n';
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     std::vector<Vec3> nodes;
-    TetMesh mesh;
-    particle_nodes(k, nodes, mesh);
+    model.linear_nodes(k, nodes);
     buffer += dim + ' ' + std::to_string(model.particle_number(k)) + " 0 " +
               std::to_string(nodes.size()) + '\n';
     for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -94,9 +84,8 @@ void write_gmsh(const ExportModel& model, std::ostream& out) {
     if (is_surface) {
       for (const auto& t : model.triangles(k)) append_element(t);
     } else {
-      TetMesh mesh;
-      model.tetrahedra(k, mesh);
-      for (const auto& t : mesh.tetrahedra) append_element(t);
+      std::vector<Tetrahedron> scratch;
+      for (const auto& t : model.tetrahedra(k, scratch)) append_element(t);
     }
   });
   out << "$EndElements\n";

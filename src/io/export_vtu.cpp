@@ -78,13 +78,7 @@ void write_vtu(const ExportModel& model, std::ostream& out) {
   begin_array();
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     std::vector<Vec3> nodes;
-    if (is_surface) {
-      model.surface_nodes(k, nodes);
-    } else {
-      TetMesh mesh;
-      model.tetrahedra(k, mesh);
-      nodes = std::move(mesh.nodes);
-    }
+    model.linear_nodes(k, nodes);
     for (const Vec3& node : nodes) {
       for (int axis = 0; axis < 3; ++axis) append_bytes(buffer, node[axis]);
     }
@@ -98,9 +92,8 @@ void write_vtu(const ExportModel& model, std::ostream& out) {
         for (auto index : t) append_bytes(buffer, first + static_cast<std::int64_t>(index));
       }
     } else {
-      TetMesh mesh;
-      model.tetrahedra(k, mesh);
-      for (const auto& t : mesh.tetrahedra) {
+      std::vector<Tetrahedron> scratch;
+      for (const auto& t : model.tetrahedra(k, scratch)) {
         for (auto index : t) append_bytes(buffer, first + static_cast<std::int64_t>(index));
       }
     }

@@ -375,33 +375,42 @@ const std::vector<Triangle>& ExportModel::triangles(std::size_t k) const {
   return packing_.shapes[particle(k).shape].triangles();
 }
 
-void ExportModel::tetrahedra(std::size_t k, TetMesh& mesh) const {
+void ExportModel::linear_nodes(std::size_t k, std::vector<Vec3>& nodes) const {
   const std::uint32_t s = particle(k).shape;
   if (!shape_meshes_.empty()) {
-    const TetMesh& local = shape_meshes_[s];
-    mesh.nodes.resize(local.nodes.size());
-    for (std::size_t i = 0; i < local.nodes.size(); ++i) mesh.nodes[i] = place(k, local.nodes[i]);
-    mesh.tetrahedra = local.tetrahedra;
-    mesh.boundary_faces = local.boundary_faces;
+    const std::vector<Vec3>& local = shape_meshes_[s].nodes;
+    nodes.resize(local.size());
+    for (std::size_t i = 0; i < local.size(); ++i) nodes[i] = place(k, local[i]);
     return;
   }
-  // The centroid fan, built on the fly (see centroid_fan for the orientation argument).
-  const ConvexPolyhedron& body = packing_.shapes[s];
-  surface_nodes(k, mesh.nodes);
-  mesh.nodes.push_back(place(k, shapes_[s].centroid));
-  const auto centre = static_cast<std::uint32_t>(body.vertex_count());
-  mesh.tetrahedra.resize(body.triangle_count());
-  for (std::size_t f = 0; f < body.triangle_count(); ++f) {
-    const Triangle& t = body.triangles()[f];
-    mesh.tetrahedra[f] = {t[0], t[2], t[1], centre};
-  }
-  mesh.boundary_faces.assign(body.triangle_count(), 1);
+  surface_nodes(k, nodes);
+  if (mode_ != ElementMode::kSurface) nodes.push_back(place(k, shapes_[s].centroid));
 }
 
-void ExportModel::quadratic_tetrahedra(std::size_t k, QuadraticTetMesh& mesh) const {
-  TetMesh linear;
-  tetrahedra(k, linear);
-  mesh = make_quadratic(linear);
+const std::vector<Tetrahedron>& ExportModel::tetrahedra(std::size_t k,
+                                                        std::vector<Tetrahedron>& scratch) const {
+  const std::uint32_t s = particle(k).shape;
+  if (!shape_meshes_.empty()) return shape_meshes_[s].tetrahedra;
+  const ConvexPolyhedron& body = packing_.shapes[s];
+  const auto centre = static_cast<std::uint32_t>(body.vertex_count());
+  scratch.resize(body.triangle_count());
+  for (std::size_t f = 0; f < body.triangle_count(); ++f) {
+    scratch[f] = fan_tetrahedron(body.triangles()[f], centre);
+  }
+  return scratch;
+}
+
+QuadraticTopology ExportModel::quadratic_topology(std::size_t k) const {
+  if (mode_ != ElementMode::kQuadraticTetrahedra) return {};
+  const std::uint32_t s = particle(k).shape;
+  const std::size_t corners =
+      shape_meshes_.empty() ? packing_.shapes[s].vertex_count() + 1 : shape_meshes_[s].nodes.size();
+  std::vector<Tetrahedron> scratch;
+  return aggpack::quadratic_topology(tetrahedra(k, scratch), static_cast<std::uint32_t>(corners));
+}
+
+const std::vector<std::uint8_t>& ExportModel::boundary_faces(std::size_t k) const {
+  return shape_meshes_[particle(k).shape].boundary_faces;
 }
 
 double ExportModel::volume(std::size_t k) const {

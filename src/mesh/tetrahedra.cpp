@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 #include "aggpack/core/error.h"
 #include "aggpack/geom/mass_properties.h"
@@ -43,11 +42,7 @@ TetMesh centroid_fan(const ConvexPolyhedron& body) {
   mesh.nodes.push_back(properties.centroid);
   const auto centre = static_cast<std::uint32_t>(body.vertex_count());
   mesh.tetrahedra.reserve(body.triangle_count());
-  for (const auto& t : body.triangles()) {
-    // (a, c, b, centroid): a->c->b is clockwise from outside, i.e. counter-clockwise seen from the
-    // centroid, which makes the tetrahedron positive and its face S1 the surface triangle.
-    mesh.tetrahedra.push_back({t[0], t[2], t[1], centre});
-  }
+  for (const auto& t : body.triangles()) mesh.tetrahedra.push_back(fan_tetrahedron(t, centre));
   mesh.boundary_faces.assign(mesh.tetrahedra.size(), 1);
   return mesh;
 }
@@ -58,26 +53,60 @@ TetMesh tetrahedralize(const ConvexPolyhedron& body, const TetOptions& options) 
   return centroid_fan(body);
 }
 
-QuadraticTetMesh make_quadratic(const TetMesh& mesh) {
-  QuadraticTetMesh result;
-  result.nodes = mesh.nodes;
-  result.boundary_faces = mesh.boundary_faces;
-  result.tetrahedra.reserve(mesh.tetrahedra.size());
-  std::unordered_map<std::uint64_t, std::uint32_t> midpoints;
-  midpoints.reserve(mesh.tetrahedra.size() * 2);
-  for (const auto& tet : mesh.tetrahedra) {
+QuadraticTopology quadratic_topology(std::span<const Tetrahedron> tetrahedra,
+                                     std::uint32_t corner_count) {
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  QuadraticTopology topology;
+  topology.tetrahedra.reserve(tetrahedra.size());
+  // The edges met so far, chained per lower corner (edge i is mid-side node corner_count + i):
+  // a corner has a few dozen edges at most, so walking its chain beats hashing, and the exports
+  // call this once or twice per particle.
+  std::vector<std::uint32_t> first_edge(corner_count, kNone);
+  std::vector<std::uint32_t> next_edge;
+  next_edge.reserve(tetrahedra.size() * 2 + corner_count);
+  topology.midside_edges.reserve(next_edge.capacity());
+  for (const auto& tet : tetrahedra) {
     std::array<std::uint32_t, 10> element{};
     for (int k = 0; k < 4; ++k) element[k] = tet[k];
     for (int e = 0; e < 6; ++e) {
       const std::uint32_t a = tet[kTetraEdges[e][0]];
       const std::uint32_t b = tet[kTetraEdges[e][1]];
-      const auto [it, is_new] =
-          midpoints.try_emplace(edge_key(a, b), static_cast<std::uint32_t>(result.nodes.size()));
-      if (is_new) result.nodes.push_back(0.5 * (mesh.nodes[a] + mesh.nodes[b]));
-      element[4 + e] = it->second;
+      const std::uint32_t low = std::min(a, b);
+      const std::uint32_t high = std::max(a, b);
+      std::uint32_t edge = first_edge[low];
+      while (edge != kNone &&
+             std::max(topology.midside_edges[edge][0], topology.midside_edges[edge][1]) != high) {
+        edge = next_edge[edge];
+      }
+      if (edge == kNone) {
+        edge = static_cast<std::uint32_t>(topology.midside_edges.size());
+        topology.midside_edges.push_back({a, b});
+        next_edge.push_back(first_edge[low]);
+        first_edge[low] = edge;
+      }
+      element[4 + e] = corner_count + edge;
     }
-    result.tetrahedra.push_back(element);
+    topology.tetrahedra.push_back(element);
   }
+  return topology;
+}
+
+void append_midside_nodes(const QuadraticTopology& topology, std::vector<Vec3>& nodes) {
+  nodes.reserve(nodes.size() + topology.midside_edges.size());
+  for (const auto& [a, b] : topology.midside_edges) {
+    const Vec3 midpoint = 0.5 * (nodes[a] + nodes[b]);
+    nodes.push_back(midpoint);
+  }
+}
+
+QuadraticTetMesh make_quadratic(const TetMesh& mesh) {
+  QuadraticTopology topology =
+      quadratic_topology(mesh.tetrahedra, static_cast<std::uint32_t>(mesh.nodes.size()));
+  QuadraticTetMesh result;
+  result.nodes = mesh.nodes;
+  append_midside_nodes(topology, result.nodes);
+  result.tetrahedra = std::move(topology.tetrahedra);
+  result.boundary_faces = mesh.boundary_faces;
   return result;
 }
 

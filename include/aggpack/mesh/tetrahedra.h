@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "aggpack/geom/convex_polyhedron.h"
@@ -31,10 +32,13 @@ inline constexpr std::array<std::array<int, 3>, 4> kTetraFaces = {
 inline constexpr std::array<std::array<int, 2>, 6> kTetraEdges = {
     {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}}};
 
+/// Four node numbers of a linear tetrahedron, positively oriented.
+using Tetrahedron = std::array<std::uint32_t, 4>;
+
 /// A tetrahedral mesh of one body. Lengths in the body's units (metres).
 struct TetMesh {
   std::vector<Vec3> nodes;
-  std::vector<std::array<std::uint32_t, 4>> tetrahedra;  ///< positively oriented
+  std::vector<Tetrahedron> tetrahedra;  ///< positively oriented
   /// Per tetrahedron: bit k set when face k (kTetraFaces[k]) lies on the body's surface.
   std::vector<std::uint8_t> boundary_faces;
 };
@@ -72,6 +76,13 @@ struct TetOptions {
   bool is_surface_kept = true;
 };
 
+/// The centroid fan's tetrahedron on surface triangle (a, b, c), `centre` being the centroid's
+/// node number: (a, c, b, centre). a -> c -> b is clockwise from outside, i.e. counter-clockwise
+/// seen from the centroid, which makes the tetrahedron positive and its face S1 the triangle.
+inline Tetrahedron fan_tetrahedron(const Triangle& triangle, std::uint32_t centre) {
+  return {triangle[0], triangle[2], triangle[1], centre};
+}
+
 /// Throws InvalidInput naming the field unless the options are usable.
 void validate(const TetOptions& options);
 
@@ -95,9 +106,25 @@ TetMesh tetgen_mesh(const ConvexPolyhedron& body, const TetOptions& options);
 /// Dispatches on options.method. \throw as centroid_fan / tetgen_mesh.
 TetMesh tetrahedralize(const ConvexPolyhedron& body, const TetOptions& options = {});
 
+/// Where the mid-side nodes of a 10-node mesh go, without coordinates: mid-side node
+/// `corner_count + i` is the middle of the corner nodes `midside_edges[i]`. Edges are numbered in
+/// the order they are first met, tetrahedron by tetrahedron, each in kTetraEdges order.
+struct QuadraticTopology {
+  std::vector<std::array<std::uint32_t, 2>> midside_edges;
+  std::vector<std::array<std::uint32_t, 10>> tetrahedra;  ///< C3D10 node order
+};
+
+/// The 10-node elements over linear `tetrahedra` whose corner nodes are 0 .. corner_count - 1.
+QuadraticTopology quadratic_topology(std::span<const Tetrahedron> tetrahedra,
+                                     std::uint32_t corner_count);
+
+/// Appends the mid-side nodes of `topology` to the corner nodes `nodes` (coordinates in any
+/// frame: each is the exact midpoint expression 0.5 (a + b) of the given corners).
+void append_midside_nodes(const QuadraticTopology& topology, std::vector<Vec3>& nodes);
+
 /// Adds a node at the middle of every edge (shared between neighbouring tetrahedra) and returns
-/// 10-node tetrahedra. Straight-sided: mid-side nodes sit on the straight edges, so the volume is
-/// unchanged.
+/// 10-node tetrahedra (quadratic_topology + append_midside_nodes). Straight-sided: mid-side nodes
+/// sit on the straight edges, so the volume is unchanged.
 QuadraticTetMesh make_quadratic(const TetMesh& mesh);
 
 /// Sum of the signed tetrahedron volumes (m^3).
