@@ -10,28 +10,12 @@ void write_rock_dat(const ExportModel& model, std::ostream& out) {
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     std::vector<Vec3> nodes;
     model.linear_nodes(k, nodes);
-    std::uint64_t id = model.node_offset(k) + 1;
-    for (const Vec3& node : nodes) {
-      append_number(buffer, id++);
-      for (int axis = 0; axis < 3; ++axis) {
-        buffer += ", ";
-        append_number(buffer, node[axis]);
-      }
-      buffer += '\n';
-    }
+    append_node_lines(buffer, "", ", ", model.node_offset(k) + 1, nodes);
   });
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     std::vector<Tetrahedron> scratch;
-    const std::uint64_t first_node = model.node_offset(k) + 1;
-    std::uint64_t id = model.element_offset(k) + 1;
-    for (const auto& tet : model.tetrahedra(k, scratch)) {
-      append_number(buffer, id++);
-      for (auto index : tet) {
-        buffer += ", ";
-        append_number(buffer, first_node + index);
-      }
-      buffer += '\n';
-    }
+    append_element_lines(buffer, "", ", ", model.element_offset(k) + 1, model.node_offset(k) + 1,
+                         model.tetrahedra(k, scratch));
   });
 }
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #ifdef AGGPACK_HAS_TBB
@@ -154,6 +155,40 @@ inline void append_number(std::string& out, std::uint64_t value) {
   char text[24];
   const auto result = std::to_chars(text, text + sizeof text, value);
   out.append(text, result.ptr);
+}
+
+/// Appends one text line per node, "<prefix><id><separator>x<separator>y<separator>z", ids
+/// counting up from `first_id` (rock.dat and Abaqus: "", ", "; ANSYS: "N,", ",").
+inline void append_node_lines(std::string& out, std::string_view prefix, std::string_view separator,
+                              std::uint64_t first_id, const std::vector<Vec3>& nodes) {
+  std::uint64_t id = first_id;
+  for (const Vec3& node : nodes) {
+    out += prefix;
+    append_number(out, id++);
+    for (int axis = 0; axis < 3; ++axis) {
+      out += separator;
+      append_number(out, node[axis]);
+    }
+    out += '\n';
+  }
+}
+
+/// Appends one text line per element, "<prefix><id><separator>n1<separator>n2...", ids counting
+/// up from `first_id`, node numbers = `first_node` + the element's 0-based local numbers.
+template <class Element>
+void append_element_lines(std::string& out, std::string_view prefix, std::string_view separator,
+                          std::uint64_t first_id, std::uint64_t first_node,
+                          const std::vector<Element>& elements) {
+  std::uint64_t id = first_id;
+  for (const Element& element : elements) {
+    out += prefix;
+    append_number(out, id++);
+    for (auto index : element) {
+      out += separator;
+      append_number(out, first_node + index);
+    }
+    out += '\n';
+  }
 }
 
 /// Appends `value` right-aligned in a field of `width` characters (LS-DYNA fixed columns).

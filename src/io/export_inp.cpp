@@ -35,20 +35,11 @@ void append_heading(const ExportModel& model, std::string& out) {
 // first_node (both 1-based). `quadratic` is model.quadratic_topology(k).
 void append_elements(const ExportModel& model, std::size_t k, const QuadraticTopology& quadratic,
                      std::uint64_t first_node, std::uint64_t first_element, std::string& out) {
-  std::uint64_t id = first_element;
-  auto append_element = [&](const auto& element) {
-    append_number(out, id++);
-    for (auto index : element) {
-      out += ", ";
-      append_number(out, first_node + index);
-    }
-    out += '\n';
-  };
   if (model.mode() == ElementMode::kQuadraticTetrahedra) {
-    for (const auto& element : quadratic.tetrahedra) append_element(element);
+    append_element_lines(out, "", ", ", first_element, first_node, quadratic.tetrahedra);
   } else {
     std::vector<Tetrahedron> scratch;
-    for (const auto& element : model.tetrahedra(k, scratch)) append_element(element);
+    append_element_lines(out, "", ", ", first_element, first_node, model.tetrahedra(k, scratch));
   }
 }
 
@@ -59,15 +50,7 @@ void append_nodes(const ExportModel& model, std::size_t k, const QuadraticTopolo
   std::vector<Vec3> nodes;
   model.linear_nodes(k, nodes);
   append_midside_nodes(quadratic, nodes);
-  std::uint64_t id = first_node;
-  for (const Vec3& node : nodes) {
-    append_number(out, id++);
-    for (int axis = 0; axis < 3; ++axis) {
-      out += ", ";
-      append_number(out, node[axis]);
-    }
-    out += '\n';
-  }
+  append_node_lines(out, "", ", ", first_node, nodes);
 }
 
 void append_generated_set(const char* keyword, const std::string& name, std::uint64_t first,

@@ -69,23 +69,16 @@ void write_gmsh(const ExportModel& model, std::ostream& out) {
       << model.size() << ' ' << model.element_count() << " 1 " << model.element_count() << '\n';
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     const std::uint64_t first_node = model.node_offset(k) + 1;
-    std::uint64_t id = model.element_offset(k) + 1;
+    const std::uint64_t first_element = model.element_offset(k) + 1;
     buffer += dim + ' ' + std::to_string(model.particle_number(k)) + ' ' +
               std::to_string(is_surface ? kGmshTriangle : kGmshTetrahedron) + ' ' +
               std::to_string(model.elements_of(k)) + '\n';
-    auto append_element = [&](const auto& element) {
-      append_number(buffer, id++);
-      for (auto index : element) {
-        buffer += ' ';
-        append_number(buffer, first_node + index);
-      }
-      buffer += '\n';
-    };
     if (is_surface) {
-      for (const auto& t : model.triangles(k)) append_element(t);
+      append_element_lines(buffer, "", " ", first_element, first_node, model.triangles(k));
     } else {
       std::vector<Tetrahedron> scratch;
-      for (const auto& t : model.tetrahedra(k, scratch)) append_element(t);
+      append_element_lines(buffer, "", " ", first_element, first_node,
+                           model.tetrahedra(k, scratch));
     }
   });
   out << "$EndElements\n";
