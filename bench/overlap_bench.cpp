@@ -16,13 +16,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 
 #include "aggpack/core/rng.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/shape/generator.h"
+#include "support/ellipsoid.h"
 
 namespace {
 
@@ -193,42 +193,12 @@ BENCHMARK(BM_GjkDistance_Polyhedron)->Apply(pair_set_args);
 
 // --- scan vs hill-climbing, on polyhedral ellipsoids (every vertex a hull vertex) -----------
 
-ConvexPolyhedron make_ellipsoid(int rings, const Vec3& axes) {
-  const int segments = 2 * rings;
-  std::vector<Vec3> vertices = {Vec3(0, 0, axes.z()), Vec3(0, 0, -axes.z())};
-  for (int i = 1; i < rings; ++i) {
-    const double polar = std::numbers::pi * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double azimuth = 2 * std::numbers::pi * j / segments;
-      vertices.emplace_back(axes.x() * std::sin(polar) * std::cos(azimuth),
-                            axes.y() * std::sin(polar) * std::sin(azimuth),
-                            axes.z() * std::cos(polar));
-    }
-  }
-  const auto ring = [segments](int i, int j) {
-    return static_cast<std::uint32_t>(2 + (i - 1) * segments + (j % segments));
-  };
-  std::vector<Triangle> triangles;
-  for (int j = 0; j < segments; ++j) {
-    triangles.push_back({0, ring(1, j), ring(1, j + 1)});
-    triangles.push_back({1, ring(rings - 1, j + 1), ring(rings - 1, j)});
-    for (int i = 1; i + 1 < rings; ++i) {
-      triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-      triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-    }
-  }
-  for (auto& t : triangles) {
-    const Vec3 normal = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
-    if (normal.dot(vertices[t[0]]) < 0) std::swap(t[1], t[2]);
-  }
-  return {std::move(vertices), std::move(triangles)};
-}
-
 // GJK (is_separated) between two ellipsoids of 2 + 2 r (r - 1) vertices, r = range(1), with the
 // support search forced to scan (range(0) = 0) or hill-climb (1).
 void BM_EllipsoidIsSeparated(benchmark::State& state) {
   const auto search = state.range(0) == 0 ? SupportSearch::kScan : SupportSearch::kHillClimb;
-  const ConvexPolyhedron body = make_ellipsoid(static_cast<int>(state.range(1)), Vec3(1, 0.7, 0.5));
+  const auto rings = static_cast<int>(state.range(1));
+  const ConvexPolyhedron body = test::make_ellipsoid(rings, 2 * rings, Vec3(1, 0.7, 0.5));
   const SupportShape shape(body, search);
   Rng rng(23, 0);
   std::vector<Pair> pairs;

@@ -18,6 +18,7 @@
 #include "aggpack/core/rng.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/shape/generator.h"
+#include "support/ellipsoid.h"
 
 namespace aggpack {
 namespace {
@@ -593,42 +594,10 @@ TEST(Overlap, DistanceMatchesBruteForceDistance) {
   }
 }
 
-// Polyhedral ellipsoid (latitude/longitude grid, semi-axes `axes`): every vertex is a hull
-// vertex, so large ones exercise hill-climbing.
-ConvexPolyhedron make_ellipsoid(int rings, int segments, const Vec3& axes) {
-  std::vector<Vec3> vertices = {Vec3(0, 0, axes.z()), Vec3(0, 0, -axes.z())};
-  for (int i = 1; i < rings; ++i) {
-    const double polar = std::numbers::pi * i / rings;
-    for (int j = 0; j < segments; ++j) {
-      const double azimuth = 2 * std::numbers::pi * j / segments;
-      vertices.emplace_back(axes.x() * std::sin(polar) * std::cos(azimuth),
-                            axes.y() * std::sin(polar) * std::sin(azimuth),
-                            axes.z() * std::cos(polar));
-    }
-  }
-  const auto ring = [segments](int i, int j) {
-    return static_cast<std::uint32_t>(2 + (i - 1) * segments + (j % segments));
-  };
-  std::vector<Triangle> triangles;
-  for (int j = 0; j < segments; ++j) {
-    triangles.push_back({0, ring(1, j), ring(1, j + 1)});
-    triangles.push_back({1, ring(rings - 1, j + 1), ring(rings - 1, j)});
-    for (int i = 1; i + 1 < rings; ++i) {
-      triangles.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
-      triangles.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
-    }
-  }
-  for (auto& t : triangles) {  // orient outward (the origin is inside)
-    const Vec3 normal = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
-    if (normal.dot(vertices[t[0]]) < 0) std::swap(t[1], t[2]);
-  }
-  return {std::move(vertices), std::move(triangles)};
-}
-
 TEST(Overlap, EllipsoidsHillClimbAndAgreeWithScan) {
   Rng rng(8, 8);
-  const ConvexPolyhedron small = make_ellipsoid(4, 6, Vec3(1.0, 0.7, 0.5));
-  const ConvexPolyhedron large = make_ellipsoid(24, 48, Vec3(1.0, 0.6, 0.3));
+  const ConvexPolyhedron small = test::make_ellipsoid(4, 6, Vec3(1.0, 0.7, 0.5));
+  const ConvexPolyhedron large = test::make_ellipsoid(24, 48, Vec3(1.0, 0.6, 0.3));
   const SupportShape small_shape(small);
   const SupportShape large_shape(large);
   ASSERT_TRUE(check_convex(large, 1e-12).is_ok);
@@ -672,8 +641,8 @@ TEST(Overlap, SupportShapeKeepsEverySupportValue) {
                            .body);
     }
   }
-  bodies.push_back(make_ellipsoid(12, 24, Vec3(1.0, 0.8, 0.6)));
-  bodies.push_back(make_ellipsoid(30, 60, Vec3(1.0, 1.0, 0.2)));
+  bodies.push_back(test::make_ellipsoid(12, 24, Vec3(1.0, 0.8, 0.6)));
+  bodies.push_back(test::make_ellipsoid(30, 60, Vec3(1.0, 1.0, 0.2)));
   for (const SupportSearch search :
        {SupportSearch::kAuto, SupportSearch::kScan, SupportSearch::kHillClimb}) {
     for (const ConvexPolyhedron& body : bodies) {
