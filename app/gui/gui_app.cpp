@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
+#include "aggpack/pack/grading.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/random_packer.h"
 
@@ -32,8 +34,11 @@ std::string toml_float(double value) {
 
 const char* kContainerKinds[] = {"box", "cylinder"};
 const char* kPackers[] = {"lattice", "random"};
-const char* kGradings[] = {"uniform", "fuller"};
+const char* kGradings[] = {"uniform", "fuller", "sieve"};
 constexpr float kPanelWidth = 360.0f;
+// Text and input background of a sieve table error.
+const ImVec4 kErrorText(0.95f, 0.35f, 0.3f, 1.0f);
+const ImVec4 kErrorFrame(0.55f, 0.15f, 0.12f, 1.0f);
 // Full-detail frames timed after the moving ones in --benchmark-frames.
 constexpr int kBenchmarkStillFrames = 5;
 
@@ -92,7 +97,10 @@ Fields fields_from_config(const PackConfig& config) {
     f.edge_length = r.shape.edge_length;
     f.edge_length_ratio = r.shape.edge_length_ratio;
     f.gap = r.gap;
-    f.grading = r.grading.kind == GradingKind::kFuller ? 1 : 0;
+    f.grading = r.grading.kind == GradingKind::kFuller  ? 1
+                : r.grading.kind == GradingKind::kSieve ? 2
+                                                        : 0;
+    if (r.grading.kind == GradingKind::kSieve) f.sieve = r.grading.sieve;
     f.radius_min = r.grading.radius_min;
     f.radius_max = r.grading.radius_max;
     f.radius = r.grading.radius_min;
@@ -138,10 +146,18 @@ std::vector<std::string> overrides_from_fields(const Fields& f) {
   if (f.grading == 0) {
     add("particle.radius_min", toml_float(f.has_radius_range ? f.radius_min : f.radius));
     add("particle.radius_max", toml_float(f.has_radius_range ? f.radius_max : f.radius));
-  } else {
+  } else if (f.grading == 1) {
     add("grading.size_min", toml_float(f.size_min));
     add("grading.size_max", toml_float(f.size_max));
     add("grading.exponent", toml_float(f.exponent));
+  } else {
+    // No spaces, so the printed `panel:` line stays one word per key.
+    std::string rows;
+    for (const SieveRow& row : f.sieve) {
+      rows += fmt::format("{}[{},{}]", rows.empty() ? "" : ",", toml_float(row.size),
+                          toml_float(row.percent_passing));
+    }
+    add("grading.sieve", "[" + rows + "]");
   }
   add("particle.edge_length", toml_float(f.edge_length));
   if (f.edge_length == 0.0) add("particle.edge_length_ratio", toml_float(f.edge_length_ratio));
@@ -584,11 +600,13 @@ void GuiApp::draw_packer_section() {
   if (fields_.packer == 0) {
     input_metres("spacing (0=2R+gap)", &fields_.spacing);
   } else {
-    ImGui::Combo("grading", &fields_.grading, kGradings, 2);
+    ImGui::Combo("grading", &fields_.grading, kGradings, 3);
     if (fields_.grading == 1) {
       input_metres("size min d", &fields_.size_min, 0.001);
       input_metres("size max d", &fields_.size_max, 0.001);
       ImGui::InputDouble("exponent q", &fields_.exponent, 0.05, 0.1, "%.3g");
+    } else if (fields_.grading == 2) {
+      draw_sieve_table();
     }
     ImGui::Combo("target", &fields_.target, "solid fraction\0count\0");
     if (fields_.target == 0) {
@@ -600,6 +618,97 @@ void GuiApp::draw_packer_section() {
   }
   input_metres("gap", &fields_.gap, 0.001);
   ImGui::InputScalar("seed", ImGuiDataType_U64, &fields_.seed);
+}
+
+void GuiApp::draw_sieve_table() {
+  std::vector<SieveRow>& rows = fields_.sieve;
+  // The library's own check, so the panel states the rule in the words Pack would use; the
+  // field it names ("grading.sieve[2].size") marks the cell.
+  std::string error, error_field;
+  try {
+    validate(Grading{.kind = GradingKind::kSieve, .sieve = rows});
+  } catch (const InvalidInput& invalid) {
+    error = invalid.what();
+    error_field = invalid.field();
+  } catch (const Error& other) {
+    error = other.what();
+  }
+  ImGui::TextUnformatted("sieve table by volume; d = control diameter");
+  int insert_after = -1, remove = -1;
+  const float button_width = ImGui::GetFrameHeight();
+  constexpr ImGuiTableFlags kTableFlags =
+      ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
+  if (ImGui::BeginTable("sieve", 4, kTableFlags)) {
+    ImGui::TableSetupColumn("#", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("size d", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn("% passing", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn("##rows", ImGuiTableColumnFlags_WidthFixed,
+                            2.0f * button_width + ImGui::GetStyle().ItemSpacing.x);
+    ImGui::TableHeadersRow();
+    for (int k = 0; k < static_cast<int>(rows.size()); ++k) {
+      SieveRow& row = rows[static_cast<std::size_t>(k)];
+      const std::string field = fmt::format("grading.sieve[{}]", k);
+      ImGui::PushID(k);
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::AlignTextToFramePadding();
+      ImGui::Text("%d", k);
+      auto cell = [&error_field](const std::string& name, const char* id, double* value,
+                                 const char* format) {
+        ImGui::TableNextColumn();
+        const bool is_bad = error_field == name;
+        if (is_bad) ImGui::PushStyleColor(ImGuiCol_FrameBg, kErrorFrame);
+        ImGui::SetNextItemWidth(-FLT_MIN);
+        ImGui::InputDouble(id, value, 0.0, 0.0, format);
+        if (is_bad) ImGui::PopStyleColor();
+      };
+      cell(field + ".size", "##size", &row.size, "%.4g m");
+      cell(field + ".percent_passing", "##percent", &row.percent_passing, "%.4g");
+      ImGui::TableNextColumn();
+      if (ImGui::Button("+", ImVec2(button_width, 0))) insert_after = k;
+      if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("Insert a row after this one (midway: the grading stays the same)");
+      }
+      ImGui::SameLine();
+      ImGui::BeginDisabled(rows.size() <= 2);  // a table needs two sieves
+      if (ImGui::Button("-", ImVec2(button_width, 0))) remove = k;
+      ImGui::EndDisabled();
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove this row");
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+  }
+  if (insert_after >= 0) {
+    const auto after = static_cast<std::size_t>(insert_after);
+    const SieveRow& row = rows[after];
+    // Midway in d with the percent interpolated (P is linear in d between sieves), or a larger
+    // sieve passing 100 % after the last: either way the grading is unchanged until edited.
+    const SieveRow added =
+        after + 1 < rows.size()
+            ? SieveRow{.size = 0.5 * (row.size + rows[after + 1].size),
+                       .percent_passing =
+                           0.5 * (row.percent_passing + rows[after + 1].percent_passing)}
+            : SieveRow{.size = 1.25 * row.size, .percent_passing = 100.0};
+    rows.insert(rows.begin() + insert_after + 1, added);
+  } else if (remove >= 0) {
+    rows.erase(rows.begin() + remove);
+  }
+  ImGui::PushTextWrapPos(0.0f);
+  if (!error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorText);
+    ImGui::TextUnformatted(error.c_str());
+    ImGui::PopStyleColor();
+  } else {
+    const Grading grading{.kind = GradingKind::kSieve, .sieve = rows};
+    const std::string fines =
+        rows.front().percent_passing > 0.0
+            ? fmt::format("; the {:.4g} % passing the smallest sieve (fines) is not packed",
+                          rows.front().percent_passing)
+            : std::string();
+    ImGui::TextDisabled("d %.4g to %.4g m%s", smallest_size(grading), largest_size(grading),
+                        fines.c_str());
+  }
+  ImGui::PopTextWrapPos();
 }
 
 void GuiApp::draw_job_section() {

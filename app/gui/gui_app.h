@@ -33,9 +33,17 @@ struct Fields {
   double edge_length_ratio = 1.0;   // random with edge_length 0
   int packer = 0;                   // 0 lattice, 1 random
   double spacing = 0.0, gap = 0.0;  // m
-  int grading = 0;                  // 0 uniform, 1 fuller
+  int grading = 0;                  // 0 uniform, 1 fuller, 2 sieve
   double size_min = 0.005, size_max = 0.02, exponent = 0.5;  // fuller (m, m, -)
-  int target = 0;                                            // 0 volume fraction, 1 count
+  // Sieve table (size = control diameter in m, volume percent passing). Default: the middle of
+  // the ASTM C33 size No. 67 band (coarse concrete aggregate, 4.75-25 mm; 2.36 mm row left out)
+  // scaled by 8, so the top size 0.2 m is 1/5 of the default box's narrowest side (ACI 318's
+  // limit for the largest aggregate) and equals the lattice default 2 R.
+  std::vector<SieveRow> sieve{{.size = 0.038, .percent_passing = 5.0},
+                              {.size = 0.076, .percent_passing = 37.5},
+                              {.size = 0.152, .percent_passing = 95.0},
+                              {.size = 0.2, .percent_passing = 100.0}};
+  int target = 0;  // 0 volume fraction, 1 count
   double target_fraction = 0.35;
   int target_count = 1000;
   int shape_library = 0;
@@ -96,6 +104,7 @@ class GuiApp {
   void draw_container_section();
   void draw_shape_section();
   void draw_packer_section();
+  void draw_sieve_table();
   void draw_job_section();
   void draw_file_section();
   void draw_view_section();

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # GUI smoke test: under a virtual X server, aggpack-gui packs a small lattice (--pack), saves a
 # screenshot of its window (--screenshot) and exits (--quit); check_screenshot.py then inspects
-# the picture. Usage: smoke_test.sh AGGPACK_GUI OUTPUT_DIR
+# the picture. With the CLI it also opens CLI-made packings (a uniform and a sieve grading) and
+# checks the panel they fill, and packs a sieve grading in the GUI.
+# Usage: smoke_test.sh AGGPACK_GUI OUTPUT_DIR [AGGPACK_CLI]
 set -euo pipefail
 gui="$1"
 out="$2"
@@ -36,4 +38,41 @@ if [ -n "$cli" ]; then
     grep "^panel:" "$out/open.txt" | grep -qF " $expected" ||
       { echo "panel line lacks $expected"; exit 1; }
   done
+fi
+
+# Sieve grading. The panel's sieve table must round-trip: a sieve-graded packing made by the CLI
+# (the triaxial example, made smaller) fills the table when opened, and the panel line, given back
+# to the CLI as --set keys, resolves to the configuration of the run that made the file (the one
+# the file stores). Then the GUI packs a sieve configuration itself.
+if [ -n "$cli" ]; then
+  example="$here/../../examples/triaxial-cylinder.toml"
+  small=(--set container.height=0.04 --set packer.target_fraction=0.15)
+  rm -f "$out/sieve.h5" "$out/sieve-open.txt" "$out/sieve-pack.txt" "$out/sieve.png"
+  "$cli" pack --progress none "$example" "${small[@]}" -o "$out/sieve.h5" > /dev/null
+  xvfb-run -a -s "-screen 0 1400x900x24" "$gui" --open "$out/sieve.h5" --quit --size 1300x850 \
+    --screenshot "$out/sieve.png" > "$out/sieve-open.txt" 2>&1 ||
+    { cat "$out/sieve-open.txt"; exit 1; }
+  cat "$out/sieve-open.txt"
+  python3 "$here/check_screenshot.py" "$out/sieve.png" 1300 850
+  grep -q "status: Opened .*sieve.h5: .* particles.* The panel shows its configuration." \
+    "$out/sieve-open.txt"
+  panel="$(grep "^panel:" "$out/sieve-open.txt")"
+  for expected in 'packer.kind="random"' 'container.kind="cylinder"' 'grading.kind="sieve"' \
+    'grading.sieve=[[0.005,0.0],[0.008,20.0],[0.0112,50.0],[0.016,100.0]]'; do
+    grep -qF " $expected" <<< "$panel" || { echo "panel line lacks $expected"; exit 1; }
+  done
+  read -ra entries <<< "${panel#panel:}"
+  panel_args=()
+  for entry in "${entries[@]}"; do panel_args+=(--set "$entry"); done
+  diff <("$cli" pack --print-config "$example" "${small[@]}") \
+    <("$cli" pack --print-config "${panel_args[@]}") ||
+    { echo "the panel's configuration differs from the stored one"; exit 1; }
+
+  xvfb-run -a -s "-screen 0 1280x800x24" "$gui" "$example" "${small[@]}" --pack --quit \
+    --size 800x600 > "$out/sieve-pack.txt" 2>&1 || { cat "$out/sieve-pack.txt"; exit 1; }
+  cat "$out/sieve-pack.txt"
+  grep -q "status: Packing finished! [0-9]* particles" "$out/sieve-pack.txt"
+  grep "^panel:" "$out/sieve-pack.txt" |
+    grep -qF ' grading.sieve=[[0.005,0.0],[0.008,20.0],[0.0112,50.0],[0.016,100.0]]' ||
+    { echo "the packing panel line lacks the sieve table"; exit 1; }
 fi
