@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../pack/parallel.h"
 #include "aggpack/core/error.h"
 
 namespace aggpack {
@@ -267,32 +268,37 @@ std::uint32_t float_order_key(float value) {
   return (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
 }
 
-// Sorts by near_depth, ties in their present order, with two 16-bit radix passes: linear in the
-// count, where std::sort on 10^5 candidates cost several milliseconds a frame.
-void sort_front_to_back(std::vector<Candidate>& candidates, std::vector<std::uint64_t>& keys,
-                        std::vector<Candidate>& scratch) {
-  const std::size_t n = candidates.size();
-  keys.resize(2 * n);
-  std::uint64_t* from = keys.data();
-  std::uint64_t* to = keys.data() + n;
-  for (std::size_t c = 0; c < n; ++c) {
-    from[c] = (static_cast<std::uint64_t>(float_order_key(candidates[c].near_depth)) << 32) | c;
-  }
-  std::vector<std::uint32_t> counts(65536);
+// Sorts 64-bit keys by their upper 32 bits, ties in their present order, with two 16-bit radix
+// passes: linear in the count, where std::sort on 10^5 keys cost several milliseconds a frame.
+void sort_by_high_word(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& scratch) {
+  const std::size_t n = keys.size();
+  scratch.resize(n);
+  std::array<std::uint32_t, 65536> counts;
   for (int shift : {32, 48}) {
-    std::fill(counts.begin(), counts.end(), 0u);
-    for (std::size_t c = 0; c < n; ++c) ++counts[(from[c] >> shift) & 0xffffu];
+    counts.fill(0u);
+    for (std::size_t c = 0; c < n; ++c) ++counts[(keys[c] >> shift) & 0xffffu];
     std::uint32_t sum = 0;
     for (auto& count : counts) {
       const std::uint32_t here = count;
       count = sum;
       sum += here;
     }
-    for (std::size_t c = 0; c < n; ++c) to[counts[(from[c] >> shift) & 0xffffu]++] = from[c];
-    std::swap(from, to);
+    for (std::size_t c = 0; c < n; ++c) scratch[counts[(keys[c] >> shift) & 0xffffu]++] = keys[c];
+    keys.swap(scratch);
   }
+}
+
+// Sorts by near_depth, ties in their present order.
+void sort_front_to_back(std::vector<Candidate>& candidates, std::vector<std::uint64_t>& keys,
+                        std::vector<std::uint64_t>& key_scratch, std::vector<Candidate>& scratch) {
+  const std::size_t n = candidates.size();
+  keys.resize(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    keys[c] = (static_cast<std::uint64_t>(float_order_key(candidates[c].near_depth)) << 32) | c;
+  }
+  sort_by_high_word(keys, key_scratch);
   scratch.resize(n);
-  for (std::size_t c = 0; c < n; ++c) scratch[c] = candidates[from[c] & 0xffffffffu];
+  for (std::size_t c = 0; c < n; ++c) scratch[c] = candidates[keys[c] & 0xffffffffu];
   candidates.swap(scratch);
 }
 
@@ -426,8 +432,10 @@ struct PackingRenderer::State {
   // Per-frame scratch, kept to avoid reallocating.
   std::vector<Candidate> candidates;
   std::vector<Candidate> sorted;
-  std::vector<std::uint64_t> sort_keys;
-  std::vector<std::uint8_t> level;  // per candidate: 0 full, 1 coarse, 2 point
+  std::vector<std::uint64_t> sort_keys, sort_scratch;
+  std::vector<std::vector<Candidate>> chunk_candidates;  // frustum pass, per chunk of particles
+  std::vector<std::uint8_t> is_hidden_flag;              // occlusion test, per candidate
+  std::vector<std::uint8_t> level;                       // per candidate: 0 full, 1 coarse, 2 point
   DepthPyramid depth_pyramid;
   // Per particle: not found hidden when last drawn (drawn first next frame, as occluders).
   std::vector<std::uint8_t> was_visible;
@@ -441,6 +449,21 @@ struct PackingRenderer::State {
   std::vector<GLsizei> single_counts;
   std::vector<const void*> single_offsets;
   std::vector<GLint> single_base_vertices;
+
+  // The frame begun by begin_frame(), drawn by step_frame().
+  struct Frame {
+    int step = 0;  // next step: 1 first pass, 2 read-back + occlusion test, 3 rest, 0 done
+    int width = 1, height = 1;
+    RenderStyle style;
+    Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
+    Eigen::Matrix4f projection = Eigen::Matrix4f::Identity();
+    bool is_orthographic = false;
+    bool is_culled = false;  // occlusion culling this frame
+    std::size_t first = 0;   // candidates [0, first) are drawn in the first pass
+    std::size_t used = 0;    // mesh triangles of the first pass
+    DrawStats stats;
+  };
+  Frame frame;
 
   // Draws candidates [begin, end) (front to back) with levels of detail chosen by size and at
   // most `budget` mesh triangles (0 = no limit); adds to `stats`; returns the mesh triangles.
@@ -788,7 +811,7 @@ std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, s
       sort_keys[k] =
           (static_cast<std::uint64_t>(float_order_key(candidates[begin + k].pixels)) << 32) | k;
     }
-    std::sort(sort_keys.begin(), sort_keys.end());
+    sort_by_high_word(sort_keys, sort_scratch);
     for (std::uint64_t key : sort_keys) {
       if (mesh_triangles <= budget) break;
       const auto k = static_cast<std::size_t>(key & 0xffffffffu);
@@ -956,16 +979,30 @@ std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, s
 
 DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
                                 const RenderStyle& style) {
+  begin_frame(camera, width, height, style);
+  while (!step_frame()) {
+  }
+  return state_->frame.stats;
+}
+
+void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
+                                  const RenderStyle& style) {
   State& s = *state_;
-  DrawStats stats;
+  State::Frame& f = s.frame;
+  f = State::Frame{};
+  f.style = style;
+  DrawStats& stats = f.stats;
   width = std::max(width, 1);
   height = std::max(height, 1);
+  f.width = width;
+  f.height = height;
   if (s.uploaded_color != static_cast<int>(style.color)) s.upload_colors(style.color);
 
-  const Eigen::Matrix4f view = camera.view_matrix();
-  const Eigen::Matrix4f projection =
-      camera.projection_matrix(static_cast<double>(width) / static_cast<double>(height));
-  const Eigen::Matrix4f view_projection = projection * view;
+  f.view = camera.view_matrix();
+  f.projection = camera.projection_matrix(static_cast<double>(width) / static_cast<double>(height));
+  const Eigen::Matrix4f& view = f.view;
+  const Eigen::Matrix4f view_projection = f.projection * view;
+  f.is_orthographic = camera.is_orthographic();
 
   glViewport(0, 0, width, height);
   glDisable(GL_SCISSOR_TEST);
@@ -989,14 +1026,14 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   for (auto& plane : planes) plane /= plane.head<3>().norm();
   const Eigen::Vector4f depth_row = -view.row(2);
   const float pixel_scale = static_cast<float>(camera.pixels_per_metre(1.0, height));
-  const bool is_orthographic = camera.is_orthographic();
+  const bool is_orthographic = f.is_orthographic;
   // Pixels per metre at a view depth; perspective shrinks with depth.
   auto pixels_per_metre = [&](float depth) {
     return is_orthographic ? pixel_scale : pixel_scale / std::max(depth, 1e-9f);
   };
   const std::size_t particle_count = s.particle_shape.size();
-  s.candidates.clear();
-  for (std::size_t i = 0; i < particle_count; ++i) {
+  // Whether particle i is in view, and its candidate record if so.
+  auto make_candidate = [&](std::size_t i, Candidate& candidate) {
     const ParticleSphere& sphere = s.particle_sphere[i];
     const Eigen::Vector4f centre(sphere.x, sphere.y, sphere.z, 1.0f);
     bool is_inside = true;
@@ -1006,9 +1043,8 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
         break;
       }
     }
-    if (!is_inside) continue;
+    if (!is_inside) return false;
     const Eigen::Vector4f clip = view_projection * centre;
-    Candidate candidate;
     candidate.particle = static_cast<std::uint32_t>(i);
     candidate.depth = depth_row.dot(centre);
     candidate.near_depth = candidate.depth - sphere.radius;
@@ -1030,10 +1066,28 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
     const float w = clip.w() > 1e-9f ? clip.w() : 1e-9f;
     candidate.screen_x = (clip.x() / w + 1.0f) * 0.5f * static_cast<float>(width);
     candidate.screen_y = (clip.y() / w + 1.0f) * 0.5f * static_cast<float>(height);
-    s.candidates.push_back(candidate);
+    return true;
+  };
+  // In chunks of consecutive particles on all cores (the rasteriser is idle at the start of a
+  // frame), joined in chunk order: the same list as one loop would make.
+  constexpr std::size_t kChunk = 8192;
+  const std::size_t chunk_count = (particle_count + kChunk - 1) / kChunk;
+  s.chunk_candidates.resize(std::max(s.chunk_candidates.size(), chunk_count));
+  detail::parallel_for_index(0, chunk_count, [&](std::size_t chunk) {
+    std::vector<Candidate>& out = s.chunk_candidates[chunk];
+    out.clear();
+    Candidate candidate;
+    for (std::size_t i = chunk * kChunk; i < std::min(particle_count, (chunk + 1) * kChunk); ++i) {
+      if (make_candidate(i, candidate)) out.push_back(candidate);
+    }
+  });
+  s.candidates.clear();
+  for (std::size_t chunk = 0; chunk < chunk_count; ++chunk) {
+    s.candidates.insert(s.candidates.end(), s.chunk_candidates[chunk].begin(),
+                        s.chunk_candidates[chunk].end());
   }
   // Front to back: lets the rasteriser's early depth test reject hidden fragments.
-  sort_front_to_back(s.candidates, s.sort_keys, s.sorted);
+  sort_front_to_back(s.candidates, s.sort_keys, s.sort_scratch, s.sorted);
   const std::size_t in_frustum = s.candidates.size();
   stats.particles_in_frustum = in_frustum;
   stats.frustum_sort_seconds = seconds_since(start);
@@ -1045,8 +1099,8 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   //    point. Exact (never drops a particle that would show), whatever last frame was.
   GLint samples = 0;
   glGetIntegerv(GL_SAMPLES, &samples);
-  const bool is_culled = style.is_occlusion_culled && !style.is_wireframe && samples <= 1 &&
-                         in_frustum >= kOcclusionMinParticles;
+  f.is_culled = style.is_occlusion_culled && !style.is_wireframe && samples <= 1 &&
+                in_frustum >= kOcclusionMinParticles;
   if (s.was_visible.size() != particle_count) {
     s.was_visible.assign(particle_count, 0);
     s.has_visibility = false;
@@ -1055,26 +1109,43 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   // than drawing the few particles; it keeps the last full frame's visible set for the next
   // (culling is exact with any set; a recent one only makes it faster).
   const bool is_thinned = style.max_particles > 0 && in_frustum > style.max_particles;
-  if (!is_culled || is_thinned) {
-    s.submit(0, in_frustum, style.triangle_budget, style, view, projection, stats);
+  f.first = in_frustum;
+  if (!f.is_culled || is_thinned) {
+    f.is_culled = false;
     if (!is_thinned) s.has_visibility = false;
-  } else {
+  } else if (s.has_visibility) {
     // First the particles seen last frame (all of them when there is no last frame).
-    std::size_t first = in_frustum;
-    if (s.has_visibility) {
-      first =
-          static_cast<std::size_t>(std::stable_partition(s.candidates.begin(), s.candidates.end(),
-                                                         [&](const Candidate& c) {
-                                                           return s.was_visible[c.particle] != 0;
-                                                         }) -
-                                   s.candidates.begin());
-    }
-    const std::size_t used =
-        s.submit(0, first, style.triangle_budget, style, view, projection, stats);
-    start = std::chrono::steady_clock::now();
-    s.depth_pyramid.build(width, height);
+    f.first = static_cast<std::size_t>(
+        std::stable_partition(s.candidates.begin(), s.candidates.end(),
+                              [&](const Candidate& c) { return s.was_visible[c.particle] != 0; }) -
+        s.candidates.begin());
+  }
+  f.step = 1;
+}
+
+bool PackingRenderer::step_frame() {
+  State& s = *state_;
+  State::Frame& f = s.frame;
+  DrawStats& stats = f.stats;
+  const RenderStyle& style = f.style;
+  if (f.step == 0) return true;  // no frame begun, or finished
+  glViewport(0, 0, f.width, f.height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_TRUE);
+  const std::size_t in_frustum = stats.particles_in_frustum;
+  if (f.step == 1) {
+    // Everything (no culling), or the particles seen last frame.
+    f.used = s.submit(0, f.first, style.triangle_budget, style, f.view, f.projection, stats);
+    f.step = f.is_culled ? 2 : 4;
+    return false;
+  }
+  if (f.step == 2) {
+    auto start = std::chrono::steady_clock::now();
+    s.depth_pyramid.build(f.width, f.height);
     stats.depth_readback_seconds = seconds_since(start);
     start = std::chrono::steady_clock::now();
+    const Eigen::Matrix4f& projection = f.projection;
     // Window depth of a view depth (both projections map view depth alone to window depth).
     auto window_depth = [&](float depth) {
       const float clip_z = -projection(2, 2) * depth + projection(2, 3);
@@ -1082,33 +1153,45 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
       return 0.5f * clip_z / clip_w + 0.5f;
     };
     auto is_hidden = [&](const Candidate& c) {
-      if (!is_orthographic && !(c.near_depth > 1e-6f)) return false;
+      if (!f.is_orthographic && !(c.near_depth > 1e-6f)) return false;
       return s.depth_pyramid.is_hidden(c.screen_x, c.screen_y, c.footprint,
                                        window_depth(c.near_depth));
     };
     // Seen now: the first group unless hidden behind the rest of it, the others unless hidden.
+    // The tests run on all cores (the rasteriser has finished the first pass).
+    s.is_hidden_flag.resize(in_frustum);
+    detail::parallel_for_index(0, (in_frustum + 1023) / 1024, [&](std::size_t block) {
+      for (std::size_t c = 1024 * block; c < std::min(in_frustum, 1024 * (block + 1)); ++c) {
+        s.is_hidden_flag[c] = is_hidden(s.candidates[c]) ? 1 : 0;
+      }
+    });
     std::fill(s.was_visible.begin(), s.was_visible.end(), std::uint8_t{0});
-    for (std::size_t c = 0; c < first; ++c) {
-      if (!is_hidden(s.candidates[c])) s.was_visible[s.candidates[c].particle] = 1;
+    for (std::size_t c = 0; c < f.first; ++c) {
+      if (s.is_hidden_flag[c] == 0) s.was_visible[s.candidates[c].particle] = 1;
     }
-    std::size_t kept = first;
-    for (std::size_t c = first; c < in_frustum; ++c) {
-      if (is_hidden(s.candidates[c])) continue;
+    std::size_t kept = f.first;
+    for (std::size_t c = f.first; c < in_frustum; ++c) {
+      if (s.is_hidden_flag[c] != 0) continue;
       s.was_visible[s.candidates[c].particle] = 1;
       s.candidates[kept++] = s.candidates[c];
     }
     s.candidates.resize(kept);
     s.has_visibility = true;
     stats.occlusion_test_seconds = seconds_since(start);
+    f.step = 3;
+    return false;
+  }
+  if (f.step == 3) {
     std::size_t rest_budget = 0;
     if (style.triangle_budget > 0) {
       // All of it used: the newly seen are points this frame (and first next frame).
-      rest_budget = used < style.triangle_budget ? style.triangle_budget - used : 1;
+      rest_budget = f.used < style.triangle_budget ? style.triangle_budget - f.used : 1;
     }
-    s.submit(first, kept, rest_budget, style, view, projection, stats);
+    s.submit(f.first, s.candidates.size(), rest_budget, style, f.view, f.projection, stats);
   }
 
   if (style.show_container && s.line_vertex_count > 0) {
+    const Eigen::Matrix4f view_projection = f.projection * f.view;
     glUseProgram(s.line_program);
     glUniformMatrix4fv(s.u_view_projection, 1, GL_FALSE, view_projection.data());
     glUniform3f(s.u_line_color, style.container_color.r / 255.0f, style.container_color.g / 255.0f,
@@ -1124,8 +1207,13 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
   glBindTexture(GL_TEXTURE_BUFFER, 0);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_BUFFER, 0);
-  return stats;
+  f.step = 0;
+  return true;
 }
+
+const DrawStats& PackingRenderer::frame_stats() const { return state_->frame.stats; }
+
+bool PackingRenderer::is_frame_pending() const { return state_->frame.step != 0; }
 
 const Aabb& PackingRenderer::scene_bounds() const { return state_->bounds; }
 

@@ -358,6 +358,59 @@ TEST(Headless, OcclusionCullingSkipsHiddenParticlesAndKeepsThePicture) {
   EXPECT_EQ(differing_pixels(turned, target.read()), 0u);
 }
 
+TEST(Headless, SteppedFrameDrawsTheSamePictureWithOtherDrawingBetweenSteps) {
+  const Packing packing = test::grid_packing(20, 12, 20, 0.1, 4);
+  HeadlessContext context;
+  PackingRenderer renderer;
+  renderer.set_packing(packing);
+  OffscreenTarget target(320, 240);
+  // Another renderer drawing elsewhere between the steps, with other GL state.
+  OffscreenTarget other(64, 64);
+  PackingRenderer other_renderer;
+  other_renderer.set_packing(test::grid_packing(2, 2, 2, 0.1, 1));
+  const Camera other_camera = Camera::framing(other_renderer.scene_bounds(), ViewPreset::kTop);
+  RenderStyle other_style;
+  other_style.is_wireframe = true;
+  other_style.color = ColorMode::kSize;
+  Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kIso, 320.0 / 240.0);
+  const RenderStyle style;  // occlusion culling on: three steps once the visible set is known
+  target.bind();
+  renderer.draw(camera, 320, 240, style);
+  camera.rotate_arcball(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.3, 0.1));
+  target.bind();
+  const DrawStats whole = renderer.draw(camera, 320, 240, style);
+  const Image expected = target.read();
+
+  camera.rotate_arcball(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.3, 0.1));
+  target.bind();
+  renderer.draw(camera, 320, 240, style);  // another visible set, so the steps have work to do
+  camera.rotate_arcball(Eigen::Vector2d(0.3, 0.1), Eigen::Vector2d(0.0, 0.0));
+  target.bind();
+  renderer.begin_frame(camera, 320, 240, style);
+  int steps = 0;
+  bool is_done = false;
+  while (!is_done) {
+    EXPECT_TRUE(renderer.is_frame_pending());
+    // Something else drawn between the steps (as the GUI draws its panel).
+    other.bind();
+    other_renderer.draw(other_camera, 64, 64, other_style);
+    target.bind();
+    is_done = renderer.step_frame();
+    ++steps;
+  }
+  EXPECT_EQ(steps, 3);
+  EXPECT_FALSE(renderer.is_frame_pending());
+  EXPECT_TRUE(renderer.step_frame());  // nothing left to do
+  EXPECT_EQ(renderer.frame_stats().particles_in_frustum, whole.particles_in_frustum);
+  EXPECT_EQ(differing_pixels(target.read(), expected), 0u);
+
+  // An abandoned frame leaves no trace: the next whole frame is the same picture.
+  renderer.begin_frame(camera, 320, 240, style);
+  renderer.step_frame();
+  target.bind();
+  renderer.draw(camera, 320, 240, style);
+  EXPECT_EQ(differing_pixels(target.read(), expected), 0u);
+}
 TEST(Headless, PngRoundTripsThroughAnIndependentDecoder) {
   const Packing packing = test::grid_packing(3, 2, 2);
   RenderImageOptions options = small_options();

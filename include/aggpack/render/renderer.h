@@ -87,6 +87,19 @@ class PackingRenderer {
   /// height) in pixels (> 0).
   DrawStats draw(const Camera& camera, int width, int height, const RenderStyle& style);
 
+  /// The same frame as draw(), in steps, so an interactive caller can keep its event loop
+  /// running while a heavy frame is drawn (at most three steps: the particles seen last frame;
+  /// the depth read-back and occlusion test; the rest). begin_frame() clears the bound
+  /// framebuffer and sorts; each step_frame() call does the next step and returns true once the
+  /// frame is complete. The caller may draw elsewhere between steps but must bind the same
+  /// framebuffer again before each step. A new begin_frame() abandons an unfinished frame.
+  void begin_frame(const Camera& camera, int width, int height, const RenderStyle& style);
+  bool step_frame();
+  /// Whether a frame was begun and is not complete yet.
+  [[nodiscard]] bool is_frame_pending() const;
+  /// What the last (or the current) frame did so far.
+  [[nodiscard]] const DrawStats& frame_stats() const;
+
   /// Bounds of the container and every particle (m); empty before set_packing of a packing
   /// with particles or a container.
   [[nodiscard]] const Aabb& scene_bounds() const;
