@@ -39,8 +39,10 @@ constexpr float kPanelWidth = 360.0f;
 // Text and input background of a sieve table error.
 const ImVec4 kErrorText(0.95f, 0.35f, 0.3f, 1.0f);
 const ImVec4 kErrorFrame(0.55f, 0.15f, 0.12f, 1.0f);
-// Full-detail frames timed after the moving ones in --benchmark-frames.
+// Full-detail pictures timed after the moving frames in --benchmark-frames.
 constexpr int kBenchmarkStillFrames = 5;
+// Time a frame may spend on steps of a full-detail picture before it shows what it has (s).
+constexpr double kFullFrameStepSeconds = 0.025;
 
 // Input for a length in metres with a sensible step; returns true when changed.
 bool input_metres(const char* label, double* value, double step = 0.01) {
@@ -205,7 +207,8 @@ GuiApp::~GuiApp() {
 
 bool GuiApp::is_busy() const {
   return job_.is_running() || benchmark_phase_ != BenchmarkPhase::kOff ||
-         is_waiting_for_first_job_ || is_preview_ ||
+         is_waiting_for_first_job_ || is_preview_ || is_scene_dirty_ ||
+         (renderer_ && renderer_->is_frame_pending()) ||
          (frames_since_job_ >= 0 && frames_since_job_ < 3) || dragging_button_ >= 0;
 }
 
@@ -355,30 +358,78 @@ void GuiApp::poll_job() {
 }
 
 void GuiApp::render_scene_if_needed(int width, int height) {
+  is_picture_new_ = false;
   if (!scene_target_ || scene_target_->width() != width || scene_target_->height() != height) {
     scene_target_ = std::make_unique<OffscreenTarget>(width, height, 0);
+    has_picture_ = false;
     is_scene_dirty_ = true;
   }
-  if (!is_scene_dirty_) return;
+  const bool is_light = is_interacting();
+  if (!is_scene_dirty_ && (is_light || !renderer_->is_frame_pending())) return;
   const double start = glfwGetTime();
-  scene_target_->bind();
-  // While the view moves, a light frame whose detail the controller fits to the frame-time
-  // target (fewer mesh triangles, then fewer particles); the full frame follows when the view
-  // rests.
-  RenderStyle style = style_;
-  is_preview_ = is_interacting();
   detail_.set_full_budget(style_.triangle_budget);
-  if (is_preview_) {
+  if (is_light) {
+    // While the view moves, a light frame whose detail the controller fits to the frame-time
+    // target (fewer mesh triangles, then a lower resolution, then fewer particles), drawn at
+    // once; it abandons a full frame under way. The full frame follows when the view rests.
+    RenderStyle style = style_;
     const DetailLevel level = detail_.level();
     style.triangle_budget = level.triangle_budget;
     style.max_particles = level.max_particles;
+    OffscreenTarget* target = scene_target_.get();
+    is_drawn_scaled_ = level.resolution_scale < 1.0;
+    if (is_drawn_scaled_) {
+      // At a lower resolution: drawn into a smaller target that frame() stretches over the view.
+      const int light_width =
+          std::max(1, static_cast<int>(std::lround(width * level.resolution_scale)));
+      const int light_height =
+          std::max(1, static_cast<int>(std::lround(height * level.resolution_scale)));
+      if (!light_target_ || light_target_->width() != light_width ||
+          light_target_->height() != light_height) {
+        light_target_ = std::make_unique<OffscreenTarget>(light_width, light_height, 0);
+      }
+      target = light_target_.get();
+    }
+    target->bind();
+    last_stats_ = renderer_->draw(camera_, target->width(), target->height(), style);
+    // Finish here so the time measures the scene, not whatever comes later in the frame.
+    glFinish();
+    last_scene_seconds_ = glfwGetTime() - start;
+    is_preview_ = true;
+    was_light_frame_ = true;
+    is_scene_dirty_ = false;
+    has_picture_ = true;
+    is_picture_new_ = true;
+    return;
   }
-  was_light_frame_ = is_preview_;
-  last_stats_ = renderer_->draw(camera_, width, height, style);
-  // Finish here so the time measures the scene, not whatever comes later in the frame.
-  glFinish();
-  last_scene_seconds_ = glfwGetTime() - start;
-  is_scene_dirty_ = false;
+  // The full-detail frame, drawn in steps over several frames into a target of its own while
+  // the last picture stays on screen, so no frame of the program waits for all of it.
+  if (!full_target_ || full_target_->width() != width || full_target_->height() != height) {
+    full_target_ = std::make_unique<OffscreenTarget>(width, height, 0);
+  }
+  full_target_->bind();
+  if (is_scene_dirty_) {
+    renderer_->begin_frame(camera_, width, height, style_);
+    full_frame_start_ = start;
+    full_frame_seconds_ = 0.0;
+    is_scene_dirty_ = false;
+    is_preview_ = false;
+  }
+  // One step at least; more while this frame has time (all when there is nothing to show yet).
+  bool is_done = false;
+  do {
+    is_done = renderer_->step_frame();
+  } while (!is_done && (!has_picture_ || glfwGetTime() - start < kFullFrameStepSeconds));
+  if (is_done) glFinish();  // so the time measures the scene
+  full_frame_seconds_ += glfwGetTime() - start;
+  if (!is_done) return;
+  std::swap(scene_target_, full_target_);
+  is_drawn_scaled_ = false;
+  last_stats_ = renderer_->frame_stats();
+  last_scene_seconds_ = full_frame_seconds_;
+  last_picture_latency_ = glfwGetTime() - full_frame_start_;
+  has_picture_ = true;
+  is_picture_new_ = true;
 }
 
 bool GuiApp::is_interacting() const {
@@ -406,6 +457,7 @@ void GuiApp::print_benchmark(const char* label, const FrameTimes& t) const {
     std::printf("; second half %.1f ms/frame (%.1f frames/s)",
                 1e3 * t.settled_wall / t.settled_frames, t.settled_frames / t.settled_wall);
   }
+  std::printf("; longest frame %.1f ms", 1e3 * t.longest);
   std::printf(
       "\n  ms/frame: scene %.1f (frustum+sort %.1f, submit %.1f, depth read-back %.1f, occlusion "
       "test %.1f, rest = waiting for the rasteriser), blit %.1f, panel build %.1f, panel draw "
@@ -426,23 +478,37 @@ void GuiApp::note_present_times(double ui_draw_seconds, double swap_seconds) {
   t.ui_draw += ui_draw_seconds;
   t.swap += swap_seconds;
   t.wall += wall;
+  t.longest = std::max(t.longest, wall);
   if (is_moving && t.frames >= options_.benchmark_frames / 2) {
     t.settled_wall += wall;
     ++t.settled_frames;
   }
   ++t.frames;
+  if (!is_moving) {
+    // Still: count finished full-detail pictures (each drawn over one or more frames).
+    if (!is_picture_new_) return;
+    ++t.pictures;
+    t.picture_latency += last_picture_latency_;
+  }
   if (--benchmark_left_ > 0) return;
   if (benchmark_phase_ == BenchmarkPhase::kMoving) {
     const DetailLevel level = detail_.level();
     print_benchmark("camera moving (light frames, adaptive detail)", t);
     std::printf(
-        "  detail reached: triangle budget %zu, at most %zu particles (0 = all); target "
-        "%.0f ms/frame\n",
-        level.triangle_budget, level.max_particles, 1e3 * detail_.target_seconds());
+        "  detail reached: triangle budget %zu, resolution %.0f %%, at most %zu particles (0 = "
+        "all); target %.0f ms/frame\n",
+        level.triangle_budget, 100.0 * level.resolution_scale, level.max_particles,
+        1e3 * detail_.target_seconds());
     benchmark_phase_ = BenchmarkPhase::kStill;
     benchmark_left_ = kBenchmarkStillFrames;
   } else {
-    print_benchmark("view still (full detail, each frame redrawn)", t);
+    print_benchmark("view still (full detail, each picture redrawn)", t);
+    std::printf(
+        "  full-detail pictures: %d, each finished %.1f ms after it was begun, over %.1f "
+        "frames on average\n",
+        t.pictures, 1e3 * t.picture_latency / std::max(1, t.pictures),
+        static_cast<double>(t.frames) / std::max(1, t.pictures));
+    std::fflush(stdout);
     benchmark_phase_ = BenchmarkPhase::kOff;
   }
 }
@@ -467,15 +533,19 @@ void GuiApp::frame() {
   const int view_height = std::max(1, fb_height);
 
   const bool is_benchmark = benchmark_phase_ != BenchmarkPhase::kOff;
-  if (is_benchmark) {
-    // Turn the scene a little every frame so every frame redraws it.
+  if (is_benchmark && !renderer_->is_frame_pending()) {
+    // Turn the scene a little every frame (still: every finished picture) so it is redrawn.
     camera_.rotate_arcball(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.02, 0.0));
     is_scene_dirty_ = true;
   }
   const double scene_start = glfwGetTime();
   render_scene_if_needed(view_width, view_height);
   const double blit_start = glfwGetTime();
-  scene_target_->blit(0, view_x, 0);
+  if (is_drawn_scaled_) {
+    light_target_->blit_stretched(0, view_x, 0, view_width, view_height);
+  } else {
+    scene_target_->blit(0, view_x, 0);
+  }
   if (is_benchmark) glFinish();
   const double panel_start = glfwGetTime();
   draw_panel();
@@ -527,7 +597,8 @@ void GuiApp::after_render() {
   }
   // Scripted runs: act once the first job's result has been on screen for two frames (the
   // status line and the scene are then drawn) and any benchmark is over.
-  if (frames_since_job_ < 2 || benchmark_phase_ != BenchmarkPhase::kOff || is_script_done_) {
+  if (frames_since_job_ < 2 || benchmark_phase_ != BenchmarkPhase::kOff || is_script_done_ ||
+      is_scene_dirty_ || renderer_->is_frame_pending()) {
     return;
   }
   is_script_done_ = true;
@@ -816,10 +887,14 @@ void GuiApp::draw_view_section() {
                       last_stats_.coarse_particles, last_stats_.point_particles);
   ImGui::TextDisabled("%.2f M triangles", last_stats_.triangles / 1e6);
   ImGui::TextDisabled("scene %.1f ms%s; UI %.0f frames/s", 1e3 * last_scene_seconds_,
-                      is_preview_ ? " (light frame)" : "", ImGui::GetIO().Framerate);
+                      renderer_->is_frame_pending() ? " (refining)"
+                      : is_preview_                 ? " (light frame)"
+                                                    : "",
+                      ImGui::GetIO().Framerate);
   const DetailLevel level = detail_.level();
   ImGui::TextDisabled(
-      "moving: %zu k triangles, %s particles (%.0f ms target)", level.triangle_budget / 1000,
+      "moving: %zu k triangles, %.0f %% resolution, %s particles (%.0f ms target)",
+      level.triangle_budget / 1000, 100.0 * level.resolution_scale,
       level.max_particles == 0 ? "all" : fmt::format("{} k", level.max_particles / 1000).c_str(),
       1e3 * detail_.target_seconds());
   ImGui::TextDisabled("left drag: rotate, right drag: pan, wheel: zoom,");

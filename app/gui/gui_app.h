@@ -128,6 +128,17 @@ class GuiApp {
   std::shared_ptr<const Packing> packing_;
   std::unique_ptr<PackingRenderer> renderer_;
   std::unique_ptr<OffscreenTarget> scene_target_;
+  // Light frames drawn at a lower resolution (DetailLevel::resolution_scale) go here.
+  std::unique_ptr<OffscreenTarget> light_target_;
+  bool is_drawn_scaled_ = false;  // the current scene is in light_target_
+  // The full-detail picture being drawn in steps (PackingRenderer::step_frame) goes here; it
+  // replaces scene_target_ when finished.
+  std::unique_ptr<OffscreenTarget> full_target_;
+  double full_frame_start_ = 0.0;      // when the pending full-detail picture was begun
+  double full_frame_seconds_ = 0.0;    // time spent in its steps so far
+  double last_picture_latency_ = 0.0;  // begun to finished, last full-detail picture (s)
+  bool has_picture_ = false;           // scene_target_ (or light_target_) holds a picture
+  bool is_picture_new_ = false;        // this frame finished a picture (light or full)
   Camera camera_;
   RenderStyle style_;
   ViewPreset view_ = ViewPreset::kIso;
@@ -163,6 +174,9 @@ class GuiApp {
     std::size_t drawn = 0, points = 0, triangles = 0;
     double settled_wall = 0.0;  // over the second half of the frames
     int settled_frames = 0;
+    double longest = 0.0;          // longest frame
+    int pictures = 0;              // still: full-detail pictures finished
+    double picture_latency = 0.0;  // still: from beginning each picture to finishing it
   };
   void start_benchmark();
   void print_benchmark(const char* label, const FrameTimes& times) const;

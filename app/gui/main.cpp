@@ -129,6 +129,9 @@ int main(int argc, char** argv) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini littering the working folder
   ImGui::StyleColorsDark();
+  // An opaque panel: the window's back buffer is not cleared under it (the scene is blitted
+  // beside it), so a see-through one shows older frames' text as ghosts.
+  ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
   glfwSetMouseButtonCallback(window, on_mouse_button);
   glfwSetCursorPosCallback(window, on_cursor);
   glfwSetScrollCallback(window, on_scroll);

@@ -37,7 +37,7 @@ void DetailController::set_full_budget(std::size_t full_budget) {
   }
 }
 
-void DetailController::reset() { level_ = DetailLevel{full_budget_, 0}; }
+void DetailController::reset() { level_ = DetailLevel{full_budget_, 0, 1.0}; }
 
 void DetailController::update(double frame_seconds, std::size_t triangles_drawn,
                               std::size_t particles_drawn) {
@@ -48,6 +48,12 @@ void DetailController::update(double frame_seconds, std::size_t triangles_drawn,
     // the frame did not use up falls at once), then fewer particles.
     if (level_.triangle_budget != 1 && triangles_drawn > 0) {
       level_.triangle_budget = std::max<std::size_t>(1, scaled(triangles_drawn, factor));
+    } else if (level_.resolution_scale > kMinResolutionScale) {
+      // Pixel work goes with the square of the scale, but is only part of the frame: steps of
+      // at least 10 % so the level does not creep towards the target from above.
+      level_.triangle_budget = 1;
+      level_.resolution_scale =
+          std::max(kMinResolutionScale, level_.resolution_scale * std::min(factor, 0.9));
     } else {
       level_.triangle_budget = 1;
       const std::size_t particles = level_.max_particles > 0
@@ -61,6 +67,8 @@ void DetailController::update(double frame_seconds, std::size_t triangles_drawn,
       const std::size_t next = scaled(level_.max_particles, factor);
       // Uncapped once the cap no longer binds (the frame drew fewer than it allowed).
       level_.max_particles = particles_drawn < level_.max_particles ? 0 : next;
+    } else if (level_.resolution_scale < 1.0) {
+      level_.resolution_scale = std::min(1.0, level_.resolution_scale * std::sqrt(factor));
     } else if (level_.triangle_budget != full_budget_) {
       // Triangles drawn fell short of the budget: nothing more to gain by raising it.
       if (triangles_drawn < level_.triangle_budget / 2 && level_.triangle_budget > 1) return;

@@ -171,6 +171,15 @@ void OffscreenTarget::blit(unsigned framebuffer, int x, int y) const {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
 }
 
+void OffscreenTarget::blit_stretched(unsigned framebuffer, int x, int y, int width,
+                                     int height) const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, draw_framebuffer_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  glBlitFramebuffer(0, 0, width_, height_, x, y, x + width, y + height, GL_COLOR_BUFFER_BIT,
+                    GL_LINEAR);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+}
+
 Image read_framebuffer(int x, int y, int width, int height) {
   Image image;
   image.width = width;

@@ -12,13 +12,21 @@ namespace aggpack {
 struct DetailLevel {
   std::size_t triangle_budget = 0;  ///< RenderStyle::triangle_budget
   std::size_t max_particles = 0;    ///< RenderStyle::max_particles
+  /// Scale of the light frame's pixel size, in [kMinResolutionScale, 1]: the frame is drawn at
+  /// this fraction of the view's width and height and stretched to fit (pixel work falls with
+  /// its square).
+  double resolution_scale = 1.0;
 };
+
+/// Smallest DetailLevel::resolution_scale a light frame is drawn at.
+inline constexpr double kMinResolutionScale = 0.5;
 
 /// Chooses the detail of the frames drawn while the view moves from the time the last ones
 /// took. First the triangle budget falls (more particles drawn as one-triangle impostors) down
-/// to 1 (all impostors); if that is still too slow, the number of particles drawn falls (an even
-/// thinning of those in view). Both rise again, in the opposite order, when frames are well under
-/// the target. Steps are proportional to target / measured time, bounded to [1/2, 2] per frame
+/// to 1 (all impostors); if that is still too slow, the resolution falls (down to half the
+/// view's width and height); only then does the number of particles drawn fall (an even thinning
+/// of those in view). All rise again, in the opposite order, when frames are well under the
+/// target. Steps are proportional to target / measured time, bounded to [1/2, 2] per frame
 /// and with a dead band between 0.75 and 1 times the target, so the level settles instead of
 /// oscillating.
 class DetailController {

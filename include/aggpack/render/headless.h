@@ -65,6 +65,10 @@ class OffscreenTarget {
   /// Copies the picture into framebuffer `framebuffer` (0 = the window) with its lower-left
   /// corner at pixel (x, y) there. Leaves `framebuffer` bound for drawing.
   void blit(unsigned framebuffer, int x, int y) const;
+  /// Stretches the picture over the rectangle (x, y, width, height) of framebuffer
+  /// `framebuffer` with linear filtering (a target made without multisampling only). Leaves
+  /// `framebuffer` bound for drawing.
+  void blit_stretched(unsigned framebuffer, int x, int y, int width, int height) const;
   [[nodiscard]] int width() const { return width_; }
   [[nodiscard]] int height() const { return height_; }
 
