@@ -360,10 +360,16 @@ class DepthPyramid {
     const std::vector<float>& texels = levels_[level];
     for (int ty = iy0 >> level; ty <= iy1 >> level; ++ty) {
       const float dy = std::max({0.0f, ty * size - y, y - (ty + 1) * size});
+      if (!(dy * dy < radius2)) continue;
+      // The texels of this row within `half` of x across: tx * size - x < half and
+      // x - (tx + 1) * size < half. Widened by a hundredth of a texel against rounding, so it
+      // never tests fewer texels than the disc meets (more only makes the test more cautious).
+      const float half = std::sqrt(radius2 - dy * dy) + 0.01f * size;
+      const int tx0 = std::max(ix0 >> level, static_cast<int>(std::floor((x - half) / size)));
+      const int tx1 = std::min(ix1 >> level, static_cast<int>(std::ceil((x + half) / size)) - 1);
       const float* row = texels.data() + static_cast<std::size_t>(ty) * w;
-      for (int tx = ix0 >> level; tx <= ix1 >> level; ++tx) {
-        const float dx = std::max({0.0f, tx * size - x, x - (tx + 1) * size});
-        if (dx * dx + dy * dy < radius2 && !(row[tx] < depth)) return false;
+      for (int tx = tx0; tx <= tx1; ++tx) {
+        if (!(row[tx] < depth)) return false;
       }
     }
     return true;
