@@ -445,7 +445,8 @@ struct PackingRenderer::State {
   DepthPyramid depth_pyramid;
   // Per particle: not found hidden when last drawn (drawn first next frame, as occluders).
   std::vector<std::uint8_t> was_visible;
-  bool has_visibility = false;  // was_visible holds a frame's result
+  bool has_visibility = false;    // was_visible holds a frame's result
+  std::size_t visible_count = 0;  // particles set in was_visible
   std::vector<std::uint32_t> point_list;
   std::vector<GpuPoint> points;
   std::vector<float> impostor_radius;  // per particle (m)
@@ -809,7 +810,13 @@ std::size_t PackingRenderer::State::submit(std::size_t begin, std::size_t end, s
     }
     mesh_triangles += triangles_of(k);
   }
-  if (budget > 0 && mesh_triangles > budget) {
+  if (budget == 1) {
+    // Impostors only (no particle has a single triangle): no order needed.
+    for (std::size_t k = 0; k < count; ++k) {
+      if (level[k] != 3) level[k] = 2;
+    }
+    mesh_triangles = 0;
+  } else if (budget > 0 && mesh_triangles > budget) {
     // Smallest first (ties: nearest first), as 64-bit keys: pixels are >= 0, so their float
     // bits order like the values.
     sort_keys.resize(count);
@@ -1092,8 +1099,12 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
     s.candidates.insert(s.candidates.end(), s.chunk_candidates[chunk].begin(),
                         s.chunk_candidates[chunk].end());
   }
-  // Front to back: lets the rasteriser's early depth test reject hidden fragments.
-  sort_front_to_back(s.candidates, s.sort_keys, s.sort_scratch, s.sorted);
+  // Front to back: lets the rasteriser's early depth test reject hidden fragments. Not for a
+  // frame of impostors only (budget 1): their fragment shader discards, which turns the early
+  // test off, so the order would buy nothing (the depth test still gives the same picture).
+  if (style.triangle_budget != 1) {
+    sort_front_to_back(s.candidates, s.sort_keys, s.sort_scratch, s.sorted);
+  }
   const std::size_t in_frustum = s.candidates.size();
   stats.particles_in_frustum = in_frustum;
   stats.frustum_sort_seconds = seconds_since(start);
@@ -1114,7 +1125,11 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
   // A thinned light frame (particle cap) skips the culling, whose read-back and test cost more
   // than drawing the few particles; it keeps the last full frame's visible set for the next
   // (culling is exact with any set; a recent one only makes it faster).
-  const bool is_thinned = style.max_particles > 0 && in_frustum > style.max_particles;
+  // Not thinned when last frame's visible set fits under the cap: culling then draws about that
+  // many, all of what shows, where a thinning of everything in view would look sparse.
+  const bool is_thinned =
+      style.max_particles > 0 && in_frustum > style.max_particles &&
+      !(f.is_culled && s.has_visibility && s.visible_count <= style.max_particles);
   f.first = in_frustum;
   if (!f.is_culled || is_thinned) {
     f.is_culled = false;
@@ -1183,6 +1198,8 @@ bool PackingRenderer::step_frame() {
     }
     s.candidates.resize(kept);
     s.has_visibility = true;
+    s.visible_count = static_cast<std::size_t>(
+        std::count(s.was_visible.begin(), s.was_visible.end(), std::uint8_t{1}));
     stats.occlusion_test_seconds = seconds_since(start);
     f.step = 3;
     return false;

@@ -358,6 +358,36 @@ TEST(Headless, OcclusionCullingSkipsHiddenParticlesAndKeepsThePicture) {
   EXPECT_EQ(differing_pixels(turned, target.read()), 0u);
 }
 
+TEST(Headless, ParticleCapAboveTheVisibleSetKeepsTheWholePicture) {
+  const Packing packing = test::grid_packing(20, 12, 20, 0.1, 4);
+  HeadlessContext context;
+  PackingRenderer renderer;
+  renderer.set_packing(packing);
+  OffscreenTarget target(320, 240);
+  const Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kIso, 320.0 / 240.0);
+  RenderStyle style;
+  target.bind();
+  renderer.draw(camera, 320, 240, style);  // learns the visible set
+  target.bind();
+  const DrawStats culled = renderer.draw(camera, 320, 240, style);
+  const Image expected = target.read();
+  ASSERT_LT(culled.particles_drawn, culled.particles_in_frustum * 9 / 10);
+  // A cap under what is in view but over what shows: culled as before, nothing thinned.
+  style.max_particles = culled.particles_drawn + 10;
+  target.bind();
+  const DrawStats capped = renderer.draw(camera, 320, 240, style);
+  EXPECT_EQ(capped.particles_drawn, culled.particles_drawn);
+  EXPECT_EQ(differing_pixels(target.read(), expected), 0u);
+  // A cap under what shows: an even thinning, so fewer drawn and a different picture.
+  style.max_particles = culled.particles_drawn / 2;
+  target.bind();
+  const DrawStats thinned = renderer.draw(camera, 320, 240, style);
+  // (a hash of the index keeps each particle with the fraction that fits: about the cap)
+  EXPECT_LE(thinned.particles_drawn, style.max_particles * 11 / 10);
+  EXPECT_GE(thinned.particles_drawn, style.max_particles * 9 / 10);
+  EXPECT_GT(differing_pixels(target.read(), expected), 0u);
+}
+
 TEST(Headless, SteppedFrameDrawsTheSamePictureWithOtherDrawingBetweenSteps) {
   const Packing packing = test::grid_packing(20, 12, 20, 0.1, 4);
   HeadlessContext context;

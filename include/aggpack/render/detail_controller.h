@@ -34,7 +34,7 @@ class DetailController {
   /// `target_seconds` (> 0): frame time to hold while moving. `full_budget`: the triangle budget
   /// of still frames (0 = no limit), which light frames never exceed. `min_particles`: fewest
   /// particles a light frame draws.
-  explicit DetailController(double target_seconds = 0.045, std::size_t full_budget = 250000,
+  explicit DetailController(double target_seconds = 0.047, std::size_t full_budget = 250000,
                             std::size_t min_particles = 5000);
 
   /// The level for the next light frame.
