@@ -459,7 +459,9 @@ struct PackingRenderer::State {
 
   // The frame begun by begin_frame(), drawn by step_frame().
   struct Frame {
-    int step = 0;  // next step: 1 first pass, 2 read-back + occlusion test, 3 rest, 0 done
+    // Next step: 1 first pass (or its nearer half), 5 the first pass's farther half, 2 read-back
+    // + occlusion test, 3 rest, 4 container outline only, 0 done.
+    int step = 0;
     int width = 1, height = 1;
     RenderStyle style;
     Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
@@ -467,6 +469,7 @@ struct PackingRenderer::State {
     bool is_orthographic = false;
     bool is_culled = false;  // occlusion culling this frame
     std::size_t first = 0;   // candidates [0, first) are drawn in the first pass
+    std::size_t split = 0;   // ... in two steps, [0, split) and [split, first)
     std::size_t used = 0;    // mesh triangles of the first pass
     DrawStats stats;
   };
@@ -1141,6 +1144,9 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
                               [&](const Candidate& c) { return s.was_visible[c.particle] != 0; }) -
         s.candidates.begin());
   }
+  // A large first pass in two steps (nearer half first, with the first claim on the triangle
+  // budget), so no step is much longer than the others.
+  f.split = f.is_culled && f.first >= 2 * kOcclusionMinParticles ? f.first / 2 : f.first;
   f.step = 1;
 }
 
@@ -1155,10 +1161,21 @@ bool PackingRenderer::step_frame() {
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_TRUE);
   const std::size_t in_frustum = stats.particles_in_frustum;
+  // The triangle budget left after `used` mesh triangles (0 = no limit; 1 when used up: the rest
+  // are points).
+  auto budget_after = [&](std::size_t used) -> std::size_t {
+    if (style.triangle_budget == 0) return 0;
+    return used < style.triangle_budget ? style.triangle_budget - used : 1;
+  };
   if (f.step == 1) {
-    // Everything (no culling), or the particles seen last frame.
-    f.used = s.submit(0, f.first, style.triangle_budget, style, f.view, f.projection, stats);
-    f.step = f.is_culled ? 2 : 4;
+    // Everything (no culling), or the particles seen last frame (or the nearer half of them).
+    f.used = s.submit(0, f.split, style.triangle_budget, style, f.view, f.projection, stats);
+    f.step = f.split < f.first ? 5 : f.is_culled ? 2 : 4;
+    return false;
+  }
+  if (f.step == 5) {
+    f.used += s.submit(f.split, f.first, budget_after(f.used), style, f.view, f.projection, stats);
+    f.step = 2;
     return false;
   }
   if (f.step == 2) {
@@ -1205,12 +1222,9 @@ bool PackingRenderer::step_frame() {
     return false;
   }
   if (f.step == 3) {
-    std::size_t rest_budget = 0;
-    if (style.triangle_budget > 0) {
-      // All of it used: the newly seen are points this frame (and first next frame).
-      rest_budget = f.used < style.triangle_budget ? style.triangle_budget - f.used : 1;
-    }
-    s.submit(f.first, s.candidates.size(), rest_budget, style, f.view, f.projection, stats);
+    // Budget used up: the newly seen are points this frame (and first next frame).
+    s.submit(f.first, s.candidates.size(), budget_after(f.used), style, f.view, f.projection,
+             stats);
   }
 
   if (style.show_container && s.line_vertex_count > 0) {

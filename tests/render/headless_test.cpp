@@ -388,6 +388,32 @@ TEST(Headless, ParticleCapAboveTheVisibleSetKeepsTheWholePicture) {
   EXPECT_GT(differing_pixels(target.read(), expected), 0u);
 }
 
+TEST(Headless, LargeFirstPassIsDrawnInTwoStepsWithTheSamePicture) {
+  const Packing packing = test::grid_packing(40, 40, 20, 0.1, 4);  // 32,000 particles
+  HeadlessContext context;
+  PackingRenderer renderer;
+  renderer.set_packing(packing);
+  OffscreenTarget target(320, 240);
+  const Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kTop, 320.0 / 240.0);
+  RenderStyle style;
+  style.triangle_budget = 100000;  // binds: the halves share it, nearer half first
+  target.bind();
+  renderer.draw(camera, 320, 240, style);  // learns the visible set (the top layers)
+  target.bind();
+  const DrawStats whole = renderer.draw(camera, 320, 240, style);
+  const Image expected = target.read();
+  ASSERT_GE(whole.particles_drawn, 8000u);  // enough to split the first pass
+  EXPECT_LE(whole.triangles, 100000u);
+  target.bind();
+  renderer.begin_frame(camera, 320, 240, style);
+  int steps = 1;
+  while (!renderer.step_frame()) ++steps;
+  EXPECT_EQ(steps, 4);
+  EXPECT_EQ(renderer.frame_stats().particles_drawn, whole.particles_drawn);
+  EXPECT_EQ(renderer.frame_stats().triangles, whole.triangles);
+  EXPECT_EQ(differing_pixels(target.read(), expected), 0u);
+}
+
 TEST(Headless, SteppedFrameDrawsTheSamePictureWithOtherDrawingBetweenSteps) {
   const Packing packing = test::grid_packing(20, 12, 20, 0.1, 4);
   HeadlessContext context;

@@ -88,8 +88,9 @@ class PackingRenderer {
   DrawStats draw(const Camera& camera, int width, int height, const RenderStyle& style);
 
   /// The same frame as draw(), in steps, so an interactive caller can keep its event loop
-  /// running while a heavy frame is drawn (at most three steps: the particles seen last frame;
-  /// the depth read-back and occlusion test; the rest). begin_frame() clears the bound
+  /// running while a heavy frame is drawn (at most four steps: the particles seen last frame, in
+  /// two halves when there are many; the depth read-back and occlusion test; the rest).
+  /// begin_frame() clears the bound
   /// framebuffer and sorts; each step_frame() call does the next step and returns true once the
   /// frame is complete. The caller may draw elsewhere between steps but must bind the same
   /// framebuffer again before each step. A new begin_frame() abandons an unfinished frame.
