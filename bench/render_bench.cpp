@@ -78,15 +78,8 @@ void run_frames(benchmark::State& state, const RenderStyle& style) {
   glFinish();
   for (auto _ : state) {
     camera.rotate_arcball(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(0.02, 0.0));
-    const DrawStats stats = s.renderer.draw(camera, width, height, style);
+    total += s.renderer.draw(camera, width, height, style);
     glFinish();
-    total.particles_drawn += stats.particles_drawn;
-    total.point_particles += stats.point_particles;
-    total.triangles += stats.triangles;
-    total.frustum_sort_seconds += stats.frustum_sort_seconds;
-    total.submit_seconds += stats.submit_seconds;
-    total.depth_readback_seconds += stats.depth_readback_seconds;
-    total.occlusion_test_seconds += stats.occlusion_test_seconds;
     frames += 1;
   }
   state.counters["drawn"] = static_cast<double>(total.particles_drawn) / frames;

@@ -448,11 +448,15 @@ void GuiApp::start_benchmark() {
 
 void GuiApp::print_benchmark(const char* label, const FrameTimes& t) const {
   const double n = std::max(1, t.frames);
+  const double pictures = std::max(1, t.scenes);
+  const DrawStats& d = t.drawn;
   std::printf(
-      "benchmark: %s: %d frames of %zu particles, on average %.0f drawn (%.0f as impostors, "
-      "%.0f mesh triangles): %.1f ms/frame (%.1f frames/s)",
-      label, t.frames, renderer_->particle_count(), t.drawn / n, t.points / n, t.triangles / n,
-      1e3 * t.wall / n, n / t.wall);
+      "benchmark: %s: %d frames of %zu particles, on average %.0f drawn per picture (%.0f as "
+      "impostors, %.0f mesh triangles): %.1f ms/frame (%.1f frames/s)",
+      label, t.frames, renderer_->particle_count(),
+      static_cast<double>(d.particles_drawn) / pictures,
+      static_cast<double>(d.point_particles) / pictures,
+      static_cast<double>(d.triangles) / pictures, 1e3 * t.wall / n, n / t.wall);
   if (t.settled_frames > 0) {
     std::printf("; second half %.1f ms/frame (%.1f frames/s)",
                 1e3 * t.settled_wall / t.settled_frames, t.settled_frames / t.settled_wall);
@@ -462,9 +466,9 @@ void GuiApp::print_benchmark(const char* label, const FrameTimes& t) const {
       "\n  ms/frame: scene %.1f (frustum+sort %.1f, submit %.1f, depth read-back %.1f, occlusion "
       "test %.1f, rest = waiting for the rasteriser), blit %.1f, panel build %.1f, panel draw "
       "%.1f, swap %.1f\n",
-      1e3 * t.scene / n, 1e3 * t.frustum_sort / n, 1e3 * t.submit / n, 1e3 * t.depth_readback / n,
-      1e3 * t.occlusion_test / n, 1e3 * t.blit / n, 1e3 * t.panel / n, 1e3 * t.ui_draw / n,
-      1e3 * t.swap / n);
+      1e3 * t.scene / n, 1e3 * d.frustum_sort_seconds / n, 1e3 * d.submit_seconds / n,
+      1e3 * d.depth_readback_seconds / n, 1e3 * d.occlusion_test_seconds / n, 1e3 * t.blit / n,
+      1e3 * t.panel / n, 1e3 * t.ui_draw / n, 1e3 * t.swap / n);
   std::fflush(stdout);
 }
 
@@ -485,9 +489,8 @@ void GuiApp::note_present_times(double ui_draw_seconds, double swap_seconds) {
   }
   ++t.frames;
   if (!is_moving) {
-    // Still: count finished full-detail pictures (each drawn over one or more frames).
+    // Still: the phase counts finished full-detail pictures (each over one or more frames).
     if (!is_picture_new_) return;
-    ++t.pictures;
     t.picture_latency += last_picture_latency_;
   }
   if (--benchmark_left_ > 0) return;
@@ -506,8 +509,8 @@ void GuiApp::note_present_times(double ui_draw_seconds, double swap_seconds) {
     std::printf(
         "  full-detail pictures: %d, each finished %.1f ms after it was begun, over %.1f "
         "frames on average\n",
-        t.pictures, 1e3 * t.picture_latency / std::max(1, t.pictures),
-        static_cast<double>(t.frames) / std::max(1, t.pictures));
+        t.scenes, 1e3 * t.picture_latency / std::max(1, t.scenes),
+        static_cast<double>(t.frames) / std::max(1, t.scenes));
     std::fflush(stdout);
     benchmark_phase_ = BenchmarkPhase::kOff;
   }
@@ -554,13 +557,11 @@ void GuiApp::frame() {
     t.scene += blit_start - scene_start;
     t.blit += panel_start - blit_start;
     t.panel += glfwGetTime() - panel_start;
-    t.frustum_sort += last_stats_.frustum_sort_seconds;
-    t.submit += last_stats_.submit_seconds;
-    t.depth_readback += last_stats_.depth_readback_seconds;
-    t.occlusion_test += last_stats_.occlusion_test_seconds;
-    t.drawn += last_stats_.particles_drawn;
-    t.points += last_stats_.point_particles;
-    t.triangles += last_stats_.triangles;
+    // Once per finished picture: a full-detail one keeps its stats over the frames it takes.
+    if (is_picture_new_) {
+      t.drawn += last_stats_;
+      ++t.scenes;
+    }
   }
 
   if (frames_since_job_ >= 0) ++frames_since_job_;

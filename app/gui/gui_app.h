@@ -169,13 +169,12 @@ class GuiApp {
   enum class BenchmarkPhase { kOff, kMoving, kStill };
   struct FrameTimes {  // sums over a phase's frames (s)
     int frames = 0;
-    double wall = 0.0, scene = 0.0, frustum_sort = 0.0, submit = 0.0, depth_readback = 0.0,
-           occlusion_test = 0.0, blit = 0.0, panel = 0.0, ui_draw = 0.0, swap = 0.0;
-    std::size_t drawn = 0, points = 0, triangles = 0;
+    double wall = 0.0, scene = 0.0, blit = 0.0, panel = 0.0, ui_draw = 0.0, swap = 0.0;
+    DrawStats drawn;            // summed over the pictures finished (a stepped one counts once)
+    int scenes = 0;             // pictures finished (light frames and full-detail pictures)
     double settled_wall = 0.0;  // over the second half of the frames
     int settled_frames = 0;
     double longest = 0.0;          // longest frame
-    int pictures = 0;              // still: full-detail pictures finished
     double picture_latency = 0.0;  // still: from beginning each picture to finishing it
   };
   void start_benchmark();

@@ -1204,8 +1204,11 @@ bool PackingRenderer::step_frame() {
       }
     });
     std::fill(s.was_visible.begin(), s.was_visible.end(), std::uint8_t{0});
+    s.visible_count = 0;
     for (std::size_t c = 0; c < f.first; ++c) {
-      if (s.is_hidden_flag[c] == 0) s.was_visible[s.candidates[c].particle] = 1;
+      if (s.is_hidden_flag[c] != 0) continue;
+      s.was_visible[s.candidates[c].particle] = 1;
+      ++s.visible_count;
     }
     std::size_t kept = f.first;
     for (std::size_t c = f.first; c < in_frustum; ++c) {
@@ -1213,10 +1216,9 @@ bool PackingRenderer::step_frame() {
       s.was_visible[s.candidates[c].particle] = 1;
       s.candidates[kept++] = s.candidates[c];
     }
+    s.visible_count += kept - f.first;
     s.candidates.resize(kept);
     s.has_visibility = true;
-    s.visible_count = static_cast<std::size_t>(
-        std::count(s.was_visible.begin(), s.was_visible.end(), std::uint8_t{1}));
     stats.occlusion_test_seconds = seconds_since(start);
     f.step = 3;
     return false;

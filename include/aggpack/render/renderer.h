@@ -65,6 +65,21 @@ struct DrawStats {
   double submit_seconds = 0.0;          ///< draw lists, uploads and draw calls
   double depth_readback_seconds = 0.0;  ///< glReadPixels of depth (waits) and the pyramid
   double occlusion_test_seconds = 0.0;  ///< testing the other particles against the pyramid
+
+  /// Adds another frame's counts and times (for sums over frames).
+  DrawStats& operator+=(const DrawStats& other) {
+    particles_in_frustum += other.particles_in_frustum;
+    particles_drawn += other.particles_drawn;
+    coarse_particles += other.coarse_particles;
+    point_particles += other.point_particles;
+    triangles += other.triangles;
+    draw_calls += other.draw_calls;
+    frustum_sort_seconds += other.frustum_sort_seconds;
+    submit_seconds += other.submit_seconds;
+    depth_readback_seconds += other.depth_readback_seconds;
+    occlusion_test_seconds += other.occlusion_test_seconds;
+    return *this;
+  }
 };
 
 /// Draws one packing with OpenGL 3.3 core. Construct, use and destroy it only while the same
