@@ -51,6 +51,24 @@ Eigen::Vector2d project(const Camera& camera, int width, int height, const Vec3&
                          (1.0 - clip.y() / clip.w()) * 0.5 * height);
 }
 
+// A packing uploaded to a renderer that draws into a 320 x 240 target (no multisampling), as the
+// culling and stepped-frame tests use it.
+struct CullingScene {
+  HeadlessContext context;  // first: the members below need its current context
+  PackingRenderer renderer;
+  OffscreenTarget target{320, 240};
+  Camera camera;
+  explicit CullingScene(const Packing& packing, ViewPreset view = ViewPreset::kIso) {
+    renderer.set_packing(packing);
+    camera = Camera::framing(renderer.scene_bounds(), view, 320.0 / 240.0);
+  }
+  // Binds the target and draws the whole frame into it.
+  DrawStats draw(const RenderStyle& style) {
+    target.bind();
+    return renderer.draw(camera, 320, 240, style);
+  }
+};
+
 RenderImageOptions small_options() {
   RenderImageOptions options;
   options.width = 320;
@@ -322,12 +340,10 @@ TEST(Headless, TriangleBudgetTurnsTheSmallestParticlesIntoPoints) {
 TEST(Headless, OcclusionCullingSkipsHiddenParticlesAndKeepsThePicture) {
   // 4,800 particles in a lattice block: from the iso view the inner ones hide behind the outer
   // layers (not all: there are lines of sight along the lattice gaps).
-  const Packing packing = test::grid_packing(20, 12, 20, 0.1, 4);
-  HeadlessContext context;
-  PackingRenderer renderer;
-  renderer.set_packing(packing);
-  OffscreenTarget target(320, 240);
-  Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kIso, 320.0 / 240.0);
+  CullingScene scene(test::grid_packing(20, 12, 20, 0.1, 4));
+  PackingRenderer& renderer = scene.renderer;
+  OffscreenTarget& target = scene.target;
+  Camera& camera = scene.camera;
   RenderStyle style;
   style.is_occlusion_culled = false;
   target.bind();
@@ -359,67 +375,50 @@ TEST(Headless, OcclusionCullingSkipsHiddenParticlesAndKeepsThePicture) {
 }
 
 TEST(Headless, ParticleCapAboveTheVisibleSetKeepsTheWholePicture) {
-  const Packing packing = test::grid_packing(20, 12, 20, 0.1, 4);
-  HeadlessContext context;
-  PackingRenderer renderer;
-  renderer.set_packing(packing);
-  OffscreenTarget target(320, 240);
-  const Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kIso, 320.0 / 240.0);
+  CullingScene scene(test::grid_packing(20, 12, 20, 0.1, 4));
   RenderStyle style;
-  target.bind();
-  renderer.draw(camera, 320, 240, style);  // learns the visible set
-  target.bind();
-  const DrawStats culled = renderer.draw(camera, 320, 240, style);
-  const Image expected = target.read();
+  scene.draw(style);  // learns the visible set
+  const DrawStats culled = scene.draw(style);
+  const Image expected = scene.target.read();
   ASSERT_LT(culled.particles_drawn, culled.particles_in_frustum * 9 / 10);
   // A cap under what is in view but over what shows: culled as before, nothing thinned.
   style.max_particles = culled.particles_drawn + 10;
-  target.bind();
-  const DrawStats capped = renderer.draw(camera, 320, 240, style);
+  const DrawStats capped = scene.draw(style);
   EXPECT_EQ(capped.particles_drawn, culled.particles_drawn);
-  EXPECT_EQ(differing_pixels(target.read(), expected), 0u);
+  EXPECT_EQ(differing_pixels(scene.target.read(), expected), 0u);
   // A cap under what shows: an even thinning, so fewer drawn and a different picture.
   style.max_particles = culled.particles_drawn / 2;
-  target.bind();
-  const DrawStats thinned = renderer.draw(camera, 320, 240, style);
+  const DrawStats thinned = scene.draw(style);
   // (a hash of the index keeps each particle with the fraction that fits: about the cap)
   EXPECT_LE(thinned.particles_drawn, style.max_particles * 11 / 10);
   EXPECT_GE(thinned.particles_drawn, style.max_particles * 9 / 10);
-  EXPECT_GT(differing_pixels(target.read(), expected), 0u);
+  EXPECT_GT(differing_pixels(scene.target.read(), expected), 0u);
 }
 
 TEST(Headless, LargeFirstPassIsDrawnInTwoStepsWithTheSamePicture) {
-  const Packing packing = test::grid_packing(40, 40, 20, 0.1, 4);  // 32,000 particles
-  HeadlessContext context;
-  PackingRenderer renderer;
-  renderer.set_packing(packing);
-  OffscreenTarget target(320, 240);
-  const Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kTop, 320.0 / 240.0);
+  CullingScene scene(test::grid_packing(40, 40, 20, 0.1, 4), ViewPreset::kTop);  // 32,000
   RenderStyle style;
   style.triangle_budget = 100000;  // binds: the halves share it, nearer half first
-  target.bind();
-  renderer.draw(camera, 320, 240, style);  // learns the visible set (the top layers)
-  target.bind();
-  const DrawStats whole = renderer.draw(camera, 320, 240, style);
-  const Image expected = target.read();
+  scene.draw(style);               // learns the visible set (the top layers)
+  const DrawStats whole = scene.draw(style);
+  const Image expected = scene.target.read();
   ASSERT_GE(whole.particles_drawn, 8000u);  // enough to split the first pass
   EXPECT_LE(whole.triangles, 100000u);
-  target.bind();
-  renderer.begin_frame(camera, 320, 240, style);
+  scene.target.bind();
+  scene.renderer.begin_frame(scene.camera, 320, 240, style);
   int steps = 1;
-  while (!renderer.step_frame()) ++steps;
+  while (!scene.renderer.step_frame()) ++steps;
   EXPECT_EQ(steps, 4);
-  EXPECT_EQ(renderer.frame_stats().particles_drawn, whole.particles_drawn);
-  EXPECT_EQ(renderer.frame_stats().triangles, whole.triangles);
-  EXPECT_EQ(differing_pixels(target.read(), expected), 0u);
+  EXPECT_EQ(scene.renderer.frame_stats().particles_drawn, whole.particles_drawn);
+  EXPECT_EQ(scene.renderer.frame_stats().triangles, whole.triangles);
+  EXPECT_EQ(differing_pixels(scene.target.read(), expected), 0u);
 }
 
 TEST(Headless, SteppedFrameDrawsTheSamePictureWithOtherDrawingBetweenSteps) {
-  const Packing packing = test::grid_packing(20, 12, 20, 0.1, 4);
-  HeadlessContext context;
-  PackingRenderer renderer;
-  renderer.set_packing(packing);
-  OffscreenTarget target(320, 240);
+  CullingScene scene(test::grid_packing(20, 12, 20, 0.1, 4));
+  PackingRenderer& renderer = scene.renderer;
+  OffscreenTarget& target = scene.target;
+  Camera& camera = scene.camera;
   // Another renderer drawing elsewhere between the steps, with other GL state.
   OffscreenTarget other(64, 64);
   PackingRenderer other_renderer;
@@ -428,7 +427,6 @@ TEST(Headless, SteppedFrameDrawsTheSamePictureWithOtherDrawingBetweenSteps) {
   RenderStyle other_style;
   other_style.is_wireframe = true;
   other_style.color = ColorMode::kSize;
-  Camera camera = Camera::framing(renderer.scene_bounds(), ViewPreset::kIso, 320.0 / 240.0);
   const RenderStyle style;  // occlusion culling on: three steps once the visible set is known
   target.bind();
   renderer.draw(camera, 320, 240, style);
