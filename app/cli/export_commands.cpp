@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -29,6 +30,46 @@ struct ExportFlags {
   std::string inp_layout = "sets";
   int threads = 0;
 };
+
+// At most this many shape numbers and particle names are listed; the count is always complete.
+constexpr std::size_t kListedFallbacks = 20;
+
+// "tetgen: 4 of 1050 shapes fell back to the centroid fan (shapes 324, ...; particles P325, ...;
+// TetGen died of signal 6 (Aborted): 4)".
+std::string tetgen_report(const ExportSummary& summary) {
+  const auto& fallbacks = summary.tetgen_fallbacks;
+  if (fallbacks.empty()) {
+    return fmt::format("tetgen: all {} shapes meshed by TetGen, none fell back to the centroid fan",
+                       summary.tetgen_shapes);
+  }
+  std::string shapes;
+  std::string particles;
+  std::size_t particle_count = 0;
+  std::map<std::string, std::size_t> failures;
+  for (std::size_t i = 0; i < fallbacks.size(); ++i) {
+    ++failures[fallbacks[i].failure];
+    if (i < kListedFallbacks) shapes += fmt::format("{}{}", i == 0 ? "" : ", ", fallbacks[i].shape);
+    for (const std::uint64_t number : fallbacks[i].particles) {
+      if (particle_count++ < kListedFallbacks) {
+        particles += fmt::format("{}P{}", particles.empty() ? "" : ", ", number);
+      }
+    }
+  }
+  if (fallbacks.size() > kListedFallbacks) {
+    shapes += fmt::format(" and {} more", fallbacks.size() - kListedFallbacks);
+  }
+  if (particle_count > kListedFallbacks) {
+    particles += fmt::format(" and {} more", particle_count - kListedFallbacks);
+  }
+  std::string reasons;
+  for (const auto& [failure, count] : failures) {
+    reasons += fmt::format("; {}: {}", failure, count);
+  }
+  return fmt::format(
+      "tetgen: {} of {} shapes fell back to the centroid fan (shape{} {}; {} particle{} {}{})",
+      fallbacks.size(), summary.tetgen_shapes, fallbacks.size() == 1 ? "" : "s", shapes,
+      particle_count, particle_count == 1 ? "" : "s", particles, reasons);
+}
 
 }  // namespace
 
@@ -135,6 +176,7 @@ void register_export(CLI::App& app) {
     fmt::print("wrote {} ({}): {} particles, {} nodes, {} elements, {} file{} in {:.2f} s\n",
                flags->output, format_name(summary.format), summary.particles, summary.nodes,
                summary.elements, summary.files, summary.files == 1 ? "" : "s", seconds);
+    if (summary.tetgen_shapes > 0) fmt::print("{}\n", tetgen_report(summary));
   });
 }
 
