@@ -122,7 +122,7 @@ TEST(RockDatExport, FanVolumesMatchEveryParticle) {
 TEST(RockDatExport, TetGenVolumesMatchEveryParticle) {
   const Packing packing = test::grid_packing(2, 2, 1, 22);
   ScratchFolder folder;
-  const TetOptions tetgen{.method = TetMethod::kTetGen, .max_volume = 2e-5};
+  const TetOptions tetgen{.method = TetMethod::kTetGen, .max_volume = 1e-5};
   const ExportSummary summary = write(packing, folder.file("rock.dat"), {.tetrahedra = tetgen});
   const RockDat dat = parse_rock_dat(folder.file("rock.dat"));
   EXPECT_EQ(summary.elements, dat.tetrahedra.size());
