@@ -115,6 +115,11 @@ void register_export(CLI::App& app) {
       ->add_option("--radius-edge", defaults.tetrahedra.radius_edge_ratio,
                    "tetgen: radius-edge ratio bound, [1.2, 10]")
       ->capture_default_str();
+  command
+      ->add_option("--tet-time-limit", defaults.tetrahedra.time_limit,
+                   "tetgen: seconds TetGen may spend on one shape before it is stopped and the "
+                   "shape is cut as the centroid fan instead, [0.001, 604800]")
+      ->capture_default_str();
   command->add_flag("--split-surface", flags->is_surface_split,
                     "tetgen: let TetGen add nodes on the surface too (bounds met everywhere; "
                     "surface then within ~1e-5 of the particle)");

@@ -121,6 +121,22 @@ TEST(TetGenIsolated, SingleShapeFailureIsALimitExceededError) {
                InvalidInput);
 }
 
+TEST(TetGenIsolated, ShapeTetGenNeverFinishesIsStoppedAtTheTimeLimit) {
+  const ConvexPolyhedron hang = test::read_poly(std::string(AGGPACK_SOURCE_DIR) +
+                                                "/tests/mesh/fixtures/tetgen-hang/s06534.poly");
+  const ConvexPolyhedron good = generate_particle({.alpha = 0.5, .seed = 3}, 0).body;
+  const std::vector<const ConvexPolyhedron*> bodies = {&hang, &good};
+  // One second instead of the default 20 s keeps the test short; TetGen takes milliseconds on
+  // `good` and never finishes `hang` (fixture README).
+  const std::vector<TetGenOutcome> outcomes =
+      tetgen_meshes(bodies, {.method = TetMethod::kTetGen, .time_limit = 1.0});
+  EXPECT_FALSE(outcomes[0].is_meshed);
+  EXPECT_EQ(outcomes[0].failure, "TetGen timed out after 1 s");
+  ASSERT_TRUE(outcomes[1].is_meshed) << outcomes[1].failure;
+  expect_valid(outcomes[1].mesh, good);
+  expect_valid(centroid_fan(hang), hang);
+}
+
 // Smallest dihedral angle of a tetrahedron (degrees): 180 minus the angle between the outward
 // normals of the two faces at each edge.
 double min_dihedral_degrees(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
