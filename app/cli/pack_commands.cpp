@@ -198,13 +198,15 @@ void run_info(const std::string& path, bool is_json, int bins, bool has_descript
   StatisticsOptions options{.bins = bins, .has_descriptors = has_descriptors};
   // The stored configuration names the target grading; compare against it when it parses.
   bool has_config = false;
+  std::string config_problem;
   if (!packing.provenance.config_toml.empty()) {
     try {
-      options.target =
-          parse_pack_config(packing.provenance.config_toml, "stored config").target_grading();
+      options.target = parse_pack_config(packing.provenance.config_toml, "/provenance/config_toml")
+                           .target_grading();
       has_config = true;
-    } catch (const Error&) {
-      has_config = false;  // written by another version or tool: statistics without the target
+    } catch (const Error& error) {
+      // Written by another version or tool: statistics without the target.
+      config_problem = error.what();
     }
   }
   const PackingStatistics statistics = compute_statistics(packing, options);
@@ -223,7 +225,9 @@ void run_info(const std::string& path, bool is_json, int bins, bool has_descript
   fmt::print("packer          {}, seed {}\n", p.packer.empty() ? "(unknown)" : p.packer, p.seed);
   fmt::print("container       {}\n", describe_container(packing.container));
   if (!has_config && !p.config_toml.empty()) {
-    fmt::print("note            stored configuration not readable; no target grading\n");
+    fmt::print(
+        "note            stored configuration not readable ({}); no target grading\n",
+        config_problem.size() <= 200 ? config_problem : config_problem.substr(0, 200) + "...");
   }
   fmt::print("{}", format_statistics(statistics));
 }
