@@ -74,7 +74,7 @@ void check_shape(const ConvexPolyhedron& shape, std::size_t s, std::uint64_t ver
   largest = 0.0;
   for (std::size_t v = 0; v < vertices.size(); ++v) {
     const double size = vertices[v].cwiseAbs().maxCoeff();
-    if (!(size <= Limits::kMaxLength)) {
+    if (!vertices[v].allFinite() || !(size <= Limits::kMaxLength)) {
       fail(source, vertex_field,
            "vertex " + std::to_string(v) + " has a coordinate of magnitude " + format_value(size) +
                ", outside " + range_text(-Limits::kMaxLength, Limits::kMaxLength) + " m");
@@ -197,7 +197,7 @@ void check_particles(const Packing& packing, const std::vector<double>& largest,
            "no such shape (the file has " + std::to_string(shape_count) + ")");
     }
     const Vec3& x = p.pose.position;
-    if (!(x.cwiseAbs().maxCoeff() <= Limits::kMaxLength)) {
+    if (!x.allFinite() || !(x.cwiseAbs().maxCoeff() <= Limits::kMaxLength)) {
       fail(source,
            "/particles/position" + index + " = (" + format_value(x.x()) + ", " +
                format_value(x.y()) + ", " + format_value(x.z()) + ")",

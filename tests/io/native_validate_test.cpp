@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -141,6 +142,13 @@ TEST(ValidatePacking, RejectsValuesOutsideTheDocumentedRanges) {
             "1e-06)");
   EXPECT_EQ(with([](Packing& p) { p.particles[0].pose.position.y() = -1.5e6; }),
             "x.h5: /particles/position[0] = (1, -1500000, 1): outside [-1000000, 1000000] m");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(with([&](Packing& p) { p.particles[0].pose.position.x() = nan; }),
+            "x.h5: /particles/position[0] = (nan, 1, 1): outside [-1000000, 1000000] m");
+  EXPECT_EQ(with([&](Packing& p) { p.particles[0].scale = nan; }),
+            "x.h5: /particles/scale[0] = nan: outside [1e-09, 1000000]");
+  EXPECT_EQ(with([&](Packing& p) { p.container.depth = nan; }),
+            "x.h5: /container/depth = nan: outside [1e-09, 1000000] m (a box needs it > 0)");
   EXPECT_EQ(with([](Packing& p) { p.particles[0].control_radius = -1; }),
             "x.h5: /particles/control_radius[0] = -1: outside [0, 1000000] m");
   EXPECT_EQ(with([](Packing& p) { p.particles[0].shape = 1; }),
