@@ -197,3 +197,90 @@ TEST_F(NativeBadInputTest, UnreadableStoredConfigIsOneNoteLine) {
 
 }  // namespace
 }  // namespace aggpack
+
+namespace aggpack {
+namespace {
+
+// Edits of base_s.h5 made with h5py (Debian python3-h5py, a test dependency; checksums valid).
+class NativeH5pyEditTest : public NativeBadInputTest {
+ protected:
+  // Copies base_s.h5 to `name` in the test folder and runs `edit` on it (h5py file object `f`).
+  std::string edited(const std::string& name, const std::string& edit) const {
+    const fs::path path = base_ / name;
+    fs::copy_file(kFixtures + "base_s.h5", path);
+    fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write);
+    const std::string script = "import h5py, numpy as np\nf = h5py.File('" + path.string() +
+                               "', 'r+')\n" + edit + "\nf.close()\n";
+    std::ofstream(base_ / "edit.py") << script;
+    const std::string command = "/usr/bin/python3 '" + (base_ / "edit.py").string() + "'";
+    EXPECT_EQ(std::system(command.c_str()), 0) << "h5py edit failed: " << edit;
+    return path.string();
+  }
+
+  static std::string message_of(const std::string& path) {
+    try {
+      read_packing(path);
+    } catch (const FormatError& error) {
+      return error.what();
+    }
+    return "";
+  }
+};
+
+// A compressed dataset may declare more than the file holds, but at most 1032 times what it
+// stores (deflate's limit); a forged extent with one chunk stored is rejected before allocating.
+TEST_F(NativeH5pyEditTest, CompressedDatasetsAreBoundedByTheDeflateRatio) {
+  const std::string bomb =
+      edited("bomb.h5",
+             "v = f['shapes/vertices'][...]; del f['shapes/vertices']\n"
+             "d = f['shapes'].create_dataset('vertices', shape=(2**24, 3), dtype='<f8', "
+             "chunks=(65536, 3), compression='gzip', fletcher32=True)\n"
+             "d[:v.shape[0]] = v");
+  const std::string message = message_of(bomb);
+  EXPECT_EQ(message.rfind(bomb + ": /shapes/vertices: declares 16777216 x 3 float64 values "
+                                 "(402653184 bytes) but ",
+                          0),
+            0U)
+      << message;
+  EXPECT_NE(message.find(" bytes are stored compressed in a "), std::string::npos) << message;
+  // The same data compressed in full is read.
+  const std::string fine =
+      edited("fine.h5",
+             "v = f['shapes/vertices'][...]; del f['shapes/vertices']\n"
+             "f['shapes'].create_dataset('vertices', data=v, chunks=True, compression='gzip', "
+             "compression_opts=9)");
+  EXPECT_EQ(message_of(fine), "");
+  EXPECT_EQ(read_packing(fine).shapes.size(), 12U);
+}
+
+TEST_F(NativeH5pyEditTest, ElementTypesAreExact) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"s = f['particles/shape'][...].astype('u2'); "
+       "del f['particles/shape']; f['particles'].create_dataset('shape', data=s)",
+       "/particles/shape: stored as uint16, expected uint32"},
+      {"s = f['particles/scale'][...].astype('f4'); del f['particles/scale']; "
+       "f['particles'].create_dataset('scale', data=s)",
+       "/particles/scale: stored as float32, expected float64"},
+      {"del f['container'].attrs['width']; f['container'].attrs['width'] = 1",
+       "/container/width: stored as int64, expected float64"},
+      {"del f['provenance'].attrs['seed']; f['provenance'].attrs['seed'] = np.int64(-3)",
+       "/provenance/seed = -3: negative, expected >= 0"},
+      {"f.attrs['format_version'] = np.int64(1)", ""},  // h5py's default int: accepted
+      {"f.attrs['format_name'] = 'x' * 500 + '\\n'",
+       "/format_name = \"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\"...: not an "
+       "aggpack packing"},
+  };
+  int k = 0;
+  for (const auto& [edit, expected] : cases) {
+    const std::string path = edited("t" + std::to_string(k++) + ".h5", edit);
+    const std::string message = message_of(path);
+    if (std::string(expected).empty()) {
+      EXPECT_EQ(message, "") << edit;
+    } else {
+      EXPECT_EQ(message.rfind(path + ": " + expected, 0), 0U) << message;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace aggpack
