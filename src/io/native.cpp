@@ -11,11 +11,9 @@
 #include <limits>
 #include <new>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "aggpack/core/error.h"
-#include "aggpack/core/text.h"
 #include "hdf5_util.h"
 
 namespace aggpack {
