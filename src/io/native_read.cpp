@@ -276,11 +276,17 @@ class Reader {
   }
 
  private:
-  // True if a filter other than the Fletcher-32 checksum and the byte shuffle (which do not
-  // change the amount of data) is applied, i.e. the stored bytes may be compressed.
+  // Rejects data stored in other files; true if a filter other than the Fletcher-32 checksum and
+  // the byte shuffle (which do not change the amount of data) is applied, i.e. the stored bytes may
+  // be compressed.
   bool has_compression(hid_t dataset, const std::string& field) const {
     Handle properties(H5Dget_create_plist(dataset), H5Pclose);
     if (!properties.is_valid()) fail_hdf5(field, "cannot read the dataset's properties");
+    // Data in other files (external raw files, virtual datasets) is not part of a packing file.
+    if (H5Pget_layout(properties.get()) == H5D_VIRTUAL ||
+        H5Pget_external_count(properties.get()) != 0) {
+      fail(field, "stored outside the file (external or virtual dataset)");
+    }
     const int filters = H5Pget_nfilters(properties.get());
     for (int k = 0; k < filters; ++k) {
       unsigned flags = 0;

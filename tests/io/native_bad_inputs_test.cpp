@@ -270,8 +270,17 @@ TEST_F(NativeH5pyEditTest, ElementTypesAreExact) {
        "/format_name = \"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\"...: not an "
        "aggpack packing"},
   };
+  const std::string external = (base_ / "raw.bin").string();
+  const std::string external_edit =
+      "v = f['shapes/vertices'][...]; del f['shapes/vertices']; v.tofile('" + external +
+      "')\nf['shapes'].create_dataset('vertices', shape=v.shape, dtype='<f8', external=[('" +
+      external + "', 0, v.nbytes)])";
+  const std::string external_message =
+      "/shapes/vertices: stored outside the file (external or virtual dataset)";
+  std::vector<std::pair<const char*, const char*>> all(std::begin(cases), std::end(cases));
+  all.emplace_back(external_edit.c_str(), external_message.c_str());
   int k = 0;
-  for (const auto& [edit, expected] : cases) {
+  for (const auto& [edit, expected] : all) {
     const std::string path = edited("t" + std::to_string(k++) + ".h5", edit);
     const std::string message = message_of(path);
     if (std::string(expected).empty()) {
