@@ -135,6 +135,14 @@ void register_export(CLI::App& app) {
     fmt::print("wrote {} ({}): {} particles, {} nodes, {} elements, {} file{} in {:.2f} s\n",
                flags->output, format_name(summary.format), summary.particles, summary.nodes,
                summary.elements, summary.files, summary.files == 1 ? "" : "s", seconds);
+    const TetQuality& quality = summary.quality;
+    if (quality.tetrahedra > 0) {
+      fmt::print(
+          "tetrahedron quality: min dihedral angle {:.2f} deg, max aspect ratio {:.3g} "
+          "(circumradius / 3 inradius, 1 = regular), {} of {} below {} deg\n",
+          quality.min_dihedral_degrees, quality.max_aspect_ratio, quality.below_10_degrees,
+          quality.tetrahedra, kPoorDihedralDegrees);
+    }
   });
 }
 
