@@ -4,8 +4,10 @@
 // run (exit 0, "Job finished", no *ERROR, no *WARNING), every node's displacement and the total
 // mass ccx computes (*EL PRINT ... TOTALS=ONLY, EMAS).
 
+#include <algorithm>
 #include <cctype>
 #include <map>
+#include <numeric>
 #include <regex>
 #include <string>
 
@@ -62,9 +64,9 @@ struct CcxGravity {
 };
 
 /// Runs ccx on `model` (an exported flat .inp in `folder`) with gravity (9.81 m/s^2 along -z)
-/// and, per particle, the nodes in the lowest 30% of its height fixed (so no particle can move
-/// as a rigid body). Expects a clean run, every node's displacement listed, downward on average
-/// and small; returns ccx's total mass.
+/// and, per particle, the nodes in the lowest 30% of its height fixed, at least three that span a
+/// triangle (so no particle can move as a rigid body). Expects a clean run, every node's
+/// displacement listed, downward on average and small; returns ccx's total mass.
 inline void run_ccx_gravity(const ScratchFolder& folder, const std::string& model,
                             std::size_t particles, CcxGravity* result = nullptr) {
   const FlatInp inp = parse_flat(folder.file(model));
@@ -72,18 +74,32 @@ inline void run_ccx_gravity(const ScratchFolder& folder, const std::string& mode
   std::string base;
   std::size_t fixed = 0;
   for (const auto& [name, range] : inp.node_sets) {
-    double low = 1e300;
-    double high = -1e300;
-    for (auto id = range.first; id <= range.second; ++id) {
-      low = std::min(low, inp.nodes.at(id).z());
-      high = std::max(high, inp.nodes.at(id).z());
-    }
-    for (auto id = range.first; id <= range.second; ++id) {
-      if (inp.nodes.at(id).z() <= low + 0.3 * (high - low)) {
-        base += std::to_string(id) + ",\n";
-        ++fixed;
+    std::vector<std::uint64_t> ids(range.second - range.first + 1);
+    std::iota(ids.begin(), ids.end(), range.first);
+    std::sort(ids.begin(), ids.end(), [&](std::uint64_t a, std::uint64_t b) {
+      return inp.nodes.at(a).z() < inp.nodes.at(b).z();
+    });
+    const Vec3& lowest = inp.nodes.at(ids.front());
+    const double height = inp.nodes.at(ids.back()).z() - lowest.z();
+    // The nodes in the lowest 30% of the particle's height, and at least enough of its lowest
+    // nodes to span a triangle (three non-collinear fixed nodes hold a body in place).
+    std::size_t count = 0;
+    double far = 0;
+    Vec3 axis = Vec3::Zero();
+    double spread = 0;
+    for (const std::uint64_t id : ids) {
+      const Vec3 offset = inp.nodes.at(id) - lowest;
+      const bool is_low = offset.z() <= 0.3 * height;
+      if (!is_low && count >= 3 && spread > 1e-3 * height * height) break;
+      base += std::to_string(id) + ",\n";
+      ++count;
+      if (offset.norm() > far) {
+        far = offset.norm();
+        axis = offset / far;
       }
+      spread = std::max(spread, axis.cross(offset).norm() * far);
     }
+    fixed += count;
   }
   ASSERT_GE(fixed, 3 * particles);
   std::ofstream(folder.file("job.inp"))
