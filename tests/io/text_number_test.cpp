@@ -11,6 +11,7 @@
 #include <regex>
 
 #include "aggpack/core/error.h"
+#include "aggpack/io/export.h"
 #include "export_fixture.h"
 
 namespace aggpack {
@@ -98,6 +99,49 @@ TEST(TextNumber, CalculixReadsTwentyCharactersAndNoMore) {
   EXPECT_EQ(passed.exit_code, 0) << passed.output;
   EXPECT_EQ(passed.output.find("*ERROR"), std::string::npos) << passed.output;
   EXPECT_NE(passed.output.find("Job finished"), std::string::npos) << passed.output;
+}
+
+// rock.dat and the APDL macro (the paper's rock.dat -> ANSYS path) keep every number within 20
+// characters and every APDL command line within ANSYS's 640; LS-DYNA's free-format material line
+// keeps each field within its 10-column card width. The packing is shifted to negative
+// coordinates and scaled so that every coordinate is tiny (~1e-5, up to 23 characters in the
+// shortest form).
+TEST(TextNumber, FiniteElementTextFormatsKeepTheirFieldWidths) {
+  Packing packing = test::grid_packing(3, 2, 1, 38);
+  for (auto& particle : packing.particles) particle.pose.position -= Vec3(0.4, 0.3, 0.15);
+  const ExportOptions options{.scale = 1e-4,
+                              .material = {.density = 2650.1234567890123,
+                                           .youngs_modulus = 6.1234567890123456e10,
+                                           .poisson_ratio = -0.012345678901234567}};
+  test::ScratchFolder folder;
+  write(packing, folder.file("rock.dat"), options);
+  write(packing, folder.file("model.mac"), options);
+  write(packing, folder.file("model.k"), options);
+  for (const std::string name : {"rock.dat", "model.mac"}) {
+    std::istringstream in(test::read_text(folder.file(name)));
+    std::string line;
+    std::size_t numbers = 0;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '!' || line[0] == '/') continue;
+      EXPECT_LE(line.size(), 640U) << name << ": " << line;
+      for (const std::string& field : test::split(line, ',')) {
+        const std::string value = test::trim(field);
+        EXPECT_LE(value.size(), 20U) << name << ": '" << value << "' in " << line;
+        numbers += value.find("e-") != std::string::npos ? 1 : 0;
+      }
+    }
+    EXPECT_GT(numbers, 300U) << name;  // the tiny coordinates were there
+  }
+  const std::string k = test::read_text(folder.file("model.k"));
+  const auto material = k.find("\n1,");
+  ASSERT_NE(material, std::string::npos);
+  const std::string line = k.substr(material + 1, k.find('\n', material + 1) - material - 1);
+  const auto fields = test::split(line, ',');
+  ASSERT_EQ(fields.size(), 4U) << line;
+  for (const std::string& field : fields) EXPECT_LE(field.size(), 10U) << line;
+  EXPECT_NEAR(std::stod(fields[1]), 2650.1234567890123, 1e-4);
+  EXPECT_NEAR(std::stod(fields[2]), 6.1234567890123456e10, 1e6);
+  EXPECT_NEAR(std::stod(fields[3]), -0.012345678901234567, 1e-7);
 }
 
 }  // namespace
