@@ -164,16 +164,28 @@ void run_pack(const PackFlags& flags) {
       {.overwrite = overwrite, .compression = flags.compression, .write_xdmf = flags.has_xdmf});
 
   std::vector<std::string> written;
+  std::vector<std::string> written_json;
   for (const auto& [path, options] : exports) {
     const ExportSummary summary = write(packing, path, options);
-    written.push_back(fmt::format("{} ({}, {} nodes, {} elements)", path,
-                                  format_name(summary.format), summary.nodes, summary.elements));
+    const bool has_quality = summary.quality.tetrahedra > 0;
+    written.push_back(fmt::format("{} ({}, {} nodes, {} elements{})", path,
+                                  format_name(summary.format), summary.nodes, summary.elements,
+                                  has_quality ? "; " + describe_quality(summary.quality) : ""));
+    written_json.push_back(fmt::format(
+        "{{\"path\": {}, \"format\": \"{}\", \"nodes\": {}, \"elements\": {}{}}}",
+        aggpack::quoted(path), format_name(summary.format), summary.nodes, summary.elements,
+        has_quality ? ", \"quality\": " + quality_json(summary.quality) : ""));
   }
 
   const PackReport& report = result.report;
   if (flags.is_json) {
-    fmt::print("{{\n  \"output\": {},\n  \"report\": {}\n}}\n", aggpack::quoted(output),
-               nest_json(to_json(report, 2), 2));
+    std::string exports_json;
+    for (const auto& entry : written_json) {
+      exports_json += (exports_json.empty() ? "\n    " : ",\n    ") + entry;
+    }
+    fmt::print("{{\n  \"output\": {},\n  \"report\": {}{}\n}}\n", aggpack::quoted(output),
+               nest_json(to_json(report, 2), 2),
+               written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
   } else {
     fmt::print("{}\n", report.summary());
     fmt::print("particles       {}\n", report.placed);

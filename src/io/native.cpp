@@ -216,7 +216,8 @@ void write_hdf5(const std::string& file_path, const std::string& display_path,
       for (const auto& v : body.vertices()) vertices.insert(vertices.end(), {v.x(), v.y(), v.z()});
       for (const auto& t : body.triangles()) {
         triangles.insert(triangles.end(), {base + t[0], base + t[1], base + t[2]});
-        particle_of_triangle.push_back(static_cast<std::int32_t>(i));
+        // 1-based, as every export names particles (P1..PN).
+        particle_of_triangle.push_back(static_cast<std::int32_t>(i + 1));
       }
     }
     Handle group = writer.create_group(root, "world");
@@ -241,6 +242,8 @@ std::string xdmf_text(const std::string& h5_name, const Packing& packing) {
   const std::string v = std::to_string(vertex_count);
   const std::string t = std::to_string(triangle_count);
   return "<?xml version=\"1.0\" ?>\n"
+         "<!-- aggpack: every particle's surface in world coordinates (m); cell attribute "
+         "particle = 1-based particle number (P1..PN) -->\n"
          "<Xdmf Version=\"3.0\">\n"
          "  <Domain>\n"
          "    <Grid Name=\"particles\" GridType=\"Uniform\">\n"
