@@ -19,6 +19,7 @@
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/io/stl.h"
+#include "aggpack/mesh/quality.h"
 #include "aggpack/mesh/tetrahedra.h"
 #include "aggpack/pack/packing.h"
 
@@ -98,6 +99,9 @@ struct ExportSummary {
   std::uint64_t files = 0;
   std::uint64_t tetgen_shapes = 0;               ///< shapes given to TetGen (TetMethod::kTetGen)
   std::vector<TetGenFallback> tetgen_fallbacks;  ///< of those, the ones cut as fans, by shape
+  /// Tetrahedral formats: the shape quality of every tetrahedron written (C3D10: of its straight
+  /// linear tetrahedron); quality.tetrahedra == 0 for surface formats.
+  TetQuality quality = {};
 };
 
 /// Writes `packing` to `path` in the chosen format, atomically.
