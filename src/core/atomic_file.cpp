@@ -1,83 +1,289 @@
 #include "aggpack/core/atomic_file.h"
 
+#include <fcntl.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <vector>
+#include <memory>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/temp_paths.h"
 
 namespace aggpack {
 
 namespace fs = std::filesystem;
 
-void check_writable(const std::string& path, Overwrite overwrite) {
-  if (path.empty()) throw IoError("output path is empty");
-  const fs::path target(path);
-  fs::path folder = target.parent_path();
-  if (folder.empty()) folder = ".";
-  std::error_code error;
-  if (!fs::is_directory(folder, error)) {
-    throw IoError("cannot write " + path + ": folder " + folder.string() + " does not exist");
+namespace {
+
+const char* kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "directory";
+  if (S_ISCHR(mode)) return "character device";
+  if (S_ISBLK(mode)) return "block device";
+  if (S_ISFIFO(mode)) return "FIFO";
+  if (S_ISSOCK(mode)) return "socket";
+  if (S_ISLNK(mode)) return "symbolic link";
+  return "special file";
+}
+
+std::string folder_of(const std::string& path) {
+  std::string folder = fs::path(path).parent_path().string();
+  return folder.empty() ? std::string(".") : folder;
+}
+
+// Creates "<folder>/.aggpack.tmp.XXXXXX" and registers it for removal on a signal.
+int create_temporary(const std::string& folder, std::string& created, int& slot) {
+  const std::string pattern = temporary_pattern(folder);
+  std::vector<char> buffer(pattern.begin(), pattern.end());
+  buffer.push_back('\0');
+  const CleanupSignalBlock block;
+  const int descriptor = ::mkostemp(buffer.data(), O_CLOEXEC);
+  if (descriptor >= 0) {
+    created = buffer.data();
+    slot = register_temporary(created);
   }
-  if (::access(folder.c_str(), W_OK) != 0) {
-    throw IoError("cannot write " + path + ": no permission to write in folder " + folder.string());
-  }
-  if (fs::is_directory(target, error)) {
-    throw IoError("cannot write " + path + ": it is a folder");
-  }
-  if (overwrite == Overwrite::kForbid && fs::exists(target, error)) {
-    throw IoError("cannot write " + path + ": file exists (use --force to replace it)");
+  return descriptor;
+}
+
+}  // namespace
+
+std::string write_failure_message(const std::string& path, int error) {
+  switch (error) {
+    case ENOSPC:
+      return "cannot write " + path + ": disk full";
+    case EDQUOT:
+      return "cannot write " + path + ": disk quota exceeded";
+    case EFBIG:
+      return "cannot write " + path + ": file too large (file size limit)";
+    case 0:
+      return "cannot write " + path + ": write error";
+    default:
+      return "cannot write " + path + ": " + std::strerror(error);
   }
 }
 
-AtomicFile::AtomicFile(std::string path, Overwrite overwrite, std::ios::openmode mode)
-    : path_(std::move(path)) {
-  check_writable(path_, overwrite);
-  std::string pattern = path_ + ".tmp.XXXXXX";
-  std::vector<char> buffer(pattern.begin(), pattern.end());
-  buffer.push_back('\0');
-  const int descriptor = ::mkstemp(buffer.data());
+// ---- OutputStream ------------------------------------------------------------------------------
+
+OutputStream::Buffer::Buffer() : storage_(std::size_t{1} << 16) {
+  setp(storage_.data(), storage_.data() + storage_.size());
+}
+
+bool OutputStream::Buffer::drain() {
+  const char* data = pbase();
+  std::size_t left = static_cast<std::size_t>(pptr() - pbase());
+  setp(storage_.data(), storage_.data() + storage_.size());
+  if (error != 0) return false;
   if (descriptor < 0) {
-    throw IoError("cannot create a temporary file for " + path_ + ": " + std::strerror(errno));
+    if (left > 0) error = EBADF;
+    return left == 0;
+  }
+  while (left > 0) {
+    const ssize_t written = ::write(descriptor, data, left);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      error = errno;
+      return false;
+    }
+    data += written;
+    left -= static_cast<std::size_t>(written);
+  }
+  return true;
+}
+
+OutputStream::Buffer::int_type OutputStream::Buffer::overflow(int_type c) {
+  if (!drain()) return traits_type::eof();
+  if (!traits_type::eq_int_type(c, traits_type::eof())) {
+    *pptr() = traits_type::to_char_type(c);
+    pbump(1);
+  }
+  return traits_type::not_eof(c);
+}
+
+int OutputStream::Buffer::sync() { return drain() ? 0 : -1; }
+
+OutputStream::OutputStream() : std::ostream(nullptr) { rdbuf(&buffer_); }
+
+OutputStream::~OutputStream() { close(); }
+
+void OutputStream::attach(int descriptor) {
+  buffer_.descriptor = descriptor;
+  buffer_.error = 0;
+  clear();
+}
+
+bool OutputStream::close() {
+  if (buffer_.descriptor < 0) return buffer_.error == 0;
+  const bool is_drained = buffer_.drain();
+  if (::close(buffer_.descriptor) != 0 && buffer_.error == 0) buffer_.error = errno;
+  buffer_.descriptor = -1;
+  if (!is_drained || buffer_.error != 0) setstate(std::ios::badbit);
+  return buffer_.error == 0;
+}
+
+bool OutputStream::is_open() const { return buffer_.descriptor >= 0; }
+
+int OutputStream::error() const { return buffer_.error; }
+
+// ---- what may be replaced ----------------------------------------------------------------------
+
+std::string output_destination(const std::string& path, Overwrite overwrite) {
+  if (path.empty()) throw IoError("output path is empty");
+  struct stat link_status {};
+  if (::lstat(path.c_str(), &link_status) != 0) {
+    if (errno == ENAMETOOLONG) throw IoError("cannot write " + path + ": file name too long");
+    return path;  // absent (or its folder is missing: check_writable says so)
+  }
+  const auto exists = [&] {
+    return IoError("cannot write " + path + ": file exists (use --force to replace it)");
+  };
+  if (S_ISREG(link_status.st_mode)) {
+    if (overwrite == Overwrite::kForbid) throw exists();
+    return path;
+  }
+  if (!S_ISLNK(link_status.st_mode)) {
+    throw IoError("refusing to replace " + path + ": not a regular file (" +
+                  kind_of(link_status.st_mode) + ")");
+  }
+  struct stat target_status {};
+  if (::stat(path.c_str(), &target_status) != 0) {
+    throw IoError("refusing to replace " + path + ": symbolic link to a missing file");
+  }
+  if (!S_ISREG(target_status.st_mode)) {
+    throw IoError("refusing to replace " + path + ": not a regular file (symbolic link to a " +
+                  kind_of(target_status.st_mode) + ")");
+  }
+  if (overwrite == Overwrite::kForbid) throw exists();
+  std::unique_ptr<char, decltype(&std::free)> resolved(::realpath(path.c_str(), nullptr),
+                                                       &std::free);
+  if (!resolved) {
+    throw IoError("cannot resolve symbolic link " + path + ": " + std::strerror(errno));
+  }
+  return resolved.get();
+}
+
+void check_writable(const std::string& path, Overwrite overwrite) {
+  if (path.empty()) throw IoError("output path is empty");
+  check_folder_writable(folder_of(output_destination(path, overwrite)), path);
+}
+
+void check_folder_writable(const std::string& folder_path, const std::string& path) {
+  const std::string folder = folder_path.empty() ? std::string(".") : folder_path;
+  std::error_code error;
+  if (!fs::is_directory(folder, error)) {
+    throw IoError("cannot write " + path + ": folder " + folder + " does not exist");
+  }
+  if (::access(folder.c_str(), W_OK) != 0) {
+    throw IoError("cannot write " + path + ": no permission to write in folder " + folder);
+  }
+  // access() says yes to root everywhere (e.g. /proc): really create a file.
+  std::string probe;
+  int slot = -1;
+  const int descriptor = create_temporary(folder, probe, slot);
+  if (descriptor < 0) {
+    throw IoError("cannot write " + path + ": cannot create a file in folder " + folder + " (" +
+                  std::strerror(errno) + ")");
   }
   ::close(descriptor);
-  temporary_path_ = buffer.data();
-  stream_.open(temporary_path_, mode | std::ios::out | std::ios::trunc);
-  if (!stream_) {
-    std::remove(temporary_path_.c_str());
-    throw IoError("cannot open " + temporary_path_ + " for writing");
+  ::unlink(probe.c_str());
+  unregister_temporary(slot);
+}
+
+// ---- AtomicFile --------------------------------------------------------------------------------
+
+AtomicFile::AtomicFile(std::string path, Overwrite overwrite, std::ios::openmode /*mode*/)
+    : path_(std::move(path)), overwrite_(overwrite) {
+  check_writable(path_, overwrite);
+  destination_ = output_destination(path_, overwrite);
+  const int descriptor = create_temporary(folder_of(destination_), temporary_path_, slot_);
+  if (descriptor < 0) {
+    throw IoError("cannot write " + path_ + ": cannot create a temporary file in folder " +
+                  folder_of(destination_) + " (" + std::strerror(errno) + ")");
   }
+  stream_.attach(descriptor);
 }
 
 AtomicFile::~AtomicFile() {
   if (!is_committed_) {
     stream_.close();
-    std::remove(temporary_path_.c_str());
+    if (!temporary_path_.empty()) ::unlink(temporary_path_.c_str());
+    unregister_temporary(slot_);
   }
+}
+
+std::string AtomicFile::write_error_message() const {
+  return write_failure_message(path_, stream_.error());
 }
 
 void AtomicFile::commit() {
   if (stream_.is_open()) {
     stream_.flush();
-    const bool is_good = stream_.good();
-    stream_.close();
-    if (!is_good) throw IoError("write error on " + path_ + " (disk full?)");
+    if (!stream_.close() || !stream_.good()) throw IoError(write_error_message());
   }
-  // Files get the usual permissions (mkstemp makes them 0600).
-  std::error_code error;
-  fs::permissions(temporary_path_,
-                  fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
-                      fs::perms::others_read,
-                  error);
-  if (std::rename(temporary_path_.c_str(), path_.c_str()) != 0) {
-    throw IoError("cannot rename " + temporary_path_ + " to " + path_ + ": " +
+  // Files get the usual permissions (mkstemp makes them 0600), less the umask.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::chmod(temporary_path_.c_str(), 0666 & ~mask);
+  // The destination may have changed type since the constructor (a long run): check again.
+  if (output_destination(path_, overwrite_) != destination_) {
+    throw IoError("cannot write " + path_ + ": it changed while it was being written");
+  }
+  if (std::rename(temporary_path_.c_str(), destination_.c_str()) != 0) {
+    throw IoError("cannot rename " + temporary_path_ + " to " + destination_ + ": " +
                   std::strerror(errno));
   }
   is_committed_ = true;
+  unregister_temporary(slot_);
+}
+
+// ---- OutputTransaction -------------------------------------------------------------------------
+
+void OutputTransaction::add(const std::string& path) {
+  Entry entry;
+  entry.destination = output_destination(path, Overwrite::kAllow);
+  struct stat status {};
+  entry.existed = ::lstat(entry.destination.c_str(), &status) == 0;
+  if (entry.existed) {
+    // A hard link keeps the old content whatever happens to the name.
+    std::string reserved;
+    int slot = -1;
+    const int descriptor = create_temporary(folder_of(entry.destination), reserved, slot);
+    if (descriptor >= 0) {
+      ::close(descriptor);
+      ::unlink(reserved.c_str());
+      if (::link(entry.destination.c_str(), reserved.c_str()) == 0) {
+        entry.backup = reserved;
+        entry.slot = slot;
+      } else {
+        unregister_temporary(slot);
+      }
+    }
+  }
+  entries_.push_back(std::move(entry));
+}
+
+void OutputTransaction::commit() {
+  for (Entry& entry : entries_) {
+    if (!entry.backup.empty()) ::unlink(entry.backup.c_str());
+    unregister_temporary(entry.slot);
+  }
+  is_committed_ = true;
+}
+
+OutputTransaction::~OutputTransaction() {
+  if (is_committed_) return;
+  for (Entry& entry : entries_) {
+    if (!entry.backup.empty()) {
+      ::rename(entry.backup.c_str(), entry.destination.c_str());
+    } else if (!entry.existed) {
+      ::unlink(entry.destination.c_str());
+    }
+    unregister_temporary(entry.slot);
+  }
 }
 
 }  // namespace aggpack

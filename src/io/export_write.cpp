@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/temp_paths.h"
 #include "aggpack/geom/mass_properties.h"
 #include "export_detail.h"
 
@@ -52,12 +53,32 @@ detail::ElementMode element_mode(ExportFormat format, const ExportOptions& optio
   }
 }
 
+void write_format(const detail::ExportModel& model, ExportFormat format, std::ostream& out);
+
 void write_one(const Packing& packing, const std::string& path, const ExportOptions& options,
                ExportFormat format, std::size_t first, std::size_t last, Overwrite overwrite,
                ExportSummary& summary) {
   const detail::ExportModel model(packing, options, element_mode(format, options), first, last);
   AtomicFile file(path, overwrite);
   auto& out = file.stream();
+  try {
+    write_format(model, format, out);
+  } catch (const IoError&) {
+    // A failed write (disk full, file size limit): name the file and the reason.
+    if (!out.good()) throw IoError(file.write_error_message());
+    throw;
+  }
+  file.commit();
+  summary.nodes += model.node_count();
+  summary.elements += model.element_count();
+  summary.files += 1;
+  summary.tetgen_shapes += model.tetgen_shape_count();
+  summary.tetgen_fallbacks.insert(summary.tetgen_fallbacks.end(), model.tetgen_fallbacks().begin(),
+                                  model.tetgen_fallbacks().end());
+  summary.quality.add(model.quality());
+}
+
+void write_format(const detail::ExportModel& model, ExportFormat format, std::ostream& out) {
   switch (format) {
     case ExportFormat::kStl:
       detail::write_stl(model, out);
@@ -89,28 +110,24 @@ void write_one(const Packing& packing, const std::string& path, const ExportOpti
     case ExportFormat::kAuto:
       break;
   }
-  file.commit();
-  summary.nodes += model.node_count();
-  summary.elements += model.element_count();
-  summary.files += 1;
-  summary.tetgen_shapes += model.tetgen_shape_count();
-  summary.tetgen_fallbacks.insert(summary.tetgen_fallbacks.end(), model.tetgen_fallbacks().begin(),
-                                  model.tetgen_fallbacks().end());
-  summary.quality.add(model.quality());
 }
 
-// Removes a folder this process created, on every exit path that did not hand it over.
+// Removes a folder this process created, on every exit path that did not hand it over (and on
+// SIGINT/SIGTERM through temp_paths.h).
 class TemporaryFolder {
  public:
   explicit TemporaryFolder(const fs::path& beside) {
-    std::string pattern = beside.string() + ".tmp.XXXXXX";
+    std::string folder = beside.parent_path().string();
+    const std::string pattern = temporary_pattern(folder);
     std::vector<char> buffer(pattern.begin(), pattern.end());
     buffer.push_back('\0');
+    const CleanupSignalBlock block;
     if (::mkdtemp(buffer.data()) == nullptr) {
       throw IoError("cannot create a temporary folder beside " + beside.string() + ": " +
                     std::strerror(errno));
     }
     path_ = buffer.data();
+    slot_ = register_temporary(path_.string(), /*is_folder=*/true);
   }
   TemporaryFolder(const TemporaryFolder&) = delete;
   TemporaryFolder& operator=(const TemporaryFolder&) = delete;
@@ -119,12 +136,18 @@ class TemporaryFolder {
       std::error_code error;
       fs::remove_all(path_, error);
     }
+    unregister_temporary(slot_);
   }
   [[nodiscard]] const fs::path& path() const { return path_; }
-  void release() { path_.clear(); }
+  void release() {
+    path_.clear();
+    unregister_temporary(slot_);
+    slot_ = -1;
+  }
 
  private:
   fs::path path_;
+  int slot_ = -1;
 };
 
 void write_per_particle(const Packing& packing, const std::string& path,
@@ -132,15 +155,18 @@ void write_per_particle(const Packing& packing, const std::string& path,
   fs::path target(path);
   while (!target.empty() && !target.has_filename()) target = target.parent_path();  // "dir/"
   // The folder itself is checked like a file: its parent must exist and be writable, and an
-  // existing folder is only replaced with Overwrite::kAllow.
-  check_writable(target.string() + ".probe", Overwrite::kAllow);
+  // existing folder (a real one: not a link, file or device) is only replaced with
+  // Overwrite::kAllow.
+  check_folder_writable(target.parent_path().string(), target.string());
   std::error_code error;
-  const bool exists = fs::exists(target, error);
+  const fs::file_status status = fs::symlink_status(target, error);
+  const bool exists = fs::exists(status);
+  if (exists && status.type() != fs::file_type::directory) {
+    throw IoError("refusing to replace " + target.string() + " by a folder: it is not a folder" +
+                  (status.type() == fs::file_type::symlink ? " (symbolic link)" : ""));
+  }
   if (exists && options.overwrite != Overwrite::kAllow) {
     throw IoError("cannot write " + target.string() + ": it exists (use --force to replace it)");
-  }
-  if (exists && !fs::is_directory(target, error)) {
-    throw IoError("cannot write " + target.string() + ": it exists and is not a folder");
   }
   TemporaryFolder staging(target);
   fs::permissions(staging.path(),

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -31,8 +32,28 @@ class Writer {
   Writer(const std::string& display_path, int compression)
       : display_path_(display_path), compression_(compression) {}
 
+  // One line: "disk full" (and the like) from the errno that HDF5 records in its error stack,
+  // else the innermost HDF5 description up to its first line break.
   [[noreturn]] void fail(const std::string& what) const {
-    throw IoError("cannot write " + display_path_ + ": " + what + " (" + hdf5_reason() + ")");
+    int error = 0;
+    H5Ewalk2(
+        H5E_DEFAULT, H5E_WALK_UPWARD,
+        [](unsigned, const H5E_error2_t* entry, void* data) -> herr_t {
+          const char* found =
+              entry->desc != nullptr ? std::strstr(entry->desc, "errno = ") : nullptr;
+          if (found != nullptr && *static_cast<int*>(data) == 0) {
+            *static_cast<int*>(data) = std::atoi(found + 8);
+          }
+          return 0;
+        },
+        &error);
+    if (error != 0) {
+      H5Eclear2(H5E_DEFAULT);
+      throw IoError(write_failure_message(display_path_, error));
+    }
+    std::string reason = hdf5_reason();
+    reason = reason.substr(0, std::min(reason.find('\n'), std::size_t{200}));
+    throw IoError("cannot write " + display_path_ + ": " + what + " (" + reason + ")");
   }
 
   Handle checked(hid_t id, Handle::Closer closer, const std::string& what) const {

@@ -156,7 +156,7 @@ std::vector<std::array<double, 2>> convex_hull(std::vector<std::array<double, 2>
 void write_png(const std::string& path, const Image& image) {
   AtomicFile file(path);
   auto writer = [](void* context, void* data, int size) {
-    static_cast<std::ofstream*>(context)->write(static_cast<const char*>(data), size);
+    static_cast<std::ostream*>(context)->write(static_cast<const char*>(data), size);
   };
   if (stbi_write_png_to_func(writer, &file.stream(), image.width(), image.height(), 3,
                              image.pixels().data(), image.width() * 3) == 0) {
