@@ -125,6 +125,12 @@ void run_pack(const PackFlags& flags) {
     exports.emplace_back(path, options);
   }
   set_thread_count(config.threads);
+  // All or nothing: if an [output] export fails after the native file was written, the files this
+  // run created are removed and the ones it replaced (--force) are put back.
+  OutputTransaction outputs;
+  outputs.add(output);
+  if (flags.has_xdmf) outputs.add(xdmf_path_for(output));
+  for (const auto& entry : exports) outputs.add(entry.first);
 
   if (!flags.is_json) {
     fmt::print("aggpack pack: {} packer, seed {}, {}\n", config.packer_name(), config.seed(),
@@ -176,6 +182,8 @@ void run_pack(const PackFlags& flags) {
         aggpack::quoted(path), format_name(summary.format), summary.nodes, summary.elements,
         has_quality ? ", \"quality\": " + quality_json(summary.quality) : ""));
   }
+
+  outputs.commit();
 
   const PackReport& report = result.report;
   if (flags.is_json) {
