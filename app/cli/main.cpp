@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/text.h"
 #include "commands.h"
 
 int main(int argc, char** argv) {
@@ -32,10 +33,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
   } catch (const aggpack::Error& error) {
-    std::fprintf(stderr, "aggpack: error: %s\n", error.what());
+    // One line, bounded: whatever input a message echoes (the parts that echo input clip it
+    // already; this is the net).
+    std::fprintf(stderr, "aggpack: error: %s\n", aggpack::clipped(error.what(), 1000).c_str());
     return error.kind() == aggpack::ErrorKind::kIoError ? 3 : 2;
   } catch (const std::exception& error) {
-    std::fprintf(stderr, "aggpack: internal error: %s\n", error.what());
+    std::fprintf(stderr, "aggpack: internal error: %s\n",
+                 aggpack::clipped(error.what(), 1000).c_str());
     return 4;
   }
   return 0;

@@ -75,7 +75,9 @@ std::string container_json(const Container& c) {
       c.length, c.width, c.depth, c.wall_gap);
 }
 
-void warn(const std::string& text) { std::fprintf(stderr, "aggpack: warning: %s\n", text.c_str()); }
+void warn(const std::string& text) {
+  std::fprintf(stderr, "aggpack: warning: %s\n", aggpack::clipped(text, 1000).c_str());
+}
 
 void run_pack(const PackFlags& flags) {
   std::vector<std::string> overrides = flags.overrides;
@@ -85,10 +87,6 @@ void run_pack(const PackFlags& flags) {
   const PackConfig config = flags.config_path.empty()
                                 ? parse_pack_config("", "defaults", overrides)
                                 : load_pack_config(flags.config_path, overrides);
-  if (flags.is_print_config) {
-    fmt::print("{}", config.resolved_toml);
-    return;
-  }
   require_in_range("--compression", flags.compression, 0, 9);
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   for (const auto& text : config.warnings) warn(text);
@@ -100,9 +98,6 @@ void run_pack(const PackFlags& flags) {
                                             : fmt::format("aggpack-seed{}.h5", config.seed());
   }
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
-  // Fail before the (possibly long) run, not after it.
-  check_writable(output, overwrite);
-  if (flags.has_xdmf) check_writable(xdmf_path_for(output), overwrite);
   // output.<format> = path: written with the exporters' defaults after the native file (for
   // other options, e.g. mm or C3D10, use `aggpack export` on the native file).
   std::vector<std::pair<std::string, ExportOptions>> exports;
@@ -121,9 +116,18 @@ void run_pack(const PackFlags& flags) {
                          "a path other than the native file's and the other outputs'");
     }
     validate(options, options.format);
-    check_writable(path, overwrite);
     exports.emplace_back(path, options);
   }
+  // --print-config shows only what a run would accept (the checks above), without touching files.
+  if (flags.is_print_config) {
+    fmt::print("{}", config.resolved_toml);
+    return;
+  }
+  // Fail before the (possibly long) run, not after it: every output path, a file really created
+  // in every output folder.
+  check_writable(output, overwrite);
+  if (flags.has_xdmf) check_writable(xdmf_path_for(output), overwrite);
+  for (const auto& entry : exports) check_writable(entry.first, overwrite);
   set_thread_count(config.threads);
   // All or nothing: if an [output] export fails after the native file was written, the files this
   // run created are removed and the ones it replaced (--force) are put back.

@@ -58,18 +58,18 @@ double parse_double(const std::string& key, const std::string& text) {
     if (used == text.size() && std::isfinite(value)) return value;
   } catch (const std::exception&) {
   }
-  throw InvalidInput(key, text, "a number");
+  throw InvalidInput(key, clipped(text), "a number");
 }
 
 bool parse_bool(const std::string& key, const std::string& text) {
   if (text == "true") return true;
   if (text == "false") return false;
-  throw InvalidInput(key, text, "true or false");
+  throw InvalidInput(key, clipped(text), "true or false");
 }
 
 std::vector<double> parse_list(const std::string& key, std::string text) {
   if (text.size() < 2 || text.front() != '[' || text.back() != ']') {
-    throw InvalidInput(key, text, "a list of numbers, e.g. [0.1, 0.2]");
+    throw InvalidInput(key, clipped(text), "a list of numbers, e.g. [0.1, 0.2]");
   }
   text = text.substr(1, text.size() - 2);
   std::vector<double> values;
@@ -227,13 +227,14 @@ void set_key(SweepOptions& options, const std::string& key, const std::string& v
   std::string best;
   std::size_t best_distance = 1000;
   for (const auto& entry : config_keys()) {
+    if (key.size() > 64) break;  // no typo of a known key; and edit distance is quadratic
     const std::size_t d = edit_distance(key, entry.name);
     if (d < best_distance) {
       best_distance = d;
       best = entry.name;
     }
   }
-  throw InvalidInput("config key", key,
+  throw InvalidInput("config key", clipped(key),
                      best_distance <= 4 ? "a known key; did you mean " + best + "?"
                                         : "a known key (see --print-config)");
 }
@@ -295,6 +296,119 @@ void load_config(SweepOptions& options, const std::string& path) {
 }
 #endif
 
+// The library names options by their fields ("repose.baffle_position", "friction", "min_time");
+// messages must name what the user typed: a config key or a flag.
+const std::map<std::string, std::string>& repose_key_names() {
+  static const std::map<std::string, std::string> names = {
+      {"repose.trough_length", "trough.length"},
+      {"repose.trough_width", "trough.width"},
+      {"repose.trough_height", "trough.height"},
+      {"repose.baffle_position", "trough.baffle_position"},
+      {"repose.baffle_thickness", "trough.baffle_thickness"},
+      {"repose.baffle_speed", "trough.baffle_speed"},
+      {"repose.baffle_clear_time", "trough.baffle_clear_time"},
+      {"repose.alpha", "particles.alpha"},
+      {"repose.radius", "particles.radius"},
+      {"repose.edge_length", "particles.edge_length"},
+      {"repose.fill_height", "particles.fill_height"},
+      {"repose.bin_width", "measure.bin_width"},
+      {"repose.fit_upper", "measure.fit_upper"},
+      {"repose.fit_lower", "measure.fit_lower"},
+      {"repose.surface_tolerance", "measure.surface_tolerance"},
+      {"density", "physics.density"},
+      {"friction", "physics.friction"},
+      {"wall_friction", "physics.wall_friction"},
+      {"restitution", "physics.restitution"},
+      {"rolling_friction", "physics.rolling_friction"},
+      {"time_step", "physics.time_step"},
+      {"time_step_factor", "physics.time_step_factor"},
+      {"margin_fraction", "physics.margin_fraction"},
+      {"kinetic_energy_ratio", "rest.kinetic_energy_ratio"},
+      {"quiet_time", "rest.quiet_time"},
+      {"check_interval", "rest.check_interval"},
+      {"max_time", "rest.max_time"},
+      {"min_time", "rest.quiet_time (with the fall time from particles.fill_height)"},
+      // the lattice fill behind the baffle
+      {"container.length", "trough.baffle_position"},
+      {"container.width", "trough.width"},
+      {"container.depth", "particles.fill_height"},
+      {"lattice.alpha", "particles.alpha"},
+      {"lattice.radius", "particles.radius"},
+      {"lattice.edge_length", "particles.edge_length"},
+      {"lattice.max_vertices", "particles.edge_length"},
+      {"alpha", "particles.alpha"},
+      {"radius", "particles.radius"},
+      {"edge_length", "particles.edge_length"},
+      {"max_vertices", "particles.edge_length"},
+  };
+  return names;
+}
+
+const std::map<std::string, std::string>& settle_flag_names() {
+  static const std::map<std::string, std::string> names = {
+      {"density", "--density"},
+      {"friction", "--mu"},
+      {"wall_friction", "--mu-wall"},
+      {"restitution", "--restitution"},
+      {"rolling_friction", "--rolling"},
+      {"time_step", "--dt"},
+      {"time_step_factor", "--dt-factor"},
+      {"solver_iterations", "--iterations"},
+      {"kinetic_energy_ratio", "--energy-ratio"},
+      {"quiet_time", "--quiet-time"},
+      {"max_time", "--max-time"},
+      {"min_time", "--quiet-time (with the fall time from the packing's height)"},
+  };
+  return names;
+}
+
+// Runs `check`; an InvalidInput or LimitExceeded about a field in `names` is rethrown naming
+// the user's key instead.
+template <typename Check>
+void with_user_names(const std::map<std::string, std::string>& names, Check&& check) {
+  try {
+    check();
+  } catch (const Error& error) {
+    if (error.kind() != ErrorKind::kInvalidInput && error.kind() != ErrorKind::kLimitExceeded) {
+      throw;
+    }
+    const std::string message = error.what();
+    for (const char* lead : {"invalid ", "limit exceeded for "}) {
+      if (message.rfind(lead, 0) != 0) continue;
+      const std::size_t start = std::string(lead).size();
+      const std::size_t end = message.find(" = ", start);
+      if (end == std::string::npos) continue;
+      const auto found = names.find(message.substr(start, end - start));
+      if (found == names.end()) continue;
+      throw Error(error.kind(), lead + found->second + message.substr(end));
+    }
+    throw;
+  }
+}
+
+// Removes an output folder this run created if the run fails before writing into it.
+class CreatedFolder {
+ public:
+  explicit CreatedFolder(const std::string& folder) : folder_(folder) {
+    std::error_code error;
+    is_created_ = !std::filesystem::exists(std::filesystem::symlink_status(folder, error));
+  }
+  CreatedFolder(const CreatedFolder&) = delete;
+  CreatedFolder& operator=(const CreatedFolder&) = delete;
+  ~CreatedFolder() {
+    if (!is_created_ || is_kept_) return;
+    std::error_code error;
+    std::filesystem::remove(std::filesystem::path(folder_) / "cases", error);  // only if empty
+    std::filesystem::remove(folder_, error);                                   // only if empty
+  }
+  void keep() { is_kept_ = true; }
+
+ private:
+  std::string folder_;
+  bool is_created_ = false;
+  bool is_kept_ = false;
+};
+
 struct ReposeFlags {
   std::string config_path;
   std::vector<std::string> overrides;
@@ -322,8 +436,9 @@ SweepOptions resolve(const ReposeFlags& flags) {
   }
   for (const auto& assignment : flags.overrides) {
     const auto equals = assignment.find('=');
-    if (equals == std::string::npos) {
-      throw InvalidInput("--set", assignment, "key=value, e.g. physics.friction=0.3");
+    if (equals == std::string::npos || assignment.find_first_of("\n\r") != std::string::npos) {
+      throw InvalidInput("--set", clipped(assignment),
+                         "one line key=value, e.g. physics.friction=0.3");
     }
     set_key(options, assignment.substr(0, equals), assignment.substr(equals + 1));
   }
@@ -401,33 +516,39 @@ void print_result(const ReposeResult& r) {
 
 void run_repose_command(const ReposeFlags& flags) {
   const SweepOptions options = resolve(flags);
+  // Everything the run checks, --print-config included, before any folder is created.
+  with_user_names(repose_key_names(), [&] { validate(options.base); });
   if (flags.is_print_config) {
     fmt::print("{}", resolved_config(options));
     return;
   }
-  validate(options.base);
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
+  if (flags.image_width < 64 || flags.image_width > 16384) {
+    throw InvalidInput("--width", std::to_string(flags.image_width), "[64, 16384]");
+  }
+  CreatedFolder created(flags.output);
   std::vector<std::string> names = {"repose.json", "profile.csv", "side.png"};
 #ifdef AGGPACK_HAS_IO
   names.push_back("final.h5");
 #endif
   const std::string folder = prepare_folder(flags.output, flags.is_forced, names);
-  if (flags.image_width < 64 || flags.image_width > 16384) {
-    throw InvalidInput("--width", std::to_string(flags.image_width), "[64, 16384]");
-  }
   double last_print = -1.0;
   int last_stage = 0;
-  const ReposeResult result = run_repose(options.base, [&](int stage, double time, double energy,
-                                                           double threshold) {
-    if (style == ProgressStyle::kNone) return;
-    if (stage != last_stage || time - last_print >= 0.5) {
-      last_stage = stage;
-      last_print = time;
-      std::fprintf(stderr, "stage %d  t = %6.2f s  kinetic energy %.3g J%s\n", stage, time, energy,
-                   threshold > 0.0 ? fmt::format(" (rest < {:.3g})", threshold).c_str()
-                                   : "  (baffle moving)");
-    }
+  ReposeResult result;
+  with_user_names(repose_key_names(), [&] {
+    result = run_repose(options.base, [&](int stage, double time, double energy, double threshold) {
+      if (style == ProgressStyle::kNone) return;
+      if (stage != last_stage || time - last_print >= 0.5) {
+        last_stage = stage;
+        last_print = time;
+        std::fprintf(stderr, "stage %d  t = %6.2f s  kinetic energy %.3g J%s\n", stage, time,
+                     energy,
+                     threshold > 0.0 ? fmt::format(" (rest < {:.3g})", threshold).c_str()
+                                     : "  (baffle moving)");
+      }
+    });
   });
+  created.keep();
   print_result(result);
   write_repose_json(in_folder(folder, "repose.json"), options.base, result);
   write_profile_csv(in_folder(folder, "profile.csv"), result);
@@ -484,13 +605,14 @@ bool run_gnuplot(const std::string& folder) {
 
 void run_sweep_command(const ReposeFlags& flags) {
   const SweepOptions options = resolve(flags);
+  with_user_names(repose_key_names(), [&] { validate(options); });
   if (flags.is_print_config) {
     fmt::print("{}", resolved_config(options));
     return;
   }
-  validate(options);
   set_thread_count(flags.threads);
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
+  CreatedFolder created(flags.output);
   const std::string folder =
       prepare_folder(flags.output, flags.is_forced, {"sweep.csv", "sweep.gp", "sweep.png"});
   std::filesystem::create_directories(std::filesystem::path(folder) / "cases");
@@ -517,6 +639,7 @@ void run_sweep_command(const ReposeFlags& flags) {
         fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction, c.angle_degrees));
   });
   bar.finish();
+  created.keep();
   write_sweep_csv(in_folder(folder, "sweep.csv"), cases);
   fmt::print("{:>6} {:>6} {:>9} {:>7} {:>6}\n", "alpha", "mu_s", "angle", "R^2", "rest");
   for (const auto& c : cases) {
@@ -550,8 +673,10 @@ struct SettleFlags {
 void run_settle_command(const SettleFlags& flags) {
   SettleOptions options = flags.options;
   if (flags.wall_friction) options.physics.wall_friction = *flags.wall_friction;
-  validate(options.physics);
-  validate(options.rest);
+  with_user_names(settle_flag_names(), [&] {
+    validate(options.physics);
+    validate(options.rest);
+  });
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   check_writable(flags.output, overwrite);

@@ -53,4 +53,48 @@ std::string quoted(std::string_view text) {
   return out + "\"";
 }
 
+namespace {
+
+void append_escaped(std::string& out, std::string_view text) {
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (byte < 0x20 || byte == 0x7f) {
+      char escape[8];
+      std::snprintf(escape, sizeof escape, "\\x%02x", static_cast<unsigned>(byte));
+      out += escape;
+    } else {
+      out += c;
+    }
+  }
+}
+
+// Moves a cut position off UTF-8 continuation bytes (towards `direction`).
+std::size_t on_boundary(std::string_view text, std::size_t at, int direction) {
+  while (at > 0 && at < text.size() && (static_cast<unsigned char>(text[at]) & 0xC0) == 0x80) {
+    at = direction < 0 ? at - 1 : at + 1;
+  }
+  return at;
+}
+
+}  // namespace
+
+std::string shortened(std::string_view text, std::size_t max_bytes) {
+  if (text.size() <= max_bytes) return std::string(text);
+  const std::size_t head = on_boundary(text, max_bytes * 2 / 3, -1);
+  const std::size_t tail = on_boundary(text, text.size() - max_bytes / 3, +1);
+  return std::string(text.substr(0, head)) + "..." + std::string(text.substr(tail));
+}
+
+std::string clipped(std::string_view text, std::size_t max_bytes) {
+  std::string out;
+  append_escaped(out, shortened(text, max_bytes));
+  return out;
+}
+
 }  // namespace aggpack

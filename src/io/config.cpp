@@ -433,6 +433,7 @@ std::string last_component(std::string_view name) {
 
 // The closest candidate within a typo's distance, or "" if none is close.
 std::string closest(std::string_view word, const std::vector<std::string>& candidates) {
+  if (word.size() > 64) return "";  // no typo of a known name; and edit distance is quadratic
   std::string best;
   std::size_t best_distance = std::numeric_limits<std::size_t>::max();
   for (const auto& candidate : candidates) {
@@ -457,6 +458,7 @@ std::vector<std::string> known_keys() {
 // the same key name in another table ("seed" -> "packer.seed", "container.alpha" ->
 // "particle.alpha"); a misspelt table with a correct key ("partcle.alpha"); a larger typo.
 std::string suggest_key(std::string_view key) {
+  if (key.size() > 64) return "";  // no typo of a known key; and edit distance is quadratic
   const auto keys = known_keys();
   std::size_t best_distance = std::numeric_limits<std::size_t>::max();
   std::string best;
@@ -504,7 +506,7 @@ std::string format_double(double value) {
 std::string node_text(const toml::node& node) {
   if (const auto* value = node.as_floating_point()) return format_value(value->get());
   if (const auto* value = node.as_integer()) return std::to_string(value->get());
-  if (const auto* value = node.as_string()) return aggpack::quoted(value->get());
+  if (const auto* value = node.as_string()) return aggpack::quoted(shortened(value->get()));
   if (const auto* value = node.as_boolean()) return value->get() ? "true" : "false";
   std::ostringstream out;
   if (const auto* array = node.as_array()) {
@@ -603,8 +605,9 @@ class Resolver {
     std::vector<std::string> words(spec.words.begin(), spec.words.end());
     if (std::find(words.begin(), words.end(), text) == words.end()) {
       const std::string suggestion = closest(text, words);
-      fail(key, "invalid " + key + " = " + aggpack::quoted(text) + " (allowed: " + spec.allowed +
-                    ")" + (suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?"));
+      fail(key, "invalid " + key + " = " + aggpack::quoted(shortened(text)) +
+                    " (allowed: " + spec.allowed + ")" +
+                    (suggestion.empty() ? "" : "; did you mean '" + suggestion + "'?"));
     }
     return text;
   }
@@ -697,7 +700,10 @@ void collect(const toml::table& table, const std::string& prefix, const std::str
 // a bare word that is not valid TOML is taken as a string, so `--set packer.kind=random` works.
 void apply_override(toml::table& root, const std::string& text,
                     std::map<std::string, std::string>& origins) {
-  const std::string origin = "--set " + text;
+  const std::string origin = "--set " + clipped(text, 100);
+  if (text.find_first_of("\n\r") != std::string::npos) {
+    throw ConfigError("", origin + ": a --set value must be one line (it contains a line break)");
+  }
   const auto equals = text.find('=');
   if (equals == std::string::npos || equals == 0) {
     throw ConfigError("", origin + ": expected key=value (e.g. --set packer.gap=0.001)");
@@ -709,7 +715,7 @@ void apply_override(toml::table& root, const std::string& text,
   };
   const std::string key = trim(text.substr(0, equals));
   const std::string value_text = trim(text.substr(equals + 1));
-  if (value_text.empty()) throw ConfigError(key, origin + ": missing value for " + key);
+  if (value_text.empty()) throw ConfigError(key, origin + ": missing value for " + clipped(key));
 
   toml::table parsed;
   try {
@@ -734,17 +740,18 @@ void apply_override(toml::table& root, const std::string& text,
   }
   toml::table* table = &root;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-    if (parts[i].empty()) throw ConfigError(key, origin + ": malformed key '" + key + "'");
+    if (parts[i].empty()) throw ConfigError(key, origin + ": malformed key '" + clipped(key) + "'");
     auto* node = table->get(parts[i]);
     if (node == nullptr) {
       table = table->insert(parts[i], toml::table{}).first->second.as_table();
     } else if (node->is_table()) {
       table = node->as_table();
     } else {
-      throw ConfigError(key, origin + ": '" + parts[i] + "' is not a table");
+      throw ConfigError(key, origin + ": '" + clipped(parts[i]) + "' is not a table");
     }
   }
-  if (parts.back().empty()) throw ConfigError(key, origin + ": malformed key '" + key + "'");
+  if (parts.back().empty())
+    throw ConfigError(key, origin + ": malformed key '" + clipped(key) + "'");
   parsed.get("value")->visit(
       [&](const auto& value) { table->insert_or_assign(parts.back(), value); });
   origins[key] = origin;
@@ -754,6 +761,9 @@ void apply_override(toml::table& root, const std::string& text,
 
 std::string to_config_names(std::string message) {
   static const std::vector<std::pair<std::string, std::string>> names = {
+      // the shape generator's own names (vertex cap check)
+      {"limit exceeded for edge_length =", "limit exceeded for particle.edge_length ="},
+      {"limit exceeded for max_vertices =", "limit exceeded for particle.max_vertices ="},
       {"shape.edge_length_ratio", "particle.edge_length_ratio"},
       {"random.max_attempts_per_particle", "packer.attempts"},
       {"random.max_consecutive_failures", "packer.max_consecutive_failures"},
@@ -999,7 +1009,7 @@ PackConfig parse_pack_config(std::string_view text, std::string_view source_name
     if (std::find(tables.begin(), tables.end(), name) == tables.end()) {
       const std::string suggestion = closest(name, tables);
       throw ConfigError(name,
-                        where + ": unknown table [" + name + "]" +
+                        where + ": unknown table [" + clipped(name) + "]" +
                             (suggestion.empty() ? "" : "; did you mean [" + suggestion + "]?"));
     }
   }
@@ -1011,7 +1021,7 @@ PackConfig parse_pack_config(std::string_view text, std::string_view source_name
       if (std::find(formats.begin(), formats.end(), format) == formats.end()) {
         const std::string suggestion = closest(format, formats);
         throw ConfigError(
-            name, leaf.origin + ": unknown output format '" + format +
+            name, leaf.origin + ": unknown output format '" + clipped(format) +
                       "' (allowed: native, stl, obj, vtu, dat, inp, msh, k, apdl, "
                       "yade)" +
                       (suggestion.empty() ? "" : "; did you mean 'output." + suggestion + "'?"));
@@ -1025,7 +1035,7 @@ PackConfig parse_pack_config(std::string_view text, std::string_view source_name
     }
     if (find_spec(name) == nullptr) {
       const std::string suggestion = suggest_key(name);
-      throw ConfigError(name, leaf.origin + ": unknown key '" + name + "'" +
+      throw ConfigError(name, leaf.origin + ": unknown key '" + clipped(name) + "'" +
                                   (suggestion.empty() ? " (see docs/config.md for every key)"
                                                       : "; did you mean '" + suggestion + "'?"));
     }
@@ -1132,6 +1142,23 @@ PackConfig parse_pack_config(std::string_view text, std::string_view source_name
     const Spec& spec = *find_spec(name);
     const bool is_relative_edge = config.packer == PackerKind::kRandom && edge_length == 0;
     if (!is_in_scope(spec.scope, config, is_relative_edge)) {
+      // Ignored, but still checked: a typo or a wrong value is an error whatever the packer.
+      switch (spec.type) {
+        case Type::kFloat:
+          (void)values.number(name, 0.0);
+          break;
+        case Type::kInteger:
+          (void)values.integer(name, 0);
+          break;
+        case Type::kWord:
+          (void)values.word(name, "");
+          break;
+        case Type::kSieve:
+          (void)values.sieve(name);
+          break;
+        case Type::kPath:
+          break;
+      }
       config.warnings.push_back(leaf.origin + ": " + name + " is ignored (used only when " +
                                 scope_text(spec.scope) + ")");
     }

@@ -127,6 +127,21 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
   return false;
 }
 
+// The paper's placement in the half behind the baffle.
+LatticeOptions fill_lattice(const ReposeOptions& options) {
+  LatticeOptions lattice;
+  lattice.container.kind = ContainerKind::kBox;
+  lattice.container.length = options.baffle_position;
+  lattice.container.width = options.trough_width;
+  lattice.container.depth = options.fill_height;
+  lattice.container.wall_gap = 0.0;
+  lattice.alpha = options.alpha;
+  lattice.radius = options.radius;
+  lattice.edge_length = options.edge_length;
+  lattice.seed = options.seed;
+  return lattice;
+}
+
 }  // namespace
 
 void validate(const ReposeOptions& options) {
@@ -151,6 +166,8 @@ void validate(const ReposeOptions& options) {
   require_in_range("repose.surface_tolerance", options.surface_tolerance, 0.0, 10.0);
   validate(options.physics);
   validate(options.rest);
+  // What the fill would reject (too large a radius, too many vertices), before any simulation.
+  validate(fill_lattice(options));
 }
 
 SurfaceProfile surface_profile(const Packing& packing, double lower, double upper,
@@ -285,17 +302,7 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
   ReposeResult result;
   const auto start = Clock::now();
 
-  // The paper's placement in the half behind the baffle.
-  LatticeOptions lattice;
-  lattice.container.kind = ContainerKind::kBox;
-  lattice.container.length = options.baffle_position;
-  lattice.container.width = options.trough_width;
-  lattice.container.depth = options.fill_height;
-  lattice.container.wall_gap = 0.0;
-  lattice.alpha = options.alpha;
-  lattice.radius = options.radius;
-  lattice.edge_length = options.edge_length;
-  lattice.seed = options.seed;
+  const LatticeOptions lattice = fill_lattice(options);
   PackResult placed = pack_lattice(lattice);
   Packing packing = std::move(placed.packing);
   if (options.is_orientation_random) randomise_orientations(packing, lattice);

@@ -14,4 +14,11 @@ std::size_t edit_distance(std::string_view a, std::string_view b);
 /// string: quote, backslash and control characters escaped (\n, \r, \t, else \u00XX).
 std::string quoted(std::string_view text);
 
+/// Echoed input for a message: control characters escaped (\n, \r, \t, \xNN) so that it stays
+/// on one line, and cut to about `max_bytes` with "..." in the middle (UTF-8 kept whole).
+std::string clipped(std::string_view text, std::size_t max_bytes = 200);
+
+/// `text` cut like clipped() but not escaped (for quoted(), which escapes).
+std::string shortened(std::string_view text, std::size_t max_bytes = 200);
+
 }  // namespace aggpack
