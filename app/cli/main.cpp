@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/temp_paths.h"
 #include "aggpack/core/text.h"
 #include "commands.h"
 
@@ -33,14 +34,17 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& error) {
     return app.exit(error);
   } catch (const aggpack::Error& error) {
+    aggpack::wait_if_terminating();
     // One line, bounded: whatever input a message echoes (the parts that echo input clip it
     // already; this is the net).
     std::fprintf(stderr, "aggpack: error: %s\n", aggpack::clipped(error.what(), 1000).c_str());
     return error.kind() == aggpack::ErrorKind::kIoError ? 3 : 2;
   } catch (const std::exception& error) {
+    aggpack::wait_if_terminating();
     std::fprintf(stderr, "aggpack: internal error: %s\n",
                  aggpack::clipped(error.what(), 1000).c_str());
     return 4;
   }
+  aggpack::wait_if_terminating();
   return 0;
 }

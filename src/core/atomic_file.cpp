@@ -278,7 +278,17 @@ OutputTransaction::~OutputTransaction() {
   if (is_committed_) return;
   for (Entry& entry : entries_) {
     if (!entry.backup.empty()) {
-      ::rename(entry.backup.c_str(), entry.destination.c_str());
+      // rename() between two links of one file does nothing: then the file was never replaced.
+      struct stat backup {};
+      struct stat current {};
+      const bool is_same = ::stat(entry.backup.c_str(), &backup) == 0 &&
+                           ::stat(entry.destination.c_str(), &current) == 0 &&
+                           backup.st_dev == current.st_dev && backup.st_ino == current.st_ino;
+      if (is_same) {
+        ::unlink(entry.backup.c_str());
+      } else {
+        ::rename(entry.backup.c_str(), entry.destination.c_str());
+      }
     } else if (!entry.existed) {
       ::unlink(entry.destination.c_str());
     }

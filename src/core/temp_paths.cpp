@@ -56,7 +56,12 @@ void remove_flat_folder(const char* path) {
   ::rmdir(path);
 }
 
+std::atomic<bool> g_is_terminating{false};
+
 void on_signal(int signal_number) {
+  // Other threads keep running while this one cleans up; wait_if_terminating() keeps the main
+  // thread from exiting normally (with a misleading "cannot write") before the signal kills it.
+  g_is_terminating.store(true);
   const int saved_errno = errno;
   for (Slot& slot : g_slots) {
     const int state = slot.state.load(std::memory_order_acquire);
@@ -72,7 +77,12 @@ void on_signal(int signal_number) {
   sigemptyset(&action.sa_mask);
   ::sigaction(signal_number, &action, nullptr);
   errno = saved_errno;
-  ::raise(signal_number);  // delivered when the handler returns (the signal is blocked in it)
+  ::raise(signal_number);
+  // Deliver it now rather than when the handler returns.
+  sigset_t unblock;
+  sigemptyset(&unblock);
+  sigaddset(&unblock, signal_number);
+  ::pthread_sigmask(SIG_UNBLOCK, &unblock, nullptr);
 }
 
 void install_handlers() {
@@ -95,6 +105,10 @@ void install_handlers() {
 }
 
 }  // namespace
+
+void wait_if_terminating() {
+  while (g_is_terminating.load()) ::pause();
+}
 
 std::string temporary_pattern(const std::string& folder) {
   std::string pattern = folder.empty() ? std::string(".") : folder;

@@ -24,6 +24,11 @@ int register_temporary(const std::string& path, bool is_folder = false);
 /// Forgets a slot (after the entry was renamed into place or removed). -1 is ignored.
 void unregister_temporary(int slot);
 
+/// If a cleanup signal is being handled (by another thread), waits for it to end the process.
+/// For main() before it reports an error or returns: a temporary removed by the handler must not
+/// turn into a normal exit with a misleading message.
+void wait_if_terminating();
+
 /// Blocks SIGINT, SIGTERM and SIGHUP in this thread while alive, so that creating a temporary
 /// and registering it cannot be split by a signal.
 class CleanupSignalBlock {
