@@ -171,8 +171,9 @@ void check_writable(const std::string& path, Overwrite overwrite) {
   check_folder_writable(folder_of(output_destination(path, overwrite)), path);
 }
 
-void check_folder_writable(const std::string& folder_path, const std::string& path) {
-  const std::string folder = folder_path.empty() ? std::string(".") : folder_path;
+namespace {
+
+void check_folder(const std::string& folder, const std::string& path) {
   std::error_code error;
   if (!fs::is_directory(folder, error)) {
     throw IoError("cannot write " + path + ": folder " + folder + " does not exist");
@@ -180,6 +181,13 @@ void check_folder_writable(const std::string& folder_path, const std::string& pa
   if (::access(folder.c_str(), W_OK) != 0) {
     throw IoError("cannot write " + path + ": no permission to write in folder " + folder);
   }
+}
+
+}  // namespace
+
+void check_folder_writable(const std::string& folder_path, const std::string& path) {
+  const std::string folder = folder_path.empty() ? std::string(".") : folder_path;
+  check_folder(folder, path);
   // access() says yes to root everywhere (e.g. /proc): really create a file.
   std::string probe;
   int slot = -1;
@@ -197,8 +205,9 @@ void check_folder_writable(const std::string& folder_path, const std::string& pa
 
 AtomicFile::AtomicFile(std::string path, Overwrite overwrite, std::ios::openmode /*mode*/)
     : path_(std::move(path)), overwrite_(overwrite) {
-  check_writable(path_, overwrite);
+  // No probe file: creating the temporary is the real test.
   destination_ = output_destination(path_, overwrite);
+  check_folder(folder_of(destination_), path_);
   const int descriptor = create_temporary(folder_of(destination_), temporary_path_, slot_);
   if (descriptor < 0) {
     throw IoError("cannot write " + path_ + ": cannot create a temporary file in folder " +
