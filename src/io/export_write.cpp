@@ -139,6 +139,10 @@ class TemporaryFolder {
     unregister_temporary(slot_);
   }
   [[nodiscard]] const fs::path& path() const { return path_; }
+  void forget_on_signal() {
+    unregister_temporary(slot_);
+    slot_ = -1;
+  }
   void release() {
     path_.clear();
     unregister_temporary(slot_);
@@ -191,6 +195,9 @@ void write_per_particle(const Packing& packing, const std::string& path,
   if (exists) {
     TemporaryFolder old_parking(target);
     fs::remove(old_parking.path());
+    // From here it holds the user's old folder: a signal must not empty it (at worst it stays
+    // behind under its temporary name).
+    old_parking.forget_on_signal();
     fs::rename(target, old_parking.path(), error);
     if (error) throw IoError("cannot replace " + target.string() + ": " + error.message());
     fs::rename(staging.path(), target, error);
