@@ -75,6 +75,12 @@ TEST(OutputsCli, ForceRefusesFifoDeviceAndFolder) {
     EXPECT_EQ(pack_node.exit_code, 3) << pack_node.output;
     EXPECT_EQ(fs::status(node).type(), fs::file_type::character);
   }
+  // The real /dev/null, without --force only (so that a regression cannot replace it).
+  const auto dev_null = aggpack("export " + kFixtures + "base_s.h5 --format stl -o /dev/null");
+  EXPECT_EQ(dev_null.exit_code, 3);
+  EXPECT_EQ(dev_null.output,
+            "aggpack: error: refusing to replace /dev/null: not a regular file (character "
+            "device)\n");
   // A link to a regular file: the file is replaced, the link stays.
   const std::string target = folder.file("target.stl");
   std::ofstream(target) << "old";
