@@ -327,7 +327,7 @@ const std::map<std::string, std::string>& repose_key_names() {
       {"quiet_time", "rest.quiet_time"},
       {"check_interval", "rest.check_interval"},
       {"max_time", "rest.max_time"},
-      {"min_time", "rest.quiet_time (with the fall time from particles.fill_height)"},
+      {"min_time", "fall time from particles.fill_height"},
       // the lattice fill behind the baffle
       {"container.length", "trough.baffle_position"},
       {"container.width", "trough.width"},
@@ -357,7 +357,7 @@ const std::map<std::string, std::string>& settle_flag_names() {
       {"kinetic_energy_ratio", "--energy-ratio"},
       {"quiet_time", "--quiet-time"},
       {"max_time", "--max-time"},
-      {"min_time", "--quiet-time (with the fall time from the packing's height)"},
+      {"min_time", "fall time from the packing's height"},
   };
   return names;
 }
@@ -683,13 +683,15 @@ void run_settle_command(const SettleFlags& flags) {
   const Packing packing = read_packing(flags.input);
   fmt::print("settling {} particles from {}\n", packing.particles.size(), flags.input);
   double last_print = -1.0;
-  const SettleResult result =
-      settle(packing, options, [&](double time, double energy, double threshold) {
-        if (style == ProgressStyle::kNone || time - last_print < 0.5) return;
-        last_print = time;
-        std::fprintf(stderr, "t = %6.2f s  kinetic energy %.3g J (rest < %.3g)\n", time, energy,
-                     threshold);
-      });
+  SettleResult result;
+  with_user_names(settle_flag_names(), [&] {
+    result = settle(packing, options, [&](double time, double energy, double threshold) {
+      if (style == ProgressStyle::kNone || time - last_print < 0.5) return;
+      last_print = time;
+      std::fprintf(stderr, "t = %6.2f s  kinetic energy %.3g J (rest < %.3g)\n", time, energy,
+                   threshold);
+    });
+  });
   const SettleReport& r = result.report;
   write_packing(flags.output, result.packing, {.overwrite = overwrite});
   fmt::print("{} after {:.2f} s simulated ({} steps of {:.4g} s, {:.1f} s wall)\n",
