@@ -21,7 +21,8 @@ namespace {
 enum class Type { kFloat, kInteger, kWord, kSieve, kPath };
 
 // Which resolved configuration reads a key. Keys given explicitly outside their scope produce a
-// warning (not an error), so that `--set packer.kind=random` on a lattice file still works.
+// warning (not an error), so that `--set packer.kind=random` on a lattice file still works; their
+// values are still checked (an invalid one is an error).
 enum class Scope {
   kAlways,
   kBox,
