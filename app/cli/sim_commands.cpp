@@ -548,14 +548,20 @@ void run_repose_command(const ReposeFlags& flags) {
       }
     });
   });
-  created.keep();
   print_result(result);
+  // All or nothing, as `pack`: a failed write (disk full) removes the files of this run.
+  OutputTransaction outputs;
+  for (const auto& name : names) outputs.add(in_folder(folder, name));
   write_repose_json(in_folder(folder, "repose.json"), options.base, result);
   write_profile_csv(in_folder(folder, "profile.csv"), result);
   write_side_view_png(in_folder(folder, "side.png"), result.final, result.profile, result.fit,
                       flags.image_width);
 #ifdef AGGPACK_HAS_IO
   write_packing(in_folder(folder, "final.h5"), result.final);
+#endif
+  outputs.commit();
+  created.keep();
+#ifdef AGGPACK_HAS_IO
   fmt::print("wrote {}/repose.json, profile.csv, side.png, final.h5\n", folder);
 #else
   fmt::print("wrote {}/repose.json, profile.csv, side.png\n", folder);
