@@ -1,5 +1,5 @@
 // Output files and messages end to end (issue 12, items 3 and 6; fixtures in
-// tests/cli/fixtures/bad-inputs/): --force never replaces a device, FIFO or folder; temporaries
+// tests/io/fixtures/bad-inputs/): --force never replaces a device, FIFO or folder; temporaries
 // are gone after SIGTERM/SIGINT; 255-byte names; a failed [output] export leaves no native file;
 // disk full is one line naming the file; config messages are one bounded line.
 
@@ -26,7 +26,7 @@ using test::read_text;
 using test::ScratchFolder;
 
 const std::string kBinary = AGGPACK_BINARY;
-const std::string kFixtures = std::string(AGGPACK_SOURCE_DIR) + "/tests/cli/fixtures/bad-inputs/";
+const std::string kFixtures = std::string(AGGPACK_SOURCE_DIR) + "/tests/io/fixtures/bad-inputs/";
 
 test::CommandResult aggpack(const std::string& arguments) {
   return test::run_command("'" + kBinary + "' " + arguments);
