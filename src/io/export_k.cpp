@@ -15,10 +15,10 @@ constexpr std::uint64_t kMaxDynaId = 99999999;  // 8-column id fields
 
 }  // namespace
 
-void write_lsdyna(const ExportModel& model, std::ostream& out) {
+void write_lsdyna_mesh(const ExportModel& model, std::ostream& out, const std::string& comments) {
   require_ids_fit(model, kMaxDynaId, "LS-DYNA");
   const MaterialOptions& material = model.options().material;
-  std::string head = "*KEYWORD\n*TITLE\naggpack " AGGPACK_VERSION " packing, ";
+  std::string head = "*KEYWORD\n" + comments + "*TITLE\naggpack " AGGPACK_VERSION " packing, ";
   head += std::to_string(model.size()) + " particles\n";
   char line[160];
   std::snprintf(line, sizeof line, "$ coordinates in metres times %.17g; part i = particle i\n",
@@ -64,6 +64,10 @@ void write_lsdyna(const ExportModel& model, std::ostream& out) {
       buffer += '\n';
     }
   });
+}
+
+void write_lsdyna(const ExportModel& model, std::ostream& out) {
+  write_lsdyna_mesh(model, out, "");
   out << "*END\n";
 }
 
