@@ -136,10 +136,6 @@ void register_export(CLI::App& app) {
                    "this (m); 0 = half the largest particle radius")
       ->capture_default_str();
   command
-      ->add_option("--max-increment", deck.max_increment,
-                   "calculix deck: largest time increment (s); 0 = step time / 100")
-      ->capture_default_str();
-  command
       ->add_option("--time-step", deck.time_step,
                    "yade deck: time step (s); 0 = from the particles' mass and contact stiffness")
       ->capture_default_str();

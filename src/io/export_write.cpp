@@ -233,7 +233,6 @@ void validate_deck(const ExportOptions& options, ExportFormat format) {
   require_in_range("settle time", deck.settle_time, 0.0, 1e9);
   require_in_range("rest time", deck.rest_time, 0.0, 1e9);
   require_in_range("contact distance", deck.contact_distance, 0.0, 1e9);
-  require_in_range("max increment", deck.max_increment, 0.0, 1e9);
   require_in_range("time step", deck.time_step, 0.0, 1e9);
 }
 

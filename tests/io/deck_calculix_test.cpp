@@ -1,8 +1,9 @@
 // CalculiX deck (--deck calculix): the real ccx runs the exported trough test on a small pile
-// resting just above the floor to completion (exit 0, no *ERROR), the particles reach the floor
-// (contact elements, floor reaction near the pile's weight), and the baffle moves.
+// resting just above the floor to completion (exit 0, no *ERROR or *WARNING), and the particles
+// land on the floor (its reaction grows from 0 to about the pile's weight).
 
 #include <regex>
+#include <vector>
 
 #include "aggpack/io/export.h"
 #include "deck_fixture.h"
@@ -12,16 +13,16 @@ namespace {
 
 using test::ScratchFolder;
 
-// The last "total force (fx,fy,fz) for set <set>" of a ccx .dat file.
-Vec3 last_total_force(const std::string& dat, const std::string& set) {
+// Every "total force (fx,fy,fz) for set <set>" of a ccx .dat file, in order.
+std::vector<Vec3> total_forces(const std::string& dat, const std::string& set) {
   const std::regex pattern("total force \\(fx,fy,fz\\) for set " + set +
                            " and time +\\S+\\s+(\\S+) +(\\S+) +(\\S+)");
-  Vec3 force(NAN, NAN, NAN);
+  std::vector<Vec3> forces;
   for (auto it = std::sregex_iterator(dat.begin(), dat.end(), pattern);
        it != std::sregex_iterator(); ++it) {
-    force = Vec3(std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]));
+    forces.emplace_back(std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]));
   }
-  return force;
+  return forces;
 }
 
 TEST(CalculixDeck, CcxRunsTheTroughTestOnASmallPile) {
@@ -30,14 +31,16 @@ TEST(CalculixDeck, CcxRunsTheTroughTestOnASmallPile) {
   const Packing packing = test::pile_near_floor(3, 2, 1, 0.0005, 71);
   ScratchFolder folder;
   ExportOptions options;
+  // A soft material keeps ccx's stable explicit increment large (8e-6 s): a few thousand
+  // increments. The rock default (50 GPa) needs about 20 times as many.
   options.material.density = 2500.0;
+  options.material.youngs_modulus = 1e8;
   options.deck = {.kind = DeckKind::kCalculix,
                   .friction = 0.4,
-                  .trough_length = packing.container.length + 0.02,
+                  .trough_length = packing.container.length + 0.01,
                   .baffle_speed = 1.0,
-                  .settle_time = 0.04,
-                  .rest_time = 0.02,
-                  .max_increment = 0.004};
+                  .settle_time = 0.03,
+                  .rest_time = 0.01};
   const ExportSummary summary = write(packing, folder.file("trough.inp"), options);
   EXPECT_EQ(summary.format, ExportFormat::kAbaqus);
   const std::string deck = test::read_text(folder.file("trough.inp"));
@@ -52,24 +55,19 @@ TEST(CalculixDeck, CcxRunsTheTroughTestOnASmallPile) {
   EXPECT_EQ(result.output.find("*ERROR"), std::string::npos);
   EXPECT_EQ(result.output.find("*WARNING"), std::string::npos);
   EXPECT_NE(result.output.find("Job finished"), std::string::npos);
-  // Contact happened: ccx reports active contact elements, and at the end the floor carries
-  // about the pile's weight (the particles rest on it; they may still rock a little).
-  std::smatch match;
-  std::size_t most_contacts = 0;
-  const std::regex contacts("Number of contact spring elements=(\\d+)");
-  for (auto it = std::sregex_iterator(result.output.begin(), result.output.end(), contacts);
-       it != std::sregex_iterator(); ++it) {
-    most_contacts = std::max<std::size_t>(most_contacts, std::stoul((*it)[1]));
-  }
-  EXPECT_GT(most_contacts, 0U);
+  // Contact happened: the particles start 0.5 mm above the floor, which carries nothing at
+  // first and about the pile's weight at the end (the particles may still rock a little).
   double weight = 0.0;
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {
     weight += 2500.0 * 9.81 * test::particle_volume(packing, i);
   }
   const std::string dat = test::read_text(folder.file("trough.dat"));
-  const Vec3 floor = last_total_force(dat, "FLOOR_N");
-  std::printf("floor reaction %g %g %g, weight %g, most contact elements %zu\n", floor.x(),
-              floor.y(), floor.z(), weight, most_contacts);
+  const std::vector<Vec3> floor_forces = total_forces(dat, "FLOOR_N");
+  ASSERT_GE(floor_forces.size(), 3U);
+  EXPECT_EQ(floor_forces.front().norm(), 0.0);
+  const Vec3 floor = floor_forces.back();
+  std::printf("floor reaction %g %g %g at the end, pile weight %g\n", floor.x(), floor.y(),
+              floor.z(), weight);
   EXPECT_GT(std::abs(floor.z()), 0.3 * weight);
   EXPECT_LT(std::abs(floor.z()), 3.0 * weight);
 }

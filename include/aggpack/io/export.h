@@ -94,8 +94,6 @@ struct DeckOptions {
   /// CalculiX: particles whose bounding spheres are closer than this (m) get a contact pair, as
   /// do particles this close to a wall or the baffle; 0 = 0.5 x the largest particle radius.
   double contact_distance = 0.0;
-  /// CalculiX: largest time increment (s) of the implicit dynamic steps; 0 = step time / 100.
-  double max_increment = 0.0;
   /// YADE: time step (s); 0 = 0.2 sqrt(m / (young pi r^2)) of the lightest particle (mass m,
   /// equivalent radius r; PolyhedraMat.young is the volumetric contact stiffness).
   double time_step = 0.0;
