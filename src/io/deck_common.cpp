@@ -97,7 +97,12 @@ std::string deck_header(const ExportModel& model, const Trough& t, std::string_v
                         const std::vector<std::string>& extra) {
   const ExportOptions& options = model.options();
   const MaterialOptions& material = options.material;
-  const auto n = [](double value) { return deck_number(value, 20); };
+  // Six significant digits for reading; the model data below carries the exact values.
+  const auto n = [](double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", value);
+    return std::string(text);
+  };
   std::vector<std::string> lines = {
       "aggpack " AGGPACK_VERSION " " + std::string(solver) +
           " deck: the paper's trough test (angle of repose) with " + std::to_string(model.size()) +
@@ -125,10 +130,11 @@ std::string deck_header(const ExportModel& model, const Trough& t, std::string_v
           n(t.baffle_speed) + " to the trough end (" + n(t.travel()) + ") [--baffle-speed].",
       "- Step REST, " + n(t.rest_time) + " s: the pile comes to rest [--rest-time]. End time " +
           n(t.end_time()) + " s.",
-      "YOU MAY WANT TO CHANGE: the friction (the paper sweeps mu_s 0.05 .. 1.0); the settle time",
-      "(the pile must be at rest before the baffle moves); a softer modulus or mass scaling (rock",
-      "stiffness makes explicit time steps tiny); output intervals; then measure the angle of",
-      "repose from the final pile's side view."};
+      "YOU MAY WANT TO CHANGE: the friction (the paper sweeps mu_s 0.05 .. 1.0); the settle time "
+      "(the pile must be at rest before the baffle moves); a softer modulus or mass scaling (rock "
+      "stiffness makes explicit time increments tiny); the output intervals. Then measure the "
+      "angle of repose from the final pile's side view (aggpack repose does it for its own "
+      "simulation)."};
   lines.insert(lines.end(), extra.begin(), extra.end());
   // Wrapped to 80 characters (LS-DYNA reads 80-column lines), continuations indented.
   const std::size_t width = 80 - comment.size();

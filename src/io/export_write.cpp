@@ -354,7 +354,20 @@ void validate(const ExportOptions& options, ExportFormat format) {
 
 ExportFormat resolve_format(const std::string& path, const ExportOptions& options) {
   if (options.format != ExportFormat::kAuto) return options.format;
-  if (options.deck.kind != DeckKind::kNone) return deck_format(options.deck.kind);
+  if (options.deck.kind != DeckKind::kNone) {
+    // The deck picks the format; an extension naming another format is a mistake.
+    const ExportFormat format = deck_format(options.deck.kind);
+    ExportFormat named = ExportFormat::kAuto;
+    try {
+      named = format_from_extension(path);
+    } catch (const InvalidInput&) {
+    }
+    if (named != ExportFormat::kAuto && named != format) {
+      throw InvalidInput("output extension", "'" + fs::path(path).extension().string() + "'",
+                         "." + format_name(format) + " for --deck " + deck_name(options.deck.kind));
+    }
+    return format;
+  }
   fs::path file(path);
   while (!file.empty() && !file.has_filename()) file = file.parent_path();
   if (options.is_per_particle && file.extension().empty()) return ExportFormat::kStl;
