@@ -3,6 +3,9 @@
 // and sets its callback; callbacks throw aggpack::Error on bad input.
 
 #include <CLI/CLI.hpp>
+#include <string>
+
+#include "aggpack/mesh/quality.h"
 
 namespace aggpack::cli {
 
@@ -13,6 +16,13 @@ void register_info(CLI::App& app);
 void register_render(CLI::App& app);  // render_commands.cpp, when built with AGGPACK_HAS_RENDER
 void register_export(CLI::App& app);  // export_commands.cpp
 void register_sim(CLI::App& app);     // sim_commands.cpp (settle, repose, sweep), AGGPACK_HAS_SIM
+
+/// "min dihedral angle 29.30 deg, max aspect ratio 2.69 (...), 0 of 38668 below 10 deg", the
+/// tetrahedron quality of an export (export_commands.cpp).
+std::string describe_quality(const TetQuality& quality);
+/// The same as a JSON object: {"tetrahedra", "min_dihedral_deg", "max_aspect_ratio",
+/// "below_10_deg"}.
+std::string quality_json(const TetQuality& quality);
 
 /// Limits the worker threads for the rest of the process (0 = all cores).
 void set_thread_count(int threads);

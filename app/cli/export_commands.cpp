@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -32,6 +33,26 @@ struct ExportFlags {
 };
 
 }  // namespace
+
+std::string describe_quality(const TetQuality& quality) {
+  return fmt::format(
+      "min dihedral angle {:.2f} deg, max aspect ratio {:.3g} (circumradius / 3 inradius, "
+      "1 = regular), {} of {} below {} deg",
+      quality.min_dihedral_degrees, quality.max_aspect_ratio, quality.below_10_degrees,
+      quality.tetrahedra, kPoorDihedralDegrees);
+}
+
+std::string quality_json(const TetQuality& quality) {
+  // Degenerate tetrahedra have an infinite aspect ratio, which JSON cannot hold: null.
+  const auto number = [](double value) {
+    return std::isfinite(value) ? fmt::format("{}", value) : std::string("null");
+  };
+  return fmt::format(
+      "{{\"tetrahedra\": {}, \"min_dihedral_deg\": {}, \"max_aspect_ratio\": {}, "
+      "\"below_10_deg\": {}}}",
+      quality.tetrahedra, number(quality.min_dihedral_degrees), number(quality.max_aspect_ratio),
+      quality.below_10_degrees);
+}
 
 void register_export(CLI::App& app) {
   auto flags = std::make_shared<ExportFlags>();
@@ -180,6 +201,9 @@ void register_export(CLI::App& app) {
     fmt::print("wrote {} ({}): {} particles, {} nodes, {} elements, {} file{} in {:.2f} s\n",
                flags->output, format_name(summary.format), summary.particles, summary.nodes,
                summary.elements, summary.files, summary.files == 1 ? "" : "s", seconds);
+    if (summary.quality.tetrahedra > 0) {
+      fmt::print("tetrahedron quality: {}\n", describe_quality(summary.quality));
+    }
   });
 }
 

@@ -164,16 +164,28 @@ void run_pack(const PackFlags& flags) {
       {.overwrite = overwrite, .compression = flags.compression, .write_xdmf = flags.has_xdmf});
 
   std::vector<std::string> written;
+  std::vector<std::string> written_json;
   for (const auto& [path, options] : exports) {
     const ExportSummary summary = write(packing, path, options);
-    written.push_back(fmt::format("{} ({}, {} nodes, {} elements)", path,
-                                  format_name(summary.format), summary.nodes, summary.elements));
+    const bool has_quality = summary.quality.tetrahedra > 0;
+    written.push_back(fmt::format("{} ({}, {} nodes, {} elements{})", path,
+                                  format_name(summary.format), summary.nodes, summary.elements,
+                                  has_quality ? "; " + describe_quality(summary.quality) : ""));
+    written_json.push_back(fmt::format(
+        "{{\"path\": {}, \"format\": \"{}\", \"nodes\": {}, \"elements\": {}{}}}",
+        aggpack::quoted(path), format_name(summary.format), summary.nodes, summary.elements,
+        has_quality ? ", \"quality\": " + quality_json(summary.quality) : ""));
   }
 
   const PackReport& report = result.report;
   if (flags.is_json) {
-    fmt::print("{{\n  \"output\": {},\n  \"report\": {}\n}}\n", aggpack::quoted(output),
-               nest_json(to_json(report, 2), 2));
+    std::string exports_json;
+    for (const auto& entry : written_json) {
+      exports_json += (exports_json.empty() ? "\n    " : ",\n    ") + entry;
+    }
+    fmt::print("{{\n  \"output\": {},\n  \"report\": {}{}\n}}\n", aggpack::quoted(output),
+               nest_json(to_json(report, 2), 2),
+               written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
   } else {
     fmt::print("{}\n", report.summary());
     fmt::print("particles       {}\n", report.placed);
@@ -198,13 +210,15 @@ void run_info(const std::string& path, bool is_json, int bins, bool has_descript
   StatisticsOptions options{.bins = bins, .has_descriptors = has_descriptors};
   // The stored configuration names the target grading; compare against it when it parses.
   bool has_config = false;
+  std::string config_problem;
   if (!packing.provenance.config_toml.empty()) {
     try {
-      options.target =
-          parse_pack_config(packing.provenance.config_toml, "stored config").target_grading();
+      options.target = parse_pack_config(packing.provenance.config_toml, "/provenance/config_toml")
+                           .target_grading();
       has_config = true;
-    } catch (const Error&) {
-      has_config = false;  // written by another version or tool: statistics without the target
+    } catch (const Error& error) {
+      // Written by another version or tool: statistics without the target.
+      config_problem = error.what();
     }
   }
   const PackingStatistics statistics = compute_statistics(packing, options);
@@ -223,7 +237,9 @@ void run_info(const std::string& path, bool is_json, int bins, bool has_descript
   fmt::print("packer          {}, seed {}\n", p.packer.empty() ? "(unknown)" : p.packer, p.seed);
   fmt::print("container       {}\n", describe_container(packing.container));
   if (!has_config && !p.config_toml.empty()) {
-    fmt::print("note            stored configuration not readable; no target grading\n");
+    fmt::print(
+        "note            stored configuration not readable ({}); no target grading\n",
+        config_problem.size() <= 200 ? config_problem : config_problem.substr(0, 200) + "...");
   }
   fmt::print("{}", format_statistics(statistics));
 }

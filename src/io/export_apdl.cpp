@@ -17,17 +17,17 @@ void write_ansys(const ExportModel& model, std::ostream& out) {
   std::snprintf(line, sizeof line, "! coordinates in metres times %.17g\n", model.options().scale);
   head += line;
   head += "/PREP7\nET,1,SOLID285\nMP,EX,1,";
-  append_number(head, material.youngs_modulus);
+  append_number_fitting(head, material.youngs_modulus, kFeNumberWidth);
   head += "\nMP,PRXY,1,";
-  append_number(head, material.poisson_ratio);
+  append_number_fitting(head, material.poisson_ratio, kFeNumberWidth);
   head += "\nMP,DENS,1,";
-  append_number(head, material.density);
+  append_number_fitting(head, material.density, kFeNumberWidth);
   head += "\nTYPE,1\nMAT,1\n";
   out << head;
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     std::vector<Vec3> nodes;
     model.linear_nodes(k, nodes);
-    append_node_lines(buffer, "N,", ",", model.node_offset(k) + 1, nodes);
+    append_node_lines(buffer, "N,", ",", model.node_offset(k) + 1, nodes, kFeNumberWidth);
   });
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     std::vector<Tetrahedron> scratch;

@@ -10,7 +10,7 @@ void write_rock_dat(const ExportModel& model, std::ostream& out) {
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     std::vector<Vec3> nodes;
     model.linear_nodes(k, nodes);
-    append_node_lines(buffer, "", ", ", model.node_offset(k) + 1, nodes);
+    append_node_lines(buffer, "", ", ", model.node_offset(k) + 1, nodes, kFeNumberWidth);
   });
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {
     std::vector<Tetrahedron> scratch;

@@ -14,6 +14,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/io/export.h"
+#include "aggpack/io/text_number.h"
 
 namespace aggpack::detail {
 
@@ -28,6 +29,7 @@ struct ShapeInfo {
   Vec3 centroid = Vec3::Zero();
   std::uint32_t nodes = 0;     ///< per particle of this shape, in the model's element mode
   std::uint32_t elements = 0;  ///< triangles or tetrahedra
+  TetQuality quality = {};     ///< tetrahedral modes: of the shape's mesh
 };
 
 /// A read-only view of particles [first, last) of a packing, meshed on demand in world
@@ -93,6 +95,9 @@ class ExportModel {
   [[nodiscard]] double alpha(std::size_t k) const;
   [[nodiscard]] double control_radius(std::size_t k) const;
   [[nodiscard]] std::uint32_t size_class(std::size_t k) const;
+  /// Quality of every tetrahedron of the view (each shape measured once, counted per particle);
+  /// empty in surface mode.
+  [[nodiscard]] TetQuality quality() const;
 
  private:
   [[nodiscard]] const Particle& particle(std::size_t k) const {
@@ -158,16 +163,18 @@ inline void append_number(std::string& out, std::uint64_t value) {
 }
 
 /// Appends one text line per node, "<prefix><id><separator>x<separator>y<separator>z", ids
-/// counting up from `first_id` (rock.dat and Abaqus: "", ", "; ANSYS: "N,", ",").
+/// counting up from `first_id` (rock.dat and Abaqus: "", ", "; ANSYS: "N,", ","), each coordinate
+/// in at most `max_chars` characters (append_number_fitting).
 inline void append_node_lines(std::string& out, std::string_view prefix, std::string_view separator,
-                              std::uint64_t first_id, const std::vector<Vec3>& nodes) {
+                              std::uint64_t first_id, const std::vector<Vec3>& nodes,
+                              int max_chars) {
   std::uint64_t id = first_id;
   for (const Vec3& node : nodes) {
     out += prefix;
     append_number(out, id++);
     for (int axis = 0; axis < 3; ++axis) {
       out += separator;
-      append_number(out, node[axis]);
+      append_number_fitting(out, node[axis], max_chars);
     }
     out += '\n';
   }

@@ -23,12 +23,15 @@ void append_heading(const ExportModel& model, std::string& out) {
   char line[512];
   std::snprintf(line, sizeof line,
                 "*HEADING\naggpack %s packing, %zu particles, packer %s, seed %llu\n"
-                "** Written by aggpack. Coordinates in metres times %.17g.\n"
-                "** Particle i (from 1): node set Pi, element set Pi, surface Pi_SURFACE.\n",
+                "** Written by aggpack. Coordinates in metres times ",
                 AGGPACK_VERSION, model.size(),
                 packing.provenance.packer.empty() ? "-" : packing.provenance.packer.c_str(),
-                static_cast<unsigned long long>(packing.provenance.seed), model.options().scale);
+                static_cast<unsigned long long>(packing.provenance.seed));
   out += line;
+  append_number_fitting(out, model.options().scale, kFeNumberWidth);
+  out +=
+      ". Numbers have at most 20 characters.\n"
+      "** Particle i (from 1): node set Pi, element set Pi, surface Pi_SURFACE.\n";
 }
 
 // Element lines "id, n1, ..., n4|n10" for particle k, ids from first_element, nodes from
@@ -50,7 +53,7 @@ void append_nodes(const ExportModel& model, std::size_t k, const QuadraticTopolo
   std::vector<Vec3> nodes;
   model.linear_nodes(k, nodes);
   append_midside_nodes(quadratic, nodes);
-  append_node_lines(out, "", ", ", first_node, nodes);
+  append_node_lines(out, "", ", ", first_node, nodes, kFeNumberWidth);
 }
 
 void append_generated_set(const char* keyword, const std::string& name, std::uint64_t first,
@@ -99,11 +102,11 @@ void append_surface(const ExportModel& model, std::size_t k, const std::string& 
 void append_material(const ExportModel& model, std::string& out) {
   const MaterialOptions& material = model.options().material;
   out += "*MATERIAL, NAME=" + material.name + "\n*DENSITY\n";
-  append_number(out, material.density);
+  append_number_fitting(out, material.density, kFeNumberWidth);
   out += ",\n*ELASTIC\n";
-  append_number(out, material.youngs_modulus);
+  append_number_fitting(out, material.youngs_modulus, kFeNumberWidth);
   out += ", ";
-  append_number(out, material.poisson_ratio);
+  append_number_fitting(out, material.poisson_ratio, kFeNumberWidth);
   out += '\n';
 }
 

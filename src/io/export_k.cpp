@@ -12,6 +12,7 @@ namespace aggpack::detail {
 namespace {
 
 constexpr std::uint64_t kMaxDynaId = 99999999;  // 8-column id fields
+constexpr int kDynaCardWidth = 10;              // columns of a standard keyword card field
 
 }  // namespace
 
@@ -25,13 +26,13 @@ void write_lsdyna_mesh(const ExportModel& model, std::ostream& out, const std::s
                 model.options().scale);
   head += line;
   head += "*MAT_ELASTIC_TITLE\n" + material.name + "\n$#     mid        ro         e        pr\n";
-  // Free format (comma separated) keeps every digit of the material constants.
+  // Free format (comma separated); a field may not be wider than its fixed column (10).
   head += "1,";
-  append_number(head, material.density);
+  append_number_fitting(head, material.density, kDynaCardWidth);
   head += ',';
-  append_number(head, material.youngs_modulus);
+  append_number_fitting(head, material.youngs_modulus, kDynaCardWidth);
   head += ',';
-  append_number(head, material.poisson_ratio);
+  append_number_fitting(head, material.poisson_ratio, kDynaCardWidth);
   head += "\n*SECTION_SOLID\n$#   secid    elform\n         1        10\n";
   out << head;
   stream_items(model.size(), out, [&](std::size_t k, std::string& buffer) {

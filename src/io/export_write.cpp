@@ -109,6 +109,7 @@ void write_one(const Packing& packing, const std::string& path, const ExportOpti
   summary.nodes += model.node_count();
   summary.elements += model.element_count();
   summary.files += 1;
+  summary.quality.add(model.quality());
 }
 
 // Removes a folder this process created, on every exit path that did not hand it over.
@@ -436,6 +437,18 @@ ExportModel::ExportModel(const Packing& packing, const ExportOptions& options, E
     info.elements = static_cast<std::uint32_t>(is_tetgen ? shape_meshes_[s].tetrahedra.size()
                                                          : body.triangle_count());
     info.nodes = static_cast<std::uint32_t>(linear_nodes);
+    if (is_tetgen) {
+      info.quality = measure_quality(shape_meshes_[s].nodes, shape_meshes_[s].tetrahedra);
+    } else {
+      std::vector<Vec3> nodes = body.vertices();
+      nodes.push_back(properties.centroid);
+      std::vector<Tetrahedron> fan;
+      fan.reserve(body.triangle_count());
+      for (const Triangle& t : body.triangles()) {
+        fan.push_back(fan_tetrahedron(t, static_cast<std::uint32_t>(body.vertex_count())));
+      }
+      info.quality = measure_quality(nodes, fan);
+    }
     if (mode == ElementMode::kQuadraticTetrahedra) {
       // Fan edges are the surface edges (3F/2) plus one spoke per vertex.
       const std::size_t edges = is_tetgen ? count(shape_meshes_[s]).edges
@@ -528,6 +541,15 @@ double ExportModel::control_radius(std::size_t k) const {
   return particle(k).control_radius * options_.scale;
 }
 std::uint32_t ExportModel::size_class(std::size_t k) const { return particle(k).size_class; }
+
+TetQuality ExportModel::quality() const {
+  TetQuality total;
+  if (mode_ == ElementMode::kSurface) return total;
+  std::vector<std::uint64_t> uses(shapes_.size(), 0);
+  for (std::size_t k = 0; k < size(); ++k) ++uses[particle(k).shape];
+  for (std::size_t s = 0; s < shapes_.size(); ++s) total.add(shapes_[s].quality, uses[s]);
+  return total;
+}
 
 void append_field(std::string& out, std::uint64_t value, int width) {
   char text[32];

@@ -230,6 +230,23 @@ TEST_F(PackCliTest, WarningsForIneffectiveKeysGoToStderr) {
       << pack.err;
 }
 
+// With --json, the [output] exports are listed with their counts and, for tetrahedra, the
+// element quality (the same figures `aggpack export` prints).
+TEST_F(PackCliTest, JsonReportListsExportsWithTheirQuality) {
+  std::ofstream(path("run.toml")) << "[container]\ndepth = 0.4\n\n[output]\nnative = \"run.h5\"\n"
+                                     "stl = \"run.stl\"\ninp = \"run.inp\"\n";
+  const CliRun pack = run("pack run.toml --progress none --json");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  std::ofstream(path("pack.json")) << pack.out;
+  const std::string check =
+      "/usr/bin/python3 -c 'import json,sys; e = json.load(open(\"" + path("pack.json") +
+      "\"))[\"exports\"]; i, s = e[0], e[1]; q = i[\"quality\"]; "
+      "ok = i[\"format\"] == \"inp\" and s[\"format\"] == \"stl\" and \"quality\" not in s and "
+      "q[\"tetrahedra\"] == i[\"elements\"] > 0 and 0 < q[\"min_dihedral_deg\"] < 70.53 and "
+      "q[\"max_aspect_ratio\"] >= 1 and q[\"below_10_deg\"] >= 0; sys.exit(0 if ok else 1)'";
+  EXPECT_EQ(std::system(check.c_str()), 0) << pack.out;
+}
+
 TEST_F(PackCliTest, OutputTableWritesEveryListedFormat) {
   std::ofstream(path("run.toml")) << "[container]\ndepth = 0.4\n\n[output]\nnative = \"run.h5\"\n"
                                      "stl = \"run.stl\"\ninp = \"run.inp\"\ndat = \"rock.dat\"\n";

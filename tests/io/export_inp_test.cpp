@@ -8,114 +8,20 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/io/export.h"
+#include "ccx_fixture.h"
 #include "export_fixture.h"
 
 namespace aggpack {
 namespace {
 
+using test::FlatInp;
+using test::parse_flat;
+using test::run_ccx_gravity;
 using test::ScratchFolder;
-
-std::string upper(std::string text) {
-  for (auto& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return text;
-}
-
-// Node coordinates and the node range of every particle's generated node set, from a flat file.
-struct FlatInp {
-  std::map<std::uint64_t, Vec3> nodes;
-  std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> node_sets;  // name -> [a, b]
-  std::size_t elements = 0;
-};
-
-FlatInp parse_flat(const std::string& path) {
-  FlatInp inp;
-  std::istringstream in(test::read_text(path));
-  std::string line;
-  std::string block;
-  std::string set_name;
-  while (std::getline(in, line)) {
-    if (line.rfind("**", 0) == 0) continue;
-    if (line.rfind('*', 0) == 0) {
-      const std::string keyword = upper(line);
-      block = test::trim(test::split(keyword, ',')[0]);
-      std::smatch found;
-      if (block == "*NSET" && std::regex_search(keyword, found, std::regex("NSET=([A-Z0-9_]+)"))) {
-        set_name = found[1];
-      }
-      continue;
-    }
-    const auto fields = test::split(line, ',');
-    if (block == "*NODE") {
-      inp.nodes[std::stoull(fields[0])] =
-          Vec3(std::stod(fields[1]), std::stod(fields[2]), std::stod(fields[3]));
-    } else if (block == "*ELEMENT") {
-      ++inp.elements;
-    } else if (block == "*NSET" && fields.size() == 3) {
-      inp.node_sets[set_name] = {std::stoull(fields[0]), std::stoull(fields[1])};
-    }
-  }
-  return inp;
-}
-
-// Runs ccx on `model` (an exported .inp in `folder`) with gravity and, per particle, the nodes in
-// the lowest 30% of its height fixed. Returns ccx's output; expects success.
-void run_ccx_gravity(const ScratchFolder& folder, const std::string& model, std::size_t particles) {
-  const FlatInp inp = parse_flat(folder.file(model));
-  ASSERT_EQ(inp.node_sets.size(), particles);
-  std::string base;
-  std::size_t fixed = 0;
-  for (const auto& [name, range] : inp.node_sets) {
-    if (name == "ALLNODES") continue;
-    double low = 1e300;
-    double high = -1e300;
-    for (auto id = range.first; id <= range.second; ++id) {
-      low = std::min(low, inp.nodes.at(id).z());
-      high = std::max(high, inp.nodes.at(id).z());
-    }
-    for (auto id = range.first; id <= range.second; ++id) {
-      if (inp.nodes.at(id).z() <= low + 0.3 * (high - low)) {
-        base += std::to_string(id) + ",\n";
-        ++fixed;
-      }
-    }
-  }
-  ASSERT_GE(fixed, 3 * particles);
-  std::ofstream(folder.file("job.inp"))
-      << "*INCLUDE, INPUT=" << model << "\n*NSET, NSET=BASE\n"
-      << base
-      << "*BOUNDARY\nBASE, 1, 3\n*STEP\n*STATIC\n*DLOAD\nAGGREGATES, GRAV, 9.81, 0., 0., -1.\n"
-         "*NODE PRINT, NSET=ALLNODES\nU\n*END STEP\n";
-  const auto result =
-      test::run_command("cd " + folder.path().string() + " && OMP_NUM_THREADS=1 ccx -i job");
-  EXPECT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_NE(result.output.find("Job finished"), std::string::npos) << result.output;
-  EXPECT_EQ(upper(result.output).find("*ERROR"), std::string::npos) << result.output;
-  // Displacements: every node listed once; gravity pulls the free nodes down a little.
-  std::istringstream dat(test::read_text(folder.file("job.dat")));
-  std::string line;
-  std::size_t listed = 0;
-  double sum_z = 0;
-  double largest = 0;
-  while (std::getline(dat, line)) {
-    std::istringstream fields(line);
-    std::uint64_t id = 0;
-    double ux = 0;
-    double uy = 0;
-    double uz = 0;
-    if (fields >> id >> ux >> uy >> uz) {
-      ++listed;
-      sum_z += uz;
-      largest = std::max(largest, std::abs(uz));
-    }
-  }
-  EXPECT_EQ(listed, inp.nodes.size());
-  EXPECT_LT(sum_z, 0.0);
-  EXPECT_GT(largest, 0.0);
-  EXPECT_LT(largest, 1e-3);  // stiff rock under its own weight: tiny displacements
-}
+using test::upper;
 
 TEST(AbaqusExport, CalculixRunsAGravityStepOnC3D4) {
-  if (!test::has_program("ccx")) GTEST_SKIP() << "calculix-ccx not installed";
+  ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
   const Packing packing = test::grid_packing(2, 2, 1, 31);
   ScratchFolder folder;
   write(packing, folder.file("packing.inp"));
@@ -123,7 +29,7 @@ TEST(AbaqusExport, CalculixRunsAGravityStepOnC3D4) {
 }
 
 TEST(AbaqusExport, CalculixRunsAGravityStepOnC3D10) {
-  if (!test::has_program("ccx")) GTEST_SKIP() << "calculix-ccx not installed";
+  ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
   const Packing packing = test::grid_packing(2, 1, 1, 32);
   ScratchFolder folder;
   write(packing, folder.file("packing.inp"), {.is_quadratic = true});
@@ -133,7 +39,7 @@ TEST(AbaqusExport, CalculixRunsAGravityStepOnC3D10) {
 
 #ifdef AGGPACK_HAS_TETGEN
 TEST(AbaqusExport, CalculixRunsOnTetGenMeshWithFaceSurfaces) {
-  if (!test::has_program("ccx")) GTEST_SKIP() << "calculix-ccx not installed";
+  ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
   const Packing packing = test::grid_packing(2, 1, 1, 33);
   ScratchFolder folder;
   write(packing, folder.file("packing.inp"),
@@ -262,6 +168,102 @@ TEST(AbaqusExport, PartsAndInstancesAreWellFormed) {
   EXPECT_EQ(elements, summary.elements);
   EXPECT_NE(test::read_text(folder.file("parts.inp")).find("*MATERIAL, NAME=AGGREGATE"),
             std::string::npos);
+}
+
+// Node coordinates of a .msh file (written in the shortest round-trip form), by node tag.
+std::map<std::uint64_t, Vec3> read_msh_nodes(const std::string& path) {
+  std::istringstream in(test::read_text(path));
+  std::string line;
+  while (std::getline(in, line) && line != "$Nodes") {
+  }
+  std::map<std::uint64_t, Vec3> nodes;
+  std::size_t blocks = 0;
+  std::size_t total = 0;
+  std::size_t lowest = 0;
+  std::size_t highest = 0;
+  in >> blocks >> total >> lowest >> highest;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    int dimension = 0;
+    int tag = 0;
+    int parametric = 0;
+    std::size_t count = 0;
+    in >> dimension >> tag >> parametric >> count;
+    std::vector<std::uint64_t> tags(count);
+    for (auto& t : tags) in >> t;
+    for (const auto t : tags) {
+      Vec3 p;
+      in >> p.x() >> p.y() >> p.z();
+      nodes[t] = p;
+    }
+  }
+  EXPECT_EQ(nodes.size(), total);
+  return nodes;
+}
+
+// CalculiX and Abaqus read at most 20 characters per number. On a packing with negative
+// coordinates, at scale 1 and at a scale that makes every coordinate tiny (~1e-5, where the
+// shortest form has up to 23 characters), every field of every data line fits, each coordinate
+// reads back within the documented precision (>= 15 significant digits) of the exact value (the
+// same packing's .msh, in the shortest round-trip form), and ccx runs the tiny model.
+TEST(AbaqusExport, EveryNumberFitsTwentyCharacters) {
+  ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
+  Packing packing = test::grid_packing(3, 2, 1, 37);
+  for (auto& particle : packing.particles) particle.pose.position -= Vec3(0.4, 0.3, 0.15);
+  for (const double scale : {1.0, 1e-4}) {
+    ScratchFolder folder;
+    const ExportOptions options{.scale = scale,
+                                .material = {.density = 2650.1234567890123,
+                                             .youngs_modulus = 6.1234567890123456e10,
+                                             .poisson_ratio = -0.012345678901234567}};
+    write(packing, folder.file("model.inp"), options);
+    write(packing, folder.file("model.msh"), options);
+    const std::string text = test::read_text(folder.file("model.inp"));
+    std::istringstream in(text);
+    std::string line;
+    std::size_t fields = 0;
+    std::size_t negative = 0;
+    std::size_t tiny = 0;
+    bool is_title = false;
+    while (std::getline(in, line)) {
+      if (is_title || line.rfind('*', 0) == 0 || line.empty()) {  // title, keywords, comments
+        is_title = line == "*HEADING";
+        continue;
+      }
+      for (const std::string& field : test::split(line, ',')) {
+        const std::string value = test::trim(field);
+        EXPECT_LE(value.size(), 20U) << "'" << value << "' in: " << line;
+        ++fields;
+        negative += value.rfind('-', 0) == 0 ? 1 : 0;
+        tiny += value.find("e-") != std::string::npos ? 1 : 0;
+      }
+    }
+    EXPECT_GT(fields, 1000U);
+    EXPECT_GT(negative, 100U);
+    if (scale < 1) {
+      EXPECT_GE(tiny, 300U);  // every coordinate
+    }
+    EXPECT_NE(text.find(", -0.01234567890123457\n"), std::string::npos);  // Poisson ratio
+
+    const FlatInp inp = parse_flat(folder.file("model.inp"));
+    const auto exact = read_msh_nodes(folder.file("model.msh"));
+    ASSERT_EQ(inp.nodes.size(), exact.size());
+    std::size_t rounded = 0;
+    for (const auto& [id, node] : inp.nodes) {
+      const Vec3& expected = exact.at(id);
+      for (int axis = 0; axis < 3; ++axis) {
+        // >= 15 significant digits, >= 14 for 1e-99 <= |x| < 1e-9 (aggpack/io/text_number.h).
+        const double magnitude = std::abs(expected[axis]);
+        const double precision = magnitude >= 1e-9 ? 5e-15 : 5e-14;
+        EXPECT_LE(std::abs(node[axis] - expected[axis]), precision * magnitude)
+            << "node " << id << " axis " << axis;
+        rounded += node[axis] != expected[axis] ? 1 : 0;
+      }
+    }
+    if (scale < 1) {
+      EXPECT_GT(rounded, 100U);  // the tiny model needed rounding
+    }
+    run_ccx_gravity(folder, "model.inp", packing.particles.size());
+  }
 }
 
 }  // namespace

@@ -435,5 +435,32 @@ TEST_F(NativeFileTest, XdmfSideFileOpensInMeshio) {
   EXPECT_EQ(run_python(script), 0);
 }
 
+// The XDMF side file numbers particles as every export does: its cell attribute `particle` is
+// 1..N, each triangle carrying its particle's number (read through meshio's XDMF reader, which
+// follows the HDF5 references with h5py).
+TEST_F(NativeFileTest, XdmfParticleAttributeCountsFromOne) {
+  ASSERT_TRUE(has_python_module("meshio")) << "python3-meshio not installed";
+  const Packing packing = sample_packing();
+  write_packing(path("run.h5"), packing, {.write_xdmf = true});
+  std::string expected;
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    expected += std::to_string(packing.shapes[packing.particles[i].shape].triangle_count()) + ",";
+  }
+  const std::string script = "import meshio, sys, collections; m = meshio.read(\"" +
+                             path("run.xdmf") +
+                             "\"); "
+                             "p = [int(v) for v in m.cell_data[\"particle\"][0]]; "
+                             "c = collections.Counter(p); "
+                             "assert p == sorted(p), \"triangles not in particle order\"; "
+                             "assert min(p) == 1 and max(p) == " +
+                             std::to_string(packing.particles.size()) +
+                             ", (min(p), max(p)); "
+                             "got = \"\".join(\"%d,\" % c[k] for k in range(1, max(p) + 1)); "
+                             "print(got); sys.exit(0 if got == \"" +
+                             expected + "\" else 1)";
+  EXPECT_EQ(run_python(script), 0);
+  EXPECT_NE(read_bytes(path("run.xdmf")).find("1-based particle number"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace aggpack

@@ -18,6 +18,7 @@
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/io/stl.h"
+#include "aggpack/mesh/quality.h"
 #include "aggpack/mesh/tetrahedra.h"
 #include "aggpack/pack/packing.h"
 
@@ -123,6 +124,9 @@ struct ExportSummary {
   std::uint64_t nodes = 0;     ///< nodes (vertices) written, over all files
   std::uint64_t elements = 0;  ///< triangles or tetrahedra written, over all files
   std::uint64_t files = 0;
+  /// Tetrahedral formats: the shape quality of every tetrahedron written (C3D10: of its straight
+  /// linear tetrahedron); quality.tetrahedra == 0 for surface formats.
+  TetQuality quality = {};
 };
 
 /// Writes `packing` to `path` in the chosen format, atomically.

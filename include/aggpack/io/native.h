@@ -55,11 +55,36 @@ struct NativeWriteOptions {
 void write_packing(const std::string& path, const Packing& packing,
                    const NativeWriteOptions& options = {});
 
-/// Reads a packing written by write_packing and validates it (indices in range, finite numbers,
-/// valid shapes, offsets consistent, unit rotations, positive scales).
+/// Reads a packing written by write_packing and validates it: element types exact, every
+/// dataset's declared size checked against what the file stores before anything is allocated, then
+/// validate_packing. Every command that opens a native file goes through here.
 /// \throw IoError (missing or unreadable file), FormatError (not HDF5, not an aggpack packing,
-///        another format version, truncated or corrupted content), each naming the file.
+///        another format version, truncated, corrupted or invalid content), one line
+///        "<path>: <dataset or attribute>: <reason>".
 Packing read_packing(const std::string& path);
+
+/// Ranges of a native file's content (docs/formats.md, "Native packing file"). Lengths in metres.
+struct NativeLimits {
+  static constexpr double kMaxLength = 1e6;   ///< |coordinate|, container sizes, radii, gaps
+  static constexpr double kMinLength = 1e-9;  ///< container sizes in use, every particle's extent
+  static constexpr double kMinScale = 1e-9;   ///< /particles/scale
+  static constexpr double kMaxScale = 1e6;
+  /// | |q|^2 - 1 | of /particles/rotation.
+  static constexpr double kRotationTolerance = 1e-6;
+  /// A vertex may lie this far in front of a face plane, relative to the shape's bounding-box
+  /// diagonal, and the shape still counts as convex.
+  static constexpr double kConvexTolerance = 1e-6;
+  /// Largest expansion of a compressed dataset over its stored bytes (deflate's limit is 1032:1).
+  static constexpr double kMaxCompressionRatio = 1032.0;
+};
+
+/// The content checks of read_packing, for a Packing from anywhere: container sizes in range, each
+/// shape a closed, consistently oriented, convex 2-manifold with positive volume and coordinates in
+/// range, each particle's shape index, position, unit rotation, scale and radius in range.
+/// `source` names the file in messages.
+/// \throw FormatError "<source>: <field>: <reason>", the field named as in the native file
+///        (e.g. "/particles/scale[3]", "/shapes/triangles (shape 2, rows 40-59)").
+void validate_packing(const Packing& packing, const std::string& source);
 
 /// The XDMF side-file path for a native file path: "run.h5" -> "run.xdmf".
 std::string xdmf_path_for(const std::string& path);

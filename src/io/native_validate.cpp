@@ -1,0 +1,249 @@
+// validate_packing: the content checks every reader of a native packing file goes through
+// (read_packing calls it last), so no command accepts a packing that another rejects. The ranges
+// are NativeLimits (include/aggpack/io/native.h), documented in docs/formats.md.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "aggpack/core/error.h"
+#include "aggpack/geom/mass_properties.h"
+#include "aggpack/io/native.h"
+
+namespace aggpack {
+
+namespace {
+
+using Limits = NativeLimits;
+
+[[noreturn]] void fail(const std::string& source, const std::string& field,
+                       const std::string& reason) {
+  throw FormatError(source + ": " + field + ": " + reason);
+}
+
+std::string range_text(double lo, double hi) {
+  return "[" + format_value(lo) + ", " + format_value(hi) + "]";
+}
+
+// True when lo <= value <= hi (false for NaN).
+bool is_within(double value, double lo, double hi) { return value >= lo && value <= hi; }
+
+void check_container(const Container& c, const std::string& source) {
+  const bool is_box = c.kind == ContainerKind::kBox;
+  const std::tuple<const char*, double, bool> lengths[] = {
+      {"length", c.length, is_box},  {"width", c.width, is_box},
+      {"depth", c.depth, is_box},    {"radius", c.radius, !is_box},
+      {"height", c.height, !is_box}, {"wall_gap", c.wall_gap, false}};
+  for (const auto& [name, value, is_used] : lengths) {
+    // Sizes the container uses must be positive; the others are stored but not used.
+    const double lo = is_used ? Limits::kMinLength : 0.0;
+    if (!is_within(value, lo, Limits::kMaxLength)) {
+      fail(source, std::string("/container/") + name + " = " + format_value(value),
+           "outside " + range_text(lo, Limits::kMaxLength) + " m" +
+               (is_used ? std::string(is_box ? " (a box" : " (a cylinder") + " needs it > 0)"
+                        : std::string()));
+    }
+  }
+}
+
+// The first problem of shape `s` (vertex rows from `vertex_row`, triangle rows from
+// `triangle_row` in the file), or nothing. Returns the shape's largest |coordinate| and its
+// bounding-box diagonal through the out parameters.
+void check_shape(const ConvexPolyhedron& shape, std::size_t s, std::uint64_t vertex_row,
+                 std::uint64_t triangle_row, const std::string& source, double& largest,
+                 double& diagonal) {
+  const auto& vertices = shape.vertices();
+  const auto& triangles = shape.triangles();
+  const auto rows = [s](std::uint64_t first, std::size_t count) {
+    return " (shape " + std::to_string(s) + ", rows " + std::to_string(first) + "-" +
+           std::to_string(first + count - (count > 0 ? 1 : 0)) + ")";
+  };
+  const std::string where = rows(vertex_row, vertices.size());
+  const std::string triangle_where = rows(triangle_row, triangles.size());
+  const std::string vertex_field = "/shapes/vertices" + where;
+  const std::string triangle_field = "/shapes/triangles" + triangle_where;
+  if (vertices.size() < 4 || triangles.size() < 4) {
+    fail(source, triangle_field,
+         std::to_string(vertices.size()) + " vertices and " + std::to_string(triangles.size()) +
+             " triangles, a closed polyhedron needs at least 4 of each");
+  }
+
+  largest = 0.0;
+  for (std::size_t v = 0; v < vertices.size(); ++v) {
+    const double size = vertices[v].cwiseAbs().maxCoeff();
+    if (!vertices[v].allFinite() || !(size <= Limits::kMaxLength)) {
+      fail(source, vertex_field,
+           "vertex " + std::to_string(v) + " has a coordinate of magnitude " + format_value(size) +
+               ", outside " + range_text(-Limits::kMaxLength, Limits::kMaxLength) + " m");
+    }
+    largest = std::max(largest, size);
+  }
+
+  // Topology: every edge in exactly two triangles, traversed once in each direction.
+  struct HalfEdge {
+    std::uint32_t low, high, face;
+    bool is_forward;
+  };
+  std::vector<HalfEdge> half_edges;
+  half_edges.reserve(3 * triangles.size());
+  std::vector<bool> is_used(vertices.size(), false);
+  for (std::uint32_t f = 0; f < triangles.size(); ++f) {
+    const auto& t = triangles[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+      fail(source, triangle_field,
+           "triangle " + std::to_string(f) + " repeats a vertex (" + std::to_string(t[0]) + ", " +
+               std::to_string(t[1]) + ", " + std::to_string(t[2]) + "): degenerate");
+    }
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[k];
+      const std::uint32_t b = t[(k + 1) % 3];
+      half_edges.push_back({std::min(a, b), std::max(a, b), f, a < b});
+      is_used[a] = true;
+    }
+  }
+  std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return std::tie(x.low, x.high, x.face) < std::tie(y.low, y.high, y.face);
+  });
+  std::size_t edge_count = 0;
+  for (std::size_t i = 0; i < half_edges.size();) {
+    std::size_t j = i;
+    while (j < half_edges.size() && half_edges[j].low == half_edges[i].low &&
+           half_edges[j].high == half_edges[i].high) {
+      ++j;
+    }
+    const std::string edge =
+        "edge " + std::to_string(half_edges[i].low) + "-" + std::to_string(half_edges[i].high);
+    if (j - i == 1) {
+      fail(source, triangle_field,
+           edge + " belongs to only triangle " + std::to_string(half_edges[i].face) +
+               ": the surface is not closed");
+    }
+    if (j - i > 2) {
+      fail(source, triangle_field,
+           edge + " is shared by " + std::to_string(j - i) +
+               " triangles: not a 2-manifold (each edge needs exactly 2)");
+    }
+    if (half_edges[i].is_forward == half_edges[i + 1].is_forward) {
+      fail(source, triangle_field,
+           edge + " runs the same way in triangles " + std::to_string(half_edges[i].face) +
+               " and " + std::to_string(half_edges[i + 1].face) +
+               ": not consistently oriented (a flipped triangle)");
+    }
+    ++edge_count;
+    i = j;
+  }
+  for (std::size_t v = 0; v < is_used.size(); ++v) {
+    if (!is_used[v]) {
+      fail(source, triangle_field, "vertex " + std::to_string(v) + " is in no triangle");
+    }
+  }
+  const long long euler = static_cast<long long>(vertices.size()) -
+                          static_cast<long long>(edge_count) +
+                          static_cast<long long>(triangles.size());
+  if (euler != 2) {
+    fail(source, triangle_field,
+         "V - E + F = " + std::to_string(euler) +
+             ", expected 2: not one closed surface without holes");
+  }
+
+  // Geometry: a real extent, no zero-area triangle, positive volume, convex.
+  diagonal = shape.bounds().extent().norm();
+  if (!(diagonal >= Limits::kMinLength)) {
+    fail(source, vertex_field,
+         "the shape's extent is " + format_value(diagonal) + " m, below " +
+             format_value(Limits::kMinLength) + " m (collapsed)");
+  }
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    // Relative to the extent: 1e-14 is far below what a convex hull of distinct points gives
+    // and far above rounding of exactly collinear points.
+    if (!(shape.face_normal_scaled(f).norm() > 1e-14 * diagonal * diagonal)) {
+      fail(source, triangle_field, "triangle " + std::to_string(f) + " has zero area (degenerate)");
+    }
+  }
+  const double volume = mass_properties(shape).volume;
+  if (!(volume > 0.0)) {
+    fail(source, triangle_field,
+         "volume " + format_value(volume) +
+             " m^3 is not positive: the triangles turn clockwise seen from outside (inside out, "
+             "e.g. mirrored)");
+  }
+  const double tolerance = Limits::kConvexTolerance * diagonal;
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    const Vec3 normal = shape.face_normal(f);
+    const double offset = normal.dot(vertices[triangles[f][0]]);
+    for (std::size_t v = 0; v < vertices.size(); ++v) {
+      const double height = normal.dot(vertices[v]) - offset;
+      if (height > tolerance) {
+        fail(source, vertex_field,
+             "vertex " + std::to_string(v) + " lies " + format_value(height) +
+                 " m outside the plane of triangle " + std::to_string(f) +
+                 ": not convex (tolerance " + format_value(tolerance) + " m)");
+      }
+    }
+  }
+}
+
+void check_particles(const Packing& packing, const std::vector<double>& largest,
+                     const std::vector<double>& diagonal, const std::string& source) {
+  const std::size_t shape_count = packing.shapes.size();
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    const Particle& p = packing.particles[i];
+    const std::string index = "[" + std::to_string(i) + "]";
+    if (p.shape >= shape_count) {
+      fail(source, "/particles/shape" + index + " = " + std::to_string(p.shape),
+           "no such shape (the file has " + std::to_string(shape_count) + ")");
+    }
+    const Vec3& x = p.pose.position;
+    if (!x.allFinite() || !(x.cwiseAbs().maxCoeff() <= Limits::kMaxLength)) {
+      fail(source,
+           "/particles/position" + index + " = (" + format_value(x.x()) + ", " +
+               format_value(x.y()) + ", " + format_value(x.z()) + ")",
+           "outside " + range_text(-Limits::kMaxLength, Limits::kMaxLength) + " m");
+    }
+    const double norm_error = std::abs(p.pose.rotation.squaredNorm() - 1.0);
+    if (!(norm_error <= Limits::kRotationTolerance)) {
+      fail(source, "/particles/rotation" + index,
+           "|q|^2 = " + format_value(p.pose.rotation.squaredNorm()) +
+               ", not a unit quaternion (tolerance " + format_value(Limits::kRotationTolerance) +
+               ")");
+    }
+    if (!is_within(p.scale, Limits::kMinScale, Limits::kMaxScale)) {
+      fail(source, "/particles/scale" + index + " = " + format_value(p.scale),
+           "outside " + range_text(Limits::kMinScale, Limits::kMaxScale));
+    }
+    const double world_largest = p.scale * largest[p.shape];
+    const double world_diagonal = p.scale * diagonal[p.shape];
+    if (!(world_largest <= Limits::kMaxLength) || !(world_diagonal >= Limits::kMinLength)) {
+      fail(source, "/particles/scale" + index + " = " + format_value(p.scale),
+           "makes shape " + std::to_string(p.shape) + " " + format_value(world_diagonal) +
+               " m across with coordinates up to " + format_value(world_largest) +
+               " m; allowed: at least " + format_value(Limits::kMinLength) + " m across, " +
+               "coordinates up to " + format_value(Limits::kMaxLength) + " m");
+    }
+    if (!is_within(p.control_radius, 0.0, Limits::kMaxLength)) {
+      fail(source, "/particles/control_radius" + index + " = " + format_value(p.control_radius),
+           "outside " + range_text(0.0, Limits::kMaxLength) + " m");
+    }
+  }
+}
+
+}  // namespace
+
+void validate_packing(const Packing& packing, const std::string& source) {
+  check_container(packing.container, source);
+  std::vector<double> largest(packing.shapes.size(), 0.0);
+  std::vector<double> diagonal(packing.shapes.size(), 0.0);
+  std::uint64_t vertex_row = 0;
+  std::uint64_t triangle_row = 0;
+  for (std::size_t s = 0; s < packing.shapes.size(); ++s) {
+    check_shape(packing.shapes[s], s, vertex_row, triangle_row, source, largest[s], diagonal[s]);
+    vertex_row += packing.shapes[s].vertex_count();
+    triangle_row += packing.shapes[s].triangle_count();
+  }
+  check_particles(packing, largest, diagonal, source);
+}
+
+}  // namespace aggpack

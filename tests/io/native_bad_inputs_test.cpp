@@ -1,0 +1,295 @@
+// The bad native files of issue 12 (tests/io/fixtures/bad-inputs/, README.md there), end to end:
+// `info` and `export` (STL, VTU) each give exit 2 and one error line naming the file, the field and
+// the reason, and leave no output or temporary file. The files h5py writes with its default UTF-8
+// variable-length strings are read; an empty packing and an unreadable stored config give a clear
+// answer.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "aggpack/core/error.h"
+#include "aggpack/io/native.h"
+
+namespace aggpack {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kFixtures = AGGPACK_SOURCE_DIR "/tests/io/fixtures/bad-inputs/";
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+class NativeBadInputTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    base_ = fs::temp_directory_path() /
+            (std::string("aggpack_bad_") + info->name() + "_" + std::to_string(::getpid()));
+    fs::remove_all(base_);
+    fs::create_directories(base_ / "work");
+  }
+  void TearDown() override { fs::remove_all(base_); }
+
+  // Runs the CLI inside base_/work; stdout and stderr go beside it, so the folder shows exactly
+  // what the command left.
+  CliRun run(const std::string& arguments) const {
+    const std::string command = "cd '" + (base_ / "work").string() + "' && '" AGGPACK_BINARY "' " +
+                                arguments + " >../stdout.txt 2>../stderr.txt";
+    const int status = std::system(command.c_str());
+    CliRun result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = read_text(base_ / "stdout.txt");
+    result.err = read_text(base_ / "stderr.txt");
+    return result;
+  }
+
+  [[nodiscard]] std::vector<std::string> left_behind() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(base_ / "work")) {
+      names.push_back(entry.path().filename().string());
+    }
+    return names;
+  }
+
+  fs::path base_;
+};
+
+struct BadFile {
+  const char* name;
+  const char* field;   // the dataset or attribute the message must name
+  const char* reason;  // part of the reason
+};
+
+// What each reproducer must say (the path is checked too).
+const BadFile kBadFiles[] = {
+    {"alloc_bomb_vertices_2e26rows.h5",
+     ": /shapes/vertices: ", "declares 67108864 x 3 float64 values in a 17404-byte file"},
+    {"alloc_bomb_fuzz_sem535.h5", ": /particles/position: ", "declares 33554432 x 3 float64"},
+    {"settle_hang_scale_1e-200.h5", ": /particles/scale[0] = 1e-200: ", "outside [1e-09, 1000000]"},
+    {"stl_accepts_collapsed_shape.h5",
+     ": /shapes/vertices (shape 0, rows 0-23): ", "extent is 0 m, below 1e-09 m (collapsed)"},
+    {"inverted_shape_mirror.h5", ": /shapes/triangles (shape 0, rows 0-43): volume -",
+     "not positive: the triangles turn clockwise seen from outside (inside out"},
+    {"stl_inf_coordinates_vertex_1e150.h5", ": /shapes/vertices (shape 0, rows 0-23): ",
+     "vertex 0 has a coordinate of magnitude 7.79900365e+148, outside [-1000000, 1000000] m"},
+    {"flipped_one_triangle.h5", ": /shapes/triangles (shape 0, rows 0-43): ",
+     "runs the same way in triangles 0 and 32: not consistently oriented (a flipped triangle)"},
+    {"nonmanifold_triangle.h5", ": /shapes/triangles (shape 0, rows 0-43): ",
+     "triangle 0 repeats a vertex (7, 7, 18): degenerate"},
+    {"scale_1e200.h5", ": /particles/scale[0] = 1e+200: ", "outside [1e-09, 1000000]"},
+    {"scale_1e-300_all.h5", ": /particles/scale[0] = 1e-300: ", "outside [1e-09, 1000000]"},
+    {"info_inf_width_5e-324.h5",
+     ": /container/width = 4.940656458e-324: ", "outside [1e-09, 1000000] m (a box needs it > 0)"},
+    {"position_1e300.h5",
+     ": /particles/position[0] = (1e+300, -1e+300, 1e+300): ", "outside [-1000000, 1000000] m"},
+    {"container_width_zero.h5",
+     ": /container/width = 0: ", "outside [1e-09, 1000000] m (a box needs it > 0)"},
+    {"format_version_float_1.9.h5",
+     ": /format_version: ", "stored as float64 (1.9), expected an integer"},
+    {"shape_id_int64_minus1.h5", ": /particles/shape: ", "stored as int64, expected uint32"},
+};
+
+void expect_one_line_error(const CliRun& run, const BadFile& bad, const std::string& command) {
+  SCOPED_TRACE(std::string(bad.name) + " with " + command);
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.out, "");
+  ASSERT_FALSE(run.err.empty());
+  EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;  // exactly one line
+  EXPECT_LT(run.err.size(), 400U) << run.err;
+  EXPECT_EQ(run.err.rfind("aggpack: error: " + kFixtures + bad.name + bad.field, 0), 0U) << run.err;
+  EXPECT_NE(run.err.find(bad.reason), std::string::npos) << run.err;
+}
+
+TEST_F(NativeBadInputTest, EveryBadFileIsOneLineExit2AndLeavesNothing) {
+  for (const BadFile& bad : kBadFiles) {
+    const std::string input = "'" + kFixtures + bad.name + "'";
+    expect_one_line_error(run("info " + input), bad, "info");
+    expect_one_line_error(run("export " + input + " --format stl -o out.stl"), bad, "stl");
+    expect_one_line_error(run("export " + input + " --format vtu -o out.vtu"), bad, "vtu");
+    expect_one_line_error(run("export " + input + " --format inp -o out.inp"), bad, "inp");
+    EXPECT_EQ(left_behind(), std::vector<std::string>{}) << bad.name;
+  }
+}
+
+// The settle hang of the issue: the file is now rejected before the simulation starts.
+TEST_F(NativeBadInputTest, SettleRejectsTheTinyScaleFile) {
+  if (run("settle --help").exit_code != 0) GTEST_SKIP() << "aggpack built without simulation";
+  const BadFile& bad = kBadFiles[2];
+  ASSERT_EQ(std::string(bad.name), "settle_hang_scale_1e-200.h5");
+  expect_one_line_error(run("settle '" + kFixtures + bad.name + "' -o dense.h5 --max-time 0.02"),
+                        bad, "settle");
+  EXPECT_EQ(left_behind(), std::vector<std::string>{});
+}
+
+// The library gives the same message (without the CLI prefix) as a FormatError.
+TEST_F(NativeBadInputTest, ReadPackingThrowsTheSameMessage) {
+  for (const BadFile& bad : kBadFiles) {
+    try {
+      read_packing(kFixtures + bad.name);
+      ADD_FAILURE() << bad.name << " was accepted";
+    } catch (const FormatError& error) {
+      const std::string message = error.what();
+      EXPECT_EQ(message.rfind(kFixtures + bad.name + bad.field, 0), 0U) << message;
+      EXPECT_NE(message.find(bad.reason), std::string::npos) << message;
+    }
+  }
+}
+
+// h5py's default str attributes (variable-length UTF-8) and variable-length ASCII are read.
+TEST_F(NativeBadInputTest, VariableLengthStringsAreRead) {
+  const Packing base = read_packing(kFixtures + "base_s.h5");
+  for (const char* name : {"vlen_utf8_config_toml.h5", "vlen_format_name.h5", "vlen_ascii.h5"}) {
+    SCOPED_TRACE(name);
+    const Packing packing = read_packing(kFixtures + name);
+    EXPECT_EQ(packing.particles.size(), base.particles.size());
+    EXPECT_EQ(packing.provenance.config_toml, base.provenance.config_toml);
+    const CliRun info = run("info '" + kFixtures + name + "'");
+    EXPECT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_NE(info.out.find("particles        12"), std::string::npos) << info.out;
+    EXPECT_EQ(info.out.find("stored configuration not readable"), std::string::npos);
+    const CliRun stl = run("export '" + kFixtures + name + "' --format stl -o out.stl");
+    EXPECT_EQ(stl.exit_code, 0) << stl.err;
+    EXPECT_TRUE(fs::is_regular_file(base_ / "work" / "out.stl"));
+    fs::remove(base_ / "work" / "out.stl");
+  }
+}
+
+// No particles is a valid, empty packing: `info` reports 0 (documented in docs/formats.md).
+TEST_F(NativeBadInputTest, ZeroParticlesIsAnEmptyPacking) {
+  const CliRun info = run("info '" + kFixtures + "zero_particles.h5'");
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(info.err, "");
+  EXPECT_NE(info.out.find("particles        0 "), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("solid fraction   0.0000"), std::string::npos) << info.out;
+  EXPECT_EQ(info.out.find("nan"), std::string::npos) << info.out;
+}
+
+// A stored config that is not TOML is provenance only: `info` still reports, with one note line
+// naming the attribute and the parse error.
+TEST_F(NativeBadInputTest, UnreadableStoredConfigIsOneNoteLine) {
+  const CliRun info = run("info '" + kFixtures + "unparsable_config_toml.h5'");
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("note            stored configuration not readable "
+                          "(/provenance/config_toml:2:8: TOML syntax error"),
+            std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("); no target grading\n"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("particles        12"), std::string::npos) << info.out;
+}
+
+}  // namespace
+}  // namespace aggpack
+
+namespace aggpack {
+namespace {
+
+// Edits of base_s.h5 made with h5py (Debian python3-h5py, a test dependency; checksums valid).
+class NativeH5pyEditTest : public NativeBadInputTest {
+ protected:
+  // Copies base_s.h5 to `name` in the test folder and runs `edit` on it (h5py file object `f`).
+  std::string edited(const std::string& name, const std::string& edit) const {
+    const fs::path path = base_ / name;
+    fs::copy_file(kFixtures + "base_s.h5", path);
+    fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write);
+    const std::string script = "import h5py, numpy as np\nf = h5py.File('" + path.string() +
+                               "', 'r+')\n" + edit + "\nf.close()\n";
+    std::ofstream(base_ / "edit.py") << script;
+    const std::string command = "/usr/bin/python3 '" + (base_ / "edit.py").string() + "'";
+    EXPECT_EQ(std::system(command.c_str()), 0) << "h5py edit failed: " << edit;
+    return path.string();
+  }
+
+  static std::string message_of(const std::string& path) {
+    try {
+      read_packing(path);
+    } catch (const FormatError& error) {
+      return error.what();
+    }
+    return "";
+  }
+};
+
+// A compressed dataset may declare more than the file holds, but at most 1032 times what it
+// stores (deflate's limit); a forged extent with one chunk stored is rejected before allocating.
+TEST_F(NativeH5pyEditTest, CompressedDatasetsAreBoundedByTheDeflateRatio) {
+  const std::string bomb =
+      edited("bomb.h5",
+             "v = f['shapes/vertices'][...]; del f['shapes/vertices']\n"
+             "d = f['shapes'].create_dataset('vertices', shape=(2**24, 3), dtype='<f8', "
+             "chunks=(65536, 3), compression='gzip', fletcher32=True)\n"
+             "d[:v.shape[0]] = v");
+  const std::string message = message_of(bomb);
+  EXPECT_EQ(message.rfind(bomb + ": /shapes/vertices: declares 16777216 x 3 float64 values "
+                                 "(402653184 bytes) but ",
+                          0),
+            0U)
+      << message;
+  EXPECT_NE(message.find(" bytes are stored compressed in a "), std::string::npos) << message;
+  // The same data compressed in full is read.
+  const std::string fine =
+      edited("fine.h5",
+             "v = f['shapes/vertices'][...]; del f['shapes/vertices']\n"
+             "f['shapes'].create_dataset('vertices', data=v, chunks=True, compression='gzip', "
+             "compression_opts=9)");
+  EXPECT_EQ(message_of(fine), "");
+  EXPECT_EQ(read_packing(fine).shapes.size(), 12U);
+}
+
+TEST_F(NativeH5pyEditTest, ElementTypesAreExact) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"s = f['particles/shape'][...].astype('u2'); "
+       "del f['particles/shape']; f['particles'].create_dataset('shape', data=s)",
+       "/particles/shape: stored as uint16, expected uint32"},
+      {"s = f['particles/scale'][...].astype('f4'); del f['particles/scale']; "
+       "f['particles'].create_dataset('scale', data=s)",
+       "/particles/scale: stored as float32, expected float64"},
+      {"del f['container'].attrs['width']; f['container'].attrs['width'] = 1",
+       "/container/width: stored as int64, expected float64"},
+      {"del f['provenance'].attrs['seed']; f['provenance'].attrs['seed'] = np.int64(-3)",
+       "/provenance/seed = -3: negative, expected >= 0"},
+      {"f.attrs['format_version'] = np.int64(1)", ""},  // h5py's default int: accepted
+      {"f.attrs['format_name'] = 'x' * 500 + '\\n'",
+       "/format_name = \"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\"...: not an "
+       "aggpack packing"},
+  };
+  const std::string external = (base_ / "raw.bin").string();
+  const std::string external_edit =
+      "v = f['shapes/vertices'][...]; del f['shapes/vertices']; v.tofile('" + external +
+      "')\nf['shapes'].create_dataset('vertices', shape=v.shape, dtype='<f8', external=[('" +
+      external + "', 0, v.nbytes)])";
+  const std::string external_message =
+      "/shapes/vertices: stored outside the file (external or virtual dataset)";
+  std::vector<std::pair<const char*, const char*>> all(std::begin(cases), std::end(cases));
+  all.emplace_back(external_edit.c_str(), external_message.c_str());
+  int k = 0;
+  for (const auto& [edit, expected] : all) {
+    const std::string path = edited("t" + std::to_string(k++) + ".h5", edit);
+    const std::string message = message_of(path);
+    if (std::string(expected).empty()) {
+      EXPECT_EQ(message, "") << edit;
+    } else {
+      EXPECT_EQ(message.rfind(path + ": " + expected, 0), 0U) << message;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace aggpack
