@@ -76,14 +76,8 @@ Trough make_trough(const ExportModel& model, const std::vector<ParticleBounds>& 
 
 std::string deck_number(double value, int width) {
   std::string text;
-  append_number(text, value);
-  if (text.size() <= static_cast<std::size_t>(width)) return text;
-  char buffer[48];
-  for (int digits = 17; digits >= 1; --digits) {
-    const int length = std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    if (length <= width) return std::string(buffer, static_cast<std::size_t>(length));
-  }
-  throw LimitExceeded("number width", format_value(value), "<= " + std::to_string(width));
+  append_number_fitting(text, value, width);
+  return text;
 }
 
 std::string deck_field(double value, int width) {

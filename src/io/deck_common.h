@@ -44,9 +44,8 @@ std::vector<ParticleBounds> particle_bounds(const ExportModel& model);
 ///        before the baffle.
 Trough make_trough(const ExportModel& model, const std::vector<ParticleBounds>& bounds);
 
-/// `value` in at most `width` characters: the shortest round-trip form when it fits, else the
-/// most significant digits that fit (>= 7 for width 16 and up).
-std::string deck_number(double value, int width = 20);
+/// `value` in at most `width` (>= 7) characters: append_number_fitting (text_number.h).
+std::string deck_number(double value, int width = kFeNumberWidth);
 
 /// `value` right-aligned in a fixed field of `width` characters (LS-DYNA cards), as deck_number
 /// in width - 1 characters so that a blank always separates fields.

@@ -91,6 +91,7 @@ TEST(AbaqusDeck, KeywordsSetsNumbersAndTroughGeometry) {
           << block.keyword << " parameter " << name << " at line " << block.line;
     }
     for (const auto& fields : block.data) {
+      if (block.keyword == "*HEADING") break;  // free text
       for (const std::string& field : fields) {
         EXPECT_LE(field.size(), 20U) << block.keyword << " field '" << field << "'";
       }
