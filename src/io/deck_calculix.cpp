@@ -2,7 +2,8 @@
 // baffle are single C3D8 slabs with every node prescribed (fixed, the baffle's moved along x);
 // ccx has no general contact, so contact pairs are listed: between particles whose bounding
 // spheres are within contact_distance, between every particle and the floor, and between a
-// particle and a wall or the baffle within that distance (node-to-surface penalty contact).
+// particle and a wall or the baffle within that distance (surface-to-surface penalty contact:
+// ccx 2.20's explicit node-to-surface contact corrupts its heap with more than 16 pairs).
 // Three explicit *DYNAMIC steps: ccx's implicit dynamics rejects frictional impacts (its energy
 // rules cut the increment to nothing), explicit integration runs them.
 
@@ -66,7 +67,8 @@ double gap_to(const Slab& slab, const ParticleBounds& b) {
 }
 
 void append_pair(std::string& out, const std::string& slave, const std::string& master) {
-  out += "*CONTACT PAIR, INTERACTION=ROUGH, TYPE=NODE TO SURFACE\n" + slave + ", " + master + '\n';
+  out +=
+      "*CONTACT PAIR, INTERACTION=ROUGH, TYPE=SURFACE TO SURFACE\n" + slave + ", " + master + '\n';
 }
 
 // Pairs (i < j) of particles whose bounding spheres are within `distance`: a sweep along x.

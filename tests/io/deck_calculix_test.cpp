@@ -31,16 +31,17 @@ TEST(CalculixDeck, CcxRunsTheTroughTestOnASmallPile) {
   const Packing packing = test::pile_near_floor(3, 2, 1, 0.0005, 71);
   ScratchFolder folder;
   ExportOptions options;
-  // A soft material keeps ccx's stable explicit increment large (8e-6 s): a few thousand
-  // increments. The rock default (50 GPa) needs about 20 times as many.
+  // A soft material keeps ccx's stable explicit increment large (2.5e-5 s): about 2,000
+  // increments. The rock default (50 GPa) needs about 70 times as many.
   options.material.density = 2500.0;
-  options.material.youngs_modulus = 1e8;
+  options.material.youngs_modulus = 1e7;
   options.deck = {.kind = DeckKind::kCalculix,
                   .friction = 0.4,
                   .trough_length = packing.container.length + 0.01,
                   .baffle_speed = 1.0,
                   .settle_time = 0.03,
-                  .rest_time = 0.01};
+                  .rest_time = 0.01,
+                  .contact_distance = 0.1};  // neighbours along x and y too
   const ExportSummary summary = write(packing, folder.file("trough.inp"), options);
   EXPECT_EQ(summary.format, ExportFormat::kAbaqus);
   const std::string deck = test::read_text(folder.file("trough.inp"));
