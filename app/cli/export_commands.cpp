@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -31,6 +32,46 @@ struct ExportFlags {
   std::string deck = "none";
   int threads = 0;
 };
+
+// At most this many shape numbers and particle names are listed; the count is always complete.
+constexpr std::size_t kListedFallbacks = 20;
+
+// "tetgen: 4 of 1050 shapes fell back to the centroid fan (shapes 324, ...; particles P325, ...;
+// TetGen died of signal 6 (Aborted): 4)".
+std::string tetgen_report(const ExportSummary& summary) {
+  const auto& fallbacks = summary.tetgen_fallbacks;
+  if (fallbacks.empty()) {
+    return fmt::format("tetgen: all {} shapes meshed by TetGen, none fell back to the centroid fan",
+                       summary.tetgen_shapes);
+  }
+  std::string shapes;
+  std::string particles;
+  std::size_t particle_count = 0;
+  std::map<std::string, std::size_t> failures;
+  for (std::size_t i = 0; i < fallbacks.size(); ++i) {
+    ++failures[fallbacks[i].failure];
+    if (i < kListedFallbacks) shapes += fmt::format("{}{}", i == 0 ? "" : ", ", fallbacks[i].shape);
+    for (const std::uint64_t number : fallbacks[i].particles) {
+      if (particle_count++ < kListedFallbacks) {
+        particles += fmt::format("{}P{}", particles.empty() ? "" : ", ", number);
+      }
+    }
+  }
+  if (fallbacks.size() > kListedFallbacks) {
+    shapes += fmt::format(" and {} more", fallbacks.size() - kListedFallbacks);
+  }
+  if (particle_count > kListedFallbacks) {
+    particles += fmt::format(" and {} more", particle_count - kListedFallbacks);
+  }
+  std::string reasons;
+  for (const auto& [failure, count] : failures) {
+    reasons += fmt::format("; {}: {}", failure, count);
+  }
+  return fmt::format(
+      "tetgen: {} of {} shapes fell back to the centroid fan (shape{} {}; {} particle{} {}{})",
+      fallbacks.size(), summary.tetgen_shapes, fallbacks.size() == 1 ? "" : "s", shapes,
+      particle_count, particle_count == 1 ? "" : "s", particles, reasons);
+}
 
 }  // namespace
 
@@ -95,6 +136,11 @@ void register_export(CLI::App& app) {
   command
       ->add_option("--radius-edge", defaults.tetrahedra.radius_edge_ratio,
                    "tetgen: radius-edge ratio bound, [1.2, 10]")
+      ->capture_default_str();
+  command
+      ->add_option("--tet-time-limit", defaults.tetrahedra.time_limit,
+                   "tetgen: seconds TetGen may spend on one shape before it is stopped and the "
+                   "shape is cut as the centroid fan instead, [0.001, 604800]")
       ->capture_default_str();
   command->add_flag("--split-surface", flags->is_surface_split,
                     "tetgen: let TetGen add nodes on the surface too (bounds met everywhere; "
@@ -204,6 +250,7 @@ void register_export(CLI::App& app) {
     if (summary.quality.tetrahedra > 0) {
       fmt::print("tetrahedron quality: {}\n", describe_quality(summary.quality));
     }
+    if (summary.tetgen_shapes > 0) fmt::print("{}\n", tetgen_report(summary));
   });
 }
 

@@ -53,7 +53,8 @@ class ExportModel {
   [[nodiscard]] const Packing& packing() const { return packing_; }
   [[nodiscard]] const ExportOptions& options() const { return options_; }
   [[nodiscard]] ElementMode mode() const { return mode_; }
-  /// True when the tetrahedra are centroid fans (every tetrahedron's face S1 on the surface).
+  /// True when the tetrahedra are centroid fans (every tetrahedron's face S1 on the surface). With
+  /// TetGen false, also for shapes that fell back to fans (boundary_faces tells their surface).
   [[nodiscard]] bool is_fan() const { return shape_meshes_.empty(); }
 
   /// 0-based offset of particle k's first node / element; k = size() gives the totals.
@@ -88,6 +89,12 @@ class ExportModel {
   /// a fan's surface is face S1 of every tetrahedron (is_fan()).
   [[nodiscard]] const std::vector<std::uint8_t>& boundary_faces(std::size_t k) const;
 
+  /// Shapes of the view TetGen was asked to mesh, and those it failed on (cut as fans).
+  [[nodiscard]] std::uint64_t tetgen_shape_count() const { return tetgen_shape_count_; }
+  [[nodiscard]] const std::vector<TetGenFallback>& tetgen_fallbacks() const {
+    return tetgen_fallbacks_;
+  }
+
   /// Particle k's volume in output units (m^3 times scale^3), sphericity (Eq. 1), measured alpha
   /// (Eq. 2), control radius in output units, size class.
   [[nodiscard]] double volume(std::size_t k) const;
@@ -104,6 +111,7 @@ class ExportModel {
     return packing_.particles[first_ + k];
   }
   [[nodiscard]] Vec3 place(std::size_t k, const Vec3& local) const;
+  void mesh_with_tetgen(const std::vector<char>& is_used);
 
   const Packing& packing_;
   const ExportOptions& options_;
@@ -111,7 +119,10 @@ class ExportModel {
   std::size_t first_;
   std::size_t last_;
   std::vector<ShapeInfo> shapes_;
-  std::vector<TetMesh> shape_meshes_;  ///< TetGen meshes per shape (local frame); empty for fans
+  /// TetGen meshes per shape (local frame; a fan where TetGen failed); empty for fans.
+  std::vector<TetMesh> shape_meshes_;
+  std::uint64_t tetgen_shape_count_ = 0;
+  std::vector<TetGenFallback> tetgen_fallbacks_;
   std::vector<std::uint64_t> node_offsets_;
   std::vector<std::uint64_t> element_offsets_;
 };

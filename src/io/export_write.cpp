@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -109,6 +110,9 @@ void write_one(const Packing& packing, const std::string& path, const ExportOpti
   summary.nodes += model.node_count();
   summary.elements += model.element_count();
   summary.files += 1;
+  summary.tetgen_shapes += model.tetgen_shape_count();
+  summary.tetgen_fallbacks.insert(summary.tetgen_fallbacks.end(), model.tetgen_fallbacks().begin(),
+                                  model.tetgen_fallbacks().end());
   summary.quality.add(model.quality());
 }
 
@@ -407,7 +411,7 @@ ExportModel::ExportModel(const Packing& packing, const ExportOptions& options, E
   shapes_.resize(packing.shapes.size());
   const bool is_tetgen =
       mode != ElementMode::kSurface && options.tetrahedra.method == TetMethod::kTetGen;
-  if (is_tetgen) shape_meshes_.resize(packing.shapes.size());
+  if (is_tetgen) mesh_with_tetgen(is_used);
   auto measure = [&](std::size_t s) {
     if (!is_used[s]) return;
     const ConvexPolyhedron& body = packing.shapes[s];
@@ -426,9 +430,7 @@ ExportModel::ExportModel(const Packing& packing, const ExportOptions& options, E
       info.elements = static_cast<std::uint32_t>(body.triangle_count());
       return;
     }
-    if (is_tetgen) {
-      shape_meshes_[s] = tetgen_mesh(body, options.tetrahedra);
-    } else if (!(properties.volume > 0)) {
+    if (!is_tetgen && !(properties.volume > 0)) {
       throw InvalidInput("shape " + std::to_string(s) + " volume", format_value(properties.volume),
                          "> 0 (a closed outward convex body)");
     }
@@ -467,6 +469,37 @@ ExportModel::ExportModel(const Packing& packing, const ExportOptions& options, E
     const ShapeInfo& info = shapes_[particle(k).shape];
     node_offsets_[k + 1] = node_offsets_[k] + info.nodes;
     element_offsets_[k + 1] = element_offsets_[k] + info.elements;
+  }
+}
+
+// TetGen runs in worker processes (tetgen_meshes); a shape it fails on, e.g. one where Debian's
+// TetGen 1.5 aborts, is cut as the paper's centroid fan and reported instead of failing the export.
+void ExportModel::mesh_with_tetgen(const std::vector<char>& is_used) {
+  std::vector<std::uint32_t> shapes;
+  std::vector<const ConvexPolyhedron*> bodies;
+  for (std::size_t s = 0; s < is_used.size(); ++s) {
+    if (!is_used[s]) continue;
+    shapes.push_back(static_cast<std::uint32_t>(s));
+    bodies.push_back(&packing_.shapes[s]);
+  }
+  std::vector<TetGenOutcome> outcomes = tetgen_meshes(bodies, options_.tetrahedra);
+  shape_meshes_.resize(packing_.shapes.size());
+  tetgen_shape_count_ = shapes.size();
+  std::vector<std::size_t> fallback_of(packing_.shapes.size(), SIZE_MAX);
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const std::uint32_t s = shapes[i];
+    if (outcomes[i].is_meshed) {
+      shape_meshes_[s] = std::move(outcomes[i].mesh);
+      continue;
+    }
+    shape_meshes_[s] = centroid_fan(packing_.shapes[s]);
+    fallback_of[s] = tetgen_fallbacks_.size();
+    tetgen_fallbacks_.push_back(
+        {.shape = s, .failure = std::move(outcomes[i].failure), .particles = {}});
+  }
+  for (std::size_t k = 0; k < size(); ++k) {
+    const std::size_t fallback = fallback_of[particle(k).shape];
+    if (fallback != SIZE_MAX) tetgen_fallbacks_[fallback].particles.push_back(particle_number(k));
   }
 }
 

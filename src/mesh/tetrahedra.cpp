@@ -24,6 +24,7 @@ void validate(const TetOptions& options) {
                        ">= 0 m^3 (0 = no bound)");
   }
   require_in_range("radius-edge ratio", options.radius_edge_ratio, 1.2, 10.0);
+  require_in_range("TetGen time limit (s)", options.time_limit, 1e-3, 7 * 24 * 3600.0);
 }
 
 double tetra_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {

@@ -82,10 +82,9 @@ TEST_F(PaperPackingInCalculix, TetGenC3D10Seed4) {
   run("--seed 4", "--tet-method tetgen --quadratic", "C3D10");
 }
 
-// DISABLED until the TetGen isolation (branch `tetgen`) is merged: Debian's TetGen 1.5 aborts the
-// whole process on ~0.3 % of generated shapes, some of them in the default packing. Enable by
-// removing the DISABLED_ prefix.
-TEST_F(PaperPackingInCalculix, DISABLED_TetGenC3D4) { run("", "--tet-method tetgen", "C3D4"); }
+// The default seed: Debian's TetGen 1.5 aborts on 4 of its shapes (in a worker process); those
+// particles are cut as centroid fans, and ccx runs the mixed model as well.
+TEST_F(PaperPackingInCalculix, TetGenC3D4) { run("", "--tet-method tetgen", "C3D4"); }
 #endif
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/mesh/tetrahedra.h"
 #include "export_fixture.h"
+#include "support/poly_file.h"
 
 namespace aggpack {
 namespace {
@@ -122,7 +123,7 @@ TEST(RockDatExport, FanVolumesMatchEveryParticle) {
 TEST(RockDatExport, TetGenVolumesMatchEveryParticle) {
   const Packing packing = test::grid_packing(2, 2, 1, 22);
   ScratchFolder folder;
-  const TetOptions tetgen{.method = TetMethod::kTetGen, .max_volume = 2e-5};
+  const TetOptions tetgen{.method = TetMethod::kTetGen, .max_volume = 1e-5};
   const ExportSummary summary = write(packing, folder.file("rock.dat"), {.tetrahedra = tetgen});
   const RockDat dat = parse_rock_dat(folder.file("rock.dat"));
   EXPECT_EQ(summary.elements, dat.tetrahedra.size());
@@ -133,6 +134,37 @@ TEST(RockDatExport, TetGenVolumesMatchEveryParticle) {
     fan_total += packing.shapes[particle.shape].triangle_count();
   }
   EXPECT_GT(dat.tetrahedra.size(), fan_total);  // refined beyond the fan
+  expect_particle_volumes(packing, dat, counts);
+}
+
+// Shapes on which TetGen aborts (tests/mesh/fixtures/tetgen-abort) are written as centroid fans
+// and reported with every particle that uses them; the rest of the file is TetGen's.
+TEST(RockDatExport, ShapesTetGenAbortsOnAreFansAndReported) {
+  Packing packing = test::grid_packing(3, 2, 1, 23);
+  const std::string fixtures = std::string(AGGPACK_SOURCE_DIR) + "/tests/mesh/fixtures/";
+  packing.shapes[1] = test::read_poly(fixtures + "tetgen-abort/s00324.poly");
+  packing.shapes[3] = test::read_poly(fixtures + "tetgen-abort/s00336.poly");
+  packing.particles[4].shape = 1;  // shape 1 twice: particles P2 and P5
+  ScratchFolder folder;
+  const TetOptions tetgen{.method = TetMethod::kTetGen};
+  const ExportSummary summary = write(packing, folder.file("rock.dat"), {.tetrahedra = tetgen});
+  EXPECT_EQ(summary.tetgen_shapes, 5U);  // shape 4 is no particle's any more
+  ASSERT_EQ(summary.tetgen_fallbacks.size(), 2U);
+  EXPECT_EQ(summary.tetgen_fallbacks[0].shape, 1U);
+  EXPECT_EQ(summary.tetgen_fallbacks[0].particles, (std::vector<std::uint64_t>{2, 5}));
+  EXPECT_EQ(summary.tetgen_fallbacks[1].shape, 3U);
+  EXPECT_EQ(summary.tetgen_fallbacks[1].particles, (std::vector<std::uint64_t>{4}));
+  for (const auto& fallback : summary.tetgen_fallbacks) {
+    EXPECT_EQ(fallback.failure, "TetGen died of signal 6 (Aborted)");
+  }
+  const RockDat dat = parse_rock_dat(folder.file("rock.dat"));
+  EXPECT_EQ(summary.elements, dat.tetrahedra.size());
+  std::vector<std::size_t> counts;
+  for (const auto& particle : packing.particles) {
+    const ConvexPolyhedron& body = packing.shapes[particle.shape];
+    const bool is_fan = particle.shape == 1 || particle.shape == 3;
+    counts.push_back(is_fan ? body.triangle_count() : tetgen_mesh(body, tetgen).tetrahedra.size());
+  }
   expect_particle_volumes(packing, dat, counts);
 }
 #endif

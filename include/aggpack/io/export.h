@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/io/stl.h"
@@ -117,6 +118,14 @@ struct ExportOptions {
   DeckOptions deck = {};  ///< a complete solver model instead of the mesh alone (.inp, .k, .py)
 };
 
+/// A shape that TetGen could not mesh (--tet-method tetgen) and that was cut as the paper's
+/// centroid fan instead, which always exists for a convex body.
+struct TetGenFallback {
+  std::uint32_t shape = 0;               ///< index into Packing::shapes (0-based)
+  std::string failure;                   ///< what TetGen did (TetGenOutcome::failure)
+  std::vector<std::uint64_t> particles;  ///< the written particles of this shape, 1-based (P<n>)
+};
+
 /// What write() produced.
 struct ExportSummary {
   ExportFormat format = ExportFormat::kAuto;  ///< the format actually written
@@ -124,6 +133,8 @@ struct ExportSummary {
   std::uint64_t nodes = 0;     ///< nodes (vertices) written, over all files
   std::uint64_t elements = 0;  ///< triangles or tetrahedra written, over all files
   std::uint64_t files = 0;
+  std::uint64_t tetgen_shapes = 0;               ///< shapes given to TetGen (TetMethod::kTetGen)
+  std::vector<TetGenFallback> tetgen_fallbacks;  ///< of those, the ones cut as fans, by shape
   /// Tetrahedral formats: the shape quality of every tetrahedron written (C3D10: of its straight
   /// linear tetrahedron); quality.tetrahedra == 0 for surface formats.
   TetQuality quality = {};
@@ -133,7 +144,8 @@ struct ExportSummary {
 /// \throw InvalidInput (options out of range, a format that cannot hold the request, e.g.
 ///        is_quadratic for STL, no format given and an unknown extension),
 ///        IoError (folder missing or not writable, file exists without Overwrite::kAllow, write
-///        failure), LimitExceeded (more ids than the format can number, TetGen failure).
+///        failure), LimitExceeded (more ids than the format can number). A shape TetGen fails
+///        on does not throw: it is cut as a centroid fan and listed in tetgen_fallbacks.
 ExportSummary write(const Packing& packing, const std::string& path,
                     const ExportOptions& options = {});
 

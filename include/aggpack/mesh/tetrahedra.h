@@ -17,6 +17,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "aggpack/geom/convex_polyhedron.h"
@@ -74,6 +75,10 @@ struct TetOptions {
   /// coplanar neighbouring faces as one, so the surface moves slightly (volume within ~1e-5
   /// relative).
   bool is_surface_kept = true;
+  /// TetGen only: seconds TetGen may spend on one shape before it is stopped and the shape
+  /// counts as failed, in [0.001, 604800]. A generated shape takes milliseconds; Debian's TetGen
+  /// 1.5 loops forever on a few (tests/mesh/fixtures/tetgen-hang).
+  double time_limit = 20.0;
 };
 
 /// The centroid fan's tetrahedron on surface triangle (a, b, c), `centre` being the centroid's
@@ -100,8 +105,29 @@ TetMesh centroid_fan(const ConvexPolyhedron& body);
 /// A TetGen quality mesh of the body (switches p, q, a and, with is_surface_kept, Y). The body's
 /// vertices stay the first nodes in their order; TetGen adds Steiner nodes inside (and, unless
 /// is_surface_kept, on the flat surface faces) to meet `max_volume` and `radius_edge_ratio`.
-/// \throw InvalidInput (options), LimitExceeded (TetGen failed on this input, with its code).
+/// TetGen runs in a worker process (see tetgen_meshes), so its failed assertions (Debian's TetGen
+/// 1.5 aborts on ~0.3 % of generated shapes) cannot end the calling process.
+/// \throw InvalidInput (options), LimitExceeded (TetGen failed, aborted or timed out on this
+///        input, saying which), IoError (no worker process could be started).
 TetMesh tetgen_mesh(const ConvexPolyhedron& body, const TetOptions& options);
+
+/// One shape's result from tetgen_meshes.
+struct TetGenOutcome {
+  bool is_meshed = false;  ///< TetGen produced `mesh`; otherwise `failure` says what happened
+  TetMesh mesh;            ///< as tetgen_mesh returns it (empty when !is_meshed)
+  /// e.g. "TetGen died of signal 6 (Aborted)" (a failed assertion in TetGen), "TetGen error
+  /// code 3", "TetGen timed out after 20 s".
+  std::string failure;
+};
+
+/// TetGen meshes of many bodies, each as tetgen_mesh would make it, computed in forked worker
+/// processes (as many as TBB may use threads, each meshing batches of shapes; see run_isolated in
+/// aggpack/core/isolated.h): a shape on which TetGen aborts, crashes or overruns
+/// options.time_limit fails alone. Outcomes come in the order of `bodies` and do not depend on the
+/// number of workers. \throw InvalidInput (options, a null or empty body), IoError (no worker
+/// process could be started).
+std::vector<TetGenOutcome> tetgen_meshes(std::span<const ConvexPolyhedron* const> bodies,
+                                         const TetOptions& options);
 
 /// Dispatches on options.method. \throw as centroid_fan / tetgen_mesh.
 TetMesh tetrahedralize(const ConvexPolyhedron& body, const TetOptions& options = {});
