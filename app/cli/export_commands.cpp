@@ -29,6 +29,7 @@ struct ExportFlags {
   std::string cells = "default";
   std::string tet_method = "fan";
   std::string inp_layout = "sets";
+  std::string deck = "none";
   int threads = 0;
 };
 
@@ -162,6 +163,49 @@ void register_export(CLI::App& app) {
       ->add_option("--poisson-ratio", defaults.material.poisson_ratio,
                    "Poisson's ratio nu, in (-1, 0.5)")
       ->capture_default_str();
+  auto& deck = defaults.deck;
+  command
+      ->add_option("--deck", flags->deck,
+                   "none | abaqus | calculix | lsdyna | yade: write a complete, runnable model "
+                   "of the paper's trough test around the mesh (walls, moving baffle, gravity, "
+                   "friction, steps, output) instead of the mesh alone; picks the format (.inp, "
+                   ".inp, .k, .py). Run it with: abaqus job=NAME | ccx -i NAME | lsdyna i=NAME.k "
+                   "| yade -n -x NAME.py")
+      ->capture_default_str();
+  command
+      ->add_option("--friction", deck.friction, "deck: Coulomb mu_s, particles and walls, [0, 10]")
+      ->capture_default_str();
+  command->add_option("--gravity", deck.gravity, "deck: gravity (m/s^2) along -z, > 0")
+      ->capture_default_str();
+  command
+      ->add_option("--baffle-position", deck.baffle_position,
+                   "deck: x of the baffle (m), >= the particles' largest x; 0 = the container's "
+                   "end")
+      ->capture_default_str();
+  command
+      ->add_option("--trough-length", deck.trough_length,
+                   "deck: trough length (m) from its start; 0 = twice the start-to-baffle "
+                   "length (the paper's baffle at the middle)")
+      ->capture_default_str();
+  command
+      ->add_option("--baffle-speed", deck.baffle_speed, "deck: baffle speed (m/s) toward +x, > 0")
+      ->capture_default_str();
+  command
+      ->add_option("--settle-time", deck.settle_time,
+                   "deck: step SETTLE (s), baffle still; 0 = twice the free fall of the highest "
+                   "particle")
+      ->capture_default_str();
+  command->add_option("--rest-time", deck.rest_time, "deck: step REST after the baffle (s), >= 0")
+      ->capture_default_str();
+  command
+      ->add_option("--contact-distance", deck.contact_distance,
+                   "calculix deck: contact pairs between particles (and walls) closer than "
+                   "this (m); 0 = half the largest particle radius")
+      ->capture_default_str();
+  command
+      ->add_option("--time-step", deck.time_step,
+                   "yade deck: time step (s); 0 = from the particles' mass and contact stiffness")
+      ->capture_default_str();
   command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
       ->capture_default_str();
 
@@ -189,6 +233,7 @@ void register_export(CLI::App& app) {
     } else if (flags->inp_layout != "sets") {
       throw InvalidInput("--inp-layout", "'" + flags->inp_layout + "'", "sets | parts");
     }
+    options.deck.kind = parse_deck_kind(flags->deck);
     // Check options and the destination before the (possibly long) read of the input.
     options.format = resolve_format(flags->output, options);
     validate(options, options.format);

@@ -230,6 +230,9 @@ void write_abaqus(const ExportModel& model, std::ostream& out);
 void write_vtu(const ExportModel& model, std::ostream& out);
 void write_gmsh(const ExportModel& model, std::ostream& out);
 void write_lsdyna(const ExportModel& model, std::ostream& out);
+/// The .k file without its closing *END; `comments` ($ lines) follow *KEYWORD. Part i is particle
+/// i, section 1 and material 1 are the particles'.
+void write_lsdyna_mesh(const ExportModel& model, std::ostream& out, const std::string& comments);
 void write_ansys(const ExportModel& model, std::ostream& out);
 void write_obj(const ExportModel& model, std::ostream& out);
 void write_yade(const ExportModel& model, std::ostream& out);

@@ -16,10 +16,10 @@ constexpr int kDynaCardWidth = 10;              // columns of a standard keyword
 
 }  // namespace
 
-void write_lsdyna(const ExportModel& model, std::ostream& out) {
+void write_lsdyna_mesh(const ExportModel& model, std::ostream& out, const std::string& comments) {
   require_ids_fit(model, kMaxDynaId, "LS-DYNA");
   const MaterialOptions& material = model.options().material;
-  std::string head = "*KEYWORD\n*TITLE\naggpack " AGGPACK_VERSION " packing, ";
+  std::string head = "*KEYWORD\n" + comments + "*TITLE\naggpack " AGGPACK_VERSION " packing, ";
   head += std::to_string(model.size()) + " particles\n";
   char line[160];
   std::snprintf(line, sizeof line, "$ coordinates in metres times %.17g; part i = particle i\n",
@@ -65,6 +65,10 @@ void write_lsdyna(const ExportModel& model, std::ostream& out) {
       buffer += '\n';
     }
   });
+}
+
+void write_lsdyna(const ExportModel& model, std::ostream& out) {
+  write_lsdyna_mesh(model, out, "");
   out << "*END\n";
 }
 

@@ -15,6 +15,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/temp_paths.h"
 #include "aggpack/geom/mass_properties.h"
+#include "deck_common.h"
 #include "export_detail.h"
 
 namespace aggpack {
@@ -79,7 +80,23 @@ void write_one(const Packing& packing, const std::string& path, const ExportOpti
 }
 
 void write_format(const detail::ExportModel& model, ExportFormat format, std::ostream& out) {
-  switch (format) {
+  switch (model.options().deck.kind) {
+    case DeckKind::kAbaqus:
+      detail::write_deck_abaqus(model, out);
+      break;
+    case DeckKind::kCalculix:
+      detail::write_deck_calculix(model, out);
+      break;
+    case DeckKind::kLsDyna:
+      detail::write_deck_lsdyna(model, out);
+      break;
+    case DeckKind::kYade:
+      detail::write_deck_yade(model, out);
+      break;
+    case DeckKind::kNone:
+      break;
+  }
+  switch (model.options().deck.kind == DeckKind::kNone ? format : ExportFormat::kAuto) {
     case ExportFormat::kStl:
       detail::write_stl(model, out);
       break;
@@ -212,6 +229,51 @@ void write_per_particle(const Packing& packing, const std::string& path,
   staging.release();
 }
 
+// The format a deck is written in.
+ExportFormat deck_format(DeckKind kind) {
+  switch (kind) {
+    case DeckKind::kAbaqus:
+    case DeckKind::kCalculix:
+      return ExportFormat::kAbaqus;
+    case DeckKind::kLsDyna:
+      return ExportFormat::kLsDyna;
+    case DeckKind::kYade:
+      return ExportFormat::kYade;
+    case DeckKind::kNone:
+      break;
+  }
+  return ExportFormat::kAuto;
+}
+
+void validate_deck(const ExportOptions& options, ExportFormat format) {
+  const DeckOptions& deck = options.deck;
+  if (deck.kind == DeckKind::kNone) return;
+  const std::string name = deck_name(deck.kind);
+  if (format != deck_format(deck.kind)) {
+    throw InvalidInput("deck", name + " for ." + format_name(format),
+                       "the ." + format_name(deck_format(deck.kind)) + " format");
+  }
+  if (options.is_per_particle) {
+    throw InvalidInput("per-particle", "true with --deck " + name, "one file for a deck");
+  }
+  if (options.abaqus_layout != AbaqusLayout::kElementSets) {
+    throw InvalidInput("inp layout", "parts with --deck " + name, "sets");
+  }
+  if (options.is_quadratic && deck.kind == DeckKind::kAbaqus) {
+    throw InvalidInput("quadratic", "true with --deck abaqus",
+                       "C3D4 (Abaqus/Explicit has no C3D10; use --deck calculix)");
+  }
+  require_in_range("friction", deck.friction, 0.0, 10.0);
+  require_positive("gravity", deck.gravity);
+  require_positive("baffle speed", deck.baffle_speed);
+  require_in_range("baffle position", deck.baffle_position, 0.0, 1e9);
+  require_in_range("trough length", deck.trough_length, 0.0, 1e9);
+  require_in_range("settle time", deck.settle_time, 0.0, 1e9);
+  require_in_range("rest time", deck.rest_time, 0.0, 1e9);
+  require_in_range("contact distance", deck.contact_distance, 0.0, 1e9);
+  require_in_range("time step", deck.time_step, 0.0, 1e9);
+}
+
 }  // namespace
 
 ExportFormat parse_export_format(const std::string& name) {
@@ -244,6 +306,32 @@ ExportFormat format_from_extension(const std::string& path) {
     throw InvalidInput("output extension", "'" + extension + "'",
                        std::string("one of ") + kFormatNames + ", or give --format");
   }
+}
+
+DeckKind parse_deck_kind(const std::string& name) {
+  const std::string key = lower(name);
+  if (key == "none") return DeckKind::kNone;
+  if (key == "abaqus") return DeckKind::kAbaqus;
+  if (key == "calculix" || key == "ccx") return DeckKind::kCalculix;
+  if (key == "lsdyna" || key == "ls-dyna") return DeckKind::kLsDyna;
+  if (key == "yade") return DeckKind::kYade;
+  throw InvalidInput("deck", "'" + name + "'", "none, abaqus, calculix (ccx), lsdyna, yade");
+}
+
+std::string deck_name(DeckKind kind) {
+  switch (kind) {
+    case DeckKind::kAbaqus:
+      return "abaqus";
+    case DeckKind::kCalculix:
+      return "calculix";
+    case DeckKind::kLsDyna:
+      return "lsdyna";
+    case DeckKind::kYade:
+      return "yade";
+    case DeckKind::kNone:
+      break;
+  }
+  return "none";
 }
 
 std::string format_name(ExportFormat format) {
@@ -299,10 +387,25 @@ void validate(const ExportOptions& options, ExportFormat format) {
       format != ExportFormat::kGmsh) {
     throw InvalidInput("cells", "set for ." + format_name(format), "only for .vtu, .msh");
   }
+  validate_deck(options, format);
 }
 
 ExportFormat resolve_format(const std::string& path, const ExportOptions& options) {
   if (options.format != ExportFormat::kAuto) return options.format;
+  if (options.deck.kind != DeckKind::kNone) {
+    // The deck picks the format; an extension naming another format is a mistake.
+    const ExportFormat format = deck_format(options.deck.kind);
+    ExportFormat named = ExportFormat::kAuto;
+    try {
+      named = format_from_extension(path);
+    } catch (const InvalidInput&) {
+    }
+    if (named != ExportFormat::kAuto && named != format) {
+      throw InvalidInput("output extension", "'" + fs::path(path).extension().string() + "'",
+                         "." + format_name(format) + " for --deck " + deck_name(options.deck.kind));
+    }
+    return format;
+  }
   fs::path file(path);
   while (!file.empty() && !file.has_filename()) file = file.parent_path();
   if (options.is_per_particle && file.extension().empty()) return ExportFormat::kStl;

@@ -66,6 +66,41 @@ struct MaterialOptions {
   double poisson_ratio = 0.2;      ///< in (-1, 0.5)
 };
 
+/// Which complete, runnable solver model `write` produces around the mesh (`export --deck`).
+/// Each is the paper's trough test (paper-notes.md, section 6) in the solver's terms; the deck's
+/// own header lists what it assumes. Format: abaqus and calculix write .inp, lsdyna .k, yade .py.
+enum class DeckKind {
+  kNone,      ///< the mesh (or bodies) only
+  kAbaqus,    ///< Abaqus/Explicit: rigid R3D4 walls, moving rigid baffle, general contact
+  kCalculix,  ///< CalculiX: fixed floor/walls, moving baffle, contact pairs between neighbours
+  kLsDyna,    ///< LS-DYNA: rigid walls, rigid moving baffle, automatic single-surface contact
+  kYade       ///< YADE: walls, moving baffle wall, polyhedra engines, time step and O.run
+};
+
+/// The trough test a deck models. Lengths and speeds in metres (scaled by ExportOptions::scale
+/// like the coordinates), times in seconds. The trough is x in [x0, trough end], y and z the
+/// container's (or the particles', where they reach further) with the floor at the container's
+/// bottom; the baffle stands at baffle_position, the particles behind it (x below).
+/// Stage 1 (SETTLE, settle_time): the particles fall under gravity, baffle still. Stage 2
+/// (BAFFLE): the baffle moves toward +x at baffle_speed until it reaches the trough end. Stage 3
+/// (REST, rest_time): everything settles.
+struct DeckOptions {
+  DeckKind kind = DeckKind::kNone;
+  double friction = 0.5;         ///< Coulomb mu_s, particle-particle and particle-wall, [0, 10]
+  double gravity = 9.81;         ///< m/s^2, > 0, along -z
+  double baffle_position = 0.0;  ///< m, x of the baffle; 0 = the container's (particles') end
+  double trough_length = 0.0;    ///< m, from the trough's start; 0 = 2 x (baffle - start)
+  double baffle_speed = 0.5;     ///< m/s toward +x in stage 2, > 0
+  double settle_time = 0.0;      ///< s, stage 1; 0 = 2 x free fall of the highest particle
+  double rest_time = 1.0;        ///< s, stage 3, >= 0
+  /// CalculiX: particles whose bounding spheres are closer than this (m) get a contact pair, as
+  /// do particles this close to a wall or the baffle; 0 = 0.5 x the largest particle radius.
+  double contact_distance = 0.0;
+  /// YADE: time step (s); 0 = 0.2 sqrt(m / (young pi r^2)) of the lightest particle (mass m,
+  /// equivalent radius r; PolyhedraMat.young is the volumetric contact stiffness).
+  double time_step = 0.0;
+};
+
 struct ExportOptions {
   ExportFormat format = ExportFormat::kAuto;
   double scale = 1.0;                        ///< multiply coordinates by this, > 0 (1000 = mm)
@@ -80,6 +115,7 @@ struct ExportOptions {
   bool is_quadratic = false;
   AbaqusLayout abaqus_layout = AbaqusLayout::kElementSets;  ///< .inp only
   MaterialOptions material = {};
+  DeckOptions deck = {};  ///< a complete solver model instead of the mesh alone (.inp, .k, .py)
 };
 
 /// A shape that TetGen could not mesh (--tet-method tetgen) and that was cut as the paper's
@@ -125,6 +161,13 @@ ExportFormat resolve_format(const std::string& path, const ExportOptions& option
 
 /// The format chosen by the extension of `path`. \throw InvalidInput for an unknown extension.
 ExportFormat format_from_extension(const std::string& path);
+
+/// The deck a name denotes: "none", "abaqus", "calculix" (or "ccx"), "lsdyna" (or "ls-dyna"),
+/// "yade"; case-insensitive. \throw InvalidInput listing the names.
+DeckKind parse_deck_kind(const std::string& name);
+
+/// Short name of a deck ("none", "abaqus", "calculix", "lsdyna", "yade").
+std::string deck_name(DeckKind kind);
 
 /// Short name of a format ("stl", "dat", "inp", "vtu", "msh", "k", "mac", "obj", "py").
 std::string format_name(ExportFormat format);
