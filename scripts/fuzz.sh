@@ -18,7 +18,9 @@ CC=${CC_FUZZ:-clang-14} CXX=${CXX_FUZZ:-clang++-14} cmake -S . -B "$build" -G Ni
   -DAGGPACK_BUILD_SIM=OFF "$@" >/dev/null
 cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $targets)
 
-# max_len: the native seeds are up to ~24 KB; a config is a few hundred bytes.
+# max_len: the native seeds are up to ~24 KB; a config is a few hundred bytes. malloc_limit_mb:
+# reading a file of at most 64 KB must never need a 256 MB block (issue 12: memory within a
+# small multiple of the file size).
 declare -A max_len=([native_reader]=65536 [config_reader]=8192)
 # HDF5's library state lives until exit; report leaks per input only when they are ours.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
@@ -32,7 +34,7 @@ for target in $targets; do
   echo "fuzz: $target for $seconds s (log $log)"
   # Fork mode keeps going after an out-of-memory or timeout input and saves each finding.
   "$build/tests/fuzz/fuzz_$target" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
-    -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 -max_len="${max_len[$target]}" \
+    -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 -malloc_limit_mb=256 -max_len="${max_len[$target]}" \
     -artifact_prefix="$artifacts/" -print_final_stats=1 \
     "$corpus" "tests/fuzz/corpus/$target" >"$log" 2>&1 || true
   runs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')

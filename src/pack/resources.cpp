@@ -254,6 +254,12 @@ void check_resources(const RandomPackOptions& options) {
   const std::string field = is_count ? "random.count" : "random.volume_fraction";
   const std::string value =
       is_count ? std::to_string(options.count) : format_value(options.volume_fraction);
+  if (!(estimate.mean_volume > 0.0) || !std::isfinite(estimate.mean_volume)) {
+    throw LimitExceeded("grading",
+                        "sizes from " + format_value(smallest_size(options.grading)) + " m",
+                        "sizes whose grown particles have a positive, finite volume (" +
+                            format_value(estimate.mean_volume) + " m^3 here)");
+  }
   if (is_count && estimate.solid_fraction > kMaxSolidFraction) {
     throw LimitExceeded(
         field, value,
@@ -277,6 +283,11 @@ void check_resources(const RandomPackOptions& options) {
 
 void check_resources(const LatticeOptions& options, double sites) {
   const RunEstimate estimate = estimate_run(options, sites);
+  if (!(estimate.mean_volume > 0.0) || !std::isfinite(estimate.mean_volume)) {
+    throw LimitExceeded("lattice.radius", format_value(options.radius),
+                        "a radius whose grown particles have a positive, finite volume (" +
+                            format_value(estimate.mean_volume) + " m^3 here)");
+  }
   const MemoryLimit limit = memory_limit();
   if (estimate.bytes > limit.bytes) {
     throw LimitExceeded("lattice.radius", format_value(options.radius),
