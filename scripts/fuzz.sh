@@ -3,7 +3,9 @@
 # build-fuzz/ and runs each for SECONDS (default 90; the long run: scripts/fuzz.sh 3600).
 #   scripts/fuzz.sh [SECONDS] [extra cmake arguments...]
 #   AGGPACK_FUZZ_TARGETS="native_reader"  run only some targets (default: all)
-# Seeds: tests/fuzz/corpus/<target>/ (read only); new inputs go to build-fuzz/corpus/<target>/.
+# Seeds (read only): tests/io/fixtures/bad-inputs/ (the native files and configs of issue 12),
+# examples/*.toml and tests/fuzz/corpus/config_reader/ (TOML + --set strings); new inputs go to
+# build-fuzz/corpus/<target>/.
 # Findings (crash-*, leak-*, oom-*, timeout-*, slow-unit-*) are saved in build-fuzz/artifacts/
 # <target>/ and make the script fail; reproduce one with build-fuzz/tests/fuzz/fuzz_<target> FILE.
 set -euo pipefail
@@ -22,6 +24,8 @@ cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $targets)
 # reading a file of at most 64 KB must never need a 256 MB block (issue 12: memory within a
 # small multiple of the file size).
 declare -A max_len=([native_reader]=65536 [config_reader]=8192)
+declare -A seeds=([native_reader]="tests/io/fixtures/bad-inputs"
+  [config_reader]="tests/fuzz/corpus/config_reader examples tests/io/fixtures/bad-inputs")
 # Leaks inside Debian's HDF5 on corrupted headers are not ours: tests/fuzz/lsan-suppressions.txt.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/fuzz/lsan-suppressions.txt}
@@ -37,7 +41,7 @@ for target in $targets; do
   "$build/tests/fuzz/fuzz_$target" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
     -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 -malloc_limit_mb=256 -max_len="${max_len[$target]}" \
     -artifact_prefix="$artifacts/" -print_final_stats=1 \
-    "$corpus" "tests/fuzz/corpus/$target" >"$log" 2>&1 || true
+    "$corpus" ${seeds[$target]} >"$log" 2>&1 || true
   runs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
   found=$(find "$artifacts" -type f | wc -l)
   echo "fuzz: $target: ${runs:-0} executions, $found finding(s) in $artifacts"

@@ -57,7 +57,7 @@ class RunawayCliTest : public ::testing::Test {
   fs::path folder_;
 };
 
-const std::string kFixtures = AGGPACK_SOURCE_DIR "/tests/fixtures/bad-inputs/";
+const std::string kFixtures = AGGPACK_SOURCE_DIR "/tests/io/fixtures/bad-inputs/";
 
 TEST_F(RunawayCliTest, CountTheBoxCannotHoldIsRefusedUpFront) {
   const CommandRun pack = run("pack '" + kFixtures + "count_1e8_default_box.toml' -o out.h5");

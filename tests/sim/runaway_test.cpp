@@ -92,14 +92,14 @@ TEST(SimulationLimits, MaxTimeIsHonoured) {
 }
 
 TEST(SimulationLimits, SettleOnAParticleAtScale1e200EndsWithOneLine) {
-  // tests/fixtures/bad-inputs/settle_hang_scale_1e-200.h5 (issue 12): settle printed
+  // tests/io/fixtures/bad-inputs/settle_hang_scale_1e-200.h5 (issue 12): settle printed
   // "kinetic energy -nan J" and never ended.
   const fs::path folder =
       fs::temp_directory_path() / ("aggpack_settle_limits_" + std::to_string(::getpid()));
   fs::remove_all(folder);
   fs::create_directories(folder);
   const std::string input =
-      AGGPACK_SOURCE_DIR "/tests/fixtures/bad-inputs/settle_hang_scale_1e-200.h5";
+      AGGPACK_SOURCE_DIR "/tests/io/fixtures/bad-inputs/settle_hang_scale_1e-200.h5";
   const std::string command = "cd '" + folder.string() + "' && '" AGGPACK_BINARY "' settle '" +
                               input + "' -o out.h5 --max-time 0.02 --progress lines " +
                               ">stdout.txt 2>stderr.txt";
