@@ -39,7 +39,7 @@ for target in $targets; do
   echo "fuzz: $target for $seconds s (log $log)"
   # Fork mode keeps going after an out-of-memory or timeout input and saves each finding.
   "$build/tests/fuzz/fuzz_$target" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
-    -max_total_time="$seconds" -timeout=20 -rss_limit_mb=2048 -malloc_limit_mb=256 -max_len="${max_len[$target]}" \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=256 -max_len="${max_len[$target]}" \
     -artifact_prefix="$artifacts/" -print_final_stats=1 \
     "$corpus" ${seeds[$target]} >"$log" 2>&1 || true
   runs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
