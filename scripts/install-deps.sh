@@ -13,6 +13,8 @@ packages=(
   libstb-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev clang-format
+  # fuzzing (scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes
+  clang-14 libclang-rt-14-dev
   # independent readers used by the tests, and tools used by commands
   admesh calculix-ccx gmsh python3 python3-meshio python3-vtk9 python3-h5py python3-numpy
   xvfb xauth gnuplot-nox

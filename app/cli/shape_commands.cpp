@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -173,41 +174,56 @@ void register_shapes(CLI::App& app) {
     const Overwrite overwrite = *is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!output->empty()) check_writable(*output, overwrite);
 
+    // Generated in chunks (in parallel), written and summarised in index order: memory stays
+    // bounded by one chunk however large --count is (issue 12).
     const auto n = static_cast<std::size_t>(*count);
-    std::vector<ShapeDescriptors> descriptors(n);
-    std::vector<double> radii(n);
-    auto make = [&](std::size_t i) {
-      const auto particle = generate_particle(flags->generator, i);
-      descriptors[i] = describe(particle.body);
-      radii[i] = particle.control_radius;
-    };
-#ifdef AGGPACK_HAS_TBB
-    tbb::parallel_for(std::size_t{0}, n, make);
-#else
-    for (std::size_t i = 0; i < n; ++i) make(i);
-#endif
+    constexpr std::size_t kChunk = 65536;
     const auto& columns = descriptor_columns();
+    std::vector<RunningSummary> summaries(columns.size());
+    std::unique_ptr<AtomicFile> file;
     if (!output->empty()) {
-      AtomicFile file(*output, overwrite, std::ios::out);
-      auto& out = file.stream();
-      out << "index,control_radius";
-      for (const auto& column : columns) out << ',' << column.name;
-      out << '\n';
-      for (std::size_t i = 0; i < n; ++i) {
-        out << i << ',' << fmt::format("{:.17g}", radii[i]);
-        for (const auto& column : columns)
-          out << ',' << fmt::format("{:.17g}", column.get(descriptors[i]));
-        out << '\n';
+      file = std::make_unique<AtomicFile>(*output, overwrite, std::ios::out);
+      file->stream() << "index,control_radius";
+      for (const auto& column : columns) file->stream() << ',' << column.name;
+      file->stream() << '\n';
+    }
+    std::vector<ShapeDescriptors> descriptors;
+    std::vector<double> radii;
+    for (std::size_t begin = 0; begin < n; begin += kChunk) {
+      const std::size_t size = std::min(kChunk, n - begin);
+      descriptors.assign(size, ShapeDescriptors{});
+      radii.assign(size, 0.0);
+      auto make = [&](std::size_t k) {
+        const auto particle = generate_particle(flags->generator, begin + k);
+        descriptors[k] = describe(particle.body);
+        radii[k] = particle.control_radius;
+      };
+#ifdef AGGPACK_HAS_TBB
+      tbb::parallel_for(std::size_t{0}, size, make);
+#else
+      for (std::size_t k = 0; k < size; ++k) make(k);
+#endif
+      for (std::size_t k = 0; k < size; ++k) {
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+          summaries[c].add(columns[c].get(descriptors[k]));
+        }
+        if (file) {
+          auto& out = file->stream();
+          out << begin + k << ',' << fmt::format("{:.17g}", radii[k]);
+          for (const auto& column : columns)
+            out << ',' << fmt::format("{:.17g}", column.get(descriptors[k]));
+          out << '\n';
+        }
       }
-      file.commit();
+    }
+    if (file) {
+      file->commit();
       fmt::print("wrote {} ({} particles)\n", *output, n);
     }
     fmt::print("{:<22}{:>14}{:>14}{:>14}{:>14}\n", "descriptor", "mean", "std", "min", "max");
-    for (const auto& column : columns) {
-      std::vector<double> values(n);
-      for (std::size_t i = 0; i < n; ++i) values[i] = column.get(descriptors[i]);
-      const auto s = summarize(values);
-      fmt::print("{:<22}{:>14.6g}{:>14.6g}{:>14.6g}{:>14.6g}\n", column.name, s.mean,
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const auto s = summaries[c].result();
+      fmt::print("{:<22}{:>14.6g}{:>14.6g}{:>14.6g}{:>14.6g}\n", columns[c].name, s.mean,
                  s.standard_deviation, s.minimum, s.maximum);
     }
   });

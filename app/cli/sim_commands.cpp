@@ -690,14 +690,20 @@ void run_settle_command(const SettleFlags& flags) {
   fmt::print("settling {} particles from {}\n", packing.particles.size(), flags.input);
   double last_print = -1.0;
   SettleResult result;
-  with_user_names(settle_flag_names(), [&] {
-    result = settle(packing, options, [&](double time, double energy, double threshold) {
-      if (style == ProgressStyle::kNone || time - last_print < 0.5) return;
-      last_print = time;
-      std::fprintf(stderr, "t = %6.2f s  kinetic energy %.3g J (rest < %.3g)\n", time, energy,
-                   threshold);
+  try {
+    with_user_names(settle_flag_names(), [&] {
+      result = settle(packing, options, [&](double time, double energy, double threshold) {
+        if (style == ProgressStyle::kNone || time - last_print < 0.5) return;
+        last_print = time;
+        std::fprintf(stderr, "t = %6.2f s  kinetic energy %.3g J (rest < %.3g)\n", time, energy,
+                     threshold);
+      });
     });
-  });
+  } catch (const Error& error) {
+    // The packing's own values (a particle size, a diverging state): name the file.
+    if (error.kind() == ErrorKind::kIoError) throw;
+    throw Error(error.kind(), flags.input + ": " + error.what());
+  }
   const SettleReport& r = result.report;
   write_packing(flags.output, result.packing, {.overwrite = overwrite});
   fmt::print("{} after {:.2f} s simulated ({} steps of {:.4g} s, {:.1f} s wall)\n",

@@ -10,6 +10,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/container.h"
+#include "aggpack/pack/resources.h"
 #include "aggpack/shape/generator.h"
 #include "parallel.h"
 #include "shape_util.h"
@@ -45,8 +46,10 @@ std::array<std::uint32_t, 3> axis_counts(const LatticeOptions& options) {
         bounds.extent()[axis] - 2.0 * options.container.wall_gap - 2.0 * options.radius;
     // The small epsilon keeps exact multiples (3.0 - 0.2 = 14 x 0.2) from losing a site to
     // rounding.
+    // Saturated below 2^32 (validate() refuses more than 10^8 sites anyway).
+    const double steps = std::min(std::floor(usable / spacing + 1e-9), 4.0e9);
     counts[static_cast<std::size_t>(axis)] =
-        usable < 0.0 ? 0u : static_cast<std::uint32_t>(std::floor(usable / spacing + 1e-9)) + 1u;
+        usable < 0.0 ? 0u : static_cast<std::uint32_t>(steps) + 1u;
   }
   return counts;
 }
@@ -177,6 +180,7 @@ void validate(const LatticeOptions& options) {
         "lattice.radius", format_value(options.radius),
         "a radius giving at most 10^8 lattice sites (gives " + format_value(sites) + ")");
   }
+  check_resources(options, sites);  // shapes that would not fit in memory (issue 12)
 }
 
 std::array<std::uint32_t, 3> lattice_counts(const LatticeOptions& options) {

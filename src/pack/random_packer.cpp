@@ -12,6 +12,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/container.h"
+#include "aggpack/pack/resources.h"
 #include "aggpack/shape/generator.h"
 #include "hierarchical_grid.h"
 #include "parallel.h"
@@ -332,6 +333,8 @@ void validate(const RandomPackOptions& options) {
                               format_value(std::round(least)) + ")");
     }
   }
+  // Runs the container cannot hold or the memory cannot take (issue 12), before any work.
+  check_resources(options);
 }
 
 PackResult pack_random(const RandomPackOptions& options, const PackControl& control) {
@@ -399,6 +402,14 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
           item.outer_radius = draw.shape.outer_radius;
           item.inner_radius = draw.shape.inner_radius;
           shapes.push_back(std::move(draw.shape));
+        }
+        // A non-finite or empty shape would keep a volume target from ever being reached.
+        if (!std::isfinite(item.volume) || !(item.volume > 0.0) ||
+            !std::isfinite(item.outer_radius)) {
+          throw Error(ErrorKind::kLimitExceeded,
+                      "random packer: draw " + std::to_string(item.draw) + " (size " +
+                          format_value(item.size) + " m) grew a shape of volume " +
+                          format_value(item.volume) + " m^3; stopped (sizes out of range?)");
         }
         items.push_back(item);
         list_volume += item.volume;

@@ -74,6 +74,28 @@ SummaryStatistics summarize(const std::vector<double>& values) {
   return stats;
 }
 
+void RunningSummary::add(double value) {
+  if (stats_.count == 0) {
+    stats_.minimum = value;
+    stats_.maximum = value;
+  } else {
+    stats_.minimum = std::min(stats_.minimum, value);
+    stats_.maximum = std::max(stats_.maximum, value);
+  }
+  ++stats_.count;
+  const double delta = value - stats_.mean;
+  stats_.mean += delta / static_cast<double>(stats_.count);
+  squares_ += delta * (value - stats_.mean);
+}
+
+SummaryStatistics RunningSummary::result() const {
+  SummaryStatistics stats = stats_;
+  if (stats.count > 1) {
+    stats.standard_deviation = std::sqrt(squares_ / static_cast<double>(stats.count - 1));
+  }
+  return stats;
+}
+
 const std::vector<DescriptorColumn>& descriptor_columns() {
   static const std::vector<DescriptorColumn> columns = {
       {"volume", "m^3", [](const ShapeDescriptors& d) { return d.volume; }},

@@ -86,16 +86,16 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
   const double threshold =
       rest.kinetic_energy_ratio * world.total_mass() * 9.81 * world.median_size();
   const double tolerance = options.surface_tolerance * world.median_size();
-  const auto steps_per_check =
-      static_cast<std::size_t>(std::max(1.0, std::round(rest.check_interval / world.time_step())));
+  const std::size_t steps = steps_per_check(world, rest);
   const double start = world.time();
   double energy_quiet_since = -1.0;
   SurfaceProfile reference;
   double reference_time = -1.0;
   while (world.time() - start < rest.max_time) {
-    world.step(steps_per_check);
+    world.step(steps);
     const double now = world.time();
     const double energy = world.kinetic_energy();
+    require_finite_state(world, energy, "repose stage 2");
     if (progress) progress(now, energy, threshold);
     if (now - start < rest.min_time) continue;
     if (energy < threshold) {
@@ -350,8 +350,14 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
   const double clear_gap = largest_size(packing);
   world.set_wall_velocity(baffle, Vec3(options.baffle_speed, 0.0, 0.0));
   double untouched_since = world.time();
-  const auto check_steps = static_cast<std::size_t>(
-      std::max(1.0, std::round(options.rest.check_interval / world.time_step())));
+  const std::size_t check_steps = steps_per_check(world, options.rest);
+  // The baffle's travel is bounded in steps too: it stops at the far wall at the latest.
+  if (!((far_stop - options.baffle_position) / (options.baffle_speed * world.time_step()) <=
+        kMaxSimulationSteps)) {
+    throw LimitExceeded(
+        "trough.baffle_speed", format_value(options.baffle_speed) + " m/s",
+        "a baffle travel of at most 10^8 time steps of " + format_value(world.time_step()) + " s");
+  }
   while (true) {
     const double x = world.wall_box(baffle).lower.x();
     const double remaining = far_stop - x;
@@ -364,9 +370,9 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
     const std::size_t steps = std::min<std::size_t>(
         check_steps, static_cast<std::size_t>(std::max(1.0, std::floor(remaining / step_length))));
     world.step(steps);
-    if (progress) {
-      progress(2, world.time() - stage2_begin, world.kinetic_energy(), 0.0);
-    }
+    const double energy = world.kinetic_energy();
+    require_finite_state(world, energy, "repose stage 2");
+    if (progress) progress(2, world.time() - stage2_begin, energy, 0.0);
     if (world.is_wall_touched(baffle, 0.0)) {
       untouched_since = world.time();
       continue;

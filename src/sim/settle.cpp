@@ -64,16 +64,39 @@ double bulk_solid_fraction(const Packing& packing, double height) {
   return solid_volume(packing) / (footprint_area(packing.container) * height);
 }
 
+std::size_t steps_per_check(const World& world, const RestCriterion& criterion) {
+  const double step = world.time_step();
+  const double total = criterion.max_time / step;
+  if (!(step > 0.0) || !(total <= kMaxSimulationSteps)) {
+    throw LimitExceeded("max_time", format_value(criterion.max_time) + " s",
+                        "at most 10^8 time steps of " + format_value(step) + " s (d_min " +
+                            format_value(world.smallest_size()) +
+                            " m); lower max_time or raise "
+                            "the time step");
+  }
+  return static_cast<std::size_t>(
+      std::clamp(std::round(criterion.check_interval / step), 1.0, kMaxSimulationSteps));
+}
+
+void require_finite_state(const World& world, double kinetic_energy, const char* what) {
+  if (std::isfinite(kinetic_energy) && world.is_finite()) return;
+  throw Error(ErrorKind::kLimitExceeded,
+              std::string(what) + ": the simulation diverged at t = " + format_value(world.time()) +
+                  " s (step " + std::to_string(world.step_count()) + "): kinetic energy " +
+                  format_value(kinetic_energy) +
+                  " J or a particle's position or velocity is not finite; stopped");
+}
+
 bool run_until_rest(World& world, const RestCriterion& criterion, const SettleProgress& progress) {
   validate(criterion);
   const double threshold = criterion.kinetic_energy_ratio * energy_scale(world);
-  const auto steps_per_check = static_cast<std::size_t>(
-      std::max(1.0, std::round(criterion.check_interval / world.time_step())));
+  const std::size_t steps = steps_per_check(world, criterion);
   const double start = world.time();
   double quiet_since = -1.0;
   while (world.time() - start < criterion.max_time) {
-    world.step(steps_per_check);
+    world.step(steps);
     const double energy = world.kinetic_energy();
+    require_finite_state(world, energy, "settling");
     if (progress) progress(world.time(), energy, threshold);
     if (world.time() - start < criterion.min_time) continue;
     if (energy < threshold) {
@@ -104,7 +127,9 @@ SettleResult settle(const Packing& packing, const SettleOptions& options,
   RestCriterion rest = options.rest;
   // Nothing can be at rest before the highest particle has had time to reach the floor.
   const double g = std::max(1e-9, options.physics.gravity.norm());
-  rest.min_time += std::sqrt(2.0 * report.height_before / g);
+  // (Capped at the criterion's own range: a particle placed absurdly high then only means that the
+  // run is not at rest when max_time ends.)
+  rest.min_time = std::min(1e6, rest.min_time + std::sqrt(2.0 * report.height_before / g));
   report.is_at_rest = run_until_rest(world, rest, progress);
 
   SettleResult result{.packing = world.packing(), .report = {}};

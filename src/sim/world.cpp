@@ -26,6 +26,9 @@ namespace {
 
 constexpr double kStandardGravity = 9.81;  // m/s^2, only to turn d_min into a time scale
 constexpr int kCylinderSegments = 64;
+constexpr double kMinSize = 1e-9;      // m, smallest equivalent diameter simulated
+constexpr double kMaxSize = 1e6;       // m, largest
+constexpr double kMaxSizeRatio = 1e6;  // largest / smallest in one world
 
 // Bullet's default combiners multiply the two bodies' coefficients, which cannot give
 // particle-particle and particle-wall friction independently (a particle-wall pair would get
@@ -249,6 +252,19 @@ void World::Impl::build_shapes() {
     shape.volume = mass.volume * s * s * s;
     shape.centroid = s * mass.centroid;  // in the stored (unscaled-pose) local frame, scaled
     shape.size = equivalent_diameter(shape.volume);
+    // Masses, inertias and the time step (from the smallest size) must stay finite and non-zero:
+    // a particle at scale 1e-200 has volume 0, a time step of 0 and made settle run forever.
+    if (!(shape.size >= kMinSize && shape.size <= kMaxSize)) {
+      std::size_t particle = 0;
+      while (packing.particles[particle].shape != shape.source ||
+             packing.particles[particle].scale != s) {
+        ++particle;
+      }
+      throw InvalidInput(
+          "particle " + std::to_string(particle) + " scale",
+          format_value(s) + " (equivalent diameter " + format_value(shape.size) + " m)",
+          "a size giving an equivalent diameter in [1e-9, 1e6] m");
+    }
     const Eigen::SelfAdjointEigenSolver<Mat3> eigen(mass.inertia);
     Mat3 axes = eigen.eigenvectors();
     if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);  // a rotation, not a reflection
@@ -261,6 +277,11 @@ void World::Impl::build_shapes() {
   std::sort(sizes.begin(), sizes.end());
   smallest_size = sizes.front();
   median_size = sizes[sizes.size() / 2];
+  if (sizes.back() > kMaxSizeRatio * sizes.front()) {
+    throw InvalidInput("particle sizes",
+                       format_value(sizes.front()) + " to " + format_value(sizes.back()) + " m",
+                       "largest / smallest <= 10^6 (Bullet's tolerances follow the median size)");
+  }
   scale = 1.0 / median_size;
   margin = options.margin_fraction * smallest_size * scale;
   for (auto& shape : shapes) {
@@ -590,6 +611,21 @@ double World::max_speed() const {
     speed = std::max(speed, static_cast<double>(body->getLinearVelocity().length()));
   }
   return speed / impl_->scale;
+}
+
+bool World::is_finite() const {
+  for (const auto& body : impl_->bodies) {
+    const btTransform& transform = body->getWorldTransform();
+    const btQuaternion rotation = transform.getRotation();
+    const btVector3 values[] = {transform.getOrigin(), body->getLinearVelocity(),
+                                body->getAngularVelocity(),
+                                btVector3(rotation.x(), rotation.y(), rotation.z())};
+    for (const auto& v : values) {
+      if (!std::isfinite(v.x()) || !std::isfinite(v.y()) || !std::isfinite(v.z())) return false;
+    }
+    if (!std::isfinite(rotation.w())) return false;
+  }
+  return true;
 }
 
 Pose World::pose(std::size_t i) const {

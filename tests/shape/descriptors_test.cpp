@@ -9,6 +9,7 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "aggpack/core/error.h"
 #include "aggpack/shape/generator.h"
@@ -205,6 +206,25 @@ TEST(DescriptorColumns, NamedUniquelyWithUnitsAndReadTheRightField) {
     EXPECT_NEAR(column.get(d), known->second, 1e-12) << column.name;
   }
   EXPECT_EQ(columns.size(), expected.size());
+}
+
+TEST(Summarize, RunningSummaryMatchesTheTwoPassOne) {
+  std::vector<double> values;
+  RunningSummary running;
+  for (int i = 0; i < 1000; ++i) {
+    const double value = 1e3 + std::sin(0.37 * i) * (i % 7);  // large mean, small spread
+    values.push_back(value);
+    running.add(value);
+  }
+  const SummaryStatistics expected = summarize(values);
+  const SummaryStatistics got = running.result();
+  EXPECT_EQ(got.count, expected.count);
+  EXPECT_EQ(got.minimum, expected.minimum);
+  EXPECT_EQ(got.maximum, expected.maximum);
+  EXPECT_NEAR(got.mean, expected.mean, 1e-12 * std::abs(expected.mean));
+  EXPECT_NEAR(got.standard_deviation, expected.standard_deviation,
+              1e-9 * expected.standard_deviation);
+  EXPECT_EQ(RunningSummary().result().count, 0u);
 }
 
 }  // namespace

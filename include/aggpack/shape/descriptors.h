@@ -48,6 +48,18 @@ struct SummaryStatistics {
 
 SummaryStatistics summarize(const std::vector<double>& values);
 
+/// summarize() one value at a time (Welford's update), for families too large to keep every
+/// value in memory. Add the values in a fixed order for a reproducible result.
+class RunningSummary {
+ public:
+  void add(double value);
+  [[nodiscard]] SummaryStatistics result() const;
+
+ private:
+  SummaryStatistics stats_;
+  double squares_ = 0.0;  // sum of squared deviations from the running mean
+};
+
 /// Names and accessors of the numeric descriptors, in CSV column order.
 struct DescriptorColumn {
   const char* name;

@@ -125,6 +125,8 @@ class World {
   [[nodiscard]] double potential_energy() const;  ///< sum m g.(-x) relative to the origin (J)
   [[nodiscard]] double total_mass() const;        ///< kg
   [[nodiscard]] double max_speed() const;         ///< fastest particle centre of mass (m/s)
+  /// True when every particle's position, orientation and velocities are finite.
+  [[nodiscard]] bool is_finite() const;
 
   /// Pose of particle i in the Packing's convention (its shape's local frame -> world).
   [[nodiscard]] Pose pose(std::size_t i) const;

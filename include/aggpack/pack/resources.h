@@ -1,0 +1,62 @@
+#pragma once
+// Up-front estimates of what a packing run needs (issue 12). Both packers grow every particle's
+// shape before (random) or while (lattice) placing it, so a size list the container cannot hold
+// or whose shapes exceed the memory would run for hours and end in std::bad_alloc or the OOM
+// killer. validate(RandomPackOptions) and validate(LatticeOptions) call the checks below and
+// refuse such runs before any work, naming the estimate and the limit.
+
+#include <string>
+
+#include "aggpack/geom/convex_polyhedron.h"
+#include "aggpack/pack/lattice_packer.h"
+#include "aggpack/pack/random_packer.h"
+
+namespace aggpack {
+
+/// Solid fraction no packing of these particles is taken to exceed: 0.74, the densest packing of
+/// equal spheres. Random sequential addition jams far below it (about 0.38 for spheres).
+inline constexpr double kMaxSolidFraction = 0.74;
+
+/// Memory a run may use.
+struct MemoryLimit {
+  double bytes = 0.0;
+  std::string source;  ///< "80% of physical memory (23 GB)", "AGGPACK_MEMORY_LIMIT=2G", ...
+};
+
+/// The environment variable AGGPACK_MEMORY_LIMIT (bytes, optional suffix K, M, G or T = powers
+/// of 1024) when set; otherwise 80% of the smallest of the physical memory, the cgroup limit
+/// (memory.max) and the address-space limit (ulimit -v).
+/// \throw InvalidInput if AGGPACK_MEMORY_LIMIT is set but is not a positive size.
+MemoryLimit memory_limit();
+
+/// Bytes a polyhedron holds on the heap (vertices, triangles, allocator overhead).
+double heap_bytes(const ConvexPolyhedron& body);
+
+/// "950 B", "12.3 kB", "1.1 GB" (powers of 1000).
+std::string format_bytes(double bytes);
+
+/// What a packing run would ask for, estimated before any work from a sample of its shapes.
+struct RunEstimate {
+  double particles = 0.0;           ///< particles grown: count target exact, otherwise estimated
+  double mean_volume = 0.0;         ///< expected solid volume per particle (m^3)
+  double solid_fraction = 0.0;      ///< particles * mean_volume / container volume
+  double capacity = 0.0;            ///< particles the container holds at kMaxSolidFraction
+  double bytes_per_particle = 0.0;  ///< its shape (unless shared) plus the packer's bookkeeping
+  double bytes = 0.0;               ///< peak memory of the run
+};
+
+/// Estimates for options that passed the packer's own range checks. The random packer's sample:
+/// the shapes of its first draws (up to 64, fewer for shapes with many vertices), so the estimate
+/// is deterministic for a seed.
+RunEstimate estimate_run(const RandomPackOptions& options);
+RunEstimate estimate_run(const LatticeOptions& options, double sites);
+
+/// Throws LimitExceeded (field random.count or random.volume_fraction) when a count target's
+/// solid volume exceeds kMaxSolidFraction of the container, or when estimate_run().bytes exceeds
+/// memory_limit(). Called by validate(RandomPackOptions).
+void check_resources(const RandomPackOptions& options);
+/// Throws LimitExceeded (field lattice.radius) when the shapes of `sites` lattice sites exceed
+/// memory_limit(). Called by validate(LatticeOptions).
+void check_resources(const LatticeOptions& options, double sites);
+
+}  // namespace aggpack

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Fuzzing (issue 12): builds the libFuzzer targets of tests/fuzz with clang + ASan + UBSan into
+# build-fuzz/ and runs each for SECONDS (default 90; the long run: scripts/fuzz.sh 3600).
+#   scripts/fuzz.sh [SECONDS] [extra cmake arguments...]
+#   AGGPACK_FUZZ_TARGETS="native_reader"  run only some targets (default: all)
+#   AGGPACK_FUZZ_IGNORE="timeout"  report these kinds of finding without failing (default: none)
+# Seeds (read only): tests/io/fixtures/bad-inputs/ (the native files and configs of issue 12),
+# examples/*.toml and tests/fuzz/corpus/config_reader/ (TOML + --set strings); new inputs go to
+# build-fuzz/corpus/<target>/.
+# Findings (crash-*, leak-*, oom-*, timeout-*, slow-unit-*) are saved in build-fuzz/artifacts/
+# <target>/ and make the script fail; reproduce one with build-fuzz/tests/fuzz/fuzz_<target> FILE.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-90}
+shift || true
+targets=${AGGPACK_FUZZ_TARGETS:-native_reader config_reader}
+build=build-fuzz
+CC=${CC_FUZZ:-clang-14} CXX=${CXX_FUZZ:-clang++-14} cmake -S . -B "$build" -G Ninja \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAGGPACK_BUILD_FUZZ=ON -DAGGPACK_BUILD_TESTS=OFF \
+  -DAGGPACK_BUILD_BENCH=OFF -DAGGPACK_BUILD_GUI=OFF -DAGGPACK_BUILD_RENDER=OFF \
+  -DAGGPACK_BUILD_SIM=OFF "$@" >/dev/null
+cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $targets)
+
+# max_len: the native seeds are up to ~24 KB; a config is a few hundred bytes. malloc_limit_mb:
+# reading a file of at most 64 KB must never need a 256 MB block (issue 12: memory within a
+# small multiple of the file size).
+declare -A max_len=([native_reader]=65536 [config_reader]=8192)
+declare -A seeds=([native_reader]="tests/io/fixtures/bad-inputs"
+  [config_reader]="tests/fuzz/corpus/config_reader examples tests/io/fixtures/bad-inputs")
+# Leaks inside Debian's HDF5 on corrupted headers are not ours: tests/fuzz/lsan-suppressions.txt.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/fuzz/lsan-suppressions.txt}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+status=0
+for target in $targets; do
+  corpus=$build/corpus/$target
+  artifacts=$build/artifacts/$target
+  mkdir -p "$corpus" "$artifacts"
+  log=$build/fuzz_$target.log
+  echo "fuzz: $target for $seconds s (log $log)"
+  # Fork mode keeps going after an out-of-memory or timeout input and saves each finding.
+  "$build/tests/fuzz/fuzz_$target" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=256 -max_len="${max_len[$target]}" \
+    -artifact_prefix="$artifacts/" -print_final_stats=1 \
+    "$corpus" ${seeds[$target]} >"$log" 2>&1 || true
+  runs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
+  found=$(find "$artifacts" -type f | wc -l)
+  echo "fuzz: $target: ${runs:-0} executions, $found finding(s) in $artifacts"
+  for file in $(find "$artifacts" -type f | sort | head -20); do
+    kind=$(basename "$file" | cut -d- -f1)
+    if [[ " ${AGGPACK_FUZZ_IGNORE:-} " == *" $kind "* ]]; then
+      echo "  $file (ignored: AGGPACK_FUZZ_IGNORE)"
+    else
+      echo "  $file"
+      status=1
+    fi
+  done
+done
+exit $status

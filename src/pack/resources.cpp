@@ -1,0 +1,299 @@
+#include "aggpack/pack/resources.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "aggpack/core/error.h"
+#include "aggpack/core/rng.h"
+#include "aggpack/geom/mass_properties.h"
+#include "aggpack/pack/grading.h"
+#include "aggpack/shape/generator.h"
+
+namespace aggpack {
+
+namespace {
+
+constexpr double kMemoryShare = 0.8;       // of the machine's (or cgroup's) memory
+constexpr double kSampleVertices = 20000;  // grown vertices the sample may cost at most
+constexpr int kMaxSample = 64;
+constexpr std::uint64_t kSampleSalt = 0x73616D706C65ULL;  // library sample streams
+// Bookkeeping per particle besides its shape's vertices and triangles, measured on the structs of
+// src/pack/random_packer.cpp (size-list item and stored shape, both in doubling vectors; order;
+// pose; grid entry; output Particle) and src/pack/lattice_packer.cpp (grown body, site, index).
+constexpr double kRandomBytesPerItem = 640.0;
+constexpr double kRandomLibraryBytesPerItem = 450.0;
+constexpr double kLatticeBytesPerSite = 300.0;
+
+// "2G", "512M", "1000000" -> bytes; negative when it is not a size.
+double parse_size(const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || !std::isfinite(value) || value <= 0.0) return -1.0;
+  const std::string suffix(end);
+  double factor = 1.0;
+  if (suffix == "K" || suffix == "k")
+    factor = 1024.0;
+  else if (suffix == "M" || suffix == "m")
+    factor = 1024.0 * 1024.0;
+  else if (suffix == "G" || suffix == "g")
+    factor = 1024.0 * 1024.0 * 1024.0;
+  else if (suffix == "T" || suffix == "t")
+    factor = 1024.0 * 1024.0 * 1024.0 * 1024.0;
+  else if (!suffix.empty())
+    return -1.0;
+  return value * factor;
+}
+
+// A cgroup memory limit file: a number of bytes, or "max" / a huge value for none.
+double cgroup_limit(const char* path) {
+  std::ifstream in(path);
+  std::string text;
+  if (!(in >> text) || text == "max") return std::numeric_limits<double>::infinity();
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && value > 0.0 ? value : std::numeric_limits<double>::infinity();
+}
+
+struct ShapeSample {
+  double volume_ratio = 0.0;  // sum of volumes / sum of control-sphere volumes
+  double mean_bytes = 0.0;    // heap bytes per shape
+};
+
+// How many shapes of about `vertices` vertices the sample may grow.
+int sample_size_for(double vertices, std::uint64_t available) {
+  const double fit = std::floor(kSampleVertices / std::max(vertices, 6.0));
+  return static_cast<int>(
+      std::clamp<double>(std::min<double>(fit, static_cast<double>(available)), 1.0, kMaxSample));
+}
+
+ShapeSample sample_shapes(
+    int count, const std::function<std::pair<ConvexPolyhedron, double>(std::uint64_t)>& grow) {
+  ShapeSample sample;
+  double volume = 0.0;
+  double sphere = 0.0;
+  double bytes = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const auto [body, radius] = grow(static_cast<std::uint64_t>(i));
+    volume += mass_properties(body).volume;
+    sphere += 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+    bytes += heap_bytes(body);
+  }
+  sample.volume_ratio = sphere > 0.0 ? volume / sphere : 0.0;
+  sample.mean_bytes = bytes / count;
+  return sample;
+}
+
+std::string count_text(double value) {
+  char buffer[64];
+  if (value < 1e6) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", value);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.2g", value);
+  }
+  return buffer;
+}
+
+std::string volume_text(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.3g", value);
+  return buffer;
+}
+
+std::string memory_advice(const RunEstimate& estimate, const MemoryLimit& limit) {
+  return "a run that fits in memory: ~" + count_text(estimate.particles) + " particles at ~" +
+         format_bytes(estimate.bytes_per_particle) + " each need ~" + format_bytes(estimate.bytes) +
+         ", more than the memory limit of " + format_bytes(limit.bytes) + " (" + limit.source + ")";
+}
+
+}  // namespace
+
+MemoryLimit memory_limit() {
+  MemoryLimit limit;
+  if (const char* text = std::getenv("AGGPACK_MEMORY_LIMIT"); text != nullptr) {
+    limit.bytes = parse_size(text);
+    if (!(limit.bytes > 0.0)) {
+      throw InvalidInput("AGGPACK_MEMORY_LIMIT", std::string(text).substr(0, 40),
+                         "a size in bytes, optionally with K, M, G or T (e.g. 8G)");
+    }
+    limit.source = "AGGPACK_MEMORY_LIMIT=" + std::string(text);
+    return limit;
+  }
+  double bytes =
+      static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  std::string what = "physical memory";
+  if (!(bytes > 0.0)) bytes = std::numeric_limits<double>::infinity();
+  for (const char* path :
+       {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+    const double value = cgroup_limit(path);
+    if (value < bytes) {
+      bytes = value;
+      what = "the cgroup memory limit";
+    }
+  }
+  rlimit address_space{};
+  if (getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY &&
+      static_cast<double>(address_space.rlim_cur) < bytes) {
+    bytes = static_cast<double>(address_space.rlim_cur);
+    what = "the address-space limit (ulimit -v)";
+  }
+  if (!std::isfinite(bytes)) bytes = 1e15;
+  limit.bytes = kMemoryShare * bytes;
+  limit.source =
+      "80% of " + what + " " + format_bytes(bytes) + "; AGGPACK_MEMORY_LIMIT overrides it";
+  return limit;
+}
+
+double heap_bytes(const ConvexPolyhedron& body) {
+  constexpr double kAllocation = 16.0;  // malloc header per block
+  return static_cast<double>(body.vertex_count() * sizeof(Vec3) +
+                             body.triangle_count() * sizeof(Triangle)) +
+         2.0 * kAllocation;
+}
+
+std::string format_bytes(double bytes) {
+  static const char* const units[] = {"B", "kB", "MB", "GB", "TB", "PB", "EB"};
+  int unit = 0;
+  while (bytes >= 1000.0 && unit < 6) {
+    bytes /= 1000.0;
+    ++unit;
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, unit == 0 ? "%.0f %s" : "%.3g %s", bytes, units[unit]);
+  return buffer;
+}
+
+RunEstimate estimate_run(const RandomPackOptions& options) {
+  const ShapeOptions& shape = options.shape;
+  const bool is_library = shape.library_size > 0;
+  const double largest_radius = largest_size(options.grading) / 2.0;
+  const double largest_edge =
+      shape.edge_length > 0.0 ? shape.edge_length : shape.edge_length_ratio * largest_radius;
+  const int count =
+      sample_size_for(estimated_vertex_count(largest_radius, largest_edge),
+                      is_library ? shape.library_size : std::numeric_limits<std::uint64_t>::max());
+  ShapeSample sample;
+  if (is_library) {
+    sample = sample_shapes(count, [&](std::uint64_t k) {
+      Rng rng(options.seed ^ kSampleSalt, k);
+      const GrowthParams params{.alpha = shape.alpha,
+                                .radius = 1.0,
+                                .edge_length = shape.edge_length_ratio,
+                                .max_vertices = shape.max_vertices};
+      return std::make_pair(grow_aggregate(params, rng), 1.0);
+    });
+  } else {
+    // The run's own first draws: size from stream (seed, i), then the shape from the same stream.
+    sample = sample_shapes(count, [&](std::uint64_t i) {
+      Rng rng(options.seed, i);
+      const double radius = sample_size(options.grading, rng.uniform()) / 2.0;
+      const GrowthParams params{.alpha = shape.alpha,
+                                .radius = radius,
+                                .edge_length = shape.edge_length > 0.0
+                                                   ? shape.edge_length
+                                                   : shape.edge_length_ratio * radius,
+                                .max_vertices = shape.max_vertices};
+      return std::make_pair(grow_aggregate(params, rng), radius);
+    });
+  }
+  RunEstimate estimate;
+  const double container_volume = options.container.volume();
+  estimate.mean_volume =
+      sample.volume_ratio * std::numbers::pi / 6.0 * mean_cubed_size(options.grading);
+  estimate.particles = options.target == PackTarget::kCount
+                           ? static_cast<double>(options.count)
+                           : options.volume_fraction * container_volume / estimate.mean_volume;
+  estimate.solid_fraction = estimate.particles * estimate.mean_volume / container_volume;
+  estimate.capacity = kMaxSolidFraction * container_volume / estimate.mean_volume;
+  if (is_library) {
+    estimate.bytes_per_particle = kRandomLibraryBytesPerItem;
+    estimate.bytes = estimate.particles * estimate.bytes_per_particle +
+                     static_cast<double>(shape.library_size) * (sample.mean_bytes + 72.0);
+  } else {
+    estimate.bytes_per_particle = kRandomBytesPerItem + sample.mean_bytes;
+    estimate.bytes = estimate.particles * estimate.bytes_per_particle;
+  }
+  return estimate;
+}
+
+RunEstimate estimate_run(const LatticeOptions& options, double sites) {
+  const GrowthParams params{.alpha = options.alpha,
+                            .radius = options.radius,
+                            .edge_length = options.edge_length,
+                            .max_vertices = options.max_vertices};
+  const int count = sample_size_for(estimated_vertex_count(options.radius, options.edge_length),
+                                    static_cast<std::uint64_t>(std::max(1.0, sites)));
+  const ShapeSample sample = sample_shapes(count, [&](std::uint64_t i) {
+    Rng rng(options.seed, i);
+    return std::make_pair(grow_aggregate(params, rng), options.radius);
+  });
+  RunEstimate estimate;
+  const double container_volume = options.container.volume();
+  estimate.particles = sites;
+  estimate.mean_volume =
+      sample.volume_ratio * 4.0 / 3.0 * std::numbers::pi * std::pow(options.radius, 3);
+  estimate.solid_fraction = sites * estimate.mean_volume / container_volume;
+  estimate.capacity = kMaxSolidFraction * container_volume / estimate.mean_volume;
+  estimate.bytes_per_particle = kLatticeBytesPerSite + sample.mean_bytes;
+  estimate.bytes = sites * estimate.bytes_per_particle;
+  return estimate;
+}
+
+void check_resources(const RandomPackOptions& options) {
+  const RunEstimate estimate = estimate_run(options);
+  const bool is_count = options.target == PackTarget::kCount;
+  const std::string field = is_count ? "random.count" : "random.volume_fraction";
+  const std::string value =
+      is_count ? std::to_string(options.count) : format_value(options.volume_fraction);
+  if (!(estimate.mean_volume > 0.0) || !std::isfinite(estimate.mean_volume)) {
+    throw LimitExceeded("grading",
+                        "sizes from " + format_value(smallest_size(options.grading)) + " m",
+                        "sizes whose grown particles have a positive, finite volume (" +
+                            format_value(estimate.mean_volume) + " m^3 here)");
+  }
+  if (is_count && estimate.solid_fraction > kMaxSolidFraction) {
+    throw LimitExceeded(
+        field, value,
+        "at most ~" + count_text(estimate.capacity) +
+            " particles of this grading and shape: the container (" +
+            format_value(options.container.volume()) + " m^3) holds at most a solid fraction of " +
+            format_value(kMaxSolidFraction) + ", and " + count_text(estimate.particles) +
+            " particles of ~" + volume_text(estimate.mean_volume) + " m^3 each would need " +
+            count_text(estimate.solid_fraction) + " times its volume");
+  }
+  const MemoryLimit limit = memory_limit();
+  if (estimate.bytes > limit.bytes) {
+    throw LimitExceeded(field, value,
+                        memory_advice(estimate, limit) +
+                            (options.shape.library_size > 0
+                                 ? "; use larger particles or a smaller container"
+                                 : "; use shape.library_size, larger particles or a smaller "
+                                   "container"));
+  }
+}
+
+void check_resources(const LatticeOptions& options, double sites) {
+  const RunEstimate estimate = estimate_run(options, sites);
+  if (!(estimate.mean_volume > 0.0) || !std::isfinite(estimate.mean_volume)) {
+    throw LimitExceeded("lattice.radius", format_value(options.radius),
+                        "a radius whose grown particles have a positive, finite volume (" +
+                            format_value(estimate.mean_volume) + " m^3 here)");
+  }
+  const MemoryLimit limit = memory_limit();
+  if (estimate.bytes > limit.bytes) {
+    throw LimitExceeded("lattice.radius", format_value(options.radius),
+                        memory_advice(estimate, limit) +
+                            "; use a larger radius or edge length, or a smaller container");
+  }
+}
+
+}  // namespace aggpack

@@ -1,0 +1,154 @@
+// Up-front refusal of runaway runs (issue 12): a size list the container cannot hold or whose
+// shapes would not fit in memory is refused by validate(), before any shape is grown for the run.
+
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "aggpack/core/error.h"
+#include "aggpack/pack/lattice_packer.h"
+#include "aggpack/pack/random_packer.h"
+#include "aggpack/pack/resources.h"
+
+namespace aggpack {
+namespace {
+
+// Sets AGGPACK_MEMORY_LIMIT for one scope.
+class ScopedMemoryLimit {
+ public:
+  explicit ScopedMemoryLimit(const char* value) { setenv("AGGPACK_MEMORY_LIMIT", value, 1); }
+  ~ScopedMemoryLimit() { unsetenv("AGGPACK_MEMORY_LIMIT"); }
+  ScopedMemoryLimit(const ScopedMemoryLimit&) = delete;
+  ScopedMemoryLimit& operator=(const ScopedMemoryLimit&) = delete;
+};
+
+std::string limit_message(const auto& options) {
+  try {
+    validate(options);
+  } catch (const Error& error) {
+    EXPECT_EQ(error.kind(), ErrorKind::kLimitExceeded) << error.what();
+    return error.what();
+  }
+  return "";
+}
+
+RandomPackOptions count_target(std::uint64_t count) {
+  return {.target = PackTarget::kCount, .count = count};  // default box 3 x 1 x 2.8 m, r = 0.1 m
+}
+
+TEST(Resources, CountTheContainerCannotHoldIsRefusedWithTheEstimate) {
+  // count_1e8_default_box.toml: 10^8 particles of r = 0.1 m in 8.4 m^3.
+  const std::string message = limit_message(count_target(100000000));
+  EXPECT_NE(message.find("random.count = 100000000"), std::string::npos) << message;
+  EXPECT_NE(message.find("at most ~"), std::string::npos) << message;
+  EXPECT_NE(message.find("8.4 m^3"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+  // The estimate itself: an aggregate of alpha 0.5, L = r fills about 0.2 of its control sphere,
+  // so the box holds some thousands at 0.74.
+  const RunEstimate estimate = estimate_run(count_target(100000000));
+  const double sphere = 4.0 / 3.0 * std::numbers::pi * 0.001;
+  EXPECT_GT(estimate.mean_volume, 0.1 * sphere);
+  EXPECT_LT(estimate.mean_volume, 0.4 * sphere);
+  EXPECT_GT(estimate.capacity, 3000.0);
+  EXPECT_LT(estimate.capacity, 15000.0);
+  EXPECT_GT(estimate.solid_fraction, 1000.0);
+}
+
+TEST(Resources, CountsTheContainerCanHoldPass) {
+  EXPECT_NO_THROW(validate(count_target(1000)));
+  // Just below the capacity is still accepted: the packer then reports what it placed.
+  const double capacity = estimate_run(count_target(1)).capacity;
+  EXPECT_NO_THROW(validate(count_target(static_cast<std::uint64_t>(0.9 * capacity))));
+  EXPECT_THROW(validate(count_target(static_cast<std::uint64_t>(1.2 * capacity))), LimitExceeded);
+}
+
+TEST(Resources, MeanVolumeEstimateMatchesAPackedRun) {
+  RandomPackOptions options{.container = {.length = 0.4, .width = 0.4, .depth = 0.4},
+                            .grading = {.kind = GradingKind::kFuller,
+                                        .size_min = 0.02,
+                                        .size_max = 0.06,
+                                        .exponent = 0.5},
+                            .target = PackTarget::kCount,
+                            .count = 300,
+                            .seed = 3};
+  const RunEstimate estimate = estimate_run(options);
+  const PackResult result = pack_random(options);
+  ASSERT_EQ(result.report.placed, 300u);
+  const double measured = result.report.solid_volume / 300.0;
+  EXPECT_NEAR(estimate.mean_volume / measured, 1.0, 0.2);
+}
+
+TEST(Resources, SizeListBeyondTheMemoryLimitIsRefused) {
+  // fuller_in_default_box.toml: ~5 x 10^7 particles of 5-20 mm at 35 % of 8.4 m^3.
+  RandomPackOptions fuller{.grading = {.kind = GradingKind::kFuller},
+                           .target = PackTarget::kVolumeFraction,
+                           .volume_fraction = 0.35};
+  const RunEstimate estimate = estimate_run(fuller);
+  EXPECT_GT(estimate.particles, 1e7);
+  EXPECT_LT(estimate.particles, 2e8);
+  {
+    const ScopedMemoryLimit limit("8G");
+    const std::string message = limit_message(fuller);
+    EXPECT_NE(message.find("random.volume_fraction = 0.35"), std::string::npos) << message;
+    EXPECT_NE(message.find("memory limit of 8.59 GB (AGGPACK_MEMORY_LIMIT=8G)"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("shape.library_size"), std::string::npos) << message;
+  }
+  // The same small run passes or fails only by the limit.
+  const RandomPackOptions small = count_target(2000);
+  const double bytes = estimate_run(small).bytes;
+  EXPECT_GT(bytes, 2000 * 500.0);
+  EXPECT_LT(bytes, 2000 * 5000.0);
+  {
+    const ScopedMemoryLimit limit("1M");
+    EXPECT_THROW(validate(small), LimitExceeded);
+  }
+  {
+    const ScopedMemoryLimit limit("1G");
+    EXPECT_NO_THROW(validate(small));
+  }
+}
+
+TEST(Resources, LatticeBeyondTheMemoryLimitIsRefused) {
+  LatticeOptions options;  // the paper's box
+  options.radius = 0.003;  // ~3.9 x 10^7 sites
+  options.edge_length = 0.003;
+  const ScopedMemoryLimit limit("4G");
+  const std::string message = limit_message(options);
+  EXPECT_NE(message.find("lattice.radius = 0.003"), std::string::npos) << message;
+  EXPECT_NE(message.find("~3.9e+07 particles"), std::string::npos) << message;
+  options.radius = 1e-12;  // 10^12 sites per axis: refused, never overflows
+  options.edge_length = 1e-12;
+  EXPECT_THROW(validate(options), LimitExceeded);
+}
+
+TEST(Resources, MemoryLimitComesFromTheMachineOrTheEnvironment) {
+  const MemoryLimit machine = memory_limit();
+  EXPECT_GT(machine.bytes, 1e8);
+  EXPECT_NE(machine.source.find("80% of"), std::string::npos);
+  {
+    const ScopedMemoryLimit limit("2G");
+    EXPECT_EQ(memory_limit().bytes, 2.0 * 1024 * 1024 * 1024);
+  }
+  for (const char* bad : {"abc", "-1", "0", "5X", "1e999"}) {
+    const ScopedMemoryLimit limit(bad);
+    EXPECT_THROW((void)memory_limit(), InvalidInput) << bad;
+  }
+  EXPECT_EQ(format_bytes(950), "950 B");
+  EXPECT_EQ(format_bytes(48.6e9), "48.6 GB");
+}
+
+TEST(RandomPacker, NonFiniteShapeVolumeStopsTheSizeList) {
+  // A grading whose sizes underflow the shape volume to 0 cannot reach a volume target: refused
+  // before work (no particle volume) instead of drawing until the 10^8 cap.
+  RandomPackOptions options{
+      .container = {.length = 1e-100, .width = 1e-100, .depth = 1e-100},
+      .grading = {.kind = GradingKind::kUniform, .radius_min = 1e-103, .radius_max = 1e-103}};
+  EXPECT_THROW(pack_random(options), Error);
+}
+
+}  // namespace
+}  // namespace aggpack
