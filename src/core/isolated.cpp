@@ -24,6 +24,9 @@
 
 #include "aggpack/core/error.h"
 
+// Weak: defined only when a sanitizer runtime is linked in.
+extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
+
 namespace aggpack {
 
 namespace {
@@ -72,6 +75,11 @@ bool write_all(int fd, const void* data, std::size_t size) {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
 #endif
   if (::getppid() != parent) ::_exit(1);
+  // A crash of the work is the child's death, nothing more: default actions for the fatal
+  // signals (a sanitizer's or fuzzer's handler inherited from the parent would report it as the
+  // parent's crash) and no sanitizer death callback (libFuzzer's saves the input as a finding).
+  for (const int fatal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) std::signal(fatal, SIG_DFL);
+  if (&__sanitizer_set_death_callback != nullptr) __sanitizer_set_death_callback(nullptr);
   const int null = ::open("/dev/null", O_WRONLY);
   if (null >= 0) {
     ::dup2(null, STDOUT_FILENO);

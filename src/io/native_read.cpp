@@ -12,11 +12,13 @@
 #include <fstream>
 #include <limits>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/isolated.h"
 #include "aggpack/core/text.h"
 #include "hdf5_util.h"
 
@@ -37,6 +39,9 @@ struct ElementType {
   H5T_sign_t sign;  // H5T_SGN_ERROR for floats
   const char* name;
 };
+// Seconds a variable-length string may take to read (a few bytes: microseconds when sound).
+constexpr double kStringReadSeconds = 5.0;
+
 constexpr ElementType kFloat64{H5T_FLOAT, 8, H5T_SGN_ERROR, "float64"};
 constexpr ElementType kUint32{H5T_INTEGER, 4, H5T_SGN_NONE, "uint32"};
 constexpr ElementType kUint64{H5T_INTEGER, 8, H5T_SGN_NONE, "uint64"};
@@ -127,13 +132,29 @@ class Reader {
       Handle memory_type(H5Tcopy(H5T_C_S1), H5Tclose);
       H5Tset_size(memory_type.get(), H5T_VARIABLE);
       H5Tset_cset(memory_type.get(), H5Tget_cset(type.get()));
-      char* text = nullptr;
-      if (H5Aread(attribute.get(), memory_type.get(), &text) < 0) {
-        fail_hdf5(field, "cannot read the attribute");
+      // Its characters live in a global heap, which Debian's HDF5 1.10 reads without bounds
+      // checks: a corrupted heap makes H5Aread spin forever or copy terabytes (fuzzing found
+      // both, tests/fuzz/crashes). So the read runs in a forked child (the parent's HDF5 state is
+      // copied; the read-only file is read with pread), and a crash or hang there is this file's
+      // error, not aggpack's.
+      const hid_t attribute_id = attribute.get();
+      const hid_t memory_type_id = memory_type.get();
+      const auto outcome = run_isolated(1,
+                                        [&](std::size_t) {
+                                          char* text = nullptr;
+                                          if (H5Aread(attribute_id, memory_type_id, &text) < 0) {
+                                            throw std::runtime_error("cannot read the attribute");
+                                          }
+                                          std::string value = text == nullptr ? "" : text;
+                                          H5free_memory(text);
+                                          return value;
+                                        },
+                                        {.workers = 1, .time_limit = kStringReadSeconds});
+      if (!outcome[0].is_done) {
+        fail(field, "cannot read the variable-length string (corrupted global heap?): HDF5 " +
+                        outcome[0].failure);
       }
-      std::string value = text == nullptr ? "" : text;
-      H5free_memory(text);
-      return value;
+      return outcome[0].bytes;
     }
     const std::size_t size = H5Tget_size(type.get());
     if (size == 0 || size > file_size_) {

@@ -195,6 +195,26 @@ TEST_F(NativeBadInputTest, UnreadableStoredConfigIsOneNoteLine) {
   EXPECT_NE(info.out.find("particles        12"), std::string::npos) << info.out;
 }
 
+// Fuzzing finds (tests/fuzz/crashes/): a variable-length string whose HDF5 global heap is corrupt
+// made HDF5 itself spin forever or copy terabytes (SIGSEGV). The string is read in a child
+// process now, so each is one line, exit 2, within the read's time limit.
+TEST_F(NativeBadInputTest, CorruptGlobalHeapIsOneLineNotACrashOrHang) {
+  const std::string crashes = AGGPACK_SOURCE_DIR "/tests/fuzz/crashes/";
+  for (const char* name :
+       {"native_reader-crash-vlen-global-heap-memcpy.h5", "native_reader-hang-vlen-global-heap.h5",
+        "native_reader-hang-vlen-utf8-config.h5"}) {
+    SCOPED_TRACE(name);
+    const CliRun info = run("info '" + crashes + name + "'");
+    EXPECT_EQ(info.exit_code, 2) << info.err;
+    EXPECT_EQ(info.out, "");
+    EXPECT_EQ(info.err.find('\n'), info.err.size() - 1) << info.err;
+    EXPECT_EQ(info.err.rfind("aggpack: error: " + crashes + name + ": /", 0), 0U) << info.err;
+    EXPECT_NE(info.err.find("cannot read the variable-length string"), std::string::npos)
+        << info.err;
+    EXPECT_EQ(left_behind(), std::vector<std::string>{});
+  }
+}
+
 }  // namespace
 }  // namespace aggpack
 
