@@ -90,6 +90,45 @@ struct ShapeData {
   double scale = 1.0;                             // Particle::scale
 };
 
+// Bullet's sequential-impulse solver, fed in a canonical order. Bullet hands the solver an
+// island's bodies in union-find order and its manifolds in the order the pairs first reached the
+// narrow phase; the Gauss-Seidel sweeps, and so the rounding, follow that order. Here the bodies
+// are taken in particle order and the manifolds sorted by the two particles they join (walls have
+// negative indices), a pure function of the contacts: skipping the narrow phase of a pair that
+// cannot touch (near_callback) then changes nothing, and runs stay bit-identical.
+class OrderedSolver final : public btSequentialImpulseConstraintSolver {
+ protected:
+  void convertBodies(btCollisionObject** bodies, int count,
+                     const btContactSolverInfo& info) override {
+    sorted_bodies_.assign(bodies, bodies + count);
+    std::sort(sorted_bodies_.begin(), sorted_bodies_.end(),
+              [](const btCollisionObject* a, const btCollisionObject* b) {
+                return a->getUserIndex() < b->getUserIndex();
+              });
+    btSequentialImpulseConstraintSolver::convertBodies(sorted_bodies_.data(), count, info);
+  }
+
+  void convertContacts(btPersistentManifold** manifolds, int count,
+                       const btContactSolverInfo& info) override {
+    sorted_manifolds_.assign(manifolds, manifolds + count);
+    // One manifold per pair, so the key is unique.
+    auto key = [](const btPersistentManifold* m) {
+      const int a = m->getBody0()->getUserIndex();
+      const int b = m->getBody1()->getUserIndex();
+      return std::pair(std::max(a, b), std::min(a, b));
+    };
+    std::sort(sorted_manifolds_.begin(), sorted_manifolds_.end(),
+              [&key](const btPersistentManifold* a, const btPersistentManifold* b) {
+                return key(a) < key(b);
+              });
+    btSequentialImpulseConstraintSolver::convertContacts(sorted_manifolds_.data(), count, info);
+  }
+
+ private:
+  std::vector<btCollisionObject*> sorted_bodies_;
+  std::vector<btPersistentManifold*> sorted_manifolds_;
+};
+
 struct Wall {
   std::unique_ptr<btBoxShape> shape;
   std::unique_ptr<btBoxShape> exact_shape;
@@ -145,7 +184,7 @@ struct World::Impl {
   std::unique_ptr<btDefaultCollisionConfiguration> configuration;
   std::unique_ptr<btCollisionDispatcher> dispatcher;
   std::unique_ptr<btBroadphaseInterface> broadphase;
-  std::unique_ptr<btSequentialImpulseConstraintSolver> solver;
+  std::unique_ptr<OrderedSolver> solver;
   std::unique_ptr<btDiscreteDynamicsWorld> world;
 
   ~Impl() {
@@ -331,7 +370,7 @@ void World::Impl::build_world() {
   dispatcher->setNearCallback(&Impl::near_callback);
 
   broadphase = std::make_unique<btDbvtBroadphase>();
-  solver = std::make_unique<btSequentialImpulseConstraintSolver>();
+  solver = std::make_unique<OrderedSolver>();
   world = std::make_unique<btDiscreteDynamicsWorld>(dispatcher.get(), broadphase.get(),
                                                     solver.get(), configuration.get());
   world->setGravity(to_bt(scale * options.gravity));
