@@ -1,0 +1,98 @@
+#pragma once
+// Internal: the hard-particle Monte Carlo engine of the densifying packer (dense_packer.cpp).
+// Holds the particles' prepared shapes and poses, runs checkerboard sweeps and container shrinks.
+// Every decision about overlap goes through is_separated (exact); containment through contains().
+
+#include <cstdint>
+#include <vector>
+
+#include "aggpack/geom/overlap.h"
+#include "aggpack/pack/packing.h"
+
+namespace aggpack::detail {
+
+/// Step sizes and acceptance rules of one sweep.
+struct SweepParameters {
+  double translation_step = 0.1;      // / bounding radius
+  double rotation_step = 0.1;         // rad
+  double rotation_probability = 0.5;  // [0, 1]
+  bool is_bed = false;                // Metropolis on potential energy
+  double temperature = 0.0;           // bed: see DensifyOptions::bed_temperature
+};
+
+struct SweepCounts {
+  std::uint64_t translations_tried = 0;
+  std::uint64_t translations_accepted = 0;
+  std::uint64_t rotations_tried = 0;
+  std::uint64_t rotations_accepted = 0;
+};
+
+class Hpmc {
+ public:
+  /// Prepares one SupportShape per distinct (shape, scale). `max_compression` bounds the shrink
+  /// per compress() call (the cells are sized for it).
+  Hpmc(const Packing& packing, double gap, std::uint64_t seed, double max_compression);
+
+  /// One sweep (index `sweep` feeds the random streams): one trial move per particle.
+  SweepCounts sweep(std::uint64_t sweep, const SweepParameters& parameters);
+
+  /// Tries to move the container a share t in (0, 1] of the way to `target` (same kind, no
+  /// extent larger), positions rescaled. Returns true and applies it when every pair and wall
+  /// stays clear by the exact tests; else changes nothing.
+  bool compress(const Container& target, double t);
+
+  /// The largest t in [0, t_cap] that compress(target, t) could accept, from exact pair
+  /// distances (gjk_distance) and wall clearances: for every close pair, (distance - gap) over
+  /// how fast the shrink closes it. 0 when something already touches.
+  double max_compression_share(const Container& target, double t_cap);
+
+  [[nodiscard]] const Container& container() const { return container_; }
+  [[nodiscard]] const std::vector<Pose>& poses() const { return poses_; }
+  [[nodiscard]] double solid_volume() const { return solid_volume_; }
+  [[nodiscard]] double mean_outer_radius() const { return mean_outer_; }
+  [[nodiscard]] double max_outer_radius() const { return max_outer_; }
+  /// Volume-weighted mean centroid height (m).
+  [[nodiscard]] double mean_height() const;
+
+ private:
+  struct Body {
+    SupportShape support;
+    ConvexPolyhedron local;  // true size, local frame
+    double outer = 0.0;
+    double volume = 0.0;
+  };
+  struct Grid {
+    double width = 0.0;
+    Vec3 origin = Vec3::Zero();  // lower corner minus the shift
+    std::int64_t dims[3] = {1, 1, 1};
+    std::vector<std::uint32_t> start;  // CSR: cell c holds items[start[c], start[c + 1])
+    std::vector<std::uint32_t> items;
+    std::vector<std::uint32_t> cell_of;  // per particle
+  };
+
+  void build_grid(const Vec3& shift);
+  /// Per-axis shrink shares toward `target` (p becomes p (1 - t k)).
+  [[nodiscard]] Vec3 shrink_shares(const Container& target) const;
+  [[nodiscard]] std::int64_t cell_index(const Vec3& position) const;
+  void cell_coordinates(std::int64_t cell, std::int64_t (&c)[3]) const;
+  /// Whether particle i placed at `pose` is clear of every other particle (exact test, gap
+  /// `gap`, neighbours from the grid).
+  [[nodiscard]] bool is_clear(std::uint32_t i, const Pose& pose, double gap) const;
+  [[nodiscard]] bool is_inside(std::uint32_t i, const Pose& pose, const Container& box) const;
+  void move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters& parameters,
+                 SweepCounts& counts);
+
+  Container container_;
+  std::vector<Body> bodies_;
+  std::vector<std::uint32_t> body_of_;
+  std::vector<Pose> poses_;
+  double gap_ = 0.0;
+  std::uint64_t seed_ = 1;
+  double max_outer_ = 0.0;
+  double mean_outer_ = 0.0;
+  double mean_volume_ = 0.0;
+  double solid_volume_ = 0.0;
+  Grid grid_;
+};
+
+}  // namespace aggpack::detail
