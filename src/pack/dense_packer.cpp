@@ -236,6 +236,13 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   auto last_progress = Clock::now() - std::chrono::hours(1);
   auto fraction_now = [&] { return solid_volume / engine.container().volume(); };
   auto is_at_target = [&] { return same_size(engine.container(), target); };
+  // Reached: the target container, and the fraction target (round-off of the derived container
+  // aside).
+  auto is_done = [&] {
+    return !is_bed && is_at_target() &&
+           (options.target_fraction <= 0.0 ||
+            fraction_now() >= options.target_fraction * (1 - 1e-9));
+  };
   auto report_progress = [&](bool is_final) {
     if (!control.on_progress) return;
     const auto now = Clock::now();
@@ -270,8 +277,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
       report.stop = DensifyStop::kTimeBudget;
       break;
     }
-    if (!is_bed && is_at_target() &&
-        (options.target_fraction <= 0.0 || fraction_now() >= options.target_fraction)) {
+    if (is_done()) {
       report.stop = DensifyStop::kTargetReached;
       break;
     }
@@ -325,7 +331,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
       history.push_back(fraction_now());
       if (history.size() > options.stall_sweeps) {
         const double gained = history.back() - history[history.size() - 1 - options.stall_sweeps];
-        if (gained < options.stall_tolerance) {
+        if (gained < options.stall_tolerance && !is_done()) {
           report.stop = DensifyStop::kJammed;
           break;
         }
@@ -333,8 +339,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
     }
     report_progress(false);
   }
-  if (report.stop == DensifyStop::kSweepBudget && !is_bed && is_at_target() &&
-      (options.target_fraction <= 0.0 || fraction_now() >= options.target_fraction)) {
+  if (report.stop != DensifyStop::kCancelled && is_done()) {
     report.stop = DensifyStop::kTargetReached;
   }
 
