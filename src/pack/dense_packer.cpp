@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 #include <vector>
@@ -231,11 +232,19 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
                                      .rotation_probability = options.rotation_probability,
                                      .is_bed = is_bed,
                                      .temperature = options.bed_temperature};
-  double compress_share = 0.5;  // share of the largest safe shrink taken
+  // kFixed: squeeze (shrink without checking), then repair by sweeps; a squeeze not repaired in
+  // 2 * kRepairSweeps sweeps is undone and the next one is half as large.
+  constexpr std::uint64_t kRepairSweeps = 15;
+  double squeeze_step = 0.25 * options.max_compression;  // relative shrink of the largest share
+  bool is_repairing = false;
+  std::uint64_t repair_sweeps = 0;
+  detail::Hpmc::State checkpoint;
   std::vector<double> history;  // fraction (fixed) or mean height (bed) after each sweep
   auto last_progress = Clock::now() - std::chrono::hours(1);
-  auto fraction_now = [&] { return solid_volume / engine.container().volume(); };
-  auto is_at_target = [&] { return same_size(engine.container(), target); };
+  auto fraction_now = [&] {
+    return solid_volume / (is_repairing ? checkpoint.container : engine.container()).volume();
+  };
+  auto is_at_target = [&] { return !is_repairing && same_size(engine.container(), target); };
   // Reached: the target container, and the fraction target (round-off of the derived container
   // aside).
   auto is_done = [&] {
@@ -307,7 +316,22 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
         }
       }
     } else {
-      if (!is_at_target() && (sweep + 1) % options.compress_interval == 0) {
+      if (is_repairing) {
+        std::size_t flagged = engine.flagged_count();
+        ++repair_sweeps;
+        if (flagged != 0 && repair_sweeps % kRepairSweeps == 0) flagged = engine.refresh_flags();
+        if (flagged == 0) {
+          is_repairing = false;
+          ++report.compressions;
+          squeeze_step = std::min(options.max_compression, squeeze_step * 1.2);
+        } else if (repair_sweeps >= 2 * kRepairSweeps) {
+          engine.restore(checkpoint);  // could not be repaired: back, and a smaller squeeze
+          is_repairing = false;
+          squeeze_step *= 0.5;
+        }
+      }
+      if (!is_repairing && !is_at_target() && (sweep + 1) % options.compress_interval == 0 &&
+          squeeze_step > 1e-9) {
         const Container& now = engine.container();
         double k_max = 0.0;
         if (now.kind == ContainerKind::kBox) {
@@ -316,16 +340,12 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
         } else {
           k_max = std::max(1.0 - target.radius / now.radius, 1.0 - target.height / now.height);
         }
-        const double t_cap = std::min(1.0, options.max_compression / k_max);
-        // The largest safe share from exact distances, then a part of it (the rest is slack
-        // for the exact re-check and for the next sweeps' moves).
-        const double t_max = engine.max_compression_share(target, t_cap);
-        const double t = t_max >= t_cap ? t_cap : compress_share * t_max;
-        if (t > 0.0 && engine.compress(target, t)) {
+        checkpoint = engine.state();
+        repair_sweeps = 0;
+        is_repairing = engine.squeeze(target, std::min(1.0, squeeze_step / k_max)) != 0;
+        if (!is_repairing) {
           ++report.compressions;
-          compress_share = std::min(0.9, compress_share * 1.1);
-        } else {
-          compress_share = std::max(0.05, compress_share * 0.5);
+          squeeze_step = std::min(options.max_compression, squeeze_step * 1.2);
         }
       }
       history.push_back(fraction_now());
@@ -343,6 +363,10 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
     report.stop = DensifyStop::kTargetReached;
   }
 
+  if (is_repairing) {  // stopped mid-repair: return the last overlap-free state
+    engine.restore(checkpoint);
+    is_repairing = false;
+  }
   DensifyResult result;
   result.packing = std::move(start);
   Packing& packing = result.packing;

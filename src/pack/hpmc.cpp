@@ -134,6 +134,91 @@ bool Hpmc::is_clear(std::uint32_t i, const Pose& pose, double gap) const {
   return true;
 }
 
+template <class Visit>
+void Hpmc::for_each_neighbour(std::uint32_t i, Visit&& visit) const {
+  std::int64_t c[3];
+  cell_coordinates(grid_.cell_of[i], c);
+  for (std::int64_t z = std::max<std::int64_t>(0, c[2] - 1);
+       z <= std::min(grid_.dims[2] - 1, c[2] + 1); ++z) {
+    for (std::int64_t y = std::max<std::int64_t>(0, c[1] - 1);
+         y <= std::min(grid_.dims[1] - 1, c[1] + 1); ++y) {
+      for (std::int64_t x = std::max<std::int64_t>(0, c[0] - 1);
+           x <= std::min(grid_.dims[0] - 1, c[0] + 1); ++x) {
+        const auto cell = static_cast<std::size_t>((z * grid_.dims[1] + y) * grid_.dims[0] + x);
+        for (std::uint32_t k = grid_.start[cell]; k < grid_.start[cell + 1]; ++k) {
+          if (grid_.items[k] != i && !visit(grid_.items[k])) return;
+        }
+      }
+    }
+  }
+}
+
+bool Hpmc::is_no_worse(std::uint32_t i, const Pose& pose, bool& is_clean) const {
+  const Body& body = bodies_[body_of_[i]];
+  const Pose& old = poses_[i];
+  bool is_ok = true;
+  is_clean = true;
+  for_each_neighbour(i, [&](std::uint32_t j) {
+    const Body& other = bodies_[body_of_[j]];
+    const double reach = body.outer + other.outer + gap_;
+    if ((poses_[j].position - pose.position).squaredNorm() >= reach * reach) return true;
+    if (is_separated(body.support, pose, other.support, poses_[j], gap_)) return true;
+    is_clean = false;
+    // A partner now: allowed only if it was one before the move.
+    // And the pair's centres must not come closer (else overlapping pairs drift deeper).
+    const double before = (poses_[j].position - old.position).squaredNorm();
+    if (before >= reach * reach || (poses_[j].position - pose.position).squaredNorm() < before ||
+        is_separated(body.support, old, other.support, poses_[j], gap_)) {
+      is_ok = false;
+      return false;
+    }
+    return true;
+  });
+  return is_ok;
+}
+
+std::size_t Hpmc::flagged_count() const {
+  std::size_t count = 0;
+  for (const std::uint8_t flag : flagged_) count += flag;
+  return count;
+}
+
+void Hpmc::restore(const State& state) {
+  container_ = state.container;
+  poses_ = state.poses;
+  std::fill(flagged_.begin(), flagged_.end(), 0);
+}
+
+std::size_t Hpmc::squeeze(const Container& target, double t) {
+  const Vec3 k = shrink_shares(target);
+  const Vec3 factor = Vec3::Ones() - std::min(1.0, t) * k;
+  for (Pose& pose : poses_) pose.position = pose.position.cwiseProduct(factor);
+  if (t >= 1.0) {
+    const double wall_gap = container_.wall_gap;
+    container_ = target;
+    container_.wall_gap = wall_gap;
+  } else if (container_.kind == ContainerKind::kBox) {
+    container_.length *= factor.x();
+    container_.width *= factor.y();
+    container_.depth *= factor.z();
+  } else {
+    container_.radius *= factor.x();
+    container_.height *= factor.z();
+  }
+  return refresh_flags();
+}
+
+std::size_t Hpmc::refresh_flags() {
+  build_grid(Vec3::Zero());
+  flagged_.assign(poses_.size(), 0);
+  parallel_for_index(0, poses_.size(), [&](std::size_t index) {
+    const auto i = static_cast<std::uint32_t>(index);
+    flagged_[i] = static_cast<std::uint8_t>(!is_inside(i, poses_[i], container_) ||
+                                            !is_clear(i, poses_[i], gap_));
+  });
+  return flagged_count();
+}
+
 bool Hpmc::is_inside(std::uint32_t i, const Pose& pose, const Container& box) const {
   const Body& body = bodies_[body_of_[i]];
   return is_in_centre_region(box, body.outer, pose.position) || contains(box, body.local, pose);
@@ -154,7 +239,11 @@ void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters
     trial.rotation.normalize();
   } else {
     ++counts.translations_tried;
-    const double step = parameters.translation_step * body.outer;
+    // A squeezed, overlapping particle takes small steps (large ones mostly find new partners).
+    const bool is_flagged = !flagged_.empty() && flagged_[i] != 0;
+    const double step =
+        (is_flagged ? std::min(parameters.translation_step, 0.05) : parameters.translation_step) *
+        body.outer;
     const double dx = 2.0 * rng.uniform() - 1.0;
     const double dy = 2.0 * rng.uniform() - 1.0;
     const double dz = 2.0 * rng.uniform() - 1.0;
@@ -167,7 +256,21 @@ void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters
     }
     if (cell_index(trial.position) != static_cast<std::int64_t>(grid_.cell_of[i])) return;
   }
-  if (!is_inside(i, trial, container_) || !is_clear(i, trial, gap_)) return;
+  if (!flagged_.empty() && flagged_[i] != 0) {
+    // Squeezed and not yet repaired: no new partner, and no further out of the container.
+    const bool was_inside = is_inside(i, poses_[i], container_);
+    const bool is_in = is_inside(i, trial, container_);
+    if (was_inside && !is_in) return;
+    if (!is_in && wall_clearance(container_, body.local, trial) <
+                      wall_clearance(container_, body.local, poses_[i])) {
+      return;
+    }
+    bool is_clean = false;
+    if (!is_no_worse(i, trial, is_clean)) return;
+    if (is_in && is_clean) flagged_[i] = 0;
+  } else if (!is_inside(i, trial, container_) || !is_clear(i, trial, gap_)) {
+    return;
+  }
   poses_[i] = trial;
   if (is_rotation) {
     ++counts.rotations_accepted;
@@ -225,134 +328,6 @@ Vec3 Hpmc::shrink_shares(const Container& target) const {
     k = Vec3(radial, radial, 1.0 - target.height / container_.height);
   }
   return k.cwiseMax(0.0);
-}
-
-double Hpmc::max_compression_share(const Container& target, double t_cap) {
-  const Vec3 k = shrink_shares(target);
-  const double k_max = k.maxCoeff();
-  if (!(k_max > 0.0) || !(t_cap > 0.0)) return 0.0;
-  build_grid(Vec3::Zero());
-  std::vector<double> limit(poses_.size(), t_cap);
-  parallel_for_index(0, poses_.size(), [&](std::size_t index) {
-    const auto i = static_cast<std::uint32_t>(index);
-    const Body& body = bodies_[body_of_[i]];
-    const Pose& pose = poses_[i];
-    double best = t_cap;
-    // Walls: clearance c (1 - t k_max) - t k_max r > wall_gap  <=>  t < (c - wall_gap) /
-    // (k_max (c + r)).
-    auto wall_limit = [&](double clearance) {
-      return (clearance - container_.wall_gap) / (k_max * (clearance + body.outer));
-    };
-    const double sphere = wall_clearance(container_, pose.position) - body.outer;
-    if (wall_limit(sphere) < best) {
-      best =
-          std::min(best, std::max(0.0, wall_limit(wall_clearance(container_, body.local, pose))));
-    }
-    std::int64_t c[3];
-    cell_coordinates(grid_.cell_of[i], c);
-    for (std::int64_t z = std::max<std::int64_t>(0, c[2] - 1);
-         z <= std::min(grid_.dims[2] - 1, c[2] + 1); ++z) {
-      for (std::int64_t y = std::max<std::int64_t>(0, c[1] - 1);
-           y <= std::min(grid_.dims[1] - 1, c[1] + 1); ++y) {
-        for (std::int64_t x = std::max<std::int64_t>(0, c[0] - 1);
-             x <= std::min(grid_.dims[0] - 1, c[0] + 1); ++x) {
-          const auto cell = static_cast<std::size_t>((z * grid_.dims[1] + y) * grid_.dims[0] + x);
-          for (std::uint32_t m = grid_.start[cell]; m < grid_.start[cell + 1]; ++m) {
-            const std::uint32_t j = grid_.items[m];
-            if (j <= i) continue;
-            const Body& other = bodies_[body_of_[j]];
-            const Vec3 offset = poses_[j].position - pose.position;
-            const double speed = k.cwiseProduct(offset).norm();  // closing per unit t
-            if (!(speed > 0.0)) continue;
-            // Bounding spheres give a lower bound on the distance: skip pairs that cannot limit.
-            const double lower = offset.norm() - body.outer - other.outer - gap_;
-            if (lower >= best * speed) continue;
-            const DistanceResult d = gjk_distance(body.support, pose, other.support, poses_[j]);
-            const double allowed = d.is_intersecting ? 0.0 : (d.distance - gap_) / speed;
-            best = std::min(best, std::max(0.0, allowed));
-          }
-        }
-      }
-    }
-    limit[index] = best;
-  });
-  double best = t_cap;
-  for (const double value : limit) best = std::min(best, value);
-  return best;
-}
-
-bool Hpmc::compress(const Container& target, double t) {
-  // Per-axis shrink shares k: a position coordinate p becomes p (1 - t k).
-  const Vec3 k = shrink_shares(target);
-  const double k_max = k.maxCoeff();
-  if (!(k_max > 0.0) || !(t > 0.0)) return false;
-  build_grid(Vec3::Zero());
-  const double shrink = t * k_max;  // largest relative shrink, <= max_compression
-  // A pair's relative displacement is t (k o d) for centre offset d: its distance falls by at
-  // most that much, so it stays clear when it is separated by gap + |t (k o d)| now. A wall's
-  // clearance c falls to at least c (1 - t k_max) - t k_max r for bounding radius r (the body
-  // moves rigidly toward the scaling origin, the walls move in).
-  const double slack = 1e-12 * (container_.bounds().extent().maxCoeff());
-  std::atomic<bool> is_blocked{false};
-  parallel_for_index(0, poses_.size(), [&](std::size_t index) {
-    if (is_blocked.load(std::memory_order_relaxed)) return;
-    const auto i = static_cast<std::uint32_t>(index);
-    const Body& body = bodies_[body_of_[i]];
-    const Pose& pose = poses_[i];
-    const double wall_gap = container_.wall_gap;
-    auto wall_ok = [&](double clearance) {
-      return clearance * (1.0 - shrink) - shrink * body.outer > wall_gap + slack;
-    };
-    if (!wall_ok(wall_clearance(container_, pose.position) - body.outer) &&
-        !wall_ok(wall_clearance(container_, body.local, pose))) {
-      is_blocked = true;
-      return;
-    }
-    std::int64_t c[3];
-    cell_coordinates(grid_.cell_of[i], c);
-    for (std::int64_t z = std::max<std::int64_t>(0, c[2] - 1);
-         z <= std::min(grid_.dims[2] - 1, c[2] + 1); ++z) {
-      for (std::int64_t y = std::max<std::int64_t>(0, c[1] - 1);
-           y <= std::min(grid_.dims[1] - 1, c[1] + 1); ++y) {
-        for (std::int64_t x = std::max<std::int64_t>(0, c[0] - 1);
-             x <= std::min(grid_.dims[0] - 1, c[0] + 1); ++x) {
-          const auto cell = static_cast<std::size_t>((z * grid_.dims[1] + y) * grid_.dims[0] + x);
-          for (std::uint32_t m = grid_.start[cell]; m < grid_.start[cell + 1]; ++m) {
-            const std::uint32_t j = grid_.items[m];
-            if (j <= i) continue;
-            const Body& other = bodies_[body_of_[j]];
-            const Vec3 offset = poses_[j].position - pose.position;
-            const double closing = t * k.cwiseProduct(offset).norm();
-            const double reach = body.outer + other.outer + gap_ + closing;
-            if (offset.squaredNorm() >= reach * reach) continue;
-            if (!is_separated(body.support, pose, other.support, poses_[j],
-                              gap_ + closing + slack)) {
-              is_blocked = true;
-              return;
-            }
-          }
-        }
-      }
-    }
-  });
-  if (is_blocked) return false;
-  const Vec3 factor = Vec3::Ones() - t * k;
-  for (Pose& pose : poses_) pose.position = pose.position.cwiseProduct(factor);
-  if (container_.kind == ContainerKind::kBox) {
-    container_.length *= factor.x();
-    container_.width *= factor.y();
-    container_.depth *= factor.z();
-  } else {
-    container_.radius *= factor.x();
-    container_.height *= factor.z();
-  }
-  // The last step lands on the target exactly.
-  if (t >= 1.0) {
-    const double wall_gap = container_.wall_gap;
-    container_ = target;
-    container_.wall_gap = wall_gap;
-  }
-  return true;
 }
 
 }  // namespace aggpack::detail

@@ -1,6 +1,6 @@
 #pragma once
 // Internal: the hard-particle Monte Carlo engine of the densifying packer (dense_packer.cpp).
-// Holds the particles' prepared shapes and poses, runs checkerboard sweeps and container shrinks.
+// Holds the particles' prepared shapes and poses, runs checkerboard sweeps and container squeezes.
 // Every decision about overlap goes through is_separated (exact); containment through contains().
 
 #include <cstdint>
@@ -30,21 +30,31 @@ struct SweepCounts {
 class Hpmc {
  public:
   /// Prepares one SupportShape per distinct (shape, scale). `max_compression` bounds the shrink
-  /// per compress() call (the cells are sized for it).
+  /// per squeeze() (the cells are sized for it).
   Hpmc(const Packing& packing, double gap, std::uint64_t seed, double max_compression);
 
   /// One sweep (index `sweep` feeds the random streams): one trial move per particle.
   SweepCounts sweep(std::uint64_t sweep, const SweepParameters& parameters);
 
-  /// Tries to move the container a share t in (0, 1] of the way to `target` (same kind, no
-  /// extent larger), positions rescaled. Returns true and applies it when every pair and wall
-  /// stays clear by the exact tests; else changes nothing.
-  bool compress(const Container& target, double t);
+  /// Soft shrink (HOOMD-blue QuickCompress style): moves the container a share t of the way to
+  /// `target` and rescales positions WITHOUT checking, then flags every particle that now
+  /// overlaps a neighbour (exact test) or leaves the container. Until flagged_count() is 0 the
+  /// state is not a valid packing: a flagged particle's move is accepted only if it makes no new
+  /// overlap partner and does not go further out of the container; a clean particle's only if it
+  /// overlaps nothing. So no clean particle ever gets an overlap, and once no particle is
+  /// flagged the packing is overlap-free again. Returns flagged_count().
+  std::size_t squeeze(const Container& target, double t);
+  [[nodiscard]] std::size_t flagged_count() const;
+  /// Recomputes the flags exactly (a flag can outlive its overlap when the partner moved away).
+  std::size_t refresh_flags();
 
-  /// The largest t in [0, t_cap] that compress(target, t) could accept, from exact pair
-  /// distances (gjk_distance) and wall clearances: for every close pair, (distance - gap) over
-  /// how fast the shrink closes it. 0 when something already touches.
-  double max_compression_share(const Container& target, double t_cap);
+  /// A copy of the container and poses, to return to when a squeeze cannot be repaired.
+  struct State {
+    Container container;
+    std::vector<Pose> poses;
+  };
+  [[nodiscard]] State state() const { return {container_, poses_}; }
+  void restore(const State& state);
 
   [[nodiscard]] const Container& container() const { return container_; }
   [[nodiscard]] const std::vector<Pose>& poses() const { return poses_; }
@@ -78,6 +88,11 @@ class Hpmc {
   /// Whether particle i placed at `pose` is clear of every other particle (exact test, gap
   /// `gap`, neighbours from the grid).
   [[nodiscard]] bool is_clear(std::uint32_t i, const Pose& pose, double gap) const;
+  /// Whether particle i at `pose` has no new overlap partner compared with its current pose,
+  /// and `is_clean` = it overlaps nothing there.
+  [[nodiscard]] bool is_no_worse(std::uint32_t i, const Pose& pose, bool& is_clean) const;
+  template <class Visit>
+  void for_each_neighbour(std::uint32_t i, Visit&& visit) const;
   [[nodiscard]] bool is_inside(std::uint32_t i, const Pose& pose, const Container& box) const;
   void move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters& parameters,
                  SweepCounts& counts);
@@ -93,6 +108,7 @@ class Hpmc {
   double mean_volume_ = 0.0;
   double solid_volume_ = 0.0;
   Grid grid_;
+  std::vector<std::uint8_t> flagged_;  // may overlap something / be outside (squeeze)
 };
 
 }  // namespace aggpack::detail
