@@ -12,11 +12,14 @@
 // byte-identical at any thread count. Step sizes adapt toward a target acceptance rate.
 //
 // Modes:
-//  - kFixed: between sweeps the container is shrunk toward the target container, rescaling
-//    particle POSITIONS only (shapes are never deformed). A shrink by t is accepted only when
-//    every close pair is separated by gap + (how much the shrink can bring it closer) and every
-//    particle keeps its wall gap, both by the exact tests; else t is halved (and grown after a
-//    success). Once the target container is reached (and the target fraction, if any) it stops.
+//  - kFixed: between sweeps the container is squeezed toward the target container, rescaling
+//    particle POSITIONS only (shapes are never deformed), HOOMD-blue QuickCompress style: the
+//    squeeze itself is not checked; the particles it made overlap (exact test) are flagged and
+//    repaired by sweeps in which a flagged particle may not gain an overlap partner nor bring
+//    an existing partner's centre closer, and a clean particle may overlap nothing. When no
+//    particle is flagged the state is overlap-free again (a checkpoint); a squeeze not repaired
+//    within 30 sweeps is undone and the next one is halved. Only checkpoints are ever returned.
+//    Stops once the target container is reached (and the target fraction, if any).
 //  - kBed: gravity bed. Moves that raise a particle are accepted with the Metropolis weight of
 //    its potential energy m g dz at a falling temperature; the run stops when the bed's mean
 //    height stops sinking. The bulk fraction is measured in a slab below the free surface.
@@ -64,9 +67,10 @@ struct DensifyOptions {
   double translation_step = 0.1;      ///< initial translation step / bounding radius, (0, 1]
   double rotation_step = 0.1;         ///< initial rotation step (rad), (0, pi]
   double rotation_probability = 0.5;  ///< share of trial moves that rotate, [0, 1]
-  /// kFixed: sweeps between compression attempts, [1, 1000].
+  /// kFixed: sweeps between squeezes (when the last one is repaired), [1, 1000].
   std::uint32_t compress_interval = 1;
-  /// kFixed: largest relative shrink of any container extent in one step, (0, 0.1].
+  /// kFixed: largest relative shrink of any container extent in one squeeze, (0, 0.1]; the
+  /// step starts at a quarter of it, grows 1.2x per repaired squeeze and halves per undone one.
   double max_compression = 0.01;
   /// kBed: initial temperature: a particle of mean volume rising by one mean bounding radius is
   /// accepted with probability exp(-1 / T), >= 0 (0 = never rise).
@@ -99,7 +103,7 @@ struct DensifyReport {
   std::uint64_t sweeps = 0;          ///< sweeps run
   std::uint64_t moves_tried = 0;     ///< trial moves
   std::uint64_t moves_accepted = 0;  ///< accepted trial moves
-  std::uint64_t compressions = 0;    ///< accepted container shrinks (kFixed)
+  std::uint64_t compressions = 0;    ///< squeezes repaired and kept (kFixed)
   double start_fraction = 0.0;       ///< solid fraction of the start packing
   double solid_fraction = 0.0;       ///< final solid volume / container volume
   /// kBed: bulk fraction in [bulk_lower, bulk_upper] (exact slab volumes); 0 for kFixed.
