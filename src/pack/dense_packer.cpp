@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <sstream>
 #include <vector>
@@ -232,9 +231,10 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
                                      .rotation_probability = options.rotation_probability,
                                      .is_bed = is_bed,
                                      .temperature = options.bed_temperature};
-  // kFixed: squeeze (shrink without checking), then repair by sweeps; a squeeze not repaired in
-  // 2 * kRepairSweeps sweeps is undone and the next one is half as large.
-  constexpr std::uint64_t kRepairSweeps = 15;
+  // kFixed: squeeze (shrink without checking), then repair by sweeps. Every kRepairSweeps sweeps
+  // without a full repair, a quarter (then half) of the squeeze is undone and the next squeeze
+  // is smaller; after 3 * kRepairSweeps the checkpoint is restored.
+  constexpr std::uint64_t kRepairSweeps = 8;
   double squeeze_step = 0.25 * options.max_compression;  // relative shrink of the largest share
   bool is_repairing = false;
   std::uint64_t repair_sweeps = 0;
@@ -319,15 +319,25 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
       if (is_repairing) {
         std::size_t flagged = engine.flagged_count();
         ++repair_sweeps;
-        if (flagged != 0 && repair_sweeps % kRepairSweeps == 0) flagged = engine.refresh_flags();
-        if (flagged == 0) {
+        if (flagged != 0 && repair_sweeps % kRepairSweeps == 0) {
+          // Stalled (a few caged pairs): undo half of what is left of the squeeze, keeping the
+          // moves made since; the third time, go back to the checkpoint.
+          if (repair_sweeps >= 3 * kRepairSweeps) {
+            engine.restore(checkpoint);
+            flagged = 0;
+            is_repairing = false;
+            squeeze_step *= 0.5;
+          } else {
+            flagged = engine.expand(checkpoint.container, 0.25 * repair_sweeps / kRepairSweeps);
+            squeeze_step *= 0.8;
+          }
+        }
+        if (is_repairing && flagged == 0) {
           is_repairing = false;
           ++report.compressions;
-          squeeze_step = std::min(options.max_compression, squeeze_step * 1.2);
-        } else if (repair_sweeps >= 2 * kRepairSweeps) {
-          engine.restore(checkpoint);  // could not be repaired: back, and a smaller squeeze
-          is_repairing = false;
-          squeeze_step *= 0.5;
+          if (repair_sweeps < kRepairSweeps) {
+            squeeze_step = std::min(options.max_compression, squeeze_step * 1.2);
+          }
         }
       }
       if (!is_repairing && !is_at_target() && (sweep + 1) % options.compress_interval == 0 &&

@@ -208,6 +208,32 @@ std::size_t Hpmc::squeeze(const Container& target, double t) {
   return refresh_flags();
 }
 
+std::size_t Hpmc::expand(const Container& larger, double t) {
+  Vec3 factor = Vec3::Ones();
+  if (container_.kind == ContainerKind::kBox) {
+    factor = Vec3(larger.length / container_.length, larger.width / container_.width,
+                  larger.depth / container_.depth);
+  } else {
+    const double radial = larger.radius / container_.radius;
+    factor = Vec3(radial, radial, larger.height / container_.height);
+  }
+  factor = (Vec3::Ones() + std::min(1.0, t) * (factor - Vec3::Ones())).cwiseMax(1.0);
+  for (Pose& pose : poses_) pose.position = pose.position.cwiseProduct(factor);
+  if (t >= 1.0) {
+    const double wall_gap = container_.wall_gap;
+    container_ = larger;
+    container_.wall_gap = wall_gap;
+  } else if (container_.kind == ContainerKind::kBox) {
+    container_.length *= factor.x();
+    container_.width *= factor.y();
+    container_.depth *= factor.z();
+  } else {
+    container_.radius *= factor.x();
+    container_.height *= factor.z();
+  }
+  return refresh_flags();
+}
+
 std::size_t Hpmc::refresh_flags() {
   build_grid(Vec3::Zero());
   flagged_.assign(poses_.size(), 0);
@@ -224,9 +250,68 @@ bool Hpmc::is_inside(std::uint32_t i, const Pose& pose, const Container& box) co
   return is_in_centre_region(box, body.outer, pose.position) || contains(box, body.local, pose);
 }
 
+void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) {
+  // Repair moves of a squeezed, overlapping particle (not counted for the step adaptation): up
+  // to kTries pushes away from its partners (and into the container) plus a little noise, each
+  // accepted only if it makes no new partner, brings no partner's centre closer and goes no
+  // further out of the container.
+  constexpr int kTries = 8;
+  const Body& body = bodies_[body_of_[i]];
+  for (int attempt = 0; attempt < kTries; ++attempt) {
+    const Pose& pose = poses_[i];
+    Vec3 push = Vec3::Zero();
+    int partners = 0;
+    for_each_neighbour(i, [&](std::uint32_t j) {
+      const Body& other = bodies_[body_of_[j]];
+      const Vec3 away = pose.position - poses_[j].position;
+      const double reach = body.outer + other.outer + gap_;
+      if (away.squaredNorm() < reach * reach && away.squaredNorm() > 0.0 &&
+          !is_separated(body.support, pose, other.support, poses_[j], gap_)) {
+        push += away.normalized();
+        ++partners;
+      }
+      return true;
+    });
+    const bool was_inside = is_inside(i, pose, container_);
+    if (partners == 0 && was_inside) {
+      flagged_[i] = 0;  // clean (its partners moved away)
+      return;
+    }
+    if (!was_inside) {
+      const Aabb bounds = container_.bounds();
+      const Vec3 inward = 0.5 * (bounds.lower + bounds.upper) - pose.position;
+      if (inward.squaredNorm() > 0.0) push += inward.normalized();
+    }
+    if (push.squaredNorm() > 0.0) push.normalize();
+    const double size = std::min(parameters.translation_step, 0.2) * body.outer * rng.uniform();
+    const Vec3 noise(2.0 * rng.uniform() - 1.0, 2.0 * rng.uniform() - 1.0,
+                     2.0 * rng.uniform() - 1.0);
+    Pose trial = pose;
+    trial.position += size * push + 0.02 * body.outer * noise;
+    if (cell_index(trial.position) != static_cast<std::int64_t>(grid_.cell_of[i])) continue;
+    const bool is_in = is_inside(i, trial, container_);
+    if (was_inside && !is_in) continue;
+    if (!is_in && wall_clearance(container_, body.local, trial) <
+                      wall_clearance(container_, body.local, pose)) {
+      continue;
+    }
+    bool is_clean = false;
+    if (!is_no_worse(i, trial, is_clean)) continue;
+    poses_[i] = trial;
+    if (is_in && is_clean) {
+      flagged_[i] = 0;
+      return;
+    }
+  }
+}
+
 void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters& parameters,
                      SweepCounts& counts) {
   Rng rng(seed_, (sweep << 32) | i);
+  if (!flagged_.empty() && flagged_[i] != 0) {
+    repair(i, rng, parameters);
+    return;
+  }
   const Body& body = bodies_[body_of_[i]];
   Pose trial = poses_[i];
   const bool is_rotation = rng.uniform() < parameters.rotation_probability;
@@ -239,11 +324,7 @@ void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters
     trial.rotation.normalize();
   } else {
     ++counts.translations_tried;
-    // A squeezed, overlapping particle takes small steps (large ones mostly find new partners).
-    const bool is_flagged = !flagged_.empty() && flagged_[i] != 0;
-    const double step =
-        (is_flagged ? std::min(parameters.translation_step, 0.05) : parameters.translation_step) *
-        body.outer;
+    const double step = parameters.translation_step * body.outer;
     const double dx = 2.0 * rng.uniform() - 1.0;
     const double dy = 2.0 * rng.uniform() - 1.0;
     const double dz = 2.0 * rng.uniform() - 1.0;
@@ -256,21 +337,7 @@ void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters
     }
     if (cell_index(trial.position) != static_cast<std::int64_t>(grid_.cell_of[i])) return;
   }
-  if (!flagged_.empty() && flagged_[i] != 0) {
-    // Squeezed and not yet repaired: no new partner, and no further out of the container.
-    const bool was_inside = is_inside(i, poses_[i], container_);
-    const bool is_in = is_inside(i, trial, container_);
-    if (was_inside && !is_in) return;
-    if (!is_in && wall_clearance(container_, body.local, trial) <
-                      wall_clearance(container_, body.local, poses_[i])) {
-      return;
-    }
-    bool is_clean = false;
-    if (!is_no_worse(i, trial, is_clean)) return;
-    if (is_in && is_clean) flagged_[i] = 0;
-  } else if (!is_inside(i, trial, container_) || !is_clear(i, trial, gap_)) {
-    return;
-  }
+  if (!is_inside(i, trial, container_) || !is_clear(i, trial, gap_)) return;
   poses_[i] = trial;
   if (is_rotation) {
     ++counts.rotations_accepted;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "aggpack/core/rng.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/packing.h"
 
@@ -45,6 +46,9 @@ class Hpmc {
   /// flagged the packing is overlap-free again. Returns flagged_count().
   std::size_t squeeze(const Container& target, double t);
   [[nodiscard]] std::size_t flagged_count() const;
+  /// The reverse of squeeze (partly undoing one that does not repair): positions and container
+  /// scaled up a share t of the way to `larger` (no extent smaller than now), flags recomputed.
+  std::size_t expand(const Container& larger, double t);
   /// Recomputes the flags exactly (a flag can outlive its overlap when the partner moved away).
   std::size_t refresh_flags();
 
@@ -94,6 +98,7 @@ class Hpmc {
   template <class Visit>
   void for_each_neighbour(std::uint32_t i, Visit&& visit) const;
   [[nodiscard]] bool is_inside(std::uint32_t i, const Pose& pose, const Container& box) const;
+  void repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters);
   void move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters& parameters,
                  SweepCounts& counts);
 
