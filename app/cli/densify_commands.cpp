@@ -3,7 +3,9 @@
 
 #include <fmt/core.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
@@ -34,6 +36,7 @@ struct DensifyFlags {
   int threads = 0;
   std::string progress = "auto";
   bool is_forced = false;
+  std::string trace;
 };
 
 // "L,W,D" for a box, "R,H" for a cylinder (metres), same kind as the input's container.
@@ -123,8 +126,22 @@ void run_densify(const DensifyFlags& flags) {
              start.particles.size(), options.gap, options.seed);
   std::fflush(stdout);
   std::unique_ptr<ProgressBar> bar;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> trace(nullptr, &std::fclose);
+  if (!flags.trace.empty()) {
+    check_writable(flags.trace, Overwrite::kAllow);
+    trace.reset(std::fopen(flags.trace.c_str(), "w"));
+    if (!trace) throw IoError("cannot write " + flags.trace);
+    std::fprintf(trace.get(), "# seconds sweeps solid_fraction\n");
+  }
+  const auto began = std::chrono::steady_clock::now();
   PackControl control;
   control.on_progress = [&](const PackProgress& progress) {
+    if (trace) {
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+      std::fprintf(trace.get(), "%.3f %llu %.6f\n", seconds,
+                   static_cast<unsigned long long>(progress.placed), progress.solid_fraction);
+    }
     if (!bar) bar = std::make_unique<ProgressBar>("densify", "sweeps", style);
     bar->update(progress.fraction, progress.placed, progress.total,
                 fmt::format("solid {:.2f} %", 100.0 * progress.solid_fraction));
@@ -182,6 +199,9 @@ void register_densify(CLI::App& app) {
   command->add_option("--progress", flags->progress, "auto, bar, lines, none")
       ->capture_default_str();
   command->add_flag("-f,--force", flags->is_forced, "replace an existing output file");
+  command->add_option("--trace", flags->trace,
+                      "write 'seconds sweeps solid_fraction' lines (every progress update) to "
+                      "this file, for a fraction-vs-time plot");
   command->callback([flags]() { run_densify(*flags); });
 }
 
