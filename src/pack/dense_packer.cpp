@@ -266,6 +266,17 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
     progress.attempted = report.moves_tried;
     progress.total = options.max_sweeps;
     progress.solid_fraction = fraction_now();
+    if (is_bed) {
+      // A bed of uniform fraction phi filling [0, H] has its mean centroid height near H / 2:
+      // phi ~ V / (A 2 z_mean), a cheap running estimate (the exact bulk figure comes at the end).
+      const Container& box = engine.container();
+      const double height = box.kind == ContainerKind::kBox ? box.depth : box.height;
+      const double mean = engine.mean_height();
+      if (mean > 0.0) {
+        progress.solid_fraction =
+            std::min(1.0, solid_volume / (box.volume() / height * 2.0 * mean));
+      }
+    }
     double share = static_cast<double>(report.sweeps) / static_cast<double>(options.max_sweeps);
     if (!is_bed && options.target_fraction > 0.0) {
       share = std::max(share, (progress.solid_fraction - report.start_fraction) /

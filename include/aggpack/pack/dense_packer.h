@@ -128,7 +128,9 @@ struct DensifyResult {
 /// Densifies `start` (which must be overlap-free within options.gap and contained; checked, an
 /// InvalidInput names "start packing" otherwise). Progress: PackProgress with stage kPlacement,
 /// `fraction` = share of the sweep budget used (or of the way to the target), `placed` = sweeps,
-/// `solid_fraction` = current fraction. The returned packing keeps shapes, classes and
+/// `solid_fraction` = current fraction (kBed: the running estimate V / (A 2 z_mean) of the bed's
+/// fraction, from the solid volume V, the container's cross-section A and the volume-weighted
+/// mean centroid height). The returned packing keeps shapes, classes and
 /// provenance of `start` except provenance.packer = "dense".
 /// \throw InvalidInput for bad options or a bad start packing.
 DensifyResult densify(Packing start, const DensifyOptions& options,
