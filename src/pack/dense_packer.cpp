@@ -231,14 +231,21 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
                                      .rotation_probability = options.rotation_probability,
                                      .is_bed = is_bed,
                                      .temperature = options.bed_temperature};
-  // kFixed: squeeze (shrink without checking), then repair by sweeps. Every kRepairSweeps sweeps
-  // without a full repair, a quarter (then half) of the squeeze is undone and the next squeeze
-  // is smaller; after 3 * kRepairSweeps the checkpoint is restored.
-  constexpr std::uint64_t kRepairSweeps = 8;
+  // kFixed: squeeze (shrink without checking) whenever at most 5 % of the particles overlap;
+  // sweeps repair. After kSqueezesPerCheckpoint squeezes (or at the target container) no more
+  // squeezes until everything is repaired: that clean state is the next checkpoint, the only
+  // kind of state ever returned. A consolidation that stalls undoes part of the squeezes (every
+  // kStallSweeps sweeps) and finally goes back to the checkpoint.
+  constexpr std::uint64_t kStallSweeps = 16;
+  constexpr std::uint64_t kSqueezesPerCheckpoint = 16;
+  const auto particle_count = static_cast<double>(start.particles.size());
+  const auto allowed_overlaps = static_cast<std::size_t>(0.05 * particle_count);
   double squeeze_step = 0.25 * options.max_compression;  // relative shrink of the largest share
-  bool is_repairing = false;
-  std::uint64_t repair_sweeps = 0;
-  detail::Hpmc::State checkpoint;
+  bool is_repairing = false;                             // some particles overlap
+  bool is_consolidating = false;                         // no squeezes until clean
+  std::uint64_t since_checkpoint = 0;                    // squeezes since the checkpoint
+  std::uint64_t consolidate_sweeps = 0;
+  detail::Hpmc::State checkpoint = engine.state();
   std::vector<double> history;  // fraction (fixed) or mean height (bed) after each sweep
   auto last_progress = Clock::now() - std::chrono::hours(1);
   auto fraction_now = [&] {
@@ -327,32 +334,33 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
         }
       }
     } else {
-      if (is_repairing) {
-        std::size_t flagged = engine.flagged_count();
-        ++repair_sweeps;
-        if (flagged != 0 && repair_sweeps % kRepairSweeps == 0) {
-          // Stalled (a few caged pairs): undo half of what is left of the squeeze, keeping the
-          // moves made since; the third time, go back to the checkpoint.
-          if (repair_sweeps >= 3 * kRepairSweeps) {
+      std::size_t flagged = engine.flagged_count();
+      if (is_repairing && flagged == 0) {  // clean again: a new checkpoint
+        is_repairing = false;
+        is_consolidating = false;
+        report.compressions += since_checkpoint;
+        since_checkpoint = 0;
+        checkpoint = engine.state();
+      }
+      if (is_consolidating) {
+        ++consolidate_sweeps;
+        if (consolidate_sweeps % kStallSweeps == 0) {
+          // Stalled (a few caged pairs): undo a quarter, then half of the squeezes since the
+          // checkpoint, keeping the moves made since; the third time, go back to it.
+          squeeze_step *= 0.7;
+          if (consolidate_sweeps >= 3 * kStallSweeps) {
             engine.restore(checkpoint);
-            flagged = 0;
             is_repairing = false;
-            squeeze_step *= 0.5;
+            is_consolidating = false;
+            since_checkpoint = 0;
           } else {
-            flagged = engine.expand(checkpoint.container, 0.25 * repair_sweeps / kRepairSweeps);
-            squeeze_step *= 0.8;
-          }
-        }
-        if (is_repairing && flagged == 0) {
-          is_repairing = false;
-          ++report.compressions;
-          if (repair_sweeps < kRepairSweeps) {
-            squeeze_step = std::min(options.max_compression, squeeze_step * 1.2);
+            engine.expand(checkpoint.container, 0.25 * consolidate_sweeps / kStallSweeps);
           }
         }
       }
-      if (!is_repairing && !is_at_target() && (sweep + 1) % options.compress_interval == 0 &&
-          squeeze_step > 1e-9) {
+      const bool is_container_reached = same_size(engine.container(), target);
+      if (!is_consolidating && !is_container_reached && flagged <= allowed_overlaps &&
+          (sweep + 1) % options.compress_interval == 0 && squeeze_step > 1e-9) {
         const Container& now = engine.container();
         double k_max = 0.0;
         if (now.kind == ContainerKind::kBox) {
@@ -361,12 +369,26 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
         } else {
           k_max = std::max(1.0 - target.radius / now.radius, 1.0 - target.height / now.height);
         }
-        checkpoint = engine.state();
-        repair_sweeps = 0;
-        is_repairing = engine.squeeze(target, std::min(1.0, squeeze_step / k_max)) != 0;
-        if (!is_repairing) {
-          ++report.compressions;
+        const std::size_t before = flagged;
+        flagged = engine.squeeze(target, std::min(1.0, squeeze_step / k_max));
+        ++since_checkpoint;
+        // Aim at 3-12 % of the particles made to overlap per squeeze.
+        const double fresh = flagged > before ? static_cast<double>(flagged - before) : 0.0;
+        if (fresh < 0.03 * particle_count) {
           squeeze_step = std::min(options.max_compression, squeeze_step * 1.2);
+        } else if (fresh > 0.12 * particle_count) {
+          squeeze_step *= 0.7;
+        }
+        if (flagged == 0) {
+          report.compressions += since_checkpoint;
+          since_checkpoint = 0;
+          checkpoint = engine.state();
+        } else {
+          is_repairing = true;
+          if (since_checkpoint >= kSqueezesPerCheckpoint || same_size(engine.container(), target)) {
+            is_consolidating = true;
+            consolidate_sweeps = 0;
+          }
         }
       }
       history.push_back(fraction_now());

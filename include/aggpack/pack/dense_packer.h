@@ -15,10 +15,12 @@
 //  - kFixed: between sweeps the container is squeezed toward the target container, rescaling
 //    particle POSITIONS only (shapes are never deformed), HOOMD-blue QuickCompress style: the
 //    squeeze itself is not checked; the particles it made overlap (exact test) are flagged and
-//    repaired by sweeps in which a flagged particle may not gain an overlap partner nor bring
-//    an existing partner's centre closer, and a clean particle may overlap nothing. When no
-//    particle is flagged the state is overlap-free again (a checkpoint); a squeeze not repaired
-//    within 30 sweeps is undone and the next one is halved. Only checkpoints are ever returned.
+//    repaired by sweeps in which a flagged particle is pushed away from its partners and may
+//    not gain an overlap partner nor bring an existing partner's centre closer, and a clean
+//    particle may overlap nothing. Squeezes continue while at most 5 % of the particles are
+//    flagged (their size adapts to flag 3-12 % each); after 16 squeezes no more until no
+//    particle is flagged: that overlap-free state is a checkpoint. A repair that stalls undoes
+//    part of the squeezes, finally all. Only checkpoints are ever returned.
 //    Stops once the target container is reached (and the target fraction, if any).
 //  - kBed: gravity bed. Moves that raise a particle are accepted with the Metropolis weight of
 //    its potential energy m g dz at a falling temperature; the run stops when the bed's mean
@@ -79,7 +81,7 @@ struct DensifyOptions {
   /// Stall window (sweeps), [1, 1e9]: kFixed stops as jammed when the fraction gained less than
   /// stall_tolerance over the window (after the container stopped shrinking); kBed stops as
   /// settled when the mean height sank less than stall_tolerance mean bounding radii.
-  std::uint64_t stall_sweeps = 100;
+  std::uint64_t stall_sweeps = 400;
   double stall_tolerance = 1e-4;  ///< see stall_sweeps, >= 0
 };
 
