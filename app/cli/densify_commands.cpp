@@ -37,6 +37,8 @@ struct DensifyFlags {
   std::string progress = "auto";
   bool is_forced = false;
   std::string trace;
+  double bed_temperature = DensifyOptions{}.bed_temperature;
+  double bed_cooling = DensifyOptions{}.bed_cooling;
 };
 
 // "L,W,D" for a box, "R,H" for a cylinder (metres), same kind as the input's container.
@@ -100,6 +102,10 @@ std::string provenance_lines(const DensifyFlags& flags, const DensifyOptions& op
   text += fmt::format("# densify.seed = {}\n", options.seed);
   text += fmt::format("# densify.max_sweeps = {}\n", options.max_sweeps);
   text += fmt::format("# densify.max_seconds = {}\n", options.max_seconds);
+  if (options.mode == DensifyMode::kBed) {
+    text += fmt::format("# densify.bed_temperature = {}\n", options.bed_temperature);
+    text += fmt::format("# densify.bed_cooling = {}\n", options.bed_cooling);
+  }
   return text;
 }
 
@@ -119,6 +125,8 @@ void run_densify(const DensifyFlags& flags) {
   options.seed = flags.seed;
   options.max_sweeps = flags.sweeps;
   options.max_seconds = flags.max_time;
+  options.bed_temperature = flags.bed_temperature;
+  options.bed_cooling = flags.bed_cooling;
   validate(options);
   set_thread_count(flags.threads);
 
@@ -187,6 +195,14 @@ void register_densify(CLI::App& app) {
   command->add_option("--target-container", flags->target_container,
                       "fixed: compress toward this container: L,W,D (box) or R,H (cylinder) in m, "
                       "no extent larger than the input's");
+  command
+      ->add_option("--bed-temperature", flags->bed_temperature,
+                   "bed: initial temperature, >= 0 (a mean particle rising one bounding radius is "
+                   "accepted with probability exp(-1/T))")
+      ->capture_default_str();
+  command
+      ->add_option("--bed-cooling", flags->bed_cooling, "bed: temperature factor per sweep, (0, 1]")
+      ->capture_default_str();
   command->add_option("--gap", flags->gap,
                       "minimum particle distance (m), >= 0 (default: packer.gap of the input)");
   command->add_option("--sweeps", flags->sweeps, "sweep budget, [1, 1e9]")->capture_default_str();
