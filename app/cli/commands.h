@@ -11,9 +11,9 @@ void register_shapes(CLI::App& app);
 void register_pack(CLI::App& app);
 void register_info(CLI::App& app);
 void register_densify(CLI::App& app);  // densify_commands.cpp
-void register_render(CLI::App& app);  // render_commands.cpp, when built with AGGPACK_HAS_RENDER
-void register_export(CLI::App& app);  // export_commands.cpp
-void register_sim(CLI::App& app);     // sim_commands.cpp (settle, repose, sweep), AGGPACK_HAS_SIM
+void register_render(CLI::App& app);   // render_commands.cpp, when built with AGGPACK_HAS_RENDER
+void register_export(CLI::App& app);   // export_commands.cpp
+void register_sim(CLI::App& app);      // sim_commands.cpp (settle, repose, sweep), AGGPACK_HAS_SIM
 
 /// Limits the worker threads for the rest of the process (0 = all cores).
 void set_thread_count(int threads);
