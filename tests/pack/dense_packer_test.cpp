@@ -32,10 +32,10 @@ Packing loose_start(double gap = 0.0, double wall_gap = 0.0, std::uint64_t seed 
 
 TEST(DensePacker, FixedModeReachesTheTargetFractionExactly) {
   const Packing start = loose_start();
-  DensifyOptions options{.target_fraction = 0.33, .seed = 5, .max_sweeps = 2000};
+  DensifyOptions options{.target_fraction = 0.42, .seed = 5, .max_sweeps = 3000};
   const DensifyResult result = densify(start, options);
   EXPECT_EQ(result.report.stop, DensifyStop::kTargetReached) << result.report.summary();
-  EXPECT_GE(result.report.solid_fraction, 0.33 * (1 - 1e-9));
+  EXPECT_GE(result.report.solid_fraction, 0.42 * (1 - 1e-9));
   EXPECT_LT(result.report.start_fraction, 0.30);
   EXPECT_EQ(result.packing.provenance.packer, "dense");
   EXPECT_LT(result.packing.container.length, start.container.length);
@@ -64,6 +64,30 @@ TEST(DensePacker, GapsAndWallGapsAreKeptToAnExplicitTargetContainer) {
   EXPECT_EQ(result.packing.container.wall_gap, wall_gap);
   expect_valid_packing(result.packing, gap);
   EXPECT_GE(result.report.min_distance, gap * (1.0 - 1e-9));
+}
+
+TEST(DensePacker, CylinderIsCompressedTowardItsTarget) {
+  const RandomPackOptions random{
+      .container = {.kind = ContainerKind::kCylinder,
+                    .radius = 0.25,
+                    .height = 0.4,
+                    .wall_gap = 0.002},
+      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.04, .radius_max = 0.05},
+      .target = PackTarget::kVolumeFraction,
+      .volume_fraction = 0.22,
+      .gap = 0.001,
+      .seed = 8};
+  const Packing start = pack_random(random).packing;
+  Container target = start.container;
+  target.radius = 0.22;
+  target.height = 0.36;
+  const DensifyOptions options{.target_container = target, .gap = 0.001, .max_sweeps = 3000};
+  const DensifyResult result = densify(start, options);
+  EXPECT_EQ(result.report.stop, DensifyStop::kTargetReached) << result.report.summary();
+  EXPECT_EQ(result.packing.container.kind, ContainerKind::kCylinder);
+  EXPECT_EQ(result.packing.container.radius, 0.22);
+  EXPECT_EQ(result.packing.container.height, 0.36);
+  expect_valid_packing(result.packing, 0.001);
 }
 
 TEST(DensePacker, SameSeedIsByteIdenticalAtOneAndTwoThreads) {
