@@ -237,7 +237,8 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   // kind of state ever returned. A consolidation that stalls undoes part of the squeezes (every
   // kStallSweeps sweeps) and finally goes back to the checkpoint.
   constexpr std::uint64_t kStallSweeps = 16;
-  constexpr std::uint64_t kSqueezesPerCheckpoint = 16;
+  constexpr std::uint64_t kSqueezesPerCheckpoint = 16;  // at most; fewer after a failed repair
+  std::uint64_t squeezes_per_checkpoint = kSqueezesPerCheckpoint;
   const auto particle_count = static_cast<double>(start.particles.size());
   const auto allowed_overlaps = static_cast<std::size_t>(0.05 * particle_count);
   double squeeze_step = 0.25 * options.max_compression;  // relative shrink of the largest share
@@ -337,6 +338,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
       std::size_t flagged = engine.flagged_count();
       if (is_repairing && flagged == 0) {  // clean again: a new checkpoint
         is_repairing = false;
+        squeezes_per_checkpoint = std::min(kSqueezesPerCheckpoint, 2 * squeezes_per_checkpoint);
         is_consolidating = false;
         report.compressions += since_checkpoint;
         since_checkpoint = 0;
@@ -353,6 +355,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
             is_repairing = false;
             is_consolidating = false;
             since_checkpoint = 0;
+            squeezes_per_checkpoint = std::max<std::uint64_t>(1, squeezes_per_checkpoint / 4);
           } else {
             engine.expand(checkpoint.container, 0.25 * consolidate_sweeps / kStallSweeps);
           }
@@ -385,7 +388,8 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
           checkpoint = engine.state();
         } else {
           is_repairing = true;
-          if (since_checkpoint >= kSqueezesPerCheckpoint || same_size(engine.container(), target)) {
+          if (since_checkpoint >= squeezes_per_checkpoint ||
+              same_size(engine.container(), target)) {
             is_consolidating = true;
             consolidate_sweeps = 0;
           }
