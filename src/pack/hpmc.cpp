@@ -88,9 +88,23 @@ void Hpmc::build_grid(const Vec3& shift) {
   grid_.items.resize(poses_.size());
   std::vector<std::uint32_t> fill(grid_.start.begin(), grid_.start.end() - 1);
   // Ascending ids within a cell: the order moves are tried in.
+  grid_.spheres.resize(poses_.size());
+  grid_.slot_of.resize(poses_.size());
   for (std::size_t i = 0; i < poses_.size(); ++i) {
-    grid_.items[fill[grid_.cell_of[i]]++] = static_cast<std::uint32_t>(i);
+    const std::uint32_t slot = fill[grid_.cell_of[i]]++;
+    grid_.items[slot] = static_cast<std::uint32_t>(i);
+    grid_.slot_of[i] = slot;
+    const Vec3& c = poses_[i].position;
+    grid_.spheres[slot] = {c.x(), c.y(), c.z(), bodies_[body_of_[i]].outer};
   }
+}
+
+void Hpmc::place(std::uint32_t i, const Pose& pose) {
+  poses_[i] = pose;
+  Grid::Sphere& sphere = grid_.spheres[grid_.slot_of[i]];
+  sphere.x = pose.position.x();
+  sphere.y = pose.position.y();
+  sphere.z = pose.position.z();
 }
 
 std::int64_t Hpmc::cell_index(const Vec3& position) const {
@@ -109,48 +123,41 @@ void Hpmc::cell_coordinates(std::int64_t cell, std::int64_t (&c)[3]) const {
   c[2] = cell / (grid_.dims[0] * grid_.dims[1]);
 }
 
-bool Hpmc::is_clear(std::uint32_t i, const Pose& pose, double gap) const {
-  const Body& body = bodies_[body_of_[i]];
+template <class Visit>
+void Hpmc::for_each_close(std::uint32_t i, const Vec3& centre, double gap, Visit&& visit) const {
+  const double reach_i = bodies_[body_of_[i]].outer + gap;
   std::int64_t c[3];
   cell_coordinates(grid_.cell_of[i], c);
   for (std::int64_t z = std::max<std::int64_t>(0, c[2] - 1);
        z <= std::min(grid_.dims[2] - 1, c[2] + 1); ++z) {
     for (std::int64_t y = std::max<std::int64_t>(0, c[1] - 1);
          y <= std::min(grid_.dims[1] - 1, c[1] + 1); ++y) {
-      for (std::int64_t x = std::max<std::int64_t>(0, c[0] - 1);
-           x <= std::min(grid_.dims[0] - 1, c[0] + 1); ++x) {
-        const auto cell = static_cast<std::size_t>((z * grid_.dims[1] + y) * grid_.dims[0] + x);
-        for (std::uint32_t k = grid_.start[cell]; k < grid_.start[cell + 1]; ++k) {
-          const std::uint32_t j = grid_.items[k];
-          if (j == i) continue;
-          const Body& other = bodies_[body_of_[j]];
-          const double reach = body.outer + other.outer + gap;
-          if ((poses_[j].position - pose.position).squaredNorm() >= reach * reach) continue;
-          if (!is_separated(body.support, pose, other.support, poses_[j], gap)) return false;
-        }
+      const auto row = (z * grid_.dims[1] + y) * grid_.dims[0];
+      const auto first = static_cast<std::size_t>(row + std::max<std::int64_t>(0, c[0] - 1));
+      const auto last = static_cast<std::size_t>(row + std::min(grid_.dims[0] - 1, c[0] + 1));
+      // The cells of a row are contiguous in the CSR arrays.
+      for (std::uint32_t k = grid_.start[first]; k < grid_.start[last + 1]; ++k) {
+        const Grid::Sphere& sphere = grid_.spheres[k];
+        const double dx = sphere.x - centre.x();
+        const double dy = sphere.y - centre.y();
+        const double dz = sphere.z - centre.z();
+        const double reach = reach_i + sphere.radius;
+        if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
+        const std::uint32_t j = grid_.items[k];
+        if (j != i && !visit(j)) return;
       }
     }
   }
-  return true;
 }
 
-template <class Visit>
-void Hpmc::for_each_neighbour(std::uint32_t i, Visit&& visit) const {
-  std::int64_t c[3];
-  cell_coordinates(grid_.cell_of[i], c);
-  for (std::int64_t z = std::max<std::int64_t>(0, c[2] - 1);
-       z <= std::min(grid_.dims[2] - 1, c[2] + 1); ++z) {
-    for (std::int64_t y = std::max<std::int64_t>(0, c[1] - 1);
-         y <= std::min(grid_.dims[1] - 1, c[1] + 1); ++y) {
-      for (std::int64_t x = std::max<std::int64_t>(0, c[0] - 1);
-           x <= std::min(grid_.dims[0] - 1, c[0] + 1); ++x) {
-        const auto cell = static_cast<std::size_t>((z * grid_.dims[1] + y) * grid_.dims[0] + x);
-        for (std::uint32_t k = grid_.start[cell]; k < grid_.start[cell + 1]; ++k) {
-          if (grid_.items[k] != i && !visit(grid_.items[k])) return;
-        }
-      }
-    }
-  }
+bool Hpmc::is_clear(std::uint32_t i, const Pose& pose, double gap) const {
+  const Body& body = bodies_[body_of_[i]];
+  bool is_ok = true;
+  for_each_close(i, pose.position, gap, [&](std::uint32_t j) {
+    is_ok = is_separated(body.support, pose, bodies_[body_of_[j]].support, poses_[j], gap);
+    return is_ok;
+  });
+  return is_ok;
 }
 
 bool Hpmc::is_no_worse(std::uint32_t i, const Pose& pose, bool& is_clean) const {
@@ -158,10 +165,9 @@ bool Hpmc::is_no_worse(std::uint32_t i, const Pose& pose, bool& is_clean) const 
   const Pose& old = poses_[i];
   bool is_ok = true;
   is_clean = true;
-  for_each_neighbour(i, [&](std::uint32_t j) {
+  for_each_close(i, pose.position, gap_, [&](std::uint32_t j) {
     const Body& other = bodies_[body_of_[j]];
     const double reach = body.outer + other.outer + gap_;
-    if ((poses_[j].position - pose.position).squaredNorm() >= reach * reach) return true;
     if (is_separated(body.support, pose, other.support, poses_[j], gap_)) return true;
     is_clean = false;
     // A partner now: allowed only if it was one before the move.
@@ -261,11 +267,10 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
     const Pose& pose = poses_[i];
     Vec3 push = Vec3::Zero();
     int partners = 0;
-    for_each_neighbour(i, [&](std::uint32_t j) {
+    for_each_close(i, pose.position, gap_, [&](std::uint32_t j) {
       const Body& other = bodies_[body_of_[j]];
       const Vec3 away = pose.position - poses_[j].position;
-      const double reach = body.outer + other.outer + gap_;
-      if (away.squaredNorm() < reach * reach && away.squaredNorm() > 0.0 &&
+      if (away.squaredNorm() > 0.0 &&
           !is_separated(body.support, pose, other.support, poses_[j], gap_)) {
         push += away.normalized();
         ++partners;
@@ -297,7 +302,7 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
     }
     bool is_clean = false;
     if (!is_no_worse(i, trial, is_clean)) continue;
-    poses_[i] = trial;
+    place(i, trial);
     if (is_in && is_clean) {
       flagged_[i] = 0;
       return;
@@ -338,7 +343,7 @@ void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters
     if (cell_index(trial.position) != static_cast<std::int64_t>(grid_.cell_of[i])) return;
   }
   if (!is_inside(i, trial, container_) || !is_clear(i, trial, gap_)) return;
-  poses_[i] = trial;
+  place(i, trial);
   if (is_rotation) {
     ++counts.rotations_accepted;
   } else {

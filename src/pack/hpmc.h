@@ -82,6 +82,13 @@ class Hpmc {
     std::vector<std::uint32_t> start;  // CSR: cell c holds items[start[c], start[c + 1])
     std::vector<std::uint32_t> items;
     std::vector<std::uint32_t> cell_of;  // per particle
+    // Per item (same order as `items`): centre and bounding radius, packed for the broad phase
+    // (kept current as particles move), and each particle's item slot.
+    struct Sphere {
+      double x, y, z, radius;
+    };
+    std::vector<Sphere> spheres;
+    std::vector<std::uint32_t> slot_of;
   };
 
   void build_grid(const Vec3& shift);
@@ -95,8 +102,12 @@ class Hpmc {
   /// Whether particle i at `pose` has no new overlap partner compared with its current pose,
   /// and `is_clean` = it overlaps nothing there.
   [[nodiscard]] bool is_no_worse(std::uint32_t i, const Pose& pose, bool& is_clean) const;
+  /// Calls visit(j) for every other particle j whose bounding sphere comes within `gap` of
+  /// particle i's centred at `centre` (neighbour cells of i's cell); stops when visit is false.
   template <class Visit>
-  void for_each_neighbour(std::uint32_t i, Visit&& visit) const;
+  void for_each_close(std::uint32_t i, const Vec3& centre, double gap, Visit&& visit) const;
+  /// Moves particle i to `pose` (its packed sphere too).
+  void place(std::uint32_t i, const Pose& pose);
   [[nodiscard]] bool is_inside(std::uint32_t i, const Pose& pose, const Container& box) const;
   void repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters);
   void move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters& parameters,
