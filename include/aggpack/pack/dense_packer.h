@@ -69,17 +69,18 @@ struct DensifyOptions {
   double translation_step = 0.1;      ///< initial translation step / bounding radius, (0, 1]
   double rotation_step = 0.1;         ///< initial rotation step (rad), (0, pi]
   double rotation_probability = 0.5;  ///< share of trial moves that rotate, [0, 1]
-  /// kFixed: sweeps between squeezes (when the last one is repaired), [1, 1000].
+  /// kFixed: squeezes happen only on sweeps whose number is a multiple of this, [1, 1000].
   std::uint32_t compress_interval = 1;
   /// kFixed: largest relative shrink of any container extent in one squeeze, (0, 0.1]; the
-  /// step starts at a quarter of it, grows 1.2x per repaired squeeze and halves per undone one.
+  /// step starts at a quarter of it and adapts (x1.2 when a squeeze flags < 3 % of the
+  /// particles, x0.7 above 12 % and for every stalled repair).
   double max_compression = 0.01;
   /// kBed: initial temperature: a particle of mean volume rising by one mean bounding radius is
   /// accepted with probability exp(-1 / T), >= 0 (0 = never rise).
   double bed_temperature = 0.2;
   double bed_cooling = 0.999;  ///< kBed: temperature factor per sweep, (0, 1]
-  /// Stall window (sweeps), [1, 1e9]: kFixed stops as jammed when the fraction gained less than
-  /// stall_tolerance over the window (after the container stopped shrinking); kBed stops as
+  /// Stall window (sweeps), [1, 1e9]: kFixed stops as jammed when the fraction (of the last
+  /// overlap-free checkpoint) gained less than stall_tolerance over the window; kBed stops as
   /// settled when the mean height sank less than stall_tolerance mean bounding radii.
   std::uint64_t stall_sweeps = 400;
   double stall_tolerance = 1e-4;  ///< see stall_sweeps, >= 0
