@@ -77,8 +77,8 @@ struct DensifyOptions {
   double max_compression = 0.01;
   /// kBed: initial temperature: a particle of mean volume rising by one mean bounding radius is
   /// accepted with probability exp(-1 / T), >= 0 (0 = never rise).
-  double bed_temperature = 0.2;
-  double bed_cooling = 0.999;  ///< kBed: temperature factor per sweep, (0, 1]
+  double bed_temperature = 0.1;
+  double bed_cooling = 0.9997;  ///< kBed: temperature factor per sweep, (0, 1]
   /// Stall window (sweeps), [1, 1e9]: kFixed stops as jammed when the fraction (of the last
   /// overlap-free checkpoint) gained less than stall_tolerance over the window; kBed stops as
   /// settled when the mean height sank less than stall_tolerance mean bounding radii.
