@@ -13,9 +13,10 @@ void register_particle(CLI::App& app);
 void register_shapes(CLI::App& app);
 void register_pack(CLI::App& app);
 void register_info(CLI::App& app);
-void register_render(CLI::App& app);  // render_commands.cpp, when built with AGGPACK_HAS_RENDER
-void register_export(CLI::App& app);  // export_commands.cpp
-void register_sim(CLI::App& app);     // sim_commands.cpp (settle, repose, sweep), AGGPACK_HAS_SIM
+void register_densify(CLI::App& app);  // densify_commands.cpp
+void register_render(CLI::App& app);   // render_commands.cpp, when built with AGGPACK_HAS_RENDER
+void register_export(CLI::App& app);   // export_commands.cpp
+void register_sim(CLI::App& app);      // sim_commands.cpp (settle, repose, sweep), AGGPACK_HAS_SIM
 
 /// "min dihedral angle 29.30 deg, max aspect ratio 2.69 (...), 0 of 38668 below 10 deg", the
 /// tetrahedron quality of an export (export_commands.cpp).

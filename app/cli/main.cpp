@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
 #ifdef AGGPACK_HAS_IO
   aggpack::cli::register_pack(app);
   aggpack::cli::register_info(app);
+  aggpack::cli::register_densify(app);
 #ifdef AGGPACK_HAS_RENDER
   aggpack::cli::register_render(app);
 #endif

@@ -1,0 +1,405 @@
+// The HPMC engine of the densifying packer: checkerboard sweeps and exact container shrinks.
+// See hpmc.h and include/aggpack/pack/dense_packer.h.
+
+#include "hpmc.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include "aggpack/core/rng.h"
+#include "aggpack/geom/mass_properties.h"
+#include "aggpack/pack/container.h"
+#include "parallel.h"
+
+namespace aggpack::detail {
+
+namespace {
+
+// Streams: particle moves use (seed, sweep << 32 | particle); the grid shift of a sweep uses a
+// seed of its own so the two families never collide.
+constexpr std::uint64_t kShiftSeedMix = 0x6A09E667F3BCC909ULL;
+
+}  // namespace
+
+Hpmc::Hpmc(const Packing& packing, double gap, std::uint64_t seed, double max_compression)
+    : container_(packing.container), gap_(gap), seed_(seed) {
+  std::map<std::pair<std::uint32_t, double>, std::uint32_t> index;
+  body_of_.reserve(packing.particles.size());
+  poses_.reserve(packing.particles.size());
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    const Particle& particle = packing.particles[i];
+    const auto key = std::make_pair(particle.shape, particle.scale);
+    auto found = index.find(key);
+    if (found == index.end()) {
+      Body body;
+      body.local = packing.local_body(i);
+      body.support = SupportShape(body.local);
+      body.outer = body.support.bounding_radius();
+      body.volume = mass_properties(body.local).volume;
+      found = index.emplace(key, static_cast<std::uint32_t>(bodies_.size())).first;
+      bodies_.push_back(std::move(body));
+    }
+    body_of_.push_back(found->second);
+    poses_.push_back(particle.pose);
+  }
+  double outer_sum = 0.0;
+  for (const std::uint32_t b : body_of_) {
+    max_outer_ = std::max(max_outer_, bodies_[b].outer);
+    outer_sum += bodies_[b].outer;
+    solid_volume_ += bodies_[b].volume;
+  }
+  const auto n = static_cast<double>(std::max<std::size_t>(1, body_of_.size()));
+  mean_outer_ = outer_sum / n;
+  mean_volume_ = solid_volume_ / n;
+  // Same-colour cells are two apart, so one whole cell lies between their particles: a cell as
+  // wide as the largest interaction range (grown by the largest shrink of one compress step)
+  // keeps the particles moved at the same time out of each other's reach.
+  grid_.width = (2.0 * max_outer_ + gap_) / (1.0 - max_compression) * 1.001;
+}
+
+double Hpmc::mean_height() const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < poses_.size(); ++i) {
+    sum += bodies_[body_of_[i]].volume * poses_[i].position.z();
+  }
+  return solid_volume_ > 0.0 ? sum / solid_volume_ : 0.0;
+}
+
+void Hpmc::build_grid(const Vec3& shift) {
+  const Aabb bounds = container_.bounds();
+  grid_.origin = bounds.lower - shift;
+  std::size_t cells = 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    grid_.dims[axis] =
+        static_cast<std::int64_t>(std::ceil(bounds.extent()[axis] / grid_.width)) + 1;
+    cells *= static_cast<std::size_t>(grid_.dims[axis]);
+  }
+  grid_.start.assign(cells + 1, 0);
+  grid_.cell_of.resize(poses_.size());
+  for (std::size_t i = 0; i < poses_.size(); ++i) {
+    const auto cell = static_cast<std::uint32_t>(cell_index(poses_[i].position));
+    grid_.cell_of[i] = cell;
+    ++grid_.start[cell + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) grid_.start[c + 1] += grid_.start[c];
+  grid_.items.resize(poses_.size());
+  std::vector<std::uint32_t> fill(grid_.start.begin(), grid_.start.end() - 1);
+  // Ascending ids within a cell: the order moves are tried in.
+  grid_.spheres.resize(poses_.size());
+  grid_.slot_of.resize(poses_.size());
+  for (std::size_t i = 0; i < poses_.size(); ++i) {
+    const std::uint32_t slot = fill[grid_.cell_of[i]]++;
+    grid_.items[slot] = static_cast<std::uint32_t>(i);
+    grid_.slot_of[i] = slot;
+    const Vec3& c = poses_[i].position;
+    grid_.spheres[slot] = {c.x(), c.y(), c.z(), bodies_[body_of_[i]].outer};
+  }
+}
+
+void Hpmc::place(std::uint32_t i, const Pose& pose) {
+  poses_[i] = pose;
+  Grid::Sphere& sphere = grid_.spheres[grid_.slot_of[i]];
+  sphere.x = pose.position.x();
+  sphere.y = pose.position.y();
+  sphere.z = pose.position.z();
+}
+
+std::int64_t Hpmc::cell_index(const Vec3& position) const {
+  std::int64_t c[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    const double t = std::floor((position[axis] - grid_.origin[axis]) / grid_.width);
+    c[axis] =
+        static_cast<std::int64_t>(std::clamp(t, 0.0, static_cast<double>(grid_.dims[axis] - 1)));
+  }
+  return (c[2] * grid_.dims[1] + c[1]) * grid_.dims[0] + c[0];
+}
+
+void Hpmc::cell_coordinates(std::int64_t cell, std::int64_t (&c)[3]) const {
+  c[0] = cell % grid_.dims[0];
+  c[1] = (cell / grid_.dims[0]) % grid_.dims[1];
+  c[2] = cell / (grid_.dims[0] * grid_.dims[1]);
+}
+
+template <class Visit>
+void Hpmc::for_each_close(std::uint32_t i, const Vec3& centre, double gap, Visit&& visit) const {
+  const double reach_i = bodies_[body_of_[i]].outer + gap;
+  std::int64_t c[3];
+  cell_coordinates(grid_.cell_of[i], c);
+  for (std::int64_t z = std::max<std::int64_t>(0, c[2] - 1);
+       z <= std::min(grid_.dims[2] - 1, c[2] + 1); ++z) {
+    for (std::int64_t y = std::max<std::int64_t>(0, c[1] - 1);
+         y <= std::min(grid_.dims[1] - 1, c[1] + 1); ++y) {
+      const auto row = (z * grid_.dims[1] + y) * grid_.dims[0];
+      const auto first = static_cast<std::size_t>(row + std::max<std::int64_t>(0, c[0] - 1));
+      const auto last = static_cast<std::size_t>(row + std::min(grid_.dims[0] - 1, c[0] + 1));
+      // The cells of a row are contiguous in the CSR arrays.
+      for (std::uint32_t k = grid_.start[first]; k < grid_.start[last + 1]; ++k) {
+        const Grid::Sphere& sphere = grid_.spheres[k];
+        const double dx = sphere.x - centre.x();
+        const double dy = sphere.y - centre.y();
+        const double dz = sphere.z - centre.z();
+        const double reach = reach_i + sphere.radius;
+        if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
+        const std::uint32_t j = grid_.items[k];
+        if (j != i && !visit(j)) return;
+      }
+    }
+  }
+}
+
+bool Hpmc::is_clear(std::uint32_t i, const Pose& pose, double gap) const {
+  const Body& body = bodies_[body_of_[i]];
+  bool is_ok = true;
+  for_each_close(i, pose.position, gap, [&](std::uint32_t j) {
+    is_ok = is_separated(body.support, pose, bodies_[body_of_[j]].support, poses_[j], gap);
+    return is_ok;
+  });
+  return is_ok;
+}
+
+bool Hpmc::is_no_worse(std::uint32_t i, const Pose& pose, bool& is_clean) const {
+  const Body& body = bodies_[body_of_[i]];
+  const Pose& old = poses_[i];
+  bool is_ok = true;
+  is_clean = true;
+  for_each_close(i, pose.position, gap_, [&](std::uint32_t j) {
+    const Body& other = bodies_[body_of_[j]];
+    const double reach = body.outer + other.outer + gap_;
+    if (is_separated(body.support, pose, other.support, poses_[j], gap_)) return true;
+    is_clean = false;
+    // A partner now: allowed only if it was one before the move.
+    // And the pair's centres must not come closer (else overlapping pairs drift deeper).
+    const double before = (poses_[j].position - old.position).squaredNorm();
+    if (before >= reach * reach || (poses_[j].position - pose.position).squaredNorm() < before ||
+        is_separated(body.support, old, other.support, poses_[j], gap_)) {
+      is_ok = false;
+      return false;
+    }
+    return true;
+  });
+  return is_ok;
+}
+
+std::size_t Hpmc::flagged_count() const {
+  std::size_t count = 0;
+  for (const std::uint8_t flag : flagged_) count += flag;
+  return count;
+}
+
+void Hpmc::restore(const State& state) {
+  container_ = state.container;
+  poses_ = state.poses;
+  std::fill(flagged_.begin(), flagged_.end(), 0);
+}
+
+std::size_t Hpmc::squeeze(const Container& target, double t) {
+  const Vec3 k = shrink_shares(target);
+  const Vec3 factor = Vec3::Ones() - std::min(1.0, t) * k;
+  for (Pose& pose : poses_) pose.position = pose.position.cwiseProduct(factor);
+  if (t >= 1.0) {
+    const double wall_gap = container_.wall_gap;
+    container_ = target;
+    container_.wall_gap = wall_gap;
+  } else if (container_.kind == ContainerKind::kBox) {
+    container_.length *= factor.x();
+    container_.width *= factor.y();
+    container_.depth *= factor.z();
+  } else {
+    container_.radius *= factor.x();
+    container_.height *= factor.z();
+  }
+  return refresh_flags();
+}
+
+std::size_t Hpmc::expand(const Container& larger, double t) {
+  Vec3 factor = Vec3::Ones();
+  if (container_.kind == ContainerKind::kBox) {
+    factor = Vec3(larger.length / container_.length, larger.width / container_.width,
+                  larger.depth / container_.depth);
+  } else {
+    const double radial = larger.radius / container_.radius;
+    factor = Vec3(radial, radial, larger.height / container_.height);
+  }
+  factor = (Vec3::Ones() + std::min(1.0, t) * (factor - Vec3::Ones())).cwiseMax(1.0);
+  for (Pose& pose : poses_) pose.position = pose.position.cwiseProduct(factor);
+  if (t >= 1.0) {
+    const double wall_gap = container_.wall_gap;
+    container_ = larger;
+    container_.wall_gap = wall_gap;
+  } else if (container_.kind == ContainerKind::kBox) {
+    container_.length *= factor.x();
+    container_.width *= factor.y();
+    container_.depth *= factor.z();
+  } else {
+    container_.radius *= factor.x();
+    container_.height *= factor.z();
+  }
+  return refresh_flags();
+}
+
+std::size_t Hpmc::refresh_flags() {
+  build_grid(Vec3::Zero());
+  flagged_.assign(poses_.size(), 0);
+  parallel_for_index(0, poses_.size(), [&](std::size_t index) {
+    const auto i = static_cast<std::uint32_t>(index);
+    flagged_[i] = static_cast<std::uint8_t>(!is_inside(i, poses_[i], container_) ||
+                                            !is_clear(i, poses_[i], gap_));
+  });
+  return flagged_count();
+}
+
+bool Hpmc::is_inside(std::uint32_t i, const Pose& pose, const Container& box) const {
+  const Body& body = bodies_[body_of_[i]];
+  return is_in_centre_region(box, body.outer, pose.position) || contains(box, body.local, pose);
+}
+
+void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) {
+  // Repair moves of a squeezed, overlapping particle (not counted for the step adaptation): up
+  // to kTries pushes away from its partners (and into the container) plus a little noise, each
+  // accepted only if it makes no new partner, brings no partner's centre closer and goes no
+  // further out of the container.
+  constexpr int kTries = 8;
+  const Body& body = bodies_[body_of_[i]];
+  for (int attempt = 0; attempt < kTries; ++attempt) {
+    const Pose& pose = poses_[i];
+    Vec3 push = Vec3::Zero();
+    int partners = 0;
+    for_each_close(i, pose.position, gap_, [&](std::uint32_t j) {
+      const Body& other = bodies_[body_of_[j]];
+      const Vec3 away = pose.position - poses_[j].position;
+      if (away.squaredNorm() > 0.0 &&
+          !is_separated(body.support, pose, other.support, poses_[j], gap_)) {
+        push += away.normalized();
+        ++partners;
+      }
+      return true;
+    });
+    const bool was_inside = is_inside(i, pose, container_);
+    if (partners == 0 && was_inside) {
+      flagged_[i] = 0;  // clean (its partners moved away)
+      return;
+    }
+    if (!was_inside) {
+      const Aabb bounds = container_.bounds();
+      const Vec3 inward = 0.5 * (bounds.lower + bounds.upper) - pose.position;
+      if (inward.squaredNorm() > 0.0) push += inward.normalized();
+    }
+    if (push.squaredNorm() > 0.0) push.normalize();
+    const double size = std::min(parameters.translation_step, 0.2) * body.outer * rng.uniform();
+    const Vec3 noise(2.0 * rng.uniform() - 1.0, 2.0 * rng.uniform() - 1.0,
+                     2.0 * rng.uniform() - 1.0);
+    Pose trial = pose;
+    trial.position += size * push + 0.02 * body.outer * noise;
+    if (cell_index(trial.position) != static_cast<std::int64_t>(grid_.cell_of[i])) continue;
+    const bool is_in = is_inside(i, trial, container_);
+    if (was_inside && !is_in) continue;
+    if (!is_in && wall_clearance(container_, body.local, trial) <
+                      wall_clearance(container_, body.local, pose)) {
+      continue;
+    }
+    bool is_clean = false;
+    if (!is_no_worse(i, trial, is_clean)) continue;
+    place(i, trial);
+    if (is_in && is_clean) {
+      flagged_[i] = 0;
+      return;
+    }
+  }
+}
+
+void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters& parameters,
+                     SweepCounts& counts) {
+  Rng rng(seed_, (sweep << 32) | i);
+  if (!flagged_.empty() && flagged_[i] != 0) {
+    repair(i, rng, parameters);
+    return;
+  }
+  const Body& body = bodies_[body_of_[i]];
+  Pose trial = poses_[i];
+  const bool is_rotation = rng.uniform() < parameters.rotation_probability;
+  if (is_rotation) {
+    ++counts.rotations_tried;
+    const Vec3 axis(rng.normal(), rng.normal(), rng.normal());
+    const double angle = parameters.rotation_step * (2.0 * rng.uniform() - 1.0);
+    if (axis.norm() < 1e-9) return;
+    trial.rotation = (Quat(Eigen::AngleAxisd(angle, axis.normalized())) * trial.rotation);
+    trial.rotation.normalize();
+  } else {
+    ++counts.translations_tried;
+    const double step = parameters.translation_step * body.outer;
+    const double dx = 2.0 * rng.uniform() - 1.0;
+    const double dy = 2.0 * rng.uniform() - 1.0;
+    const double dz = 2.0 * rng.uniform() - 1.0;
+    trial.position += step * Vec3(dx, dy, dz);
+    if (parameters.is_bed && dz > 0.0) {
+      // Metropolis on m g z: a rise is accepted with probability exp(-dU / kT).
+      if (parameters.temperature <= 0.0) return;
+      const double energy = (body.volume / mean_volume_) * (step * dz / mean_outer_);
+      if (rng.uniform() >= std::exp(-energy / parameters.temperature)) return;
+    }
+    if (cell_index(trial.position) != static_cast<std::int64_t>(grid_.cell_of[i])) return;
+  }
+  if (!is_inside(i, trial, container_) || !is_clear(i, trial, gap_)) return;
+  place(i, trial);
+  if (is_rotation) {
+    ++counts.rotations_accepted;
+  } else {
+    ++counts.translations_accepted;
+  }
+}
+
+SweepCounts Hpmc::sweep(std::uint64_t sweep, const SweepParameters& parameters) {
+  Rng shift_rng(seed_ ^ kShiftSeedMix, sweep);
+  const Vec3 shift(shift_rng.uniform() * grid_.width, shift_rng.uniform() * grid_.width,
+                   shift_rng.uniform() * grid_.width);
+  build_grid(shift);
+  int colours[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  for (int k = 7; k > 0; --k) {
+    const auto pick = static_cast<int>(shift_rng.next() % static_cast<std::uint64_t>(k + 1));
+    std::swap(colours[k], colours[pick]);
+  }
+  const std::size_t cells = grid_.start.size() - 1;
+  std::vector<std::uint32_t> active;
+  SweepCounts total;
+  for (const int colour : colours) {
+    active.clear();
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+      if (grid_.start[cell] == grid_.start[cell + 1]) continue;
+      std::int64_t c[3];
+      cell_coordinates(static_cast<std::int64_t>(cell), c);
+      const int parity = static_cast<int>((c[0] & 1) | ((c[1] & 1) << 1) | ((c[2] & 1) << 2));
+      if (parity == colour) active.push_back(static_cast<std::uint32_t>(cell));
+    }
+    std::vector<SweepCounts> counts(active.size());
+    parallel_for_index(0, active.size(), [&](std::size_t a) {
+      const std::uint32_t cell = active[a];
+      for (std::uint32_t k = grid_.start[cell]; k < grid_.start[cell + 1]; ++k) {
+        move_cell(grid_.items[k], sweep, parameters, counts[a]);
+      }
+    });
+    for (const SweepCounts& c : counts) {
+      total.translations_tried += c.translations_tried;
+      total.translations_accepted += c.translations_accepted;
+      total.rotations_tried += c.rotations_tried;
+      total.rotations_accepted += c.rotations_accepted;
+    }
+  }
+  return total;
+}
+
+Vec3 Hpmc::shrink_shares(const Container& target) const {
+  Vec3 k = Vec3::Zero();
+  if (container_.kind == ContainerKind::kBox) {
+    k = Vec3(1.0 - target.length / container_.length, 1.0 - target.width / container_.width,
+             1.0 - target.depth / container_.depth);
+  } else {
+    const double radial = 1.0 - target.radius / container_.radius;
+    k = Vec3(radial, radial, 1.0 - target.height / container_.height);
+  }
+  return k.cwiseMax(0.0);
+}
+
+}  // namespace aggpack::detail

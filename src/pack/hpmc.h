@@ -1,0 +1,130 @@
+#pragma once
+// Internal: the hard-particle Monte Carlo engine of the densifying packer (dense_packer.cpp).
+// Holds the particles' prepared shapes and poses, runs checkerboard sweeps and container squeezes.
+// Every decision about overlap goes through is_separated (exact); containment through contains().
+
+#include <cstdint>
+#include <vector>
+
+#include "aggpack/core/rng.h"
+#include "aggpack/geom/overlap.h"
+#include "aggpack/pack/packing.h"
+
+namespace aggpack::detail {
+
+/// Step sizes and acceptance rules of one sweep.
+struct SweepParameters {
+  double translation_step = 0.1;      // / bounding radius
+  double rotation_step = 0.1;         // rad
+  double rotation_probability = 0.5;  // [0, 1]
+  bool is_bed = false;                // Metropolis on potential energy
+  double temperature = 0.0;           // bed: see DensifyOptions::bed_temperature
+};
+
+struct SweepCounts {
+  std::uint64_t translations_tried = 0;
+  std::uint64_t translations_accepted = 0;
+  std::uint64_t rotations_tried = 0;
+  std::uint64_t rotations_accepted = 0;
+};
+
+class Hpmc {
+ public:
+  /// Prepares one SupportShape per distinct (shape, scale). `max_compression` bounds the shrink
+  /// per squeeze() (the cells are sized for it).
+  Hpmc(const Packing& packing, double gap, std::uint64_t seed, double max_compression);
+
+  /// One sweep (index `sweep` feeds the random streams): one trial move per particle.
+  SweepCounts sweep(std::uint64_t sweep, const SweepParameters& parameters);
+
+  /// Soft shrink (HOOMD-blue QuickCompress style): moves the container a share t of the way to
+  /// `target` and rescales positions WITHOUT checking, then flags every particle that now
+  /// overlaps a neighbour (exact test) or leaves the container. Until flagged_count() is 0 the
+  /// state is not a valid packing: a flagged particle's move is accepted only if it makes no new
+  /// overlap partner and does not go further out of the container; a clean particle's only if it
+  /// overlaps nothing. So no clean particle ever gets an overlap, and once no particle is
+  /// flagged the packing is overlap-free again. Returns flagged_count().
+  std::size_t squeeze(const Container& target, double t);
+  [[nodiscard]] std::size_t flagged_count() const;
+  /// The reverse of squeeze (partly undoing one that does not repair): positions and container
+  /// scaled up a share t of the way to `larger` (no extent smaller than now), flags recomputed.
+  std::size_t expand(const Container& larger, double t);
+  /// Recomputes the flags exactly (a flag can outlive its overlap when the partner moved away).
+  std::size_t refresh_flags();
+
+  /// A copy of the container and poses, to return to when a squeeze cannot be repaired.
+  struct State {
+    Container container;
+    std::vector<Pose> poses;
+  };
+  [[nodiscard]] State state() const { return {container_, poses_}; }
+  void restore(const State& state);
+
+  [[nodiscard]] const Container& container() const { return container_; }
+  [[nodiscard]] const std::vector<Pose>& poses() const { return poses_; }
+  [[nodiscard]] double solid_volume() const { return solid_volume_; }
+  [[nodiscard]] double mean_outer_radius() const { return mean_outer_; }
+  [[nodiscard]] double max_outer_radius() const { return max_outer_; }
+  /// Volume-weighted mean centroid height (m).
+  [[nodiscard]] double mean_height() const;
+
+ private:
+  struct Body {
+    SupportShape support;
+    ConvexPolyhedron local;  // true size, local frame
+    double outer = 0.0;
+    double volume = 0.0;
+  };
+  struct Grid {
+    double width = 0.0;
+    Vec3 origin = Vec3::Zero();  // lower corner minus the shift
+    std::int64_t dims[3] = {1, 1, 1};
+    std::vector<std::uint32_t> start;  // CSR: cell c holds items[start[c], start[c + 1])
+    std::vector<std::uint32_t> items;
+    std::vector<std::uint32_t> cell_of;  // per particle
+    // Per item (same order as `items`): centre and bounding radius, packed for the broad phase
+    // (kept current as particles move), and each particle's item slot.
+    struct Sphere {
+      double x, y, z, radius;
+    };
+    std::vector<Sphere> spheres;
+    std::vector<std::uint32_t> slot_of;
+  };
+
+  void build_grid(const Vec3& shift);
+  /// Per-axis shrink shares toward `target` (p becomes p (1 - t k)).
+  [[nodiscard]] Vec3 shrink_shares(const Container& target) const;
+  [[nodiscard]] std::int64_t cell_index(const Vec3& position) const;
+  void cell_coordinates(std::int64_t cell, std::int64_t (&c)[3]) const;
+  /// Whether particle i placed at `pose` is clear of every other particle (exact test, gap
+  /// `gap`, neighbours from the grid).
+  [[nodiscard]] bool is_clear(std::uint32_t i, const Pose& pose, double gap) const;
+  /// Whether particle i at `pose` has no new overlap partner compared with its current pose,
+  /// and `is_clean` = it overlaps nothing there.
+  [[nodiscard]] bool is_no_worse(std::uint32_t i, const Pose& pose, bool& is_clean) const;
+  /// Calls visit(j) for every other particle j whose bounding sphere comes within `gap` of
+  /// particle i's centred at `centre` (neighbour cells of i's cell); stops when visit is false.
+  template <class Visit>
+  void for_each_close(std::uint32_t i, const Vec3& centre, double gap, Visit&& visit) const;
+  /// Moves particle i to `pose` (its packed sphere too).
+  void place(std::uint32_t i, const Pose& pose);
+  [[nodiscard]] bool is_inside(std::uint32_t i, const Pose& pose, const Container& box) const;
+  void repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters);
+  void move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters& parameters,
+                 SweepCounts& counts);
+
+  Container container_;
+  std::vector<Body> bodies_;
+  std::vector<std::uint32_t> body_of_;
+  std::vector<Pose> poses_;
+  double gap_ = 0.0;
+  std::uint64_t seed_ = 1;
+  double max_outer_ = 0.0;
+  double mean_outer_ = 0.0;
+  double mean_volume_ = 0.0;
+  double solid_volume_ = 0.0;
+  Grid grid_;
+  std::vector<std::uint8_t> flagged_;  // may overlap something / be outside (squeeze)
+};
+
+}  // namespace aggpack::detail

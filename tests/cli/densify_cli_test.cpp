@@ -1,0 +1,150 @@
+// `aggpack densify` end to end: a random packing densified (fixed and bed), provenance, byte-
+// identical output at 1 and 2 threads, bad options (non-zero exit, one-line error, no output).
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "aggpack/io/native.h"
+#include "aggpack/pack/verify.h"
+
+namespace aggpack {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+class DensifyCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    folder_ = fs::temp_directory_path() /
+              (std::string("aggpack_densify_") + info->name() + "_" + std::to_string(::getpid()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+    std::ofstream(folder_ / "loose.toml") << R"([container]
+kind = "box"
+length = 0.4
+width = 0.4
+depth = 0.4
+[particle]
+alpha = 0.5
+edge_length = 0.0
+edge_length_ratio = 1.0
+radius_min = 0.05
+radius_max = 0.05
+[packer]
+kind = "random"
+seed = 3
+target_fraction = 0.25
+)";
+    const CliRun pack = run("pack loose.toml -o loose.h5 --progress none");
+    ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  CliRun run(const std::string& arguments) const {
+    const std::string command = "cd '" + folder_.string() + "' && '" AGGPACK_BINARY "' " +
+                                arguments + " >stdout.txt 2>stderr.txt";
+    const int status = std::system(command.c_str());
+    CliRun result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = read_text(folder_ / "stdout.txt");
+    result.err = read_text(folder_ / "stderr.txt");
+    fs::remove(folder_ / "stdout.txt");
+    fs::remove(folder_ / "stderr.txt");
+    return result;
+  }
+
+  fs::path folder_;
+};
+
+TEST_F(DensifyCliTest, FixedModeWritesAVerifiedDensePackingWithProvenance) {
+  const CliRun result =
+      run("densify loose.h5 -o dense.h5 --target-fraction 0.33 --sweeps 2000 --seed 4 --progress "
+          "none --trace trace.txt");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("target reached"), std::string::npos) << result.out;
+  const Packing loose = read_packing((folder_ / "loose.h5").string());
+  const Packing dense = read_packing((folder_ / "dense.h5").string());
+  EXPECT_EQ(dense.provenance.packer, "dense");
+  EXPECT_EQ(dense.provenance.seed, 4u);
+  EXPECT_NE(dense.provenance.config_toml.find("# densify.target_fraction = 0.33"),
+            std::string::npos);
+  EXPECT_EQ(dense.particles.size(), loose.particles.size());
+  EXPECT_LT(dense.container.volume(), 0.8 * loose.container.volume());
+  const VerifyResult check = verify(dense, {.is_brute_force = true});
+  EXPECT_TRUE(check.is_ok) << check.message;
+  const std::string trace = read_text(folder_ / "trace.txt");
+  EXPECT_EQ(trace.rfind("# seconds sweeps solid_fraction", 0), 0u);
+  EXPECT_GT(std::count(trace.begin(), trace.end(), '\n'), 1);
+  // `aggpack info` still reads the stored configuration (the densify keys are comments).
+  const CliRun info = run("info dense.h5 --no-descriptors");
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(info.out.find("not readable"), std::string::npos) << info.out;
+}
+
+TEST_F(DensifyCliTest, SameSeedIsByteIdenticalAtOneAndTwoThreads) {
+  ASSERT_EQ(run("densify loose.h5 -o one.h5 --target-fraction 0.3 --sweeps 40 -j 1 "
+                "--progress none")
+                .exit_code,
+            0);
+  ASSERT_EQ(run("densify loose.h5 -o two.h5 --target-fraction 0.3 --sweeps 40 -j 2 "
+                "--progress none")
+                .exit_code,
+            0);
+  EXPECT_EQ(read_text(folder_ / "one.h5"), read_text(folder_ / "two.h5"));
+}
+
+TEST_F(DensifyCliTest, BedModeReportsTheBulkFraction) {
+  const CliRun result = run("densify loose.h5 -o bed.h5 --mode bed --sweeps 100 --progress none");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("bulk fraction"), std::string::npos) << result.out;
+}
+
+TEST_F(DensifyCliTest, BadOptionsFailWithOneLineAndNoOutput) {
+  const struct {
+    const char* arguments;
+    const char* names;
+  } cases[] = {
+      {"--mode heap", "--mode"},
+      {"--target-fraction 0.99", "densify.target_fraction"},
+      {"--sweeps 0", "densify.max_sweeps"},
+      {"--max-time -1", "densify.max_seconds"},
+      {"--gap -0.1", "densify.gap"},
+      {"--target-container 0.3,0.3", "--target-container"},
+      {"--target-container 0.5,0.4,0.4", "densify.target_container.length"},
+      {"--progress loud", "--progress"},
+  };
+  for (const auto& bad : cases) {
+    const std::string arguments = bad.arguments;
+    const CliRun result = run("densify loose.h5 -o out.h5 " + arguments +
+                              (arguments.find("--progress") == 0 ? "" : " --progress none"));
+    EXPECT_NE(result.exit_code, 0) << bad.arguments;
+    EXPECT_NE(result.err.find(bad.names), std::string::npos) << bad.arguments << ": " << result.err;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+    EXPECT_FALSE(fs::exists(folder_ / "out.h5")) << bad.arguments;
+  }
+  const CliRun missing = run("densify nothing.h5 -o out.h5");
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.err.find("nothing.h5"), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace aggpack

@@ -1,0 +1,221 @@
+#include "aggpack/pack/dense_packer.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+
+#include <tbb/global_control.h>
+
+#include "aggpack/core/error.h"
+#include "aggpack/pack/random_packer.h"
+#include "pack/pack_test_util.h"
+
+namespace aggpack {
+namespace {
+
+using testing::expect_identical;
+using testing::expect_valid_packing;
+using testing::invalid_field;
+
+// ~60 single-size particles (alpha 0.5, L = r) placed by RSA at 25 % in a 0.4 m cube.
+Packing loose_start(double gap = 0.0, double wall_gap = 0.0, std::uint64_t seed = 3) {
+  const RandomPackOptions options{
+      .container = {.length = 0.4, .width = 0.4, .depth = 0.4, .wall_gap = wall_gap},
+      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.05, .radius_max = 0.05},
+      .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
+      .target = PackTarget::kVolumeFraction,
+      .volume_fraction = 0.25,
+      .gap = gap,
+      .seed = seed};
+  return pack_random(options).packing;
+}
+
+TEST(DensePacker, FixedModeReachesTheTargetFractionExactly) {
+  const Packing start = loose_start();
+  DensifyOptions options{.target_fraction = 0.42, .seed = 5, .max_sweeps = 3000};
+  const DensifyResult result = densify(start, options);
+  EXPECT_EQ(result.report.stop, DensifyStop::kTargetReached) << result.report.summary();
+  EXPECT_GE(result.report.solid_fraction, 0.42 * (1 - 1e-9));
+  EXPECT_LT(result.report.start_fraction, 0.30);
+  EXPECT_EQ(result.packing.provenance.packer, "dense");
+  EXPECT_LT(result.packing.container.length, start.container.length);
+  ASSERT_EQ(result.packing.particles.size(), start.particles.size());
+  // Shapes are never deformed: same shapes, scales and classes.
+  for (std::size_t i = 0; i < start.particles.size(); ++i) {
+    EXPECT_EQ(result.packing.particles[i].shape, start.particles[i].shape);
+    EXPECT_EQ(result.packing.particles[i].scale, start.particles[i].scale);
+  }
+  expect_valid_packing(result.packing, 0.0);
+}
+
+TEST(DensePacker, GapsAndWallGapsAreKeptToAnExplicitTargetContainer) {
+  const double gap = 0.002;
+  const double wall_gap = 0.003;
+  const Packing start = loose_start(gap, wall_gap);
+  Container target = start.container;
+  target.length = 0.36;
+  target.depth = 0.37;
+  const DensifyOptions options{.target_container = target, .gap = gap, .max_sweeps = 2000};
+  const DensifyResult result = densify(start, options);
+  EXPECT_EQ(result.report.stop, DensifyStop::kTargetReached) << result.report.summary();
+  EXPECT_EQ(result.packing.container.length, 0.36);
+  EXPECT_EQ(result.packing.container.width, 0.4);
+  EXPECT_EQ(result.packing.container.depth, 0.37);
+  EXPECT_EQ(result.packing.container.wall_gap, wall_gap);
+  expect_valid_packing(result.packing, gap);
+  EXPECT_GE(result.report.min_distance, gap * (1.0 - 1e-9));
+}
+
+TEST(DensePacker, CylinderIsCompressedTowardItsTarget) {
+  const RandomPackOptions random{
+      .container = {.kind = ContainerKind::kCylinder,
+                    .radius = 0.25,
+                    .height = 0.4,
+                    .wall_gap = 0.002},
+      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.04, .radius_max = 0.05},
+      .target = PackTarget::kVolumeFraction,
+      .volume_fraction = 0.22,
+      .gap = 0.001,
+      .seed = 8};
+  const Packing start = pack_random(random).packing;
+  Container target = start.container;
+  target.radius = 0.22;
+  target.height = 0.36;
+  const DensifyOptions options{.target_container = target, .gap = 0.001, .max_sweeps = 3000};
+  const DensifyResult result = densify(start, options);
+  EXPECT_EQ(result.report.stop, DensifyStop::kTargetReached) << result.report.summary();
+  EXPECT_EQ(result.packing.container.kind, ContainerKind::kCylinder);
+  EXPECT_EQ(result.packing.container.radius, 0.22);
+  EXPECT_EQ(result.packing.container.height, 0.36);
+  expect_valid_packing(result.packing, 0.001);
+}
+
+TEST(DensePacker, SameSeedIsByteIdenticalAtOneAndTwoThreads) {
+  const Packing start = loose_start();
+  const DensifyOptions options{.target_fraction = 0.38, .seed = 9, .max_sweeps = 60};
+  DensifyResult one;
+  DensifyResult two;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = densify(start, options);
+  }
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = densify(start, options);
+  }
+  expect_identical(one.packing, two.packing);
+  EXPECT_EQ(one.packing.container.length, two.packing.container.length);
+  EXPECT_EQ(one.report.moves_accepted, two.report.moves_accepted);
+  EXPECT_GT(one.report.moves_accepted, 0u);
+  DensifyOptions other = options;
+  other.seed = 10;
+  const DensifyResult three = densify(start, other);
+  EXPECT_NE(three.packing.particles[0].pose.position, one.packing.particles[0].pose.position);
+}
+
+TEST(DensePacker, FractionRisesMonotonicallyWithTheSweepBudget) {
+  const Packing start = loose_start();
+  double previous = 0.0;
+  double first = 0.0;
+  for (const std::uint64_t sweeps : {5u, 20u, 60u, 150u}) {
+    const DensifyOptions options{.target_fraction = 0.55, .seed = 2, .max_sweeps = sweeps};
+    const DensifyResult result = densify(start, options);
+    EXPECT_EQ(result.report.sweeps, sweeps);
+    EXPECT_GE(result.report.solid_fraction, previous) << sweeps << " sweeps";
+    if (first == 0.0) first = result.report.solid_fraction;
+    previous = result.report.solid_fraction;
+    expect_valid_packing(result.packing, 0.0);
+  }
+  EXPECT_GT(previous, first + 0.01);
+}
+
+TEST(DensePacker, GravityBedSinksAndStaysValid) {
+  RandomPackOptions random{
+      .container = {.length = 0.3, .width = 0.3, .depth = 0.6},
+      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.04, .radius_max = 0.05},
+      .target = PackTarget::kVolumeFraction,
+      .volume_fraction = 0.2,
+      .seed = 4};
+  const Packing start = pack_random(random).packing;
+  auto centre_height = [](const Packing& packing) {
+    double sum = 0.0;
+    for (const Particle& p : packing.particles) sum += p.pose.position.z();
+    return sum / static_cast<double>(packing.particles.size());
+  };
+  DensifyOptions options{.mode = DensifyMode::kBed, .seed = 6, .max_sweeps = 300};
+  options.bed_temperature = 0.05;  // a quick quench: this test is about sinking
+  options.bed_cooling = 0.99;
+  const DensifyResult result = densify(start, options);
+  EXPECT_LT(centre_height(result.packing), 0.8 * centre_height(start));
+  EXPECT_GT(result.report.bulk_fraction, 0.2);
+  EXPECT_GT(result.report.surface_height, 0.0);
+  EXPECT_LT(result.report.surface_height, 0.6);
+  EXPECT_EQ(result.packing.container.depth, 0.6);  // the bed's container is not shrunk
+  expect_valid_packing(result.packing, 0.0);
+}
+
+TEST(DensePacker, EachBadOptionNamesItself) {
+  const Packing start = loose_start();
+  auto field = [&](auto change) {
+    DensifyOptions options;
+    change(options);
+    return invalid_field([&] { (void)densify(start, options); });
+  };
+  EXPECT_EQ(field([](auto& o) { o.target_fraction = 0.97; }), "densify.target_fraction");
+  EXPECT_EQ(field([](auto& o) { o.gap = -1.0; }), "densify.gap");
+  EXPECT_EQ(field([](auto& o) { o.max_sweeps = 0; }), "densify.max_sweeps");
+  EXPECT_EQ(field([](auto& o) { o.max_seconds = -1.0; }), "densify.max_seconds");
+  EXPECT_EQ(field([](auto& o) { o.target_acceptance = 1.0; }), "densify.target_acceptance");
+  EXPECT_EQ(field([](auto& o) { o.translation_step = 0.0; }), "densify.translation_step");
+  EXPECT_EQ(field([](auto& o) { o.rotation_step = 4.0; }), "densify.rotation_step");
+  EXPECT_EQ(field([](auto& o) { o.rotation_probability = 1.5; }), "densify.rotation_probability");
+  EXPECT_EQ(field([](auto& o) { o.compress_interval = 0; }), "densify.compress_interval");
+  EXPECT_EQ(field([](auto& o) { o.max_compression = 0.5; }), "densify.max_compression");
+  EXPECT_EQ(field([](auto& o) { o.bed_temperature = -0.1; }), "densify.bed_temperature");
+  EXPECT_EQ(field([](auto& o) { o.bed_cooling = 0.0; }), "densify.bed_cooling");
+  EXPECT_EQ(field([](auto& o) { o.stall_sweeps = 0; }), "densify.stall_sweeps");
+  EXPECT_EQ(field([](auto& o) { o.stall_tolerance = -1.0; }), "densify.stall_tolerance");
+  EXPECT_EQ(field([&](auto& o) {
+              o.target_container = start.container;
+              o.target_container->length = 0.5;
+            }),
+            "densify.target_container.length");
+  EXPECT_EQ(field([&](auto& o) {
+              o.target_container = start.container;
+              o.target_container->kind = ContainerKind::kCylinder;
+            }),
+            "densify.target_container");
+  EXPECT_EQ(field([&](auto& o) {
+              o.target_container = start.container;
+              o.target_container->wall_gap = 0.01;
+            }),
+            "densify.target_container.wall_gap");
+  // A start packing that overlaps (or sits closer than the gap) is refused.
+  Packing overlapping = start;
+  overlapping.particles[1].pose.position = overlapping.particles[0].pose.position;
+  EXPECT_EQ(invalid_field([&] { (void)densify(overlapping, {}); }), "start packing");
+  EXPECT_EQ(invalid_field([&] { (void)densify(start, {.gap = 0.5}); }), "start packing");
+}
+
+TEST(DensePacker, CancelStopsWithAValidPacking) {
+  const Packing start = loose_start();
+  std::atomic<bool> cancel{false};
+  int calls = 0;
+  PackControl control;
+  control.progress_interval = 0.0;
+  control.cancel = &cancel;
+  control.on_progress = [&](const PackProgress& progress) {
+    ++calls;
+    EXPECT_GE(progress.solid_fraction, 0.2);
+    if (progress.placed >= 3) cancel = true;
+  };
+  const DensifyResult result =
+      densify(start, {.target_fraction = 0.6, .max_sweeps = 100000}, control);
+  EXPECT_EQ(result.report.stop, DensifyStop::kCancelled);
+  EXPECT_EQ(result.report.sweeps, 3u);
+  EXPECT_GE(calls, 3);
+  expect_valid_packing(result.packing, 0.0);
+}
+
+}  // namespace
+}  // namespace aggpack
