@@ -13,31 +13,21 @@
 
 #include "aggpack/io/native.h"
 #include "aggpack/pack/verify.h"
+#include "support/cli_test.h"
 
 namespace aggpack {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
+using test::file_text;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-class DensifyCliTest : public ::testing::Test {
+class DensifyCliTest : public test::CliTest {
  protected:
+  DensifyCliTest() : CliTest("aggpack_densify_") {}
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              (std::string("aggpack_densify_") + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
+    CliTest::SetUp();
     std::ofstream(folder_ / "loose.toml") << R"([container]
 kind = "box"
 length = 0.4
@@ -57,22 +47,6 @@ target_fraction = 0.25
     const CliRun pack = run("pack loose.toml -o loose.h5 --progress none");
     ASSERT_EQ(pack.exit_code, 0) << pack.err;
   }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  CliRun run(const std::string& arguments) const {
-    const std::string command = "cd '" + folder_.string() + "' && '" AGGPACK_BINARY "' " +
-                                arguments + " >stdout.txt 2>stderr.txt";
-    const int status = std::system(command.c_str());
-    CliRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read_text(folder_ / "stdout.txt");
-    result.err = read_text(folder_ / "stderr.txt");
-    fs::remove(folder_ / "stdout.txt");
-    fs::remove(folder_ / "stderr.txt");
-    return result;
-  }
-
-  fs::path folder_;
 };
 
 TEST_F(DensifyCliTest, FixedModeWritesAVerifiedDensePackingWithProvenance) {
@@ -91,7 +65,7 @@ TEST_F(DensifyCliTest, FixedModeWritesAVerifiedDensePackingWithProvenance) {
   EXPECT_LT(dense.container.volume(), 0.8 * loose.container.volume());
   const VerifyResult check = verify(dense, {.is_brute_force = true});
   EXPECT_TRUE(check.is_ok) << check.message;
-  const std::string trace = read_text(folder_ / "trace.txt");
+  const std::string trace = file_text(folder_ / "trace.txt");
   EXPECT_EQ(trace.rfind("# seconds sweeps solid_fraction", 0), 0u);
   EXPECT_GT(std::count(trace.begin(), trace.end(), '\n'), 1);
   // `aggpack info` still reads the stored configuration (the densify keys are comments).
@@ -109,7 +83,7 @@ TEST_F(DensifyCliTest, SameSeedIsByteIdenticalAtOneAndTwoThreads) {
                 "--progress none")
                 .exit_code,
             0);
-  EXPECT_EQ(read_text(folder_ / "one.h5"), read_text(folder_ / "two.h5"));
+  EXPECT_EQ(file_text(folder_ / "one.h5"), file_text(folder_ / "two.h5"));
 }
 
 TEST_F(DensifyCliTest, BedModeReportsTheBulkFraction) {

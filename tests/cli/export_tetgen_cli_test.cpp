@@ -11,50 +11,17 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include "support/cli_test.h"
 
 namespace aggpack {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
+using test::file_text;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-class ExportTetGenCliTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              (std::string("aggpack_cli_") + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  // Runs the CLI inside the test folder.
-  CliRun run(const std::string& arguments) const {
-    const std::string command = "cd '" + folder_.string() + "' && '" AGGPACK_BINARY "' " +
-                                arguments + " >stdout.txt 2>stderr.txt";
-    const int status = std::system(command.c_str());
-    CliRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read_text(folder_ / "stdout.txt");
-    result.err = read_text(folder_ / "stderr.txt");
-    fs::remove(folder_ / "stdout.txt");
-    fs::remove(folder_ / "stderr.txt");
-    return result;
-  }
-
-  fs::path folder_;
-};
+using ExportTetGenCliTest = test::CliTest;
 
 TEST_F(ExportTetGenCliTest, PaperPackingExportsAndReportsTheFallbacks) {
   ASSERT_EQ(run("pack -o paper.h5 --progress none").exit_code, 0);
@@ -69,9 +36,9 @@ TEST_F(ExportTetGenCliTest, PaperPackingExportsAndReportsTheFallbacks) {
   EXPECT_NE(one.out.find("1050 particles"), std::string::npos) << one.out;
   const CliRun two = run("export paper.h5 --format inp --tet-method tetgen -o two.inp -j 2");
   ASSERT_EQ(two.exit_code, 0) << two.err;
-  const std::string bytes = read_text(folder_ / "one.inp");
+  const std::string bytes = file_text(folder_ / "one.inp");
   EXPECT_GT(bytes.size(), 1000000U);
-  EXPECT_EQ(bytes, read_text(folder_ / "two.inp")) << "output depends on the thread count";
+  EXPECT_EQ(bytes, file_text(folder_ / "two.inp")) << "output depends on the thread count";
 }
 
 TEST_F(ExportTetGenCliTest, ConcreteFullerExampleExports) {

@@ -17,63 +17,17 @@
 #include "aggpack/io/native.h"
 #include "aggpack/io/stl.h"
 #include "aggpack/pack/verify.h"
+#include "support/cli_test.h"
 
 namespace aggpack {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
+using test::file_text;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-class PackCliTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              (std::string("aggpack_cli_") + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  // Runs the CLI inside the test folder.
-  CliRun run(const std::string& arguments) const {
-    const std::string command = "cd '" + folder_.string() + "' && '" AGGPACK_BINARY "' " +
-                                arguments + " >stdout.txt 2>stderr.txt";
-    const int status = std::system(command.c_str());
-    CliRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read_text(folder_ / "stdout.txt");
-    result.err = read_text(folder_ / "stderr.txt");
-    fs::remove(folder_ / "stdout.txt");
-    fs::remove(folder_ / "stderr.txt");
-    return result;
-  }
-
-  [[nodiscard]] std::vector<std::string> files() const {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(folder_)) {
-      names.push_back(entry.path().filename().string());
-    }
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
-  [[nodiscard]] std::string path(const std::string& name) const {
-    return (folder_ / name).string();
-  }
-
-  fs::path folder_;
-};
+using PackCliTest = test::CliTest;
 
 // A random packing small enough for a test: 0.3 m cube, radii 0.03-0.05 m, 20 % solid.
 const char* const kSmallRandom =
@@ -123,10 +77,10 @@ TEST_F(PackCliTest, SameSeedGivesByteIdenticalFilesForAnyThreadCount) {
     ASSERT_EQ(run("pack --progress none --seed 5 -j 1 -o one.h5 " + packer).exit_code, 0);
     ASSERT_EQ(run("pack --progress none --seed 5 -j 2 -o two.h5 " + packer).exit_code, 0);
     ASSERT_EQ(run("pack --progress none --seed 6 -j 2 -o other.h5 " + packer).exit_code, 0);
-    const std::string one = read_text(folder_ / "one.h5");
+    const std::string one = file_text(folder_ / "one.h5");
     ASSERT_GT(one.size(), 1000U);
-    EXPECT_TRUE(one == read_text(folder_ / "two.h5"));
-    EXPECT_FALSE(one == read_text(folder_ / "other.h5"));  // the seed matters
+    EXPECT_TRUE(one == file_text(folder_ / "two.h5"));
+    EXPECT_FALSE(one == file_text(folder_ / "other.h5"));  // the seed matters
     for (const char* name : {"one.h5", "two.h5", "other.h5"}) fs::remove(folder_ / name);
   }
 }
@@ -208,15 +162,15 @@ TEST_F(PackCliTest, BadInputFailsCleanlyWithOneLine) {
 
 TEST_F(PackCliTest, ExistingOutputIsKeptWithoutForce) {
   ASSERT_EQ(run("pack --progress none -o run.h5 --set container.depth=0.5").exit_code, 0);
-  const std::string before = read_text(folder_ / "run.h5");
+  const std::string before = file_text(folder_ / "run.h5");
   const CliRun again = run("pack --progress none -o run.h5 --seed 2 --set container.depth=0.5");
   EXPECT_EQ(again.exit_code, 3);
   EXPECT_NE(again.err.find("file exists (use --force to replace it)"), std::string::npos);
-  EXPECT_TRUE(before == read_text(folder_ / "run.h5"));
+  EXPECT_TRUE(before == file_text(folder_ / "run.h5"));
   const CliRun forced =
       run("pack --progress none -o run.h5 --seed 2 --force --set container.depth=0.5");
   EXPECT_EQ(forced.exit_code, 0) << forced.err;
-  EXPECT_FALSE(before == read_text(folder_ / "run.h5"));
+  EXPECT_FALSE(before == file_text(folder_ / "run.h5"));
   EXPECT_EQ(files(), std::vector<std::string>{"run.h5"});
 }
 
@@ -263,19 +217,19 @@ TEST_F(PackCliTest, OutputTableWritesEveryListedFormat) {
     triangles += packing.placed(i).triangle_count();
   }
   EXPECT_EQ(read_stl(path("run.stl")).triangles.size(), triangles);
-  const std::string inp = read_text(folder_ / "run.inp");
+  const std::string inp = file_text(folder_ / "run.inp");
   EXPECT_NE(inp.find("ELSET=P" + std::to_string(packing.particles.size()) + "\n"),
             std::string::npos);
   EXPECT_EQ(inp.find("ELSET=P" + std::to_string(packing.particles.size() + 1) + "\n"),
             std::string::npos);
 
   // Without --force nothing is replaced and the run stops before packing.
-  const std::string before = read_text(folder_ / "run.stl");
+  const std::string before = file_text(folder_ / "run.stl");
   fs::remove(folder_ / "run.h5");
   const CliRun again = run("pack run.toml --progress none --seed 3");
   EXPECT_EQ(again.exit_code, 3) << again.err;
   EXPECT_NE(again.err.find("file exists"), std::string::npos) << again.err;
-  EXPECT_TRUE(before == read_text(folder_ / "run.stl"));
+  EXPECT_TRUE(before == file_text(folder_ / "run.stl"));
   EXPECT_EQ(files(), (std::vector<std::string>{"rock.dat", "run.inp", "run.stl", "run.toml"}));
 
   const CliRun clash = run("pack run.toml --progress none --force --set output.vtu=run.h5");

@@ -20,22 +20,15 @@
 #include "aggpack/io/stl.h"
 #include "aggpack/shape/descriptors.h"
 #include "aggpack/shape/generator.h"
+#include "support/cli_test.h"
 
 namespace aggpack {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using test::CliRun;
+using test::file_text;
 
 std::vector<std::string> split(const std::string& text, char separator) {
   std::vector<std::string> parts;
@@ -49,40 +42,14 @@ std::size_t line_count(const std::string& text) {
   return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
 }
 
-class ShapeCliTest : public ::testing::Test {
+class ShapeCliTest : public test::CliTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              (std::string("aggpack_shape_cli_") + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  // Runs the CLI inside the test folder; stdout and stderr are captured outside it, so the
-  // folder holds only what the command wrote.
-  CliRun run(const std::string& arguments) const {
-    const fs::path out = folder_.string() + ".stdout";
-    const fs::path err = folder_.string() + ".stderr";
-    const std::string command = "cd '" + folder_.string() + "' && '" AGGPACK_BINARY "' " +
-                                arguments + " >'" + out.string() + "' 2>'" + err.string() + "'";
-    const int status = std::system(command.c_str());
-    CliRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read_text(out);
-    result.err = read_text(err);
-    fs::remove(out);
-    fs::remove(err);
-    return result;
-  }
+  ShapeCliTest() : CliTest("aggpack_shape_cli_") {}
   [[nodiscard]] fs::path file(const std::string& name) const { return folder_ / name; }
   [[nodiscard]] std::size_t entry_count() const {
     return static_cast<std::size_t>(
         std::distance(fs::directory_iterator(folder_), fs::directory_iterator()));
   }
-
-  fs::path folder_;
 };
 
 // The value printed after `name` in `aggpack particle`'s report.
@@ -118,17 +85,17 @@ TEST_F(ShapeCliTest, ParticleWritesBinaryAndAsciiStlMatchingTheLibrary) {
 
   const auto ascii = run("particle " + flags + " --ascii --scale 1000 -o a.stl");
   ASSERT_EQ(ascii.exit_code, 0) << ascii.err;
-  EXPECT_EQ(read_text(file("a.stl")).rfind("solid particle", 0), 0U);
+  EXPECT_EQ(file_text(file("a.stl")).rfind("solid particle", 0), 0U);
   const StlMesh millimetres = read_stl(file("a.stl").string());
   ASSERT_EQ(millimetres.triangles.size(), mesh.triangles.size());
   EXPECT_LE((millimetres.triangles[3][1] - 1000.0 * mesh.triangles[3][1]).norm(), 1e-3);
 
   // The same command gives the same bytes; another index gives another particle.
   ASSERT_EQ(run("particle " + flags + " -o again.stl").exit_code, 0);
-  EXPECT_EQ(read_text(file("p.stl")), read_text(file("again.stl")));
+  EXPECT_EQ(file_text(file("p.stl")), file_text(file("again.stl")));
   ASSERT_EQ(run("particle --alpha 0.3 -r 0.08 -L 0.04 --seed 5 --index 8 -o other.stl").exit_code,
             0);
-  EXPECT_NE(read_text(file("p.stl")), read_text(file("other.stl")));
+  EXPECT_NE(file_text(file("p.stl")), file_text(file("other.stl")));
 }
 
 TEST_F(ShapeCliTest, ShapesCsvIsByteIdenticalForOneAndTwoThreads) {
@@ -138,8 +105,8 @@ TEST_F(ShapeCliTest, ShapesCsvIsByteIdenticalForOneAndTwoThreads) {
   ASSERT_EQ(one.exit_code, 0) << one.err;
   const auto two = run("shapes " + flags + " --threads 2 -o two.csv");
   ASSERT_EQ(two.exit_code, 0) << two.err;
-  const std::string csv = read_text(file("one.csv"));
-  EXPECT_EQ(csv, read_text(file("two.csv")));
+  const std::string csv = file_text(file("one.csv"));
+  EXPECT_EQ(csv, file_text(file("two.csv")));
   // The printed summary is the same too, apart from the file name.
   EXPECT_EQ(one.out.substr(one.out.find('\n')), two.out.substr(two.out.find('\n')));
 
@@ -280,14 +247,14 @@ TEST_F(ShapeCliTest, ExistingOutputIsKeptWithoutForce) {
   EXPECT_NE(shapes.err.find("old.csv"), std::string::npos) << shapes.err;
   EXPECT_NE(shapes.err.find("--force"), std::string::npos) << shapes.err;
   EXPECT_EQ(line_count(shapes.err), 1U);
-  EXPECT_EQ(read_text(file("old.csv")), "keep me\n");
+  EXPECT_EQ(file_text(file("old.csv")), "keep me\n");
   const auto particle = run("particle -o old.stl");
   EXPECT_EQ(particle.exit_code, 3);
-  EXPECT_EQ(read_text(file("old.stl")), "keep me\n");
+  EXPECT_EQ(file_text(file("old.stl")), "keep me\n");
   EXPECT_EQ(entry_count(), 2U);
 
   ASSERT_EQ(run("shapes -n 10 -o old.csv --force").exit_code, 0);
-  EXPECT_EQ(read_text(file("old.csv")).rfind("index,control_radius,", 0), 0U);
+  EXPECT_EQ(file_text(file("old.csv")).rfind("index,control_radius,", 0), 0U);
   ASSERT_EQ(run("particle -f -o old.stl").exit_code, 0);
   EXPECT_GT(read_stl(file("old.stl").string()).triangles.size(), 8U);
   EXPECT_EQ(entry_count(), 2U) << "no temporary files left";
@@ -311,7 +278,7 @@ TEST_F(ShapeCliTest, VertexCapIsCheckedUpFront) {
   EXPECT_EQ(entry_count(), 0U);
   const auto accepted = run(flags + std::to_string(cap) + " -o capped.csv");
   EXPECT_EQ(accepted.exit_code, 0) << accepted.err;
-  EXPECT_EQ(line_count(read_text(file("capped.csv"))), 201U);
+  EXPECT_EQ(line_count(file_text(file("capped.csv"))), 201U);
 }
 
 }  // namespace
