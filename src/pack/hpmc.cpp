@@ -198,20 +198,7 @@ void Hpmc::restore(const State& state) {
 std::size_t Hpmc::squeeze(const Container& target, double t) {
   const Vec3 k = shrink_shares(target);
   const Vec3 factor = Vec3::Ones() - std::min(1.0, t) * k;
-  for (Pose& pose : poses_) pose.position = pose.position.cwiseProduct(factor);
-  if (t >= 1.0) {
-    const double wall_gap = container_.wall_gap;
-    container_ = target;
-    container_.wall_gap = wall_gap;
-  } else if (container_.kind == ContainerKind::kBox) {
-    container_.length *= factor.x();
-    container_.width *= factor.y();
-    container_.depth *= factor.z();
-  } else {
-    container_.radius *= factor.x();
-    container_.height *= factor.z();
-  }
-  return refresh_flags();
+  return rescale(factor, target, t);
 }
 
 std::size_t Hpmc::expand(const Container& larger, double t) {
@@ -224,10 +211,14 @@ std::size_t Hpmc::expand(const Container& larger, double t) {
     factor = Vec3(radial, radial, larger.height / container_.height);
   }
   factor = (Vec3::Ones() + std::min(1.0, t) * (factor - Vec3::Ones())).cwiseMax(1.0);
+  return rescale(factor, larger, t);
+}
+
+std::size_t Hpmc::rescale(const Vec3& factor, const Container& end, double t) {
   for (Pose& pose : poses_) pose.position = pose.position.cwiseProduct(factor);
   if (t >= 1.0) {
     const double wall_gap = container_.wall_gap;
-    container_ = larger;
+    container_ = end;
     container_.wall_gap = wall_gap;
   } else if (container_.kind == ContainerKind::kBox) {
     container_.length *= factor.x();

@@ -51,6 +51,9 @@ class Hpmc {
   std::size_t expand(const Container& larger, double t);
   /// Recomputes the flags exactly (a flag can outlive its overlap when the partner moved away).
   std::size_t refresh_flags();
+  /// Shared by squeeze and expand: positions times `factor` (per axis), the container scaled the
+  /// same way, or exactly `end` (keeping the wall gap) once t >= 1; then refresh_flags().
+  std::size_t rescale(const Vec3& factor, const Container& end, double t);
 
   /// A copy of the container and poses, to return to when a squeeze cannot be repaired.
   struct State {
