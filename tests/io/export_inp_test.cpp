@@ -51,7 +51,9 @@ TEST(AbaqusExport, CalculixRunsOnTetGenMeshWithFaceSurfaces) {
 #endif
 
 TEST(AbaqusExport, MeshioReadsTheSameCountsAndSets) {
-  if (!test::has_python_module("meshio")) GTEST_SKIP() << "python3-meshio not installed";
+  if (!test::has_python_module("meshio"))
+    FAIL()
+        << "python3-meshio not installed (a test dependency, installed by scripts/install-deps.sh)";
   const Packing packing = test::grid_packing(3, 2, 1, 34, /*share_shapes=*/true);
   ScratchFolder folder;
   for (bool is_quadratic : {false, true}) {

@@ -156,7 +156,9 @@ TEST(ObjExport, MeshioReadsVerticesAndFaces) {
   const std::string text = test::read_text(folder.file("p.obj"));
   EXPECT_NE(text.find("\no P1\nv "), std::string::npos);
   EXPECT_NE(text.find("\no P4\nv "), std::string::npos);
-  if (!test::has_python_module("meshio")) GTEST_SKIP() << "python3-meshio not installed";
+  if (!test::has_python_module("meshio"))
+    FAIL()
+        << "python3-meshio not installed (a test dependency, installed by scripts/install-deps.sh)";
   const auto result = test::run_python(folder, R"(
 import sys, meshio
 mesh = meshio.read(sys.argv[1])

@@ -99,7 +99,8 @@ TEST(StlExport, AsciiAndBinaryAgreeAndScaleToMillimetres) {
 }
 
 TEST(StlExport, AdmeshFindsClosedPartsWithTheParticleVolume) {
-  if (!test::has_program("admesh")) GTEST_SKIP() << "admesh not installed";
+  if (!test::has_program("admesh"))
+    FAIL() << "admesh not installed (a test dependency, installed by scripts/install-deps.sh)";
   const Packing packing = test::grid_packing(3, 2, 2, 3);
   double total = 0;
   std::size_t facets = 0;
@@ -134,15 +135,14 @@ TEST(StlExport, PerParticleFolderHasOneClosedFilePerParticle) {
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, expected);
   EXPECT_EQ(folder.entries(), std::vector<std::string>{"prints"});  // no staging folder left
-  const bool has_admesh = test::has_program("admesh");
+  ASSERT_TRUE(test::has_program("admesh"))
+      << "admesh not installed (a test dependency, installed by scripts/install-deps.sh)";
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {
     const std::string file = path + "/" + expected[i];
     EXPECT_EQ(read_stl(file).triangles.size(), packing.placed(i).triangle_count());
-    if (has_admesh) {
-      expect_admesh_clean(admesh_report(file),
-                          static_cast<double>(packing.placed(i).triangle_count()), 1,
-                          test::particle_volume(packing, i) * 1e9);
-    }
+    expect_admesh_clean(admesh_report(file),
+                        static_cast<double>(packing.placed(i).triangle_count()), 1,
+                        test::particle_volume(packing, i) * 1e9);
   }
   // An existing folder is kept without overwrite, replaced as a whole with it.
   const auto before = test::read_text(path + "/" + expected[0]);

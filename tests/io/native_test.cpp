@@ -331,7 +331,9 @@ TEST_F(NativeFileTest, FlippedBytesAreDetectedOrHarmless) {
 }
 
 TEST_F(NativeFileTest, WrongVersionAndWrongFormatNameAreFormatErrors) {
-  if (!has_python_module("h5py")) GTEST_SKIP() << "python3-h5py not installed";
+  if (!has_python_module("h5py"))
+    FAIL()
+        << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
   write_packing(path("v2.h5"), sample_packing());
   ASSERT_EQ(run_python("import h5py; f = h5py.File(\"" + path("v2.h5") +
                        "\", \"r+\"); f.attrs[\"format_version\"] = 2"),
@@ -358,7 +360,9 @@ TEST_F(NativeFileTest, WrongVersionAndWrongFormatNameAreFormatErrors) {
 
 // Content that is well-formed HDF5 but invalid as a packing (written by another program).
 TEST_F(NativeFileTest, InvalidContentIsFormatError) {
-  if (!has_python_module("h5py")) GTEST_SKIP() << "python3-h5py not installed";
+  if (!has_python_module("h5py"))
+    FAIL()
+        << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
   const std::vector<std::pair<std::string, std::string>> edits = {
       {"shape index", "f[\"particles/shape\"][2] = 4"},
       {"non-finite", "f[\"particles/position\"][1, 0] = float(\"nan\")"},
@@ -385,7 +389,9 @@ TEST_F(NativeFileTest, InvalidContentIsFormatError) {
 }
 
 TEST_F(NativeFileTest, H5pyReadsTheDatasets) {
-  if (!has_python_module("h5py")) GTEST_SKIP() << "python3-h5py not installed";
+  if (!has_python_module("h5py"))
+    FAIL()
+        << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
   const Packing packing = sample_packing();
   write_packing(path("run.h5"), packing);
   const Particle& p = packing.particles[5];
@@ -415,7 +421,9 @@ TEST_F(NativeFileTest, XdmfSideFileOpensInMeshio) {
   ASSERT_TRUE(fs::exists(path("run.xdmf")));
   EXPECT_EQ(xdmf_path_for(path("run.h5")), path("run.xdmf"));
   EXPECT_TRUE(identical(packing, read_packing(path("run.h5"))));  // /world is ignored on read
-  if (!has_python_module("meshio")) GTEST_SKIP() << "python3-meshio not installed";
+  if (!has_python_module("meshio"))
+    FAIL()
+        << "python3-meshio not installed (a test dependency, installed by scripts/install-deps.sh)";
   std::size_t vertices = 0;
   std::size_t triangles = 0;
   for (const auto& particle : packing.particles) {
