@@ -12,55 +12,24 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include "support/cli_test.h"
 
 namespace aggpack {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
+using test::CliRun;
 
-class RunawayCliTest : public ::testing::Test {
+class RunawayCliTest : public test::CliTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              (std::string("aggpack_runaway_") + info->name() + "_" + std::to_string(::getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  [[nodiscard]] CommandRun run(const std::string& arguments,
-                               const std::string& environment = "") const {
-    const std::string command = "cd '" + folder_.string() + "' && " + environment + " '" +
-                                AGGPACK_BINARY "' " + arguments + " >stdout.txt 2>stderr.txt";
-    const int status = std::system(command.c_str());
-    CommandRun result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read(folder_ / "stdout.txt");
-    result.err = read(folder_ / "stderr.txt");
-    fs::remove(folder_ / "stdout.txt");
-    fs::remove(folder_ / "stderr.txt");
-    return result;
-  }
-
-  static std::string read(const fs::path& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
-
-  fs::path folder_;
+  RunawayCliTest() : CliTest("aggpack_runaway_") {}
 };
 
 const std::string kFixtures = AGGPACK_SOURCE_DIR "/tests/io/fixtures/bad-inputs/";
 
 TEST_F(RunawayCliTest, CountTheBoxCannotHoldIsRefusedUpFront) {
-  const CommandRun pack = run("pack '" + kFixtures + "count_1e8_default_box.toml' -o out.h5");
+  const CliRun pack = run("pack '" + kFixtures + "count_1e8_default_box.toml' -o out.h5");
   EXPECT_EQ(pack.exit_code, 2) << pack.err;
   EXPECT_EQ(pack.err.rfind("aggpack: error: limit exceeded for packer.target_count = 100000000 "
                            "(allowed: at most ~",
@@ -74,8 +43,8 @@ TEST_F(RunawayCliTest, CountTheBoxCannotHoldIsRefusedUpFront) {
 
 TEST_F(RunawayCliTest, SizeListBeyondTheMemoryLimitIsRefusedUpFront) {
   // ~5 x 10^7 particles of 5-20 mm at 35 % of the default box: ~50 GB of shapes.
-  const CommandRun pack = run("pack '" + kFixtures + "fuller_in_default_box.toml' -o out.h5",
-                              "AGGPACK_MEMORY_LIMIT=8G");
+  const CliRun pack = run("pack '" + kFixtures + "fuller_in_default_box.toml' -o out.h5",
+                          "AGGPACK_MEMORY_LIMIT=8G");
   EXPECT_EQ(pack.exit_code, 2) << pack.err;
   EXPECT_EQ(pack.err.rfind("aggpack: error: limit exceeded for packer.target_fraction = 0.35", 0),
             0u)
@@ -91,15 +60,15 @@ TEST_F(RunawayCliTest, SizeListBeyondTheMemoryLimitIsRefusedUpFront) {
                 .exit_code,
             2);
   // A bad limit is named.
-  const CommandRun bad = run("pack '" + kFixtures + "fuller_in_default_box.toml' -o out.h5",
-                             "AGGPACK_MEMORY_LIMIT=lots");
+  const CliRun bad = run("pack '" + kFixtures + "fuller_in_default_box.toml' -o out.h5",
+                         "AGGPACK_MEMORY_LIMIT=lots");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("AGGPACK_MEMORY_LIMIT = lots"), std::string::npos) << bad.err;
 }
 
 TEST_F(RunawayCliTest, ShapesStreamsItsRowsAcrossChunks) {
   // More than one chunk of 65,536: rows in index order, summary over all of them.
-  const CommandRun shapes = run("shapes -n 65600 -L 0.2 -o out.csv");
+  const CliRun shapes = run("shapes -n 65600 -L 0.2 -o out.csv");
   ASSERT_EQ(shapes.exit_code, 0) << shapes.err;
   EXPECT_NE(shapes.out.find("wrote out.csv (65600 particles)"), std::string::npos);
   std::ifstream in(folder_ / "out.csv");

@@ -46,12 +46,15 @@ class CliTest : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(folder_); }
 
-  /// Runs `aggpack <arguments>` (a shell command line) inside folder_.
-  [[nodiscard]] CliRun run(const std::string& arguments) const {
+  /// Runs `aggpack <arguments>` (a shell command line) inside folder_, with `environment`
+  /// (e.g. "AGGPACK_MEMORY_LIMIT=1G") set for it.
+  [[nodiscard]] CliRun run(const std::string& arguments,
+                           const std::string& environment = "") const {
     const std::filesystem::path out = folder_.string() + ".stdout";
     const std::filesystem::path err = folder_.string() + ".stderr";
-    const std::string command = "cd '" + folder_.string() + "' && '" AGGPACK_BINARY "' " +
-                                arguments + " >'" + out.string() + "' 2>'" + err.string() + "'";
+    const std::string command = "cd '" + folder_.string() + "' && " + environment + " '" +
+                                AGGPACK_BINARY "' " + arguments + " >'" + out.string() + "' 2>'" +
+                                err.string() + "'";
     const int status = std::system(command.c_str());
     CliRun result;
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
