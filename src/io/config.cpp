@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "aggpack/core/text.h"
+#include "aggpack/io/export.h"
 
 namespace aggpack {
 
@@ -939,12 +940,7 @@ bool is_in_scope(Scope scope, const PackConfig& config, bool is_relative_edge) {
 
 // ---- public -------------------------------------------------------------------------------------
 
-const std::vector<std::string>& output_formats() {
-  // "native" is the .h5 packing file; the others are the exporters' formats (issue 4).
-  static const std::vector<std::string> formats = {"native", "stl", "obj", "vtu",  "dat",
-                                                   "inp",    "msh", "k",   "apdl", "yade"};
-  return formats;
-}
+const std::vector<std::string>& output_formats() { return output_format_names(); }
 
 const std::vector<ConfigKey>& config_keys() {
   static const std::vector<ConfigKey> keys = [] {

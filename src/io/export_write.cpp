@@ -334,6 +334,12 @@ std::string deck_name(DeckKind kind) {
   return "none";
 }
 
+const std::vector<std::string>& output_format_names() {
+  static const std::vector<std::string> names = {"native", "stl", "obj", "vtu",  "dat",
+                                                 "inp",    "msh", "k",   "apdl", "yade"};
+  return names;
+}
+
 std::string format_name(ExportFormat format) {
   switch (format) {
     case ExportFormat::kStl:

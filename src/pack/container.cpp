@@ -21,6 +21,43 @@ double disc_area_below(double r, double x) {
 
 }  // namespace
 
+const std::vector<ContainerKindInfo>& container_kinds() {
+  static const std::vector<ContainerKindInfo> kinds = [] {
+    Container box;
+    box.kind = ContainerKind::kBox;
+    Container cylinder;
+    cylinder.kind = ContainerKind::kCylinder;
+    return std::vector<ContainerKindInfo>{
+        {ContainerKind::kBox,
+         "box",
+         "box [0,length]x[0,width]x[0,depth]",
+         {{"length", "box extent along x", [](const Container& c) { return c.length; },
+           [](Container& c, double v) { c.length = v; }},
+          {"width", "box extent along y", [](const Container& c) { return c.width; },
+           [](Container& c, double v) { c.width = v; }},
+          {"depth", "box extent along z (vertical)", [](const Container& c) { return c.depth; },
+           [](Container& c, double v) { c.depth = v; }}},
+         box},
+        {ContainerKind::kCylinder,
+         "cylinder",
+         "cylinder about the z axis",
+         {{"radius", "cylinder radius (axis x = y = 0)",
+           [](const Container& c) { return c.radius; },
+           [](Container& c, double v) { c.radius = v; }},
+          {"height", "cylinder height (z from 0)", [](const Container& c) { return c.height; },
+           [](Container& c, double v) { c.height = v; }}},
+         cylinder}};
+  }();
+  return kinds;
+}
+
+const ContainerKindInfo& container_kind_info(ContainerKind kind) {
+  for (const auto& info : container_kinds()) {
+    if (info.kind == kind) return info;
+  }
+  throw InvalidInput("container.kind", std::to_string(static_cast<int>(kind)), "box or cylinder");
+}
+
 Aabb Container::bounds() const {
   Aabb box;
   if (kind == ContainerKind::kBox) {

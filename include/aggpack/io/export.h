@@ -25,6 +25,10 @@
 
 namespace aggpack {
 
+/// The names accepted as keys of a config's [output] table, in documentation order: "native"
+/// (the .h5 packing file) and the name of every export format.
+const std::vector<std::string>& output_format_names();
+
 /// File formats. The extension each is chosen by (for kAuto) is given after the name.
 enum class ExportFormat {
   kAuto,       ///< from the extension of the output path

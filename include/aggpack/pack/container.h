@@ -5,7 +5,35 @@
 #include "aggpack/geom/convex_polyhedron.h"
 #include "aggpack/pack/packing.h"
 
+#include <vector>
+
 namespace aggpack {
+
+/// One length parameter of a container kind (m, allowed (0, 1e6]): the config key
+/// `container.<name>`, the native-file attribute `<name>` and the GUI field all come from it.
+struct ContainerParam {
+  const char* name;         ///< "length"
+  const char* description;  ///< one line for docs and tooltips
+  double (*get)(const Container&);
+  void (*set)(Container&, double);
+};
+
+/// One container kind: the word used in configs and native files, its parameters in order, and
+/// the container of that kind with every parameter at its default. Every front end (config keys,
+/// native file fields, GUI) iterates over container_kinds() instead of naming kinds itself.
+struct ContainerKindInfo {
+  ContainerKind kind;
+  const char* name;         ///< "box"
+  const char* description;  ///< one line
+  std::vector<ContainerParam> params;
+  Container defaults;
+};
+
+/// Every container kind, in documentation order.
+const std::vector<ContainerKindInfo>& container_kinds();
+
+/// The entry of container_kinds() for `kind`.
+const ContainerKindInfo& container_kind_info(ContainerKind kind);
 
 /// Throws InvalidInput naming the field ("container.length", "container.radius",
 /// "container.wall_gap", ...) unless the extents of the chosen kind are finite and > 0 and the
