@@ -1,25 +1,26 @@
 #!/usr/bin/env bash
 # Refactoring check: runs two aggpack binaries on the same inputs and compares every output file
 # byte for byte (cmp). Inputs: every examples/*.toml (pack configs: pack + every export; repose
-# configs: the resolved config and a short repose run) and the paper's default case (`aggpack pack`
-# with no config). Per packing it writes the native .h5, `info` (text and --json) and every export:
-# STL binary + ASCII (+ one file per particle), OBJ, VTU surface + tetrahedra (fan and TetGen),
-# rock.dat, Abaqus .inp C3D4 / C3D10 / parts, Gmsh .msh, LS-DYNA .k, ANSYS .mac, YADE .py, and the
-# abaqus / calculix / lsdyna / yade decks; the paper case also with --xdmf and --compression, a
-# short settle and a short densify. Printed text is compared too, after masking timings
-# ("0.14 s" -> "<T> s"); each command's exit code is compared.
+# configs: the resolved config, a short repose run and a two-case sweep) and the paper's default
+# case (`aggpack pack` with no config). Per packing it writes the native .h5, `info` (text and
+# --json) and every export: STL binary + ASCII (+ one file per particle), OBJ, VTU surface +
+# tetrahedra (fan and TetGen), rock.dat, Abaqus .inp C3D4 / C3D10 / parts, Gmsh .msh, LS-DYNA .k,
+# ANSYS .mac, YADE .py, and the abaqus / calculix / lsdyna / yade decks; the default case also
+# with --xdmf and --compression, a short settle and a short densify. Printed text is compared
+# too, after masking timings ("0.14 s" -> "<T> s"); each command's exit code is compared.
 #
 #   scripts/compare-outputs.sh OLD_BINARY NEW_BINARY [OUTDIR]
 #
 # OUTDIR (default: a new /tmp/aggpack-compare.XXXXXX) gets old/ and new/ with the same relative
-# names; both sides run at the same time (two processes). Prints one line per file and exits 1 on
+# names; both sides run at the same time (two processes). Prints one line per file (or output
+# folder: per-particle STL, repose and sweep folders, compared file by file) and exits 1 on
 # any difference (or a file only one side wrote), 0 when everything is identical. Each side's
 # seconds per command go to OUTDIR/old.seconds and new.seconds (not compared).
-# Environment: AGGPACK_COMPARE_SLOW=0 leaves out the repose runs and TetGen exports (faster).
+# Environment: AGGPACK_COMPARE_SLOW=0 leaves out the sweeps and TetGen exports (faster).
 set -uo pipefail
 
 if [ $# -lt 2 ] || [ $# -gt 3 ]; then
-  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 fi
 old_binary=$(realpath "$1")
@@ -46,8 +47,12 @@ commands() {
     name=$(basename "$config" .toml)
     if grep -q '^\[trough\]' "$config"; then
       echo -e "$name.print-config\trepose $config --print-config"
+      # Two layers of particles and 0.02 s per stage: the whole flow in seconds, not the result.
+      local short="--set particles.fill_height=0.025 --set rest.max_time=0.02 --width 160"
+      echo -e "$name.repose\trepose $config -o $name-repose $short --progress none"
       if [ "$slow" = 1 ]; then
-        echo -e "$name.repose\trepose $config -o $name-repose --set rest.max_time=0.02 --width 160 --progress none"
+        echo -e "$name.sweep\tsweep $config -o $name-sweep $short --set sweep.alphas=[0.5]" \
+          "--set sweep.frictions=[0.2,0.4] --no-plot --progress none"
       fi
     else
       echo -e "$name.pack\tpack $config -o $name.h5 --progress none"
@@ -116,32 +121,31 @@ new_pid=$!
 wait "$old_pid" "$new_pid"
 run_seconds=$SECONDS
 
-# ---- compare ------------------------------------------------------------------------------------
+# ---- compare: one line per file; a per-particle folder is one line (diff -rq inside it) --------
 same=0
 different=0
 printf '%-10s %12s %12s  %s\n' result "old bytes" "new bytes" file
-while IFS= read -r file; do
-  a="$out/old/$file" b="$out/new/$file"
+while IFS= read -r entry; do
+  a="$out/old/$entry" b="$out/new/$entry"
   if [ ! -e "$a" ] || [ ! -e "$b" ]; then
     result="ONLY-$([ -e "$a" ] && echo OLD || echo NEW)"
+  elif [ -d "$a" ]; then
+    if diff -rq "$a" "$b" >/dev/null 2>&1; then result=same; else result=DIFFERENT; fi
   elif cmp -s "$a" "$b"; then
     result=same
   else
     result=DIFFERENT
   fi
-  size_a=$([ -e "$a" ] && stat -c %s "$a" || echo -)
-  size_b=$([ -e "$b" ] && stat -c %s "$b" || echo -)
-  if [ "$result" = same ]; then
-    same=$((same + 1))
-  else
-    different=$((different + 1))
+  size_a=$([ -e "$a" ] && du -sb "$a" | cut -f1 || echo -)
+  size_b=$([ -e "$b" ] && du -sb "$b" | cut -f1 || echo -)
+  if [ "$result" = same ]; then same=$((same + 1)); else different=$((different + 1)); fi
+  suffix=$({ [ -d "$a" ] || [ -d "$b" ]; } && echo /)
+  printf '%-10s %12s %12s  %s\n' "$result" "$size_a" "$size_b" "$entry$suffix"
+  if [ "$result" = DIFFERENT ] && [ -n "$suffix" ]; then
+    diff -rq "$a" "$b" 2>&1 | sed "s@$out/@@g; s/^/             /" | head -10
   fi
-  # Files in per-particle folders: only differences get a line of their own.
-  if [ "$result" != same ] || [[ "$file" != *-per-particle/* ]]; then
-    printf '%-10s %12s %12s  %s\n' "$result" "$size_a" "$size_b" "$file"
-  fi
-done < <( (cd "$out/old" && find . -type f; cd "$out/new" && find . -type f) | sed 's@^\./@@' |
-  sort -u)
+done < <( (cd "$out/old" && find . -mindepth 1 -maxdepth 1; cd "$out/new" &&
+  find . -mindepth 1 -maxdepth 1) | sed 's@^\./@@' | sort -u)
 
 failed=$(cd "$out/new" && grep -L '^0$' ./*.exit | sed 's@^\./@@; s/\.exit$//' | tr '\n' ' ')
 if [ -n "$failed" ]; then
