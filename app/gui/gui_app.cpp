@@ -32,9 +32,9 @@ std::string toml_float(double value) {
   return text;
 }
 
-const char* kContainerKinds[] = {"box", "cylinder"};
-const char* kPackers[] = {"lattice", "random"};
-const char* kGradings[] = {"uniform", "fuller", "sieve"};
+const char* const kContainerKinds[] = {"box", "cylinder"};
+const char* const kPackers[] = {"lattice", "random"};
+const char* const kGradings[] = {"uniform", "fuller", "sieve"};
 constexpr float kPanelWidth = 360.0f;
 // Text and input background of a sieve table error.
 const ImVec4 kErrorText(0.95f, 0.35f, 0.3f, 1.0f);
