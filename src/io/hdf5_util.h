@@ -18,8 +18,8 @@ class SilenceHdf5Errors {
     // "HDF5: infinite loop closing library" from its atexit handler, after our one-line error.
     // Skipping that handler is harmless: every file we open is closed before we return, and the
     // process's memory goes back to the OS at exit. Must run before the library initialises.
-    static const bool kIsAtexitSkipped = [] { return H5dont_atexit() >= 0; }();
-    (void)kIsAtexitSkipped;
+    static const bool is_atexit_skipped = [] { return H5dont_atexit() >= 0; }();
+    (void)is_atexit_skipped;
     H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   }

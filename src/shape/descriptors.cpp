@@ -97,7 +97,7 @@ SummaryStatistics RunningSummary::result() const {
 }
 
 const std::vector<DescriptorColumn>& descriptor_columns() {
-  static const std::vector<DescriptorColumn> kColumns = {
+  static const std::vector<DescriptorColumn> columns = {
       {"volume", "m^3", [](const ShapeDescriptors& d) { return d.volume; }},
       {"surface_area", "m^2", [](const ShapeDescriptors& d) { return d.surface_area; }},
       {"sphericity", "-", [](const ShapeDescriptors& d) { return d.sphericity; }},
@@ -116,7 +116,7 @@ const std::vector<DescriptorColumn>& descriptor_columns() {
       {"equivalent_diameter", "m", [](const ShapeDescriptors& d) { return d.equivalent_diameter; }},
       {"longest_edge", "m", [](const ShapeDescriptors& d) { return d.longest_edge; }},
   };
-  return kColumns;
+  return columns;
 }
 
 }  // namespace aggpack

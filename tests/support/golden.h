@@ -33,7 +33,7 @@ inline std::string mask_volatile(std::string text, const std::string& scratch_fo
                                  const std::string& binary) {
   text = replaced(std::move(text), scratch_folder, "<dir>");
   text = replaced(std::move(text), binary, "aggpack");
-  static const std::vector<std::pair<std::regex, std::string>> kMasks = {
+  static const std::vector<std::pair<std::regex, std::string>> masks = {
       // "0.2 s wall", "0.00 s shapes + 0.06 s placement"
       {std::regex(R"([0-9]+(\.[0-9]+)? s (wall|shapes|placement)\b)"), "<T> s $2"},
       // "1 file in 0.14 s", "in 0 sweeps (0.0 s)"
@@ -42,7 +42,7 @@ inline std::string mask_volatile(std::string text, const std::string& scratch_fo
       // JSON: "placement_seconds": 0.041
       {std::regex(R"(("[a-z_]*seconds"): [-+0-9.eE]+)"), "$1: <T>"},
   };
-  for (const auto& [pattern, replacement] : kMasks) {
+  for (const auto& [pattern, replacement] : masks) {
     text = std::regex_replace(text, pattern, replacement);
   }
   return text;
