@@ -122,6 +122,9 @@ wait "$old_pid" "$new_pid"
 run_seconds=$SECONDS
 
 # ---- compare: one line per file; a per-particle folder is one line (diff -rq inside it) --------
+bytes() {  # bytes PATH: a file's size, or the sum over a folder's files, or - when missing
+  if [ -e "$1" ]; then find "$1" -type f -printf '%s\n' | awk '{ s += $1 } END { print s + 0 }'; else echo -; fi
+}
 same=0
 different=0
 printf '%-10s %12s %12s  %s\n' result "old bytes" "new bytes" file
@@ -136,8 +139,8 @@ while IFS= read -r entry; do
   else
     result=DIFFERENT
   fi
-  size_a=$([ -e "$a" ] && du -sb "$a" | cut -f1 || echo -)
-  size_b=$([ -e "$b" ] && du -sb "$b" | cut -f1 || echo -)
+  size_a=$(bytes "$a")
+  size_b=$(bytes "$b")
   if [ "$result" = same ]; then same=$((same + 1)); else different=$((different + 1)); fi
   suffix=$({ [ -d "$a" ] || [ -d "$b" ]; } && echo /)
   printf '%-10s %12s %12s  %s\n' "$result" "$size_a" "$size_b" "$entry$suffix"
