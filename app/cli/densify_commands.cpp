@@ -160,7 +160,7 @@ void run_densify(const DensifyFlags& flags) {
   Packing& packing = result.packing;
   packing.provenance.config_toml = config + provenance_lines(flags, options);
   packing.provenance.seed = options.seed;
-  write_packing(flags.output, packing, {.overwrite = overwrite});
+  write_packing(packing, flags.output, {.overwrite = overwrite});
   const DensifyReport& report = result.report;
   fmt::print("{}: {}\n", to_string(options.mode), report.summary());
   fmt::print("solid fraction  {:.4f} (start {:.4f})\n", report.solid_fraction,

@@ -169,9 +169,11 @@ void run_pack(const PackFlags& flags) {
   packing.provenance.config_toml = config.resolved_toml;
   packing.provenance.seed = config.seed();
   packing.provenance.packer = config.packer_name();
-  write_packing(
-      output, packing,
-      {.overwrite = overwrite, .compression = flags.compression, .write_xdmf = flags.has_xdmf});
+  write(packing, output,
+        {.format = ExportFormat::kNative,
+         .overwrite = overwrite,
+         .compression = flags.compression,
+         .write_xdmf = flags.has_xdmf});
 
   std::vector<std::string> written;
   std::vector<std::string> written_json;

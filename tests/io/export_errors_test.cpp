@@ -145,7 +145,7 @@ TEST(ExportCli, ExportsNativeFileAndFailsCleanly) {
   const Packing packing = test::grid_packing(4, 3, 2, 12);
   ScratchFolder folder;
   const std::string native = folder.file("run.h5");
-  write_packing(native, packing);
+  write_packing(packing, native);
   const std::string binary = AGGPACK_BINARY;
   const std::string inp = folder.file("run.inp");
   auto run = [&](const std::string& arguments) {
