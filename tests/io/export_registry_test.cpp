@@ -82,11 +82,11 @@ TEST(FormatTable, EveryFormatHasOneCompleteRow) {
     EXPECT_EQ(info.holds_packing, info.write_file != nullptr);
     if (!info.holds_packing) {
       EXPECT_NE(info.default_cells, MeshCells::kDefault);
-      if (info.default_cells == MeshCells::kSurface) EXPECT_TRUE(info.has_surface);
-      if (info.default_cells == MeshCells::kTetrahedra) EXPECT_TRUE(info.has_tetrahedra);
+      EXPECT_TRUE(info.default_cells != MeshCells::kSurface || info.has_surface);
+      EXPECT_TRUE(info.default_cells != MeshCells::kTetrahedra || info.has_tetrahedra);
     }
-    if (info.has_quadratic) EXPECT_TRUE(info.has_tetrahedra);
-    if (info.has_per_particle) EXPECT_FALSE(info.holds_packing);
+    EXPECT_TRUE(!info.has_quadratic || info.has_tetrahedra);
+    EXPECT_FALSE(info.has_per_particle && info.holds_packing);
   }
   for (const ExportFormat format : kEveryFormat) {
     EXPECT_EQ(seen.count(format), 1U) << "no row for format " << static_cast<int>(format);
