@@ -177,4 +177,27 @@ PipelineResult pack(const PackConfig& config, const PackControl& control) {
   return result;
 }
 
+PipelineResult densify_packing(Packing start, const DensifyOptions& options, std::string_view note,
+                               const PackControl& control) {
+  std::string config_toml = start.provenance.config_toml + std::string(note);
+  DensifyResult dense = densify(std::move(start), options, control);
+  PipelineResult result;
+  result.packing = std::move(dense.packing);
+  PackReport& report = result.report;
+  report.placed = result.packing.particles.size();
+  report.requested = report.placed;
+  report.container_volume = result.packing.container.volume();
+  report.solid_fraction = dense.report.solid_fraction;
+  report.solid_volume = report.solid_fraction * report.container_volume;
+  report.placement_seconds = dense.report.seconds;
+  report.is_target_reached = dense.report.stop == DensifyStop::kTargetReached ||
+                             dense.report.stop == DensifyStop::kSettled;
+  report.stop_reason = dense.report.stop == DensifyStop::kCancelled ? StopReason::kCancelled
+                                                                    : StopReason::kTargetReached;
+  result.densify = dense.report;
+  stamp_provenance(result.packing, PackerTraits<DensePackOptions>::kName, options.seed,
+                   std::move(config_toml));
+  return result;
+}
+
 }  // namespace aggpack

@@ -140,6 +140,25 @@ TEST(Pipeline, CancelThroughTheControlStopsEveryKind) {
   expect_valid_packing(result.packing, 0.0);
 }
 
+TEST(Pipeline, ContinuingASavedPackingStampsItsProvenance) {
+  Packing start = pack_random(small_random()).packing;
+  start.provenance.config_toml = "[packer]\nkind = \"random\"\n";
+  const DensifyOptions options{.target_fraction = 0.28, .seed = 9, .max_sweeps = 300};
+  const DensifyResult direct = densify(start, options);
+  const PipelineResult piped = densify_packing(start, options, "# densify.seed = 9\n");
+  expect_identical(piped.packing, direct.packing);
+  ASSERT_TRUE(piped.densify);
+  EXPECT_EQ(piped.densify->sweeps, direct.report.sweeps);
+  EXPECT_EQ(piped.report.solid_fraction, direct.report.solid_fraction);
+  EXPECT_TRUE(piped.report.is_target_reached);
+  const Provenance& p = piped.packing.provenance;
+  EXPECT_EQ(p.config_toml, "[packer]\nkind = \"random\"\n# densify.seed = 9\n");
+  EXPECT_EQ(p.seed, 9u);
+  EXPECT_EQ(p.packer, "dense");
+  EXPECT_EQ(invalid_field([&] { (void)densify_packing(start, {.max_sweeps = 0}, ""); }),
+            "densify.max_sweeps");
+}
+
 TEST(Pipeline, BadKindsAndOptionsNameTheKey) {
   EXPECT_EQ(invalid_field([] { (void)default_packer_options("hexagonal"); }), "packer.kind");
   EXPECT_EQ(invalid_field([] { (void)default_packer_options("x", "gui packer"); }), "gui packer");

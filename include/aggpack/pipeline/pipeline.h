@@ -77,4 +77,13 @@ PipelineResult pack(const PackerOptions& options, const PackControl& control = {
 /// Timings stay in the report; the native file holds only what reproduces the packing.
 PipelineResult pack(const PackConfig& config, const PackControl& control = {});
 
+/// Continues from a saved packing (`aggpack densify in.h5`): densify() on `start`, with the
+/// provenance of the continued run: the start's configuration text followed by `note` (the
+/// densify options, e.g. as TOML comments), the densify seed, packer "dense". `report` holds
+/// the final counts, container volume and solid fraction (stop_reason kCancelled when cancelled);
+/// `densify` the densifier's report.
+/// \throw InvalidInput naming "densify.<option>" or "start packing".
+PipelineResult densify_packing(Packing start, const DensifyOptions& options, std::string_view note,
+                               const PackControl& control = {});
+
 }  // namespace aggpack
