@@ -15,6 +15,8 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // One packer kind: its word, its seed and its run function. Declared, never defined: a
 // PackerOptions alternative without a specialisation below fails to compile.
