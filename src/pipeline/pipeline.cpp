@@ -1,7 +1,6 @@
 #include "aggpack/pipeline/pipeline.h"
 
-#include <array>
-#include <cstddef>
+#include <string>
 #include <type_traits>
 #include <utility>
 
@@ -11,22 +10,13 @@ namespace aggpack {
 
 namespace {
 
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
-
-// One packer kind: its word, its seed and its run function. Declared, never defined: a
-// PackerOptions alternative without a specialisation below fails to compile.
+// One packer kind's run function. Declared, never defined: a PackerOptions alternative
+// without a specialisation below fails to compile.
 template <class Options>
-struct PackerTraits;
+struct PackerRun;
 
 template <>
-struct PackerTraits<LatticeOptions> {
-  static constexpr std::string_view kName = "lattice";
-  static std::uint64_t seed(const LatticeOptions& o) { return o.seed; }
+struct PackerRun<LatticeOptions> {
   static PipelineResult run(const LatticeOptions& o, const PackControl& control) {
     PipelineResult result;
     static_cast<PackResult&>(result) = pack_lattice(o, control);
@@ -35,9 +25,7 @@ struct PackerTraits<LatticeOptions> {
 };
 
 template <>
-struct PackerTraits<RandomPackOptions> {
-  static constexpr std::string_view kName = "random";
-  static std::uint64_t seed(const RandomPackOptions& o) { return o.seed; }
+struct PackerRun<RandomPackOptions> {
   static PipelineResult run(const RandomPackOptions& o, const PackControl& control) {
     PipelineResult result;
     static_cast<PackResult&>(result) = pack_random(o, control);
@@ -45,21 +33,13 @@ struct PackerTraits<RandomPackOptions> {
   }
 };
 
-double fill_gap(const DensePackOptions& o) {
-  return std::visit([](const auto& fill) { return fill.gap; }, o.fill);
-}
-
 template <>
-struct PackerTraits<DensePackOptions> {
-  static constexpr std::string_view kName = "dense";
-  static std::uint64_t seed(const DensePackOptions& o) {
-    return std::visit([](const auto& fill) { return fill.seed; }, o.fill);
-  }
+struct PackerRun<DensePackOptions> {
   static PipelineResult run(const DensePackOptions& o, const PackControl& control) {
     validate(o);  // all of it before the fill runs
     PipelineResult result = std::visit(
         [&](const auto& fill) {
-          return PackerTraits<std::decay_t<decltype(fill)>>::run(fill, control);
+          return PackerRun<std::decay_t<decltype(fill)>>::run(fill, control);
         },
         o.fill);
     if (result.report.stop_reason == StopReason::kCancelled) return result;
@@ -85,21 +65,6 @@ struct PackerTraits<DensePackOptions> {
   }
 };
 
-template <class Options>
-using Traits = PackerTraits<std::decay_t<Options>>;
-
-template <std::size_t... I>
-std::vector<std::string> kind_names(std::index_sequence<I...>) {
-  return {std::string(PackerTraits<std::variant_alternative_t<I, PackerOptions>>::kName)...};
-}
-
-template <std::size_t... I>
-PackerOptions default_of(std::size_t index, std::index_sequence<I...>) {
-  PackerOptions options;
-  ((index == I ? (options = std::variant_alternative_t<I, PackerOptions>{}, 0) : 0), ...);
-  return options;
-}
-
 // The one place provenance is written.
 void stamp_provenance(Packing& packing, std::string_view packer, std::uint64_t seed,
                       std::string config_toml) {
@@ -110,49 +75,6 @@ void stamp_provenance(Packing& packing, std::string_view packer, std::uint64_t s
 }
 
 }  // namespace
-
-void validate(const DensePackOptions& options) {
-  std::visit([](const auto& fill) { validate(fill); }, options.fill);
-  validate(options.densify);
-  const double gap = fill_gap(options);
-  if (options.densify.gap > gap) {
-    throw InvalidInput("densify.gap", format_value(options.densify.gap),
-                       "[0, " + format_value(gap) + "], at most the fill's gap");
-  }
-}
-
-const std::vector<std::string>& packer_kind_names() {
-  static const std::vector<std::string> names =
-      kind_names(std::make_index_sequence<std::variant_size_v<PackerOptions>>{});
-  return names;
-}
-
-std::string packer_kind_name(const PackerOptions& options) {
-  return std::string(std::visit([](const auto& o) { return Traits<decltype(o)>::kName; }, options));
-}
-
-PackerOptions default_packer_options(std::string_view word, std::string_view key) {
-  const auto& names = packer_kind_names();
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i] == word) {
-      return default_of(i, std::make_index_sequence<std::variant_size_v<PackerOptions>>{});
-    }
-  }
-  std::string allowed;
-  for (const auto& name : names) allowed += (allowed.empty() ? "" : ", ") + name;
-  throw InvalidInput(std::string(key), std::string(word), allowed);
-}
-
-std::uint64_t packer_seed(const PackerOptions& options) {
-  return std::visit([](const auto& o) { return Traits<decltype(o)>::seed(o); }, options);
-}
-
-void validate(const PackerOptions& options) {
-  std::visit(Overloaded{[](const LatticeOptions& o) { validate(o); },
-                        [](const RandomPackOptions& o) { validate(o); },
-                        [](const DensePackOptions& o) { validate(o); }},
-             options);
-}
 
 PackerOptions packer_options(const PackConfig& config) {
   switch (config.packer) {
@@ -167,8 +89,9 @@ PackerOptions packer_options(const PackConfig& config) {
 
 PipelineResult pack(const PackerOptions& options, const PackControl& control) {
   // Every packer validates its options first (the key named in the error).
-  PipelineResult result =
-      std::visit([&](const auto& o) { return Traits<decltype(o)>::run(o, control); }, options);
+  PipelineResult result = std::visit(
+      [&](const auto& o) { return PackerRun<std::decay_t<decltype(o)>>::run(o, control); },
+      options);
   stamp_provenance(result.packing, packer_kind_name(options), packer_seed(options), {});
   return result;
 }
@@ -197,8 +120,8 @@ PipelineResult densify_packing(Packing start, const DensifyOptions& options, std
   report.stop_reason = dense.report.stop == DensifyStop::kCancelled ? StopReason::kCancelled
                                                                     : StopReason::kTargetReached;
   result.densify = dense.report;
-  stamp_provenance(result.packing, PackerTraits<DensePackOptions>::kName, options.seed,
-                   std::move(config_toml));
+  stamp_provenance(result.packing, packer_kind_name(PackerOptions{DensePackOptions{}}),
+                   options.seed, std::move(config_toml));
   return result;
 }
 
