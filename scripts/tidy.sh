@@ -8,6 +8,7 @@
 #
 # Environment: AGGPACK_TIDY_JOBS (default 2), AGGPACK_TIDY_BUILD_DIR (default build-tidy).
 # A finding that must stay gets `// NOLINT(check-name): reason` on its line.
+# Cost: about 9.5 min of CPU for the 137 files (about 5 min on 2 idle cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
