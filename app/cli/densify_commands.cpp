@@ -13,7 +13,7 @@
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
-#include "aggpack/io/config.h"
+#include "aggpack/config/config.h"
 #include "aggpack/io/native.h"
 #include "aggpack/pack/dense_packer.h"
 #include "commands.h"

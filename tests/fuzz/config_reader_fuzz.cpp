@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "aggpack/core/error.h"
-#include "aggpack/io/config.h"
+#include "aggpack/config/config.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);

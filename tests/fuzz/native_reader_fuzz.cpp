@@ -13,7 +13,7 @@
 #include <string>
 
 #include "aggpack/core/error.h"
-#include "aggpack/io/config.h"
+#include "aggpack/config/config.h"
 #include "aggpack/io/native.h"
 #include "aggpack/pack/statistics.h"
 
