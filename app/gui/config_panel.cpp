@@ -41,11 +41,18 @@ void GuiApp::draw_config_section(const char* title, const std::vector<std::strin
   const auto& schema = pack_schema();
   const auto views = key_views(schema);
   const PackConfig draft = fields_.draft();
+  // A key another key excludes while that one is given (target_fraction beside target_count).
+  const auto is_excluded = [&](const std::string& name) {
+    for (const auto& other : schema.keys) {
+      if (other.excludes == name && fields_.is_on(other.name)) return true;
+    }
+    return false;
+  };
   for (const auto& table : tables) {
     for (std::size_t i = 0; i < schema.keys.size(); ++i) {
       const auto& key = schema.keys[i];
       if (key.name.rfind(table + ".", 0) != 0 || !ConfigFields::is_editable(key) ||
-          !key.scope(draft)) {
+          !key.scope(draft) || is_excluded(key.name)) {
         continue;
       }
       draw_key(key, views[i]);

@@ -326,7 +326,7 @@ void GuiApp::draw_panel() {
   ImGui::PushItemWidth(-150.0f);
   draw_config_section("Container", {"container"});
   draw_config_section("Particle shape", {"particle"});
-  draw_config_section("Grading and packer", {"grading", "packer"});
+  draw_config_section("Packer and grading", {"packer", "grading"});
   ImGui::PopItemWidth();
   draw_job_section();
   draw_file_section();

@@ -2,8 +2,6 @@
 // one entry here: its binding names the options member it sets, whose default is the key's.
 // Container keys come from container_kinds(), output keys from output_format_names().
 
-#include <algorithm>
-
 #include "aggpack/config/config.h"
 #include "aggpack/io/export.h"
 #include "aggpack/pack/container.h"
@@ -68,7 +66,7 @@ std::vector<PackKey> container_keys() {
   std::string doc = "container shape:";
   for (const auto& info : container_kinds()) {
     words.emplace_back(info.name);
-    doc += std::string(words.size() > 1 ? ";" : "") + " " + info.name + " = " + info.description;
+    doc += std::string(words.size() > 1 ? ", or " : " ") + info.description;
   }
   keys.push_back({.name = "container.kind",
                   .type = ValueType::kWord,
@@ -352,12 +350,10 @@ std::vector<PackKey> packer_keys() {
   };
 }
 
-// One key per output format, in name order (the order the writer has always used).
+// One key per output format (the writer puts them in name order: [output] is a family table).
 std::vector<PackKey> output_keys() {
-  std::vector<std::string> names = output_format_names();
-  std::sort(names.begin(), names.end());
   std::vector<PackKey> keys;
-  for (const auto& format : names) {
+  for (const auto& format : output_format_names()) {
     keys.push_back(
         {.name = "output." + format,
          .type = ValueType::kPath,

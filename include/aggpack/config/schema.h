@@ -11,6 +11,7 @@
 //  - the validators' messages (with_key_names: the options' own field names, declared per key
 //    in Key::fields, are rewritten to the key names).
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -263,23 +264,37 @@ std::vector<std::string> scope_warnings(const Schema<Target>& schema, const Give
 }
 
 /// The resolved configuration: every key whose `written` rule holds, at its value, one
-/// "[table]" section per table in schema order.
+/// "[table]" section per table in schema order; the keys of a family table (TableInfo::
+/// member_word, e.g. [output]) in name order, the others in schema order.
 template <typename Target>
 std::string write_values(const Schema<Target>& schema, const Target& target, WriteStyle style) {
-  std::string text;
-  std::string table;
+  const auto table_of = [](const std::string& name) { return name.substr(0, name.find('.')); };
+  std::vector<const Key<Target>*> written;
   for (const auto& key : schema.keys) {
     const Scope<Target>& rule = !key.written.text.empty() ? key.written : key.scope;
-    if (!rule(target)) continue;
-    const auto dot = key.name.find('.');
-    const std::string group = key.name.substr(0, dot);
-    if (group != table) {
+    if (rule(target)) written.push_back(&key);
+  }
+  for (const auto& table : schema.tables) {
+    if (table.member_word.empty()) continue;
+    const auto first = std::find_if(written.begin(), written.end(),
+                                    [&](const auto* k) { return table_of(k->name) == table.name; });
+    const auto last = std::find_if(first, written.end(),
+                                   [&](const auto* k) { return table_of(k->name) != table.name; });
+    std::sort(first, last, [](const auto* a, const auto* b) { return a->name < b->name; });
+  }
+  std::string text;
+  std::string section;
+  for (const auto* key : written) {
+    const auto dot = key->name.find('.');
+    const std::string group = key->name.substr(0, dot);
+    if (group != section) {
       if (!text.empty()) text += '\n';
       text += "[" + group + "]\n";
-      table = group;
+      section = group;
     }
-    text += key.name.substr(dot + 1) + " = " + value_text(key.binding.get(target), key.type, style);
-    if (style == WriteStyle::kCommented) text += "  # " + key.doc + " (" + key.unit + ")";
+    text +=
+        key->name.substr(dot + 1) + " = " + value_text(key->binding.get(target), key->type, style);
+    if (style == WriteStyle::kCommented) text += "  # " + key->doc + " (" + key->unit + ")";
     text += '\n';
   }
   return text;
