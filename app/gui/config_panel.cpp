@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 
@@ -61,7 +62,14 @@ void GuiApp::draw_config_section(const char* title, const std::vector<std::strin
 }
 
 void GuiApp::draw_key(const Key<PackConfig>& key, const KeyView& view) {
-  const std::string label = key.name.substr(key.name.find('.') + 1) + "##" + key.name;
+  // The key without its table ("radius"), or the whole key where another table has a key of that
+  // name ("container.kind", "grading.kind").
+  const std::string short_name = key.name.substr(key.name.find('.') + 1);
+  const auto& keys = pack_schema().keys;
+  const bool is_ambiguous = std::count_if(keys.begin(), keys.end(), [&](const auto& other) {
+                              return other.name.substr(other.name.find('.') + 1) == short_name;
+                            }) > 1;
+  const std::string label = (is_ambiguous ? key.name : short_name) + "##" + key.name;
   Value& value = fields_.value(key.name);
   if (key.presence == Presence::kOptional && key.type != ValueType::kSieve) {
     bool is_on = fields_.is_on(key.name);
