@@ -23,6 +23,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
+#include "aggpack/pipeline/pipeline.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/sweep.h"
 #include "commands.h"
@@ -149,6 +150,11 @@ void print_result(const ReposeResult& r) {
   }
 }
 
+// The paper's lattice fill of a repose case, made by the pipeline.
+PackResult repose_fill(const ReposeOptions& options) {
+  return pack(PackerOptions{repose_fill_options(options)});
+}
+
 void run_repose_command(const ReposeFlags& flags) {
   const SweepOptions options = resolve(flags);
   // Everything the run checks, --print-config included, before any folder is created.
@@ -169,17 +175,19 @@ void run_repose_command(const ReposeFlags& flags) {
   int last_stage = 0;
   ReposeResult result;
   with_sweep_key_names([&] {
-    result = run_repose(options.base, [&](int stage, double time, double energy, double threshold) {
-      if (style == ProgressStyle::kNone) return;
-      if (stage != last_stage || time - last_print >= 0.5) {
-        last_stage = stage;
-        last_print = time;
-        std::fprintf(stderr, "stage %d  t = %6.2f s  kinetic energy %.3g J%s\n", stage, time,
-                     energy,
-                     threshold > 0.0 ? fmt::format(" (rest < {:.3g})", threshold).c_str()
-                                     : "  (baffle moving)");
-      }
-    });
+    result = run_repose(options.base, repose_fill(options.base),
+                        [&](int stage, double time, double energy, double threshold) {
+                          if (style == ProgressStyle::kNone) return;
+                          if (stage != last_stage || time - last_print >= 0.5) {
+                            last_stage = stage;
+                            last_print = time;
+                            std::fprintf(stderr, "stage %d  t = %6.2f s  kinetic energy %.3g J%s\n",
+                                         stage, time, energy,
+                                         threshold > 0.0
+                                             ? fmt::format(" (rest < {:.3g})", threshold).c_str()
+                                             : "  (baffle moving)");
+                          }
+                        });
   });
   print_result(result);
   // All or nothing, as `pack`: a failed write (disk full) removes the files of this run.
@@ -253,24 +261,25 @@ void run_sweep_command(const ReposeFlags& flags) {
   fmt::print("sweep: {} alpha x {} mu_s = {} cases\n", options.alphas.size(),
              options.frictions.size(), total);
   ProgressBar bar("sweep", "cases", style);
-  const auto cases = run_sweep(options, [&](const SweepCase& c, const ReposeResult& result,
-                                            std::size_t done, std::size_t count) {
-    const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction);
-    try {
-      ReposeOptions repose = options.base;
-      repose.alpha = c.alpha;
-      repose.physics.friction = c.friction;
-      if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
-      write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
-      write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final, result.profile,
-                          result.fit, std::min(flags.image_width, 1200));
-    } catch (const Error& error) {
-      std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
-    }
-    bar.update(
-        static_cast<double>(done) / static_cast<double>(count), done, count,
-        fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction, c.angle_degrees));
-  });
+  const auto cases = run_sweep(
+      options, repose_fill,
+      [&](const SweepCase& c, const ReposeResult& result, std::size_t done, std::size_t count) {
+        const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction);
+        try {
+          ReposeOptions repose = options.base;
+          repose.alpha = c.alpha;
+          repose.physics.friction = c.friction;
+          if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
+          write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
+          write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final,
+                              result.profile, result.fit, std::min(flags.image_width, 1200));
+        } catch (const Error& error) {
+          std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
+        }
+        bar.update(static_cast<double>(done) / static_cast<double>(count), done, count,
+                   fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction,
+                               c.angle_degrees));
+      });
   bar.finish();
   created.keep();
   write_sweep_csv(in_folder(folder, "sweep.csv"), cases);

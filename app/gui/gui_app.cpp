@@ -18,6 +18,7 @@
 #include "aggpack/io/native.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/random_packer.h"
+#include "aggpack/pipeline/pipeline.h"
 
 namespace aggpack::gui {
 
@@ -134,12 +135,7 @@ void GuiApp::start_pack() {
       job.set_detail(fmt::format("placed {} of {}, solid fraction {:.1f} %", progress.placed,
                                  progress.total, 100.0 * progress.solid_fraction));
     };
-    PackResult result = config.packer == PackerKind::kLattice
-                            ? pack_lattice(config.lattice, control)
-                            : pack_random(config.random, control);
-    result.packing.provenance.config_toml = config.resolved_toml;
-    result.packing.provenance.seed = config.seed();
-    result.packing.provenance.packer = config.packer_name();
+    PipelineResult result = pack(config, control);
     JobResult out;
     const bool is_cancelled = result.report.stop_reason == StopReason::kCancelled;
     out.is_ok = true;
