@@ -158,7 +158,7 @@ void run_densify(const DensifyFlags& flags) {
   PipelineResult result =
       densify_packing(std::move(start), options, provenance_lines(flags, options), control);
   bar.reset();
-  write_packing(flags.output, result.packing, {.overwrite = overwrite});
+  write_packing(result.packing, flags.output, {.overwrite = overwrite});
   const DensifyReport& report = *result.densify;
   fmt::print("{}: {}\n", to_string(options.mode), report.summary());
   fmt::print("solid fraction  {:.4f} (start {:.4f})\n", report.solid_fraction,

@@ -177,9 +177,11 @@ void run_pack(const PackFlags& flags) {
   bar.reset();
 
   Packing& packing = result.packing;
-  write_packing(
-      output, packing,
-      {.overwrite = overwrite, .compression = flags.compression, .write_xdmf = flags.has_xdmf});
+  write(packing, output,
+        {.format = ExportFormat::kNative,
+         .overwrite = overwrite,
+         .compression = flags.compression,
+         .write_xdmf = flags.has_xdmf});
 
   std::vector<std::string> written;
   std::vector<std::string> written_json;

@@ -103,7 +103,7 @@ void run_settle_command(const SettleFlags& flags) {
     throw Error(error.kind(), flags.input + ": " + error.what());
   }
   const SettleReport& r = result.report;
-  write_packing(flags.output, result.packing, {.overwrite = overwrite});
+  write_packing(result.packing, flags.output, {.overwrite = overwrite});
   fmt::print("{} after {:.2f} s simulated ({} steps of {:.4g} s, {:.1f} s wall)\n",
              r.is_at_rest ? "at rest" : "NOT at rest (max time reached)", r.simulated_time, r.steps,
              r.time_step, r.wall_seconds);

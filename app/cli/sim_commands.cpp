@@ -197,7 +197,7 @@ void run_repose_command(const ReposeFlags& flags) {
   write_profile_csv(in_folder(folder, "profile.csv"), result);
   write_side_view_png(in_folder(folder, "side.png"), result.final, result.profile, result.fit,
                       flags.image_width);
-  write_packing(in_folder(folder, "final.h5"), result.final);
+  write_packing(result.final, in_folder(folder, "final.h5"));
   outputs.commit();
   created.keep();
   fmt::print("wrote {}/repose.json, profile.csv, side.png, final.h5\n", folder);

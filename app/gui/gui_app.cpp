@@ -170,22 +170,15 @@ void GuiApp::start_open(const std::string& path) {
 
 void GuiApp::start_export(const std::string& format) {
   if (job_.is_running() || !packing_) return;
-  const std::string extension = format == "native" ? "h5" : format;
-  const std::string path = export_base_ + "." + extension;
+  const ExportOptions options{.format = parse_export_format(format),
+                              .overwrite = Overwrite::kAllow};
+  const std::string path = export_base_ + "." + format_name(options.format);
   set_status("Writing " + path + "...", false);
-  job_.start("Exporting", [packing = packing_, format, path](BackgroundJob&) {
+  job_.start("Exporting", [packing = packing_, options, path](BackgroundJob&) {
     JobResult out;
-    if (format == "native") {
-      write_packing(path, *packing, {.overwrite = Overwrite::kAllow});
-      out.message = fmt::format("Wrote {} ({} particles).", path, packing->particles.size());
-    } else {
-      ExportOptions options;
-      options.format = parse_export_format(format);
-      options.overwrite = Overwrite::kAllow;
-      const ExportSummary summary = write(*packing, path, options);
-      out.message = fmt::format("Wrote {}: {} particles, {} nodes, {} elements.", path,
-                                summary.particles, summary.nodes, summary.elements);
-    }
+    const ExportSummary summary = write(*packing, path, options);
+    out.message = fmt::format("Wrote {}: {} particles, {} nodes, {} elements.", path,
+                              summary.particles, summary.nodes, summary.elements);
     out.is_ok = true;
     return out;
   });
@@ -373,11 +366,10 @@ void GuiApp::draw_file_section() {
   ImGui::TextDisabled("name");
   const bool can_export = packing_ != nullptr && !job_.is_running();
   if (!can_export) ImGui::BeginDisabled();
-  const char* labels[] = {"STL", "rock.dat", ".inp", ".vtu", "native .h5"};
-  const char* formats[] = {"stl", "dat", "inp", "vtu", "native"};
-  for (int k = 0; k < 5; ++k) {
-    if (k > 0) ImGui::SameLine();
-    if (ImGui::Button(labels[k])) start_export(formats[k]);
+  int k = 0;
+  for (const FormatInfo& info : export_formats()) {  // five buttons a line
+    if (k++ % 5 != 0) ImGui::SameLine();
+    if (ImGui::Button(std::string(info.title).c_str())) start_export(std::string(info.name));
   }
   if (!can_export) ImGui::EndDisabled();
 }
