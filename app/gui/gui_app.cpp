@@ -17,6 +17,7 @@
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
+#include "aggpack/pack/container.h"
 #include "aggpack/pack/grading.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/random_packer.h"
@@ -76,12 +77,16 @@ Fields fields_from_config(const PackConfig& config) {
   Fields f;
   const bool is_random = config.packer == PackerKind::kRandom;
   const Container& c = config.container();
-  f.container_kind = c.kind == ContainerKind::kCylinder ? 1 : 0;
-  f.length = c.length;
-  f.width = c.width;
-  f.depth = c.depth;
-  f.cylinder_radius = c.radius;
-  f.cylinder_height = c.height;
+  f.container_kind = static_cast<int>(c.shape.index());
+  if (const auto* box = c.get_if<BoxContainer>()) {
+    f.length = box->length;
+    f.width = box->width;
+    f.depth = box->depth;
+  }
+  if (const auto* cylinder = c.get_if<CylinderContainer>()) {
+    f.cylinder_radius = cylinder->radius;
+    f.cylinder_height = cylinder->height;
+  }
   f.wall_gap = c.wall_gap;
   f.packer = is_random ? 1 : 0;
   f.seed = config.seed();

@@ -12,6 +12,7 @@
 
 #include "aggpack/core/text.h"
 #include "aggpack/io/export.h"
+#include "aggpack/pack/container.h"
 
 namespace aggpack {
 
@@ -833,15 +834,9 @@ std::string resolved_text(const PackConfig& config) {
   const Container& c = config.container();
   TomlWriter out;
   out.table("container");
-  out.word("kind", c.kind == ContainerKind::kBox ? "box" : "cylinder");
-  if (c.kind == ContainerKind::kBox) {
-    out.number("length", c.length);
-    out.number("width", c.width);
-    out.number("depth", c.depth);
-  } else {
-    out.number("radius", c.radius);
-    out.number("height", c.height);
-  }
+  const ContainerKindInfo& kind = container_kind_info(c);
+  out.word("kind", kind.name);
+  for (const ContainerParam& param : kind.params) out.number(param.name, param.get(c));
   out.number("wall_gap", c.wall_gap);
 
   out.table("particle");
@@ -915,9 +910,9 @@ bool is_in_scope(Scope scope, const PackConfig& config, bool is_relative_edge) {
     case Scope::kAlways:
       return true;
     case Scope::kBox:
-      return config.container().kind == ContainerKind::kBox;
+      return config.container().get_if<BoxContainer>() != nullptr;
     case Scope::kCylinder:
-      return config.container().kind == ContainerKind::kCylinder;
+      return config.container().get_if<CylinderContainer>() != nullptr;
     case Scope::kLattice:
       return !is_random;
     case Scope::kRandom:
@@ -1045,13 +1040,13 @@ PackConfig parse_pack_config(std::string_view text, std::string_view source_name
   config.threads = static_cast<int>(values.integer("packer.threads", 0));
 
   Container container;
-  container.kind = values.word("container.kind", "box") == "cylinder" ? ContainerKind::kCylinder
-                                                                      : ContainerKind::kBox;
-  container.length = values.number("container.length", 3.0);
-  container.width = values.number("container.width", 1.0);
-  container.depth = values.number("container.depth", 2.8);
-  container.radius = values.number("container.radius", 0.05);
-  container.height = values.number("container.height", 0.1);
+  container = find_container_kind(values.word("container.kind", "box"))->defaults;
+  for (const ContainerKindInfo& kind : container_kinds()) {
+    for (const ContainerParam& param : kind.params) {
+      param.set(container,
+                values.number(std::string("container.") + param.name, param.get(kind.defaults)));
+    }
+  }
   container.wall_gap = values.number("container.wall_gap", 0.0);
 
   const double alpha = values.number("particle.alpha", 0.5);

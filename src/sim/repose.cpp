@@ -130,10 +130,9 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
 // The paper's placement in the half behind the baffle.
 LatticeOptions fill_lattice(const ReposeOptions& options) {
   LatticeOptions lattice;
-  lattice.container.kind = ContainerKind::kBox;
-  lattice.container.length = options.baffle_position;
-  lattice.container.width = options.trough_width;
-  lattice.container.depth = options.fill_height;
+  lattice.container.shape = BoxContainer{.length = options.baffle_position,
+                                         .width = options.trough_width,
+                                         .depth = options.fill_height};
   lattice.container.wall_gap = 0.0;
   lattice.alpha = options.alpha;
   lattice.radius = options.radius;
@@ -306,9 +305,9 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
   PackResult placed = pack_lattice(lattice);
   Packing packing = std::move(placed.packing);
   if (options.is_orientation_random) randomise_orientations(packing, lattice);
-  packing.container.length = options.trough_length;
-  packing.container.width = options.trough_width;
-  packing.container.depth = options.trough_height;
+  packing.container.shape = BoxContainer{.length = options.trough_length,
+                                         .width = options.trough_width,
+                                         .depth = options.trough_height};
   packing.provenance.packer = "lattice+repose";
   result.initial = packing;
   result.particle_count = packing.particles.size();
