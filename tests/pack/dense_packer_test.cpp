@@ -178,7 +178,7 @@ TEST(DensePacker, EachBadOptionNamesItself) {
   EXPECT_EQ(field([](auto& o) { o.stall_tolerance = -1.0; }), "densify.stall_tolerance");
   EXPECT_EQ(field([&](auto& o) {
               o.target_container = start.container;
-              o.target_container->get_if<BoxContainer>()->length = 0.5;
+              std::get<BoxContainer>(o.target_container->shape).length = 0.5;
             }),
             "densify.target_container.length");
   EXPECT_EQ(field([&](auto& o) {

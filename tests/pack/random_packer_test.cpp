@@ -210,7 +210,7 @@ TEST(RandomPacker, EachBadOptionIsNamed) {
             }),
             "shape.library_size");
   EXPECT_EQ(with([](auto& o) { o.grading.size_max = 0.01; }), "grading.size_max");
-  EXPECT_EQ(with([](auto& o) { o.container.get_if<BoxContainer>()->width = 0.0; }),
+  EXPECT_EQ(with([](auto& o) { std::get<BoxContainer>(o.container.shape).width = 0.0; }),
             "container.width");
   EXPECT_EQ(with([](auto& o) {
               o.grading.size_min = 0.5;
