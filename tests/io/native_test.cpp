@@ -381,7 +381,8 @@ TEST_F(NativeFileTest, WrongVersionAndWrongFormatNameAreFormatErrors) {
 }
 
 // The /container attributes are the kind's word, every kind's params, and wall_gap (written in
-// container_kinds() order; the byte-identical outputs against the previous release show that). A size the kind does not use may be 0 (it is not kept) but not negative.
+// container_kinds() order; the byte-identical outputs against the previous release show that). A
+// size the kind does not use may be 0 (it is not kept) but not negative.
 TEST_F(NativeFileTest, ContainerFieldsFollowTheKindList) {
   if (!has_python_module("h5py"))
     FAIL()

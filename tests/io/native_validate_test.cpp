@@ -157,7 +157,8 @@ TEST(ValidatePacking, RejectsValuesOutsideTheDocumentedRanges) {
             "x.h5: /container/radius = 0: outside [1e-09, 1000000] m (a cylinder needs it > 0)");
   EXPECT_EQ(with([](Packing& p) { p.container.wall_gap = -0.1; }),
             "x.h5: /container/wall_gap = -0.1: outside [0, 1000000] m");
-  // An empty packing is valid (unused sizes in a file: NativeFileTest.ContainerFieldsFollowTheKindList).
+  // An empty packing is valid (unused sizes in a file:
+  // NativeFileTest.ContainerFieldsFollowTheKindList).
   EXPECT_EQ(with([](Packing& p) { p.particles.clear(); }), "");
   // Far from the origin and large, but every product stays finite.
   EXPECT_EQ(with([](Packing& p) {

@@ -149,7 +149,8 @@ TEST(ContainerKinds, WallBoxesCloseTheInteriorWithoutEnteringIt) {
     EXPECT_GT(outside_points, 500) << kind.name;
     // Walls reach at least the requested height.
     double highest = 0.0;
-    for (const auto& wall : walls) highest = std::max(highest, wall.centre.z() + wall.half_extent.z());
+    for (const auto& wall : walls)
+      highest = std::max(highest, wall.centre.z() + wall.half_extent.z());
     EXPECT_GE(highest, top) << kind.name;
   }
 }
@@ -170,11 +171,14 @@ TEST(ContainerKinds, OutlineLiesOnTheSurface) {
 TEST(ContainerKinds, PerAxisScalingAndRatios) {
   const Container box{.shape = BoxContainer{.length = 2.0, .width = 4.0, .depth = 8.0}};
   const Container half = container_scaled(box, Vec3(0.5, 0.25, 0.125));
-  EXPECT_EQ(*half.get_if<BoxContainer>(), (BoxContainer{.length = 1.0, .width = 1.0, .depth = 1.0}));
+  EXPECT_EQ(*half.get_if<BoxContainer>(),
+            (BoxContainer{.length = 1.0, .width = 1.0, .depth = 1.0}));
   EXPECT_EQ(container_ratio(box, half), Vec3(0.5, 0.25, 0.125));
-  const Container cylinder{.shape = CylinderContainer{.radius = 2.0, .height = 4.0}, .wall_gap = 0.1};
+  const Container cylinder{.shape = CylinderContainer{.radius = 2.0, .height = 4.0},
+                           .wall_gap = 0.1};
   const Container smaller = container_scaled(cylinder, Vec3(0.5, 0.5, 0.25));
-  EXPECT_EQ(*smaller.get_if<CylinderContainer>(), (CylinderContainer{.radius = 1.0, .height = 1.0}));
+  EXPECT_EQ(*smaller.get_if<CylinderContainer>(),
+            (CylinderContainer{.radius = 1.0, .height = 1.0}));
   EXPECT_EQ(smaller.wall_gap, 0.1);
   EXPECT_EQ(container_ratio(cylinder, smaller), Vec3(0.5, 0.5, 0.25));
   EXPECT_THROW((void)container_ratio(box, cylinder), InvalidInput);
