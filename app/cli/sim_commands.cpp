@@ -25,6 +25,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
+#include "aggpack/pipeline/pipeline.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/settle.h"
 #include "aggpack/sim/sweep.h"
@@ -514,6 +515,11 @@ void print_result(const ReposeResult& r) {
   }
 }
 
+// The paper's lattice fill of a repose case, made by the pipeline.
+PackResult repose_fill(const ReposeOptions& options) {
+  return pack(PackerOptions{repose_fill_options(options)});
+}
+
 void run_repose_command(const ReposeFlags& flags) {
   const SweepOptions options = resolve(flags);
   // Everything the run checks, --print-config included, before any folder is created.
@@ -536,17 +542,19 @@ void run_repose_command(const ReposeFlags& flags) {
   int last_stage = 0;
   ReposeResult result;
   with_user_names(repose_key_names(), [&] {
-    result = run_repose(options.base, [&](int stage, double time, double energy, double threshold) {
-      if (style == ProgressStyle::kNone) return;
-      if (stage != last_stage || time - last_print >= 0.5) {
-        last_stage = stage;
-        last_print = time;
-        std::fprintf(stderr, "stage %d  t = %6.2f s  kinetic energy %.3g J%s\n", stage, time,
-                     energy,
-                     threshold > 0.0 ? fmt::format(" (rest < {:.3g})", threshold).c_str()
-                                     : "  (baffle moving)");
-      }
-    });
+    result = run_repose(options.base, repose_fill(options.base),
+                        [&](int stage, double time, double energy, double threshold) {
+                          if (style == ProgressStyle::kNone) return;
+                          if (stage != last_stage || time - last_print >= 0.5) {
+                            last_stage = stage;
+                            last_print = time;
+                            std::fprintf(stderr, "stage %d  t = %6.2f s  kinetic energy %.3g J%s\n",
+                                         stage, time, energy,
+                                         threshold > 0.0
+                                             ? fmt::format(" (rest < {:.3g})", threshold).c_str()
+                                             : "  (baffle moving)");
+                          }
+                        });
   });
   print_result(result);
   // All or nothing, as `pack`: a failed write (disk full) removes the files of this run.
@@ -557,7 +565,7 @@ void run_repose_command(const ReposeFlags& flags) {
   write_side_view_png(in_folder(folder, "side.png"), result.final, result.profile, result.fit,
                       flags.image_width);
 #ifdef AGGPACK_HAS_IO
-  write_packing(in_folder(folder, "final.h5"), result.final);
+  write_packing(result.final, in_folder(folder, "final.h5"));
 #endif
   outputs.commit();
   created.keep();
@@ -626,24 +634,25 @@ void run_sweep_command(const ReposeFlags& flags) {
   fmt::print("sweep: {} alpha x {} mu_s = {} cases\n", options.alphas.size(),
              options.frictions.size(), total);
   ProgressBar bar("sweep", "cases", style);
-  const auto cases = run_sweep(options, [&](const SweepCase& c, const ReposeResult& result,
-                                            std::size_t done, std::size_t count) {
-    const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction);
-    try {
-      ReposeOptions repose = options.base;
-      repose.alpha = c.alpha;
-      repose.physics.friction = c.friction;
-      if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
-      write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
-      write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final, result.profile,
-                          result.fit, std::min(flags.image_width, 1200));
-    } catch (const Error& error) {
-      std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
-    }
-    bar.update(
-        static_cast<double>(done) / static_cast<double>(count), done, count,
-        fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction, c.angle_degrees));
-  });
+  const auto cases = run_sweep(
+      options, repose_fill,
+      [&](const SweepCase& c, const ReposeResult& result, std::size_t done, std::size_t count) {
+        const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction);
+        try {
+          ReposeOptions repose = options.base;
+          repose.alpha = c.alpha;
+          repose.physics.friction = c.friction;
+          if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
+          write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
+          write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final,
+                              result.profile, result.fit, std::min(flags.image_width, 1200));
+        } catch (const Error& error) {
+          std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
+        }
+        bar.update(static_cast<double>(done) / static_cast<double>(count), done, count,
+                   fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction,
+                               c.angle_degrees));
+      });
   bar.finish();
   created.keep();
   write_sweep_csv(in_folder(folder, "sweep.csv"), cases);
@@ -705,7 +714,7 @@ void run_settle_command(const SettleFlags& flags) {
     throw Error(error.kind(), flags.input + ": " + error.what());
   }
   const SettleReport& r = result.report;
-  write_packing(flags.output, result.packing, {.overwrite = overwrite});
+  write_packing(result.packing, flags.output, {.overwrite = overwrite});
   fmt::print("{} after {:.2f} s simulated ({} steps of {:.4g} s, {:.1f} s wall)\n",
              r.is_at_rest ? "at rest" : "NOT at rest (max time reached)", r.simulated_time, r.steps,
              r.time_step, r.wall_seconds);

@@ -21,6 +21,7 @@
 #include "aggpack/pack/grading.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/random_packer.h"
+#include "aggpack/pipeline/pipeline.h"
 
 namespace aggpack::gui {
 
@@ -263,12 +264,7 @@ void GuiApp::start_pack() {
       job.set_detail(fmt::format("placed {} of {}, solid fraction {:.1f} %", progress.placed,
                                  progress.total, 100.0 * progress.solid_fraction));
     };
-    PackResult result = config.packer == PackerKind::kLattice
-                            ? pack_lattice(config.lattice, control)
-                            : pack_random(config.random, control);
-    result.packing.provenance.config_toml = config.resolved_toml;
-    result.packing.provenance.seed = config.seed();
-    result.packing.provenance.packer = config.packer_name();
+    PipelineResult result = pack(config, control);
     JobResult out;
     const bool is_cancelled = result.report.stop_reason == StopReason::kCancelled;
     out.is_ok = true;
@@ -303,22 +299,15 @@ void GuiApp::start_open(const std::string& path) {
 
 void GuiApp::start_export(const std::string& format) {
   if (job_.is_running() || !packing_) return;
-  const std::string extension = format == "native" ? "h5" : format;
-  const std::string path = export_base_ + "." + extension;
+  const ExportOptions options{.format = parse_export_format(format),
+                              .overwrite = Overwrite::kAllow};
+  const std::string path = export_base_ + "." + format_name(options.format);
   set_status("Writing " + path + "...", false);
-  job_.start("Exporting", [packing = packing_, format, path](BackgroundJob&) {
+  job_.start("Exporting", [packing = packing_, options, path](BackgroundJob&) {
     JobResult out;
-    if (format == "native") {
-      write_packing(path, *packing, {.overwrite = Overwrite::kAllow});
-      out.message = fmt::format("Wrote {} ({} particles).", path, packing->particles.size());
-    } else {
-      ExportOptions options;
-      options.format = parse_export_format(format);
-      options.overwrite = Overwrite::kAllow;
-      const ExportSummary summary = write(*packing, path, options);
-      out.message = fmt::format("Wrote {}: {} particles, {} nodes, {} elements.", path,
-                                summary.particles, summary.nodes, summary.elements);
-    }
+    const ExportSummary summary = write(*packing, path, options);
+    out.message = fmt::format("Wrote {}: {} particles, {} nodes, {} elements.", path,
+                              summary.particles, summary.nodes, summary.elements);
     out.is_ok = true;
     return out;
   });
@@ -833,11 +822,10 @@ void GuiApp::draw_file_section() {
   ImGui::TextDisabled("name");
   const bool can_export = packing_ != nullptr && !job_.is_running();
   if (!can_export) ImGui::BeginDisabled();
-  const char* labels[] = {"STL", "rock.dat", ".inp", ".vtu", "native .h5"};
-  const char* formats[] = {"stl", "dat", "inp", "vtu", "native"};
-  for (int k = 0; k < 5; ++k) {
-    if (k > 0) ImGui::SameLine();
-    if (ImGui::Button(labels[k])) start_export(formats[k]);
+  int k = 0;
+  for (const FormatInfo& info : export_formats()) {  // five buttons a line
+    if (k++ % 5 != 0) ImGui::SameLine();
+    if (ImGui::Button(std::string(info.title).c_str())) start_export(std::string(info.name));
   }
   if (!can_export) ImGui::EndDisabled();
 }

@@ -948,8 +948,9 @@ const std::vector<ConfigKey>& config_keys() {
       list.push_back({spec.name, type, spec.unit, spec.default_text, spec.allowed,
                       scope_text(spec.scope), spec.description});
     }
-    list.push_back({"output.<format>", "string", "", "(none)",
-                    "format: native, stl, obj, vtu, dat, inp, msh, k, apdl, yade", "always",
+    std::string formats;  // from the format table (export.h)
+    for (const auto& name : output_formats()) formats += (formats.empty() ? "" : ", ") + name;
+    list.push_back({"output.<format>", "string", "", "(none)", "format: " + formats, "always",
                     "file to write in that format; output.native is the .h5 written when -o is "
                     "not given (the other formats are written by the exporters)"});
     return list;

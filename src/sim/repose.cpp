@@ -9,6 +9,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/rng.h"
 #include "aggpack/geom/mass_properties.h"
+#include "aggpack/pack/container.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/shape/descriptors.h"
 
@@ -36,6 +37,14 @@ std::vector<double> running_median(const std::vector<double>& values, std::size_
     smoothed[i] = scratch[reach];
   }
   return smoothed;
+}
+
+std::string fmt_fill(const Container& c, std::size_t count) {
+  const BoxContainer* box = c.get_if<BoxContainer>();
+  return std::to_string(count) + " particles in a " +
+         (box != nullptr
+              ? "box " + format_value(box->length) + " x " + format_value(box->width) + " m"
+              : std::string(container_kind_info(c).name));
 }
 
 double largest_size(const Packing& packing) {
@@ -127,8 +136,10 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
   return false;
 }
 
+}  // namespace
+
 // The paper's placement in the half behind the baffle.
-LatticeOptions fill_lattice(const ReposeOptions& options) {
+LatticeOptions repose_fill_options(const ReposeOptions& options) {
   LatticeOptions lattice;
   lattice.container.shape = BoxContainer{.length = options.baffle_position,
                                          .width = options.trough_width,
@@ -140,8 +151,6 @@ LatticeOptions fill_lattice(const ReposeOptions& options) {
   lattice.seed = options.seed;
   return lattice;
 }
-
-}  // namespace
 
 void validate(const ReposeOptions& options) {
   require_positive("repose.trough_length", options.trough_length);
@@ -166,7 +175,7 @@ void validate(const ReposeOptions& options) {
   validate(options.physics);
   validate(options.rest);
   // What the fill would reject (too large a radius, too many vertices), before any simulation.
-  validate(fill_lattice(options));
+  validate(repose_fill_options(options));
 }
 
 SurfaceProfile surface_profile(const Packing& packing, double lower, double upper,
@@ -296,22 +305,30 @@ SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper, double fit_l
   return fit;
 }
 
-ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& progress) {
+ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
+                        const ReposeProgress& progress) {
   validate(options);
   ReposeResult result;
   const auto start = Clock::now();
 
-  const LatticeOptions lattice = fill_lattice(options);
-  PackResult placed = pack_lattice(lattice);
-  Packing packing = std::move(placed.packing);
-  if (options.is_orientation_random) randomise_orientations(packing, lattice);
+  Packing packing = std::move(fill.packing);
+  const BoxContainer* region = packing.container.get_if<BoxContainer>();
+  if (region == nullptr || !(region->length <= options.baffle_position) ||
+      !(region->width <= options.trough_width) || packing.particles.empty()) {
+    throw InvalidInput("repose fill", fmt_fill(packing.container, packing.particles.size()),
+                       "a non-empty box packing within [0, baffle_position] x [0, trough_width]");
+  }
+  const std::string packer = packing.provenance.packer;
+  if (options.is_orientation_random && packer == "lattice") {
+    randomise_orientations(packing, repose_fill_options(options));
+  }
   packing.container.shape = BoxContainer{.length = options.trough_length,
                                          .width = options.trough_width,
                                          .depth = options.trough_height};
-  packing.provenance.packer = "lattice+repose";
+  packing.provenance.packer = packer + "+repose";
   result.initial = packing;
   result.particle_count = packing.particles.size();
-  result.solid_volume = placed.report.solid_volume;
+  result.solid_volume = fill.report.solid_volume;
   {
     double sum = 0.0;
     for (const auto& particle : packing.particles) {
@@ -395,7 +412,7 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
       });
   result.stage2_time = world.time() - stage2_begin;
   result.final = world.packing();
-  result.final.provenance.packer = "lattice+repose";
+  result.final.provenance.packer = packer + "+repose";
   const OverlapStatistics overlap = world.overlap_statistics();
   result.max_overlap_fraction = overlap.max_depth_fraction;
   result.max_contact_penetration_fraction =
