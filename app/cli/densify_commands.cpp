@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/config/config.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
-#include "aggpack/io/config.h"
 #include "aggpack/io/native.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/dense_packer.h"

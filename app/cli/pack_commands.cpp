@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/config/config.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
-#include "aggpack/io/config.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "aggpack/io/packing_stats_json.h"
