@@ -10,7 +10,7 @@
 #include <optional>
 #include <string_view>
 
-#include "aggpack/io/config.h"
+#include "aggpack/config/config.h"
 #include "aggpack/pack/dense_packer.h"
 #include "aggpack/pack/packer_kinds.h"
 #include "aggpack/pack/progress.h"
