@@ -375,9 +375,7 @@ TEST_F(NativeFileTest, WrongVersionAndWrongFormatNameAreFormatErrors) {
 // container_kinds() order; the byte-identical outputs against the previous release show that). A
 // size the kind does not use may be 0 (it is not kept) but not negative.
 TEST_F(NativeFileTest, ContainerFieldsFollowTheKindList) {
-  if (!has_python_module("h5py"))
-    FAIL()
-        << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("h5py");
   write_packing(sample_packing(), path("box.h5"));
   std::string expected = "kind";
   for (const ContainerKindInfo& kind : container_kinds()) {
