@@ -166,5 +166,37 @@ TEST(GoldenCli, EveryCaseHasACommandAndReferences) {
   }
 }
 
+// A new subcommand needs a golden case: every name under "Subcommands:" in `aggpack --help` is the
+// first word of some case's command.
+TEST(GoldenCli, EverySubcommandHasACase) {
+  const std::string help_path =
+      (fs::temp_directory_path() / ("aggpack_golden_help_" + std::to_string(::getpid()))).string();
+  const std::string command = "'" AGGPACK_BINARY "' --help >'" + help_path + "' 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::istringstream help(test::file_text(help_path));
+  fs::remove(help_path);
+  std::vector<std::string> subcommands;
+  bool is_listing = false;
+  for (std::string line; std::getline(help, line);) {
+    if (line.rfind("Subcommands:", 0) == 0) {
+      is_listing = true;
+    } else if (is_listing && line.size() > 2 && line[0] == ' ' && line[2] != ' ') {
+      subcommands.push_back(line.substr(2, line.find(' ', 2) - 2));
+    }
+  }
+  ASSERT_FALSE(subcommands.empty());
+  std::vector<std::string> covered;
+  for (const std::string& name : case_names()) {
+    for (const std::string& line : lines_of(kCases / name / "cmd")) {
+      covered.push_back(line.substr(0, line.find(' ')));
+    }
+  }
+  for (const std::string& subcommand : subcommands) {
+    EXPECT_NE(std::find(covered.begin(), covered.end(), subcommand), covered.end())
+        << "no golden case runs `aggpack " << subcommand << "` (add tests/cli/cases/" << subcommand
+        << "/)";
+  }
+}
+
 }  // namespace
 }  // namespace aggpack
