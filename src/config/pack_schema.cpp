@@ -11,69 +11,20 @@
 #include "aggpack/config/config.h"
 #include "aggpack/io/export.h"
 #include "aggpack/pack/container.h"
-#include "binding.h"
+#include "pack_binding.h"
 
 namespace aggpack {
 
 namespace {
 
+using config_detail::bind;
+using config_detail::densify_keys;
+using config_detail::get_on;
 using config_detail::members;
+using config_detail::on;
+using config_detail::set_on;
 using PackKey = Key<PackConfig>;
 using PackScope = Scope<PackConfig>;
-
-// An accessor of one member of the options struct O: `on<LatticeOptions>([](auto& o) -> auto& {
-// return o.alpha; })`.
-template <class O, class Access>
-struct On {
-  Access access;
-};
-template <class O, class Access>
-On<O, Access> on(Access access) {
-  return {access};
-}
-
-template <class O, class Access>
-const O* find_options_of(const On<O, Access>& /*member*/, const PackConfig& c) {
-  return find_options<O>(c.packer);
-}
-
-template <class O, class Access>
-Value get_on(const On<O, Access>& member, const PackConfig& c) {
-  const O* o = find_options<O>(c.packer);
-  return config_detail::to_value(member.access(o != nullptr ? *o : default_options<O>()));
-}
-
-template <class O, class Access>
-void set_on(const On<O, Access>& member, PackConfig& c, const Value& value) {
-  if (O* o = find_options<O>(c.packer)) {
-    using X = std::remove_cvref_t<decltype(member.access(*o))>;
-    member.access(*o) = config_detail::from_value<X>(value);
-  }
-}
-
-// A key bound to members of options structs: set on each struct the chosen kind holds (find_
-// options: the kind's own options or its parts, such as the dense kind's fill); read from the
-// first one it holds, else from the first's defaults (default_options), which is the key's
-// default.
-template <class First, class... Rest>
-Binding<PackConfig> bind(First first, Rest... rest) {
-  return {.get =
-              [first, rest...](const PackConfig& c) {
-                std::optional<Value> value;
-                const auto try_get = [&](const auto& member) {
-                  using O = std::remove_cvref_t<decltype(*find_options_of(member, c))>;
-                  if (!value && find_options<O>(c.packer) != nullptr) value = get_on(member, c);
-                };
-                try_get(first);
-                (try_get(rest), ...);
-                return value ? *value : get_on(first, c);
-              },
-          .set =
-              [first, rest...](PackConfig& c, const Value& value) {
-                set_on(first, c, value);
-                (set_on(rest, c, value), ...);
-              }};
-}
 
 constexpr double kHuge = 1e6;  // 1000 km: any larger length is a unit mistake
 constexpr double kMaxSeed = 9223372036854775807.0;
@@ -86,10 +37,6 @@ bool is_lattice(const PackConfig& c) { return find_options<LatticeOptions>(c.pac
 bool has_grading(const PackConfig& c, GradingKind kind) {
   return is_random(c) && random_of(c)->grading.kind == kind;
 }
-const DensifyOptions* densify_of(const PackConfig& c) {
-  return find_options<DensifyOptions>(c.packer);
-}
-bool is_dense(const PackConfig& c) { return densify_of(c) != nullptr; }
 
 const PackScope kAlways{};
 const PackScope kNever{.text = "never", .applies = [](const PackConfig&) { return false; }};
@@ -122,16 +69,6 @@ const PackScope kFractionTarget{
     .text = "random without packer.target_count", .applies = [](const PackConfig& c) {
       return is_random(c) && random_of(c)->target == PackTarget::kVolumeFraction;
     }};
-const PackScope kDense{.text = "packer.kind = dense", .applies = is_dense};
-const PackScope kFixedMode{.text = "dense with densify.mode = fixed",
-                           .applies = [](const PackConfig& c) {
-                             return is_dense(c) && densify_of(c)->mode == DensifyMode::kFixed;
-                           }};
-const PackScope kBedMode{.text = "dense with densify.mode = bed",
-                         .applies = [](const PackConfig& c) {
-                           return is_dense(c) && densify_of(c)->mode == DensifyMode::kBed;
-                         }};
-
 // The chosen kind's container (the dense kind's fill's).
 template <typename Set>
 void on_containers(PackConfig& c, Set set) {
@@ -379,7 +316,11 @@ std::vector<PackKey> packer_keys() {
       {.name = "packer.fill",
        .type = ValueType::kWord,
        .words = fill_words(kFillKinds),
-       .scope = kDense,
+       .scope = {.text = "packer.kind = dense",
+                 .applies =
+                     [](const PackConfig& c) {
+                       return std::holds_alternative<DensePackOptions>(c.packer);
+                     }},
        .doc = "the packing the densifier starts from, made with that packer's keys: random "
               "(grading, target fraction, ...) or lattice",
        .binding = {.get = [](const PackConfig& c) -> Value {
@@ -493,110 +434,6 @@ std::vector<PackKey> packer_keys() {
           on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.library_size; }),
           "shape.library_size"),
   };
-}
-
-// The densifier's options (packer.kind = dense); packer.seed seeds it (derived), packer.gap is
-// the default of densify.gap.
-std::vector<PackKey> densify_keys() {
-  const auto key = [](const char* name, ValueType type, const char* unit, Range range,
-                      const PackScope& scope, const char* doc, auto access) {
-    return PackKey{.name = name,
-                   .type = type,
-                   .unit = unit,
-                   .range = range,
-                   .scope = scope,
-                   .doc = doc,
-                   .binding = bind(on<DensifyOptions>(access))};
-  };
-  constexpr auto kFloat = ValueType::kFloat;
-  constexpr auto kInteger = ValueType::kInteger;
-  std::vector<PackKey> keys;
-  keys.push_back(
-      {.name = "densify.mode",
-       .type = ValueType::kWord,
-       .words = {to_string(DensifyMode::kFixed), to_string(DensifyMode::kBed)},
-       .scope = kDense,
-       .doc = "fixed = compress the fill toward `densify.target_fraction` (the container shrinks "
-              "uniformly, moving positions only; shapes are never deformed); bed = a gravity "
-              "bed: moves biased downward until the bed stops sinking",
-       .binding = {.get = [](const PackConfig& c) -> Value {
-                     const DensifyOptions* d = densify_of(c);
-                     return to_string((d != nullptr ? *d : default_options<DensifyOptions>()).mode);
-                   },
-                   .set =
-                       [](PackConfig& c, const Value& value) {
-                         if (auto* d = find_options<DensifyOptions>(c.packer)) {
-                           d->mode =
-                               parse_densify_mode("densify.mode", std::get<std::string>(value));
-                         }
-                       }}});
-  keys.push_back(key(
-      "densify.target_fraction", kFloat, "-", {.lo = 0, .hi = 0.95, .hi_end = End::kOpen},
-      kFixedMode,
-      "solid fraction to compress to; 0 = no compression (the fill is only "
-      "shaken). The run stops there, or earlier when jammed or out of budget",
-      [](auto& o) -> auto& { return o.target_fraction; }));
-  PackKey gap = key(
-      "densify.gap", kFloat, "m", closed(0, kHuge), kDense,
-      "minimum particle distance kept while densifying", [](auto& o) -> auto& { return o.gap; });
-  gap.note = "<= packer.gap";
-  gap.default_from = "packer.gap";
-  keys.push_back(std::move(gap));
-  keys.push_back(key(
-      "densify.max_sweeps", kInteger, "", closed(1, 1e9), kDense,
-      "sweep budget (one trial move per particle each); the run stops there and "
-      "keeps what it reached",
-      [](auto& o) -> auto& { return o.max_sweeps; }));
-  keys.push_back(key(
-      "densify.max_seconds", kFloat, "s", closed(0, kHuge), kDense,
-      "wall-time budget, 0 = none. A run stopped by time is not reproducible "
-      "(sweep budgets are)",
-      [](auto& o) -> auto& { return o.max_seconds; }));
-  keys.push_back(key(
-      "densify.stall_sweeps", kInteger, "", closed(1, 1e9), kDense,
-      "stall window: fixed stops as jammed when the fraction gained less than "
-      "`stall_tolerance` over it; bed stops as settled when the mean height sank "
-      "less than `stall_tolerance` mean bounding radii",
-      [](auto& o) -> auto& { return o.stall_sweeps; }));
-  keys.push_back(key(
-      "densify.stall_tolerance", kFloat, "-", closed(0, kHuge), kDense,
-      "see `stall_sweeps` (a fraction for fixed, bounding radii for bed)",
-      [](auto& o) -> auto& { return o.stall_tolerance; }));
-  keys.push_back(key(
-      "densify.compress_interval", kInteger, "", closed(1, 1000), kFixedMode,
-      "squeeze the container only on sweeps whose number is a multiple of this",
-      [](auto& o) -> auto& { return o.compress_interval; }));
-  keys.push_back(key(
-      "densify.max_compression", kFloat, "-", open_closed(0, 0.1), kFixedMode,
-      "largest relative shrink of any container extent in one squeeze (the step "
-      "adapts below it)",
-      [](auto& o) -> auto& { return o.max_compression; }));
-  keys.push_back(key(
-      "densify.bed_temperature", kFloat, "-", closed(0, kHuge), kBedMode,
-      "initial temperature: a particle of mean volume rising one mean bounding "
-      "radius is accepted with probability exp(-1 / T); 0 = never rise",
-      [](auto& o) -> auto& { return o.bed_temperature; }));
-  keys.push_back(key(
-      "densify.bed_cooling", kFloat, "-", open_closed(0, 1), kBedMode,
-      "temperature factor per sweep", [](auto& o) -> auto& { return o.bed_cooling; }));
-  keys.push_back(key(
-      "densify.target_acceptance", kFloat, "-",
-      {.lo = 0, .hi = 1, .lo_end = End::kOpen, .hi_end = End::kOpen}, kDense,
-      "acceptance rate the step sizes adapt to",
-      [](auto& o) -> auto& { return o.target_acceptance; }));
-  keys.push_back(key(
-      "densify.translation_step", kFloat, "-", open_closed(0, 1), kDense,
-      "initial translation step, in bounding radii",
-      [](auto& o) -> auto& { return o.translation_step; }));
-  keys.push_back(key(
-      "densify.rotation_step", kFloat, "rad",
-      {.lo = 0, .hi = std::numbers::pi, .lo_end = End::kOpen, .hi_text = "pi"}, kDense,
-      "initial rotation step", [](auto& o) -> auto& { return o.rotation_step; }));
-  keys.push_back(key(
-      "densify.rotation_probability", kFloat, "-", closed(0, 1), kDense,
-      "share of trial moves that rotate (the others translate)",
-      [](auto& o) -> auto& { return o.rotation_probability; }));
-  return keys;
 }
 
 // One key per output format (the writer puts them in name order: [output] is a family table).
