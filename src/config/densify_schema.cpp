@@ -106,9 +106,9 @@ std::vector<PackKey> densify_keys() {
       "squeeze the container only on sweeps whose number is a multiple of this",
       [](auto& o) -> auto& { return o.compress_interval; }));
   keys.push_back(key(
-      "densify.max_compression", kFloat, "-", open_closed(0, 0.1), kFixedMode,
-      "largest relative shrink of any container extent in one squeeze (the step "
-      "adapts below it)",
+      "densify.max_compression", kFloat, "-", open_closed(0, 0.1), kDense,
+      "fixed: largest relative shrink of any container extent in one squeeze (the step adapts "
+      "below it); both modes size the cell grid for it",
       [](auto& o) -> auto& { return o.max_compression; }));
   keys.push_back(key(
       "densify.bed_temperature", kFloat, "-", closed(0, kHuge), kBedMode,
