@@ -96,6 +96,17 @@ std::uint64_t seed_of(const Options& o) {
   }
 }
 
+template <class Options>
+std::optional<Grading> grading_of(const Options& o) {
+  if constexpr (requires { o.fill; }) {
+    return std::visit([](const auto& fill) { return grading_of(fill); }, o.fill);
+  } else if constexpr (requires { o.grading; }) {
+    return o.grading;
+  } else {
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 std::uint64_t packer_seed(const PackerOptions& options) {
@@ -119,8 +130,7 @@ Container& packer_container(PackerOptions& options) {
 }
 
 std::optional<Grading> packer_grading(const PackerOptions& options) {
-  if (const auto* random = find_options<RandomPackOptions>(options)) return random->grading;
-  return std::nullopt;
+  return std::visit([](const auto& o) { return grading_of(o); }, options);
 }
 
 void validate(const PackerOptions& options) {

@@ -2,9 +2,10 @@
 // The packer kinds, ONE list (issue 13): each kind is an options struct with defaults and a
 // validate() naming "<kind>.<option>"; PackerOptions holds one of them. Declared here, below
 // the config module, so that the config schema can bind keys to them; the pipeline
-// (aggpack/pipeline/pipeline.h) runs them. A new kind: its options struct, one alternative of
+// (aggpack/pipeline/pipeline.h) runs them. A new kind: its options struct (with `seed` and
+// `container` members, or a `fill` of other kinds; optionally `grading`), one alternative of
 // PackerOptions, its word in packer_kinds.cpp and its run function in src/pipeline/ (each a
-// compile error when missing).
+// compile error when missing); its keys in the config schema.
 
 #include <cstdint>
 #include <optional>
@@ -59,8 +60,8 @@ std::uint64_t derived_densify_seed(std::uint64_t packer_seed);
 const Container& packer_container(const PackerOptions& options);
 Container& packer_container(PackerOptions& options);
 
-/// The grading a kind's packing aims at: the random packer's (also as the fill of "dense");
-/// none for the lattice.
+/// The grading a kind's packing aims at: its `grading` member (the random packer's, also as the
+/// fill of "dense"); none for a kind without one (lattice).
 std::optional<Grading> packer_grading(const PackerOptions& options);
 
 namespace packer_kinds_detail {
