@@ -149,7 +149,11 @@ std::vector<PackKey> particle_keys() {
        .written = kLattice,
        .doc = "control radius R of every lattice particle; for the random packer the default of "
               "`radius_min` and `radius_max`",
-       .binding = bind(on<LatticeOptions>([](auto& o) -> auto& { return o.radius; })),
+       // A random packing keeps it as its smallest radius (set again by radius_min, whose
+       // default it is), so that it reads back as the radius the grading was given.
+       .binding =
+           bind(on<LatticeOptions>([](auto& o) -> auto& { return o.radius; }),
+                on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.radius_min; })),
        .fields = {"lattice.radius"}},
       {.name = "particle.radius_min",
        .unit = "m",
