@@ -36,7 +36,7 @@ TEST(DenseConfig, KindFillAndDensifyKeysParse) {
   const auto& dense = std::get<DensePackOptions>(config.packer);
   ASSERT_TRUE(std::holds_alternative<RandomPackOptions>(dense.fill));
   const auto& fill = std::get<RandomPackOptions>(dense.fill);
-  EXPECT_EQ(fill.container.length, 0.4);
+  EXPECT_EQ(fill.container.get_if<BoxContainer>()->length, 0.4);
   EXPECT_EQ(fill.grading.radius_min, 0.05);
   EXPECT_EQ(fill.volume_fraction, 0.22);
   EXPECT_EQ(fill.gap, 0.001);
@@ -52,7 +52,7 @@ TEST(DenseConfig, KindFillAndDensifyKeysParse) {
   EXPECT_NE(dense.densify.seed, 42u);
   EXPECT_EQ(config.seed(), 42u);
   EXPECT_EQ(config.packer_name(), "dense");
-  EXPECT_EQ(config.container().length, 0.4);
+  EXPECT_EQ(config.container().get_if<BoxContainer>()->length, 0.4);
   ASSERT_TRUE(config.target_grading().has_value());
   EXPECT_TRUE(config.warnings.empty()) << config.warnings.front();
 }
@@ -65,7 +65,7 @@ TEST(DenseConfig, LatticeFillTakesTheLatticeKeys) {
   const auto& dense = std::get<DensePackOptions>(config.packer);
   ASSERT_TRUE(std::holds_alternative<LatticeOptions>(dense.fill));
   EXPECT_EQ(std::get<LatticeOptions>(dense.fill).spacing, 0.19);
-  EXPECT_EQ(std::get<LatticeOptions>(dense.fill).container.length, 0.6);
+  EXPECT_EQ(std::get<LatticeOptions>(dense.fill).container.get_if<BoxContainer>()->length, 0.6);
   EXPECT_EQ(dense.densify.mode, DensifyMode::kBed);
   EXPECT_EQ(dense.densify.bed_cooling, 0.5);
   EXPECT_FALSE(config.target_grading().has_value());
