@@ -497,11 +497,7 @@ ExportModel::ExportModel(const Packing& packing, const ExportOptions& options, E
       info.nodes = static_cast<std::uint32_t>(linear_nodes + edges);
     }
   };
-#ifdef AGGPACK_HAS_TBB
-  tbb::parallel_for(std::size_t{0}, packing.shapes.size(), measure);
-#else
-  for (std::size_t s = 0; s < packing.shapes.size(); ++s) measure(s);
-#endif
+  parallel_for_index(0, packing.shapes.size(), measure);
   node_offsets_.resize(size() + 1, 0);
   element_offsets_.resize(size() + 1, 0);
   for (std::size_t k = 0; k < size(); ++k) {

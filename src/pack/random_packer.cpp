@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/resources.h"
 #include "aggpack/shape/generator.h"
 #include "hierarchical_grid.h"
-#include "parallel.h"
 #include "shape_util.h"
 
 namespace aggpack {
@@ -355,7 +355,7 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   if (is_library) {
     shapes.resize(options.shape.library_size);
     const double ratio = options.shape.edge_length_ratio;
-    detail::parallel_for_index(0, shapes.size(), [&](std::size_t k) {
+    parallel_for_index(0, shapes.size(), [&](std::size_t k) {
       Rng rng(options.seed ^ kLibrarySalt, k);
       const GrowthParams params{.alpha = options.shape.alpha,
                                 .radius = 1.0,
@@ -380,8 +380,8 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
       }
       const std::uint64_t count = std::min(batch_size, wanted - begin);
       batch.assign(count, Draw{});
-      detail::parallel_for_index(0, count,
-                                 [&](std::size_t k) { batch[k] = make_draw(options, begin + k); });
+      parallel_for_index(0, count,
+                         [&](std::size_t k) { batch[k] = make_draw(options, begin + k); });
       bool is_done = false;
       for (std::uint64_t k = 0; k < count && !is_done; ++k) {
         Draw& draw = batch[k];
@@ -451,7 +451,7 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   //    nearly spent, or with one worker).
   const auto placement_start = Clock::now();
   Placement placement(options, shapes, items);
-  const int threads = detail::concurrency();
+  const int threads = concurrency();
   const std::size_t slots = static_cast<std::size_t>(std::max(1, threads)) + 1;
   std::vector<std::vector<std::pair<double, std::uint32_t>>> scratch(slots);
   std::vector<std::pair<double, std::uint32_t>> sequential_scratch;
@@ -505,9 +505,9 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
         // The lowest successful attempt index wins, exactly as if tried one by one.
         std::atomic<std::uint64_t> best{Found::kNone};
         std::fill(batch_ok.begin(), batch_ok.begin() + static_cast<std::ptrdiff_t>(count), 0);
-        detail::parallel_for_index(0, count, [&](std::size_t k) {
+        parallel_for_index(0, count, [&](std::size_t k) {
           if (attempt + k > best.load(std::memory_order_relaxed)) return;
-          auto& close = scratch[detail::worker_slot() % slots];
+          auto& close = scratch[worker_slot() % slots];
           Pose pose;
           if (make_candidate(options.container, region, item, options.seed, attempt + k, pose) &&
               placement.is_feasible(item, body, pose, close)) {
@@ -551,11 +551,11 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
     }
     const std::size_t first_new = placement.placed_items().size();
     if (group > 1) {
-      detail::parallel_for_index(0, group, [&](std::size_t k) {
+      parallel_for_index(0, group, [&](std::size_t k) {
         const Item& item = items[order[rank + k]];
         group_bodies[k] = placement.body_of(item);
         found[k] = search(item, group_bodies[k], 0, options.max_attempts_per_particle,
-                          scratch[detail::worker_slot() % slots]);
+                          scratch[worker_slot() % slots]);
       });
     }
     for (std::size_t k = 0; k < group && !is_stopped; ++k) {

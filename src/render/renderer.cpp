@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "../pack/parallel.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 
 namespace aggpack {
 
@@ -1089,7 +1089,7 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
   constexpr std::size_t kChunk = 8192;
   const std::size_t chunk_count = (particle_count + kChunk - 1) / kChunk;
   s.chunk_candidates.resize(std::max(s.chunk_candidates.size(), chunk_count));
-  detail::parallel_for_index(0, chunk_count, [&](std::size_t chunk) {
+  parallel_for_index(0, chunk_count, [&](std::size_t chunk) {
     std::vector<Candidate>& out = s.chunk_candidates[chunk];
     out.clear();
     Candidate candidate;
@@ -1198,7 +1198,7 @@ bool PackingRenderer::step_frame() {
     // Seen now: the first group unless hidden behind the rest of it, the others unless hidden.
     // The tests run on all cores (the rasteriser has finished the first pass).
     s.is_hidden_flag.resize(in_frustum);
-    detail::parallel_for_index(0, (in_frustum + 1023) / 1024, [&](std::size_t block) {
+    parallel_for_index(0, (in_frustum + 1023) / 1024, [&](std::size_t block) {
       for (std::size_t c = 1024 * block; c < std::min(in_frustum, 1024 * (block + 1)); ++c) {
         s.is_hidden_flag[c] = is_hidden(s.candidates[c]) ? 1 : 0;
       }
