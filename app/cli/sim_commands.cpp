@@ -18,9 +18,7 @@
 #include <string>
 #include <vector>
 
-#ifdef AGGPACK_HAS_TOML
 #include <toml++/toml.h>
-#endif
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
@@ -31,9 +29,7 @@
 #include "commands.h"
 #include "progress.h"
 
-#ifdef AGGPACK_HAS_IO
 #include "aggpack/io/native.h"
-#endif
 
 extern char** environ;
 
@@ -255,7 +251,6 @@ std::string resolved_config(const SweepOptions& options) {
   return text;
 }
 
-#ifdef AGGPACK_HAS_TOML
 void load_config(SweepOptions& options, const std::string& path) {
   toml::table table;
   try {
@@ -294,7 +289,6 @@ void load_config(SweepOptions& options, const std::string& path) {
     }
   }
 }
-#endif
 
 // The library names options by their fields ("repose.baffle_position", "friction", "min_time");
 // messages must name what the user typed: a config key or a flag.
@@ -428,11 +422,7 @@ struct ReposeFlags {
 SweepOptions resolve(const ReposeFlags& flags) {
   SweepOptions options;
   if (!flags.config_path.empty()) {
-#ifdef AGGPACK_HAS_TOML
     load_config(options, flags.config_path);
-#else
-    throw InvalidInput("config", flags.config_path, "none: built without toml++, use --set");
-#endif
   }
   for (const auto& assignment : flags.overrides) {
     const auto equals = assignment.find('=');
@@ -528,9 +518,7 @@ void run_repose_command(const ReposeFlags& flags) {
   }
   CreatedFolder created(flags.output);
   std::vector<std::string> names = {"repose.json", "profile.csv", "side.png"};
-#ifdef AGGPACK_HAS_IO
   names.push_back("final.h5");
-#endif
   const std::string folder = prepare_folder(flags.output, flags.is_forced, names);
   double last_print = -1.0;
   int last_stage = 0;
@@ -556,16 +544,10 @@ void run_repose_command(const ReposeFlags& flags) {
   write_profile_csv(in_folder(folder, "profile.csv"), result);
   write_side_view_png(in_folder(folder, "side.png"), result.final, result.profile, result.fit,
                       flags.image_width);
-#ifdef AGGPACK_HAS_IO
   write_packing(in_folder(folder, "final.h5"), result.final);
-#endif
   outputs.commit();
   created.keep();
-#ifdef AGGPACK_HAS_IO
   fmt::print("wrote {}/repose.json, profile.csv, side.png, final.h5\n", folder);
-#else
-  fmt::print("wrote {}/repose.json, profile.csv, side.png\n", folder);
-#endif
 }
 
 // The sweep plot: angle against mu_s, one line per alpha (gnuplot, run when it is installed).
@@ -666,7 +648,6 @@ void run_sweep_command(const ReposeFlags& flags) {
   }
 }
 
-#ifdef AGGPACK_HAS_IO
 struct SettleFlags {
   std::string input;
   std::string output;
@@ -725,12 +706,10 @@ void run_settle_command(const SettleFlags& flags) {
       r.escaped_particles, r.min_wall_clearance);
   fmt::print("wrote {}\n", flags.output);
 }
-#endif
 
 }  // namespace
 
 void register_sim(CLI::App& app) {
-#ifdef AGGPACK_HAS_IO
   {
     auto flags = std::make_shared<SettleFlags>();
     auto& physics = flags->options.physics;
@@ -775,7 +754,6 @@ void register_sim(CLI::App& app) {
     command->add_flag("-f,--force", flags->is_forced, "replace an existing output file");
     command->callback([flags]() { run_settle_command(*flags); });
   }
-#endif
   {
     auto flags = std::make_shared<ReposeFlags>();
     auto* command = app.add_subcommand(

@@ -1,6 +1,8 @@
 #include "aggpack/geom/overlap.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "aggpack/core/error.h"
@@ -105,6 +107,16 @@ double bounding_radius(const ConvexPolyhedron& body) {
   double radius_squared = 0.0;
   for (const auto& v : body.vertices()) radius_squared = std::max(radius_squared, v.squaredNorm());
   return std::sqrt(radius_squared);
+}
+
+double inner_radius(const ConvexPolyhedron& body) {
+  double radius = std::numeric_limits<double>::infinity();
+  const auto& vertices = body.vertices();
+  for (std::size_t f = 0; f < body.triangle_count(); ++f) {
+    const Vec3 normal = body.face_normal(f);
+    radius = std::min(radius, normal.dot(vertices[body.triangles()[f][0]]));
+  }
+  return radius > 0.0 ? radius : 0.0;  // NaN (non-finite vertices) gives 0 too
 }
 
 // --- queries ---------------------------------------------------------------------------------

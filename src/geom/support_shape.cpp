@@ -121,16 +121,14 @@ SupportShape::SupportShape(const ConvexPolyhedron& body, SupportSearch search) {
   bounding_radius_ = aggpack::bounding_radius(body);
 
   std::vector<std::vector<Vec3>> incident_normals(vertex_total);
-  inner_radius_ = std::numeric_limits<double>::infinity();
+  inner_radius_ = aggpack::inner_radius(body);
   for (std::size_t f = 0; f < triangles.size(); ++f) {
     const Vec3 scaled = body.face_normal_scaled(f);
     const double twice_area = scaled.norm();
     if (!(twice_area > 0.0)) continue;  // a zero-area triangle constrains nothing
     const Vec3 normal = scaled / twice_area;
     for (auto index : triangles[f]) incident_normals[index].push_back(normal);
-    inner_radius_ = std::min(inner_radius_, normal.dot(vertices[triangles[f][0]]));
   }
-  if (!(inner_radius_ > 0.0)) inner_radius_ = 0.0;
 
   // Hull vertices: a vertex in the hull of its neighbours (on an edge or face of the hull) is
   // never needed by a support query. Distance point-to-hull by the same GJK.

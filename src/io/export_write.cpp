@@ -15,6 +15,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/temp_paths.h"
 #include "aggpack/geom/mass_properties.h"
+#include "aggpack/shape/descriptors.h"
 #include "deck_common.h"
 #include "export_detail.h"
 
@@ -459,10 +460,8 @@ ExportModel::ExportModel(const Packing& packing, const ExportOptions& options, E
     info.volume = properties.volume;
     info.centroid = properties.centroid;
     if (properties.volume > 0 && properties.surface_area > 0) {
-      // Eq. 1 and Eq. 2 (alpha = SI^(3/2)).
-      info.sphericity = 4.0 * M_PI / properties.surface_area *
-                        std::pow(3.0 * properties.volume / (4.0 * M_PI), 2.0 / 3.0);
-      info.alpha = std::pow(info.sphericity, 1.5);
+      info.sphericity = aggpack::sphericity(properties.volume, properties.surface_area);
+      info.alpha = aggpack::measured_alpha(properties.volume, properties.surface_area);
     }
     if (mode == ElementMode::kSurface) {
       info.nodes = static_cast<std::uint32_t>(body.vertex_count());

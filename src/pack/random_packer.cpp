@@ -46,7 +46,7 @@ StoredShape make_stored(const ConvexPolyhedron& grown) {
   Vec3 centroid;
   stored.body = detail::centred_on_centroid(grown, centroid, stored.volume);
   stored.outer_radius = bounding_radius(stored.body);
-  stored.inner_radius = detail::inner_radius(stored.body);
+  stored.inner_radius = inner_radius(stored.body);
   return stored;
 }
 

@@ -6,6 +6,7 @@
 #include "aggpack/render/renderer.h"
 
 #include "aggpack/core/error.h"
+#include "aggpack/geom/overlap.h"
 #include "renderer_state.h"
 
 namespace aggpack {
@@ -91,12 +92,7 @@ void PackingRenderer::set_packing(const Packing& packing) {
     ShapeRange& range = s.shapes[shape_index];
     const ConvexPolyhedron& shape = packing.shapes[shape_index];
     for (const Vec3& v : shape.vertices()) range.radius = std::max(range.radius, v.norm());
-    range.inner_radius = range.radius;
-    for (std::size_t face = 0; face < shape.triangle_count(); ++face) {
-      const Vec3 normal = shape.face_normal(face);
-      const double distance = normal.dot(shape.vertices()[shape.triangles()[face][0]]);
-      range.inner_radius = std::max(0.0, std::min(range.inner_radius, distance));
-    }
+    range.inner_radius = std::min(range.radius, inner_radius(shape));
     if (range.instances == 0 || shape.is_empty()) continue;
     if (range.instances >= 2) s.instanced_shapes.push_back(static_cast<std::uint32_t>(shape_index));
     const std::uint32_t particle = range.instances == 1 ? single_owner[shape_index] : 0;
