@@ -65,19 +65,31 @@ inline int allowed_threads() {
 #endif
 }
 
+/// Caps the threads of parallel_for_index while it lives (the smallest live cap wins), e.g. to
+/// check that 1 and 2 threads give the same result. Precondition: threads >= 1.
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int threads)
+#ifdef AGGPACK_HAS_TBB
+      : control_(tbb::global_control::max_allowed_parallelism,
+                 static_cast<std::size_t>(std::max(1, threads)))
+#endif
+  {
+    (void)threads;
+  }
+
+ private:
+#ifdef AGGPACK_HAS_TBB
+  tbb::global_control control_;
+#endif
+};
+
 /// Caps the threads of every later parallel loop for the rest of the process (`--threads N`);
 /// 0 keeps the default (all cores). Precondition: threads >= 0 (checked by the caller).
 inline void limit_threads(int threads) {
-#ifdef AGGPACK_HAS_TBB
   // One process-wide limit, as `--threads` means; held until exit.
-  static std::unique_ptr<tbb::global_control> control;
-  if (threads > 0) {
-    control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                    static_cast<std::size_t>(threads));
-  }
-#else
-  (void)threads;
-#endif
+  static std::unique_ptr<ThreadLimit> limit;
+  if (threads > 0) limit = std::make_unique<ThreadLimit>(threads);
 }
 
 }  // namespace aggpack
