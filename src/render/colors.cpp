@@ -86,7 +86,7 @@ ShapeMeasures measure_shapes(const Packing& packing) {
   for (const auto& shape : packing.shapes) {
     const MassProperties mass = mass_properties(shape);
     const double volume = std::max(mass.volume, 0.0);
-    measures.equivalent_diameter.push_back(std::cbrt(6.0 * volume / std::numbers::pi));
+    measures.equivalent_diameter.push_back(equivalent_diameter(volume));
     measures.measured_alpha.push_back(
         volume > 0.0 && mass.surface_area > 0.0 ? measured_alpha(volume, mass.surface_area) : 0.0);
   }

@@ -19,6 +19,8 @@ double measured_alpha(double volume, double surface_area) {
   return std::pow(sphericity(volume, surface_area), 1.5);
 }
 
+double equivalent_diameter(double volume) { return std::cbrt(6.0 * volume / std::numbers::pi); }
+
 ShapeDescriptors describe(const ConvexPolyhedron& body) {
   ShapeDescriptors result;
   const MassProperties mass = mass_properties(body);
@@ -27,7 +29,6 @@ ShapeDescriptors describe(const ConvexPolyhedron& body) {
   }
   result.volume = mass.volume;
   result.surface_area = mass.surface_area;
-  const double pi = std::numbers::pi;
   result.sphericity = sphericity(mass.volume, mass.surface_area);
   result.measured_alpha = measured_alpha(mass.volume, mass.surface_area);
   result.vertex_count = body.vertex_count();
@@ -57,7 +58,7 @@ ShapeDescriptors describe(const ConvexPolyhedron& body) {
   for (const auto& v : body.vertices()) {
     result.circumscribed_radius = std::max(result.circumscribed_radius, (v - mass.centroid).norm());
   }
-  result.equivalent_diameter = std::cbrt(6.0 * mass.volume / pi);
+  result.equivalent_diameter = equivalent_diameter(mass.volume);
   result.longest_edge = body.longest_edge();
   return result;
 }

@@ -42,6 +42,9 @@ double sphericity(double volume, double surface_area);
 /// computed as SI^(3/2) (the same number). Precondition: V > 0, S > 0.
 double measured_alpha(double volume, double surface_area);
 
+/// Diameter (m) of the sphere of volume `volume` (m^3): cbrt(6 V / pi).
+double equivalent_diameter(double volume);
+
 /// Measures a particle. \throw InvalidInput if the body has no positive volume.
 ShapeDescriptors describe(const ConvexPolyhedron& body);
 
