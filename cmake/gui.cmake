@@ -21,7 +21,8 @@ endif()
 if(AGGPACK_BUILD_GUI)
   file(GLOB AGGPACK_GUI_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/app/gui/*.cpp)
   add_executable(aggpack-gui ${AGGPACK_GUI_SOURCES})
-  target_link_libraries(aggpack-gui PRIVATE aggpack_render aggpack_io aggpack_core
+  target_link_libraries(aggpack-gui PRIVATE aggpack_render aggpack_pipeline aggpack_config aggpack_io
+                        aggpack_core
                         PkgConfig::IMGUI glfw OpenGL::OpenGL CLI11::CLI11 fmt::fmt
                         Threads::Threads ${CMAKE_DL_LIBS})
 

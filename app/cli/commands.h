@@ -16,7 +16,9 @@ void register_info(CLI::App& app);
 void register_densify(CLI::App& app);  // densify_commands.cpp
 void register_render(CLI::App& app);   // render_commands.cpp, when built with AGGPACK_HAS_RENDER
 void register_export(CLI::App& app);   // export_commands.cpp
-void register_sim(CLI::App& app);      // sim_commands.cpp (settle, repose, sweep), AGGPACK_HAS_SIM
+void register_config_keys(CLI::App& app);  // config_commands.cpp
+void register_sim(CLI::App& app);     // sim_commands.cpp (settle, repose, sweep), AGGPACK_HAS_SIM
+void register_settle(CLI::App& app);  // settle_commands.cpp, called by register_sim
 
 /// "min dihedral angle 29.30 deg, max aspect ratio 2.69 (...), 0 of 38668 below 10 deg", the
 /// tetrahedron quality of an export (export_commands.cpp).

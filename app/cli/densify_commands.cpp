@@ -11,11 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/config/config.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
-#include "aggpack/io/config.h"
 #include "aggpack/io/native.h"
 #include "aggpack/pack/dense_packer.h"
+#include "aggpack/pipeline/pipeline.h"
 #include "commands.h"
 #include "progress.h"
 
@@ -154,14 +155,11 @@ void run_densify(const DensifyFlags& flags) {
     bar->update(progress.fraction, progress.placed, progress.total,
                 fmt::format("solid {:.2f} %", 100.0 * progress.solid_fraction));
   };
-  const std::string config = start.provenance.config_toml;
-  DensifyResult result = densify(std::move(start), options, control);
+  PipelineResult result =
+      densify_packing(std::move(start), options, provenance_lines(flags, options), control);
   bar.reset();
-  Packing& packing = result.packing;
-  packing.provenance.config_toml = config + provenance_lines(flags, options);
-  packing.provenance.seed = options.seed;
-  write_packing(flags.output, packing, {.overwrite = overwrite});
-  const DensifyReport& report = result.report;
+  write_packing(result.packing, flags.output, {.overwrite = overwrite});
+  const DensifyReport& report = *result.densify;
   fmt::print("{}: {}\n", to_string(options.mode), report.summary());
   fmt::print("solid fraction  {:.4f} (start {:.4f})\n", report.solid_fraction,
              report.start_fraction);

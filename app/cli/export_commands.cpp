@@ -1,5 +1,6 @@
-// `aggpack export`: turn a native packing file into STL, rock.dat, Abaqus, VTK, Gmsh, LS-DYNA,
-// ANSYS, OBJ or YADE files (issue 4).
+// `aggpack export`: turn a native packing file into any format of the format table
+// (export_formats(): STL, rock.dat, Abaqus, VTK, Gmsh, LS-DYNA, ANSYS, OBJ, YADE, native .h5;
+// issue 4). The format lists of the help text come from that table.
 
 #include <fmt/core.h>
 
@@ -8,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "aggpack/core/error.h"
 #include "aggpack/io/export.h"
@@ -32,6 +34,57 @@ struct ExportFlags {
   std::string deck = "none";
   int threads = 0;
 };
+
+// The names (or titles) of the formats whose row `has` something, joined by `separator`.
+std::string formats_where(bool (*has)(const FormatInfo&), std::string_view separator,
+                          std::string_view FormatInfo::*field = &FormatInfo::name) {
+  std::string text;
+  for (const FormatInfo& info : export_formats()) {
+    if (!has(info)) continue;
+    if (!text.empty()) text += separator;
+    text += info.*field;
+  }
+  return text;
+}
+
+bool is_any(const FormatInfo& /*info*/) { return true; }
+bool has_per_particle(const FormatInfo& info) { return info.has_per_particle; }
+bool has_ascii(const FormatInfo& info) { return info.has_ascii; }
+bool has_quadratic(const FormatInfo& info) { return info.has_quadratic; }
+bool holds_packing(const FormatInfo& info) { return info.holds_packing; }
+bool has_both_cells(const FormatInfo& info) { return info.has_surface && info.has_tetrahedra; }
+
+// "abaqus | calculix | ...": every deck's name.
+std::string deck_names(std::string_view separator) {
+  std::string text;
+  for (const DeckInfo& deck : deck_kinds()) {
+    if (!text.empty()) text += separator;
+    text += deck.name;
+  }
+  return text;
+}
+
+// ".inp, .inp, .k, .py": the format of every deck, in deck order.
+std::string deck_formats() {
+  std::string text;
+  for (const DeckInfo& deck : deck_kinds()) {
+    if (!text.empty()) text += ", ";
+    text += "." + format_name(deck.format);
+  }
+  return text;
+}
+
+// "vtu surface, msh tetrahedra": the default cells of the formats that hold either.
+std::string default_cells_text() {
+  std::string text;
+  for (const FormatInfo& info : export_formats()) {
+    if (!has_both_cells(info)) continue;
+    if (!text.empty()) text += ", ";
+    text += fmt::format("{} {}", info.name,
+                        info.default_cells == MeshCells::kSurface ? "surface" : "tetrahedra");
+  }
+  return text;
+}
 
 // At most this many shape numbers and particle names are listed; the count is always complete.
 constexpr std::size_t kListedFallbacks = 20;
@@ -100,9 +153,9 @@ void register_export(CLI::App& app) {
   auto& defaults = flags->options;
   auto* command = app.add_subcommand(
       "export",
-      "Write a packing (native .h5 file from `aggpack pack`) as STL, rock.dat, Abaqus .inp, VTK "
-      ".vtu, Gmsh .msh, LS-DYNA .k, ANSYS APDL .mac, OBJ or a YADE script. Particles are named "
-      "P1, P2, ... in every format; docs/formats.md gives each layout.");
+      fmt::format("Write a packing (native .h5 file from `aggpack pack`) as {}. Particles are "
+                  "named P1, P2, ... in every format; docs/formats.md gives each layout.",
+                  formats_where(is_any, ", ", &FormatInfo::title)));
   command->add_option("input", flags->input, "native packing file (.h5)")->required();
   command
       ->add_option("-o,--output", flags->output,
@@ -110,19 +163,24 @@ void register_export(CLI::App& app) {
                    "format unless --format is given")
       ->required();
   command->add_option("--format", flags->format,
-                      "stl | dat | inp | vtu | msh | k | mac | obj | py (default: from the "
-                      "output extension; stl for a --per-particle folder without one)");
+                      fmt::format("{} (default: from the output extension; {} for a "
+                                  "--per-particle folder without one)",
+                                  formats_where(is_any, " | "),
+                                  format_name(resolve_format("", {.is_per_particle = true}))));
   command->add_flag("-f,--force", flags->is_forced, "replace an existing output file or folder");
   command
       ->add_option("--scale", defaults.scale,
                    "multiply coordinates by this (1000 writes millimetres), > 0")
       ->capture_default_str();
   command->add_flag("--per-particle", defaults.is_per_particle,
-                    "STL/OBJ: one file per particle (P000001.stl, ...) in the output folder");
-  command->add_flag("--ascii", flags->is_ascii, "STL: ASCII instead of binary");
+                    formats_where(has_per_particle, "/") +
+                        ": one file per particle (P000001.stl, ...) in the output folder");
+  command->add_flag("--ascii", flags->is_ascii,
+                    formats_where(has_ascii, "/") + ": ASCII instead of binary");
   command
       ->add_option("--cells", flags->cells,
-                   "vtu/msh: surface | tetrahedra (default: vtu surface, msh tetrahedra)")
+                   fmt::format("{}: surface | tetrahedra (default: {})",
+                               formats_where(has_both_cells, "/"), default_cells_text()))
       ->capture_default_str();
   command
       ->add_option("--tet-method", flags->tet_method,
@@ -145,7 +203,15 @@ void register_export(CLI::App& app) {
   command->add_flag("--split-surface", flags->is_surface_split,
                     "tetgen: let TetGen add nodes on the surface too (bounds met everywhere; "
                     "surface then within ~1e-5 of the particle)");
-  command->add_flag("--quadratic", defaults.is_quadratic, "inp: C3D10 instead of C3D4");
+  command->add_flag("--quadratic", defaults.is_quadratic,
+                    formats_where(has_quadratic, "/") + ": C3D10 instead of C3D4");
+  command
+      ->add_option("--compression", defaults.compression,
+                   formats_where(holds_packing, "/") + ": deflate level of the datasets, 0 .. 9")
+      ->capture_default_str();
+  command->add_flag("--xdmf", defaults.write_xdmf,
+                    formats_where(holds_packing, "/") +
+                        ": also store world-coordinate surfaces and write <output>.xdmf");
   command
       ->add_option("--inp-layout", flags->inp_layout,
                    "inp: sets (flat model, element/node set per particle; CalculiX reads it) "
@@ -166,11 +232,12 @@ void register_export(CLI::App& app) {
   auto& deck = defaults.deck;
   command
       ->add_option("--deck", flags->deck,
-                   "none | abaqus | calculix | lsdyna | yade: write a complete, runnable model "
-                   "of the paper's trough test around the mesh (walls, moving baffle, gravity, "
-                   "friction, steps, output) instead of the mesh alone; picks the format (.inp, "
-                   ".inp, .k, .py). Run it with: abaqus job=NAME | ccx -i NAME | lsdyna i=NAME.k "
-                   "| yade -n -x NAME.py")
+                   fmt::format("none | {}: write a complete, runnable model of the paper's "
+                               "trough test around the mesh (walls, moving baffle, gravity, "
+                               "friction, steps, output) instead of the mesh alone; picks the "
+                               "format ({}). Run it with: abaqus job=NAME | ccx -i NAME | "
+                               "lsdyna i=NAME.k | yade -n -x NAME.py",
+                               deck_names(" | "), deck_formats()))
       ->capture_default_str();
   command
       ->add_option("--friction", deck.friction, "deck: Coulomb mu_s, particles and walls, [0, 10]")

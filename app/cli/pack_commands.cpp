@@ -12,16 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/config/config.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
-#include "aggpack/io/config.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "aggpack/io/packing_stats_json.h"
-#include "aggpack/pack/lattice_packer.h"
-#include "aggpack/pack/random_packer.h"
 #include "aggpack/pack/statistics.h"
+#include "aggpack/pipeline/pipeline.h"
 #include "commands.h"
 #include "progress.h"
 
@@ -73,6 +72,18 @@ std::string container_json(const Container& c) {
       "{{\"kind\": \"box\", \"length_m\": {}, \"width_m\": {}, \"depth_m\": {}, "
       "\"wall_gap_m\": {}}}",
       c.length, c.width, c.depth, c.wall_gap);
+}
+
+const char* stage_label(PackStage stage) {
+  switch (stage) {
+    case PackStage::kShapes:
+      return "shapes";
+    case PackStage::kPlacement:
+      return "placing";
+    case PackStage::kDensify:
+      return "densify";
+  }
+  return "packing";
 }
 
 void warn(const std::string& text) {
@@ -149,7 +160,8 @@ void run_pack(const PackFlags& flags) {
       bar.reset();  // finishes the previous stage's display
       stage = progress.stage;
       bar = std::make_unique<ProgressBar>(
-          progress.stage == PackStage::kShapes ? "shapes" : "placing", "particles", style);
+          stage_label(progress.stage),
+          progress.stage == PackStage::kDensify ? "sweeps" : "particles", style);
     }
     if (progress.stage == PackStage::kShapes) {
       // While shapes grow, `total` is the number grown so far; the final count is not known yet.
@@ -161,17 +173,15 @@ void run_pack(const PackFlags& flags) {
                       : std::string());
     }
   };
-  PackResult result = config.packer == PackerKind::kLattice ? pack_lattice(config.lattice, control)
-                                                            : pack_random(config.random, control);
+  PipelineResult result = pack(config, control);
   bar.reset();
 
   Packing& packing = result.packing;
-  packing.provenance.config_toml = config.resolved_toml;
-  packing.provenance.seed = config.seed();
-  packing.provenance.packer = config.packer_name();
-  write_packing(
-      output, packing,
-      {.overwrite = overwrite, .compression = flags.compression, .write_xdmf = flags.has_xdmf});
+  write(packing, output,
+        {.format = ExportFormat::kNative,
+         .overwrite = overwrite,
+         .compression = flags.compression,
+         .write_xdmf = flags.has_xdmf});
 
   std::vector<std::string> written;
   std::vector<std::string> written_json;
@@ -200,6 +210,7 @@ void run_pack(const PackFlags& flags) {
                written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
   } else {
     fmt::print("{}\n", report.summary());
+    if (result.densify) fmt::print("densify         {}\n", result.densify->summary());
     fmt::print("particles       {}\n", report.placed);
     fmt::print("solid volume    {:.6g} m^3\n", report.solid_volume);
     fmt::print("solid fraction  {:.4f}\n", report.solid_fraction);

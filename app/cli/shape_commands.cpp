@@ -10,7 +10,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
-#include "aggpack/io/stl.h"
+#include "aggpack/io/export.h"
 #include "aggpack/shape/descriptors.h"
 #include "aggpack/shape/generator.h"
 #include "commands.h"
@@ -126,11 +126,14 @@ void register_particle(CLI::App& app) {
     if (!output->empty()) check_writable(*output, overwrite);
     const GeneratedParticle particle = generate_particle(flags->generator, *index);
     if (!output->empty()) {
-      write_stl(*output, {particle.body},
-                {.encoding = *is_ascii ? StlEncoding::kAscii : StlEncoding::kBinary,
-                 .scale = *scale,
-                 .solid_name = "particle",
-                 .overwrite = overwrite});
+      Packing packing;  // the particle as it was grown: one shape, identity pose
+      packing.shapes.push_back(particle.body);
+      packing.particles.emplace_back();
+      write(packing, *output,
+            {.format = ExportFormat::kStl,
+             .scale = *scale,
+             .overwrite = overwrite,
+             .stl_encoding = *is_ascii ? StlEncoding::kAscii : StlEncoding::kBinary});
       fmt::print("wrote {}\n", *output);
     }
     print_descriptors(describe(particle.body), particle.control_radius);

@@ -8,52 +8,17 @@
 #include <string>
 #include <vector>
 
-#include "aggpack/io/config.h"
+#include "aggpack/config/config.h"
 #include "aggpack/render/camera.h"
 #include "aggpack/render/detail_controller.h"
 #include "aggpack/render/headless.h"
 #include "aggpack/render/renderer.h"
 #include "background_job.h"
+#include "config_fields.h"
 
 struct GLFWwindow;
 
 namespace aggpack::gui {
-
-/// The editable packing parameters. They become `--set` overrides of the pack configuration, so
-/// the GUI validates and reports errors exactly as `aggpack pack` does.
-struct Fields {
-  int container_kind = 0;                                // 0 box, 1 cylinder
-  double length = 3.0, width = 1.0, depth = 2.8;         // box (m)
-  double cylinder_radius = 0.05, cylinder_height = 0.1;  // cylinder (m)
-  double wall_gap = 0.0;                                 // m
-  double alpha = 0.5;
-  bool has_radius_range = false;  // random + uniform grading: r in [radius_min, radius_max]
-  double radius = 0.1, radius_min = 0.1, radius_max = 0.1;  // m
-  double edge_length = 0.1;         // m; random: 0 = relative (edge_length_ratio * r)
-  double edge_length_ratio = 1.0;   // random with edge_length 0
-  int packer = 0;                   // 0 lattice, 1 random
-  double spacing = 0.0, gap = 0.0;  // m
-  int grading = 0;                  // 0 uniform, 1 fuller, 2 sieve
-  double size_min = 0.005, size_max = 0.02, exponent = 0.5;  // fuller (m, m, -)
-  // Sieve table (size = control diameter in m, volume percent passing). Default: the middle of
-  // the ASTM C33 size No. 67 band (coarse concrete aggregate, 4.75-25 mm; 2.36 mm row left out)
-  // scaled by 8, so the top size 0.2 m is 1/5 of the default box's narrowest side (ACI 318's
-  // limit for the largest aggregate) and equals the lattice default 2 R.
-  std::vector<SieveRow> sieve{{.size = 0.038, .percent_passing = 5.0},
-                              {.size = 0.076, .percent_passing = 37.5},
-                              {.size = 0.152, .percent_passing = 95.0},
-                              {.size = 0.2, .percent_passing = 100.0}};
-  int target = 0;  // 0 volume fraction, 1 count
-  double target_fraction = 0.35;
-  int target_count = 1000;
-  int shape_library = 0;
-  std::uint64_t seed = 1;
-};
-
-/// Fields holding the values of a resolved configuration.
-Fields fields_from_config(const PackConfig& config);
-/// `--set` overrides (key=value, TOML values) for the keys the chosen packer reads.
-std::vector<std::string> overrides_from_fields(const Fields& fields);
 
 /// Start-up options (from the command line).
 struct GuiOptions {
@@ -101,10 +66,12 @@ class GuiApp {
 
  private:
   void draw_panel();
-  void draw_container_section();
-  void draw_shape_section();
-  void draw_packer_section();
-  void draw_sieve_table();
+  // config_panel.cpp: the configuration sections, one widget per schema key.
+  void draw_config_section(const char* title, const std::vector<std::string>& tables);
+  void draw_key(const Key<PackConfig>& key, const KeyView& view);
+  void draw_key_input(const Key<PackConfig>& key, const KeyView& view, const std::string& label,
+                      Value& value);
+  void draw_sieve_table(std::vector<SieveRow>& rows);
   void draw_job_section();
   void draw_file_section();
   void draw_view_section();
@@ -123,7 +90,7 @@ class GuiApp {
 
   GLFWwindow* window_;
   GuiOptions options_;
-  Fields fields_;
+  ConfigFields fields_;
   BackgroundJob job_;
   std::shared_ptr<const Packing> packing_;
   std::unique_ptr<PackingRenderer> renderer_;

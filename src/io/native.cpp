@@ -305,7 +305,7 @@ std::string xdmf_path_for(const std::string& path) {
   return std::filesystem::path(path).replace_extension(".xdmf").string();
 }
 
-void write_packing(const std::string& path, const Packing& packing,
+void write_packing(const Packing& packing, const std::string& path,
                    const NativeWriteOptions& options) {
   require_in_range("native compression", options.compression, 0, 9);
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {

@@ -1,7 +1,8 @@
+// STL reader: binary or ASCII (the writer is src/io/export_stl.cpp).
+
 #include "aggpack/io/stl.h"
 
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -10,74 +11,6 @@
 #include "aggpack/core/error.h"
 
 namespace aggpack {
-
-namespace {
-
-void put_float(std::ostream& out, double value) {
-  const auto f = static_cast<float>(value);
-  char bytes[4];
-  std::memcpy(bytes, &f, 4);  // STL is little-endian; so is every platform we build on
-  out.write(bytes, 4);
-}
-
-}  // namespace
-
-void write_stl(const std::string& path, const std::vector<ConvexPolyhedron>& bodies,
-               const StlOptions& options) {
-  require_positive("stl scale", options.scale);
-  // A line break in the name would end the ASCII "solid" line early.
-  if (options.solid_name.find_first_of("\r\n") != std::string::npos) {
-    throw InvalidInput("stl solid_name", "a name with a line break", "one line of text");
-  }
-  std::size_t triangle_count = 0;
-  for (const auto& body : bodies) triangle_count += body.triangle_count();
-  if (options.encoding == StlEncoding::kBinary && triangle_count > 0xFFFFFFFFULL) {
-    throw InvalidInput("stl triangles", std::to_string(triangle_count), "<= 2^32-1 for binary STL");
-  }
-  AtomicFile file(path, options.overwrite);
-  auto& out = file.stream();
-  const double scale = options.scale;
-  if (options.encoding == StlEncoding::kBinary) {
-    char header[80] = {};
-    std::snprintf(header, sizeof header, "binary STL from aggpack %s, %s", AGGPACK_VERSION,
-                  options.solid_name.c_str());
-    out.write(header, 80);
-    const auto count = static_cast<std::uint32_t>(triangle_count);
-    out.write(reinterpret_cast<const char*>(&count), 4);
-    const char attribute[2] = {0, 0};
-    for (const auto& body : bodies) {
-      const auto& vertices = body.vertices();
-      for (std::size_t f = 0; f < body.triangle_count(); ++f) {
-        const Vec3 normal = body.face_normal(f);
-        for (int axis = 0; axis < 3; ++axis) put_float(out, normal[axis]);
-        for (auto index : body.triangles()[f]) {
-          for (int axis = 0; axis < 3; ++axis) put_float(out, vertices[index][axis] * scale);
-        }
-        out.write(attribute, 2);
-      }
-    }
-  } else {
-    char line[256];
-    out << "solid " << options.solid_name << '\n';
-    for (const auto& body : bodies) {
-      const auto& vertices = body.vertices();
-      for (std::size_t f = 0; f < body.triangle_count(); ++f) {
-        const Vec3 n = body.face_normal(f);
-        std::snprintf(line, sizeof line, "  facet normal %.9e %.9e %.9e\n    outer loop\n", n.x(),
-                      n.y(), n.z());
-        out << line;
-        for (auto index : body.triangles()[f]) {
-          const Vec3 v = vertices[index] * scale;
-          std::snprintf(line, sizeof line, "      vertex %.9e %.9e %.9e\n", v.x(), v.y(), v.z());
-          out << line;
-        }
-        out << "    endloop\n  endfacet\n";
-      }
-    }
-    out << "endsolid " << options.solid_name << '\n';
-  }
-  file.commit();
-}
 
 StlMesh read_stl(const std::string& path) {
   std::error_code error;

@@ -38,6 +38,13 @@ std::vector<double> running_median(const std::vector<double>& values, std::size_
   return smoothed;
 }
 
+std::string fmt_fill(const Container& c, std::size_t count) {
+  return std::to_string(count) + " particles in a " +
+         (c.kind == ContainerKind::kBox
+              ? "box " + format_value(c.length) + " x " + format_value(c.width) + " m"
+              : std::string("cylinder"));
+}
+
 double largest_size(const Packing& packing) {
   double largest = 0.0;
   for (const auto& particle : packing.particles) {
@@ -127,8 +134,10 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
   return false;
 }
 
+}  // namespace
+
 // The paper's placement in the half behind the baffle.
-LatticeOptions fill_lattice(const ReposeOptions& options) {
+LatticeOptions repose_fill_options(const ReposeOptions& options) {
   LatticeOptions lattice;
   lattice.container.kind = ContainerKind::kBox;
   lattice.container.length = options.baffle_position;
@@ -141,8 +150,6 @@ LatticeOptions fill_lattice(const ReposeOptions& options) {
   lattice.seed = options.seed;
   return lattice;
 }
-
-}  // namespace
 
 void validate(const ReposeOptions& options) {
   require_positive("repose.trough_length", options.trough_length);
@@ -167,7 +174,7 @@ void validate(const ReposeOptions& options) {
   validate(options.physics);
   validate(options.rest);
   // What the fill would reject (too large a radius, too many vertices), before any simulation.
-  validate(fill_lattice(options));
+  validate(repose_fill_options(options));
 }
 
 SurfaceProfile surface_profile(const Packing& packing, double lower, double upper,
@@ -297,22 +304,30 @@ SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper, double fit_l
   return fit;
 }
 
-ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& progress) {
+ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
+                        const ReposeProgress& progress) {
   validate(options);
   ReposeResult result;
   const auto start = Clock::now();
 
-  const LatticeOptions lattice = fill_lattice(options);
-  PackResult placed = pack_lattice(lattice);
-  Packing packing = std::move(placed.packing);
-  if (options.is_orientation_random) randomise_orientations(packing, lattice);
+  Packing packing = std::move(fill.packing);
+  const Container& region = packing.container;
+  if (region.kind != ContainerKind::kBox || !(region.length <= options.baffle_position) ||
+      !(region.width <= options.trough_width) || packing.particles.empty()) {
+    throw InvalidInput("repose fill", fmt_fill(region, packing.particles.size()),
+                       "a non-empty box packing within [0, baffle_position] x [0, trough_width]");
+  }
+  const std::string packer = packing.provenance.packer;
+  if (options.is_orientation_random && packer == "lattice") {
+    randomise_orientations(packing, repose_fill_options(options));
+  }
   packing.container.length = options.trough_length;
   packing.container.width = options.trough_width;
   packing.container.depth = options.trough_height;
-  packing.provenance.packer = "lattice+repose";
+  packing.provenance.packer = packer + "+repose";
   result.initial = packing;
   result.particle_count = packing.particles.size();
-  result.solid_volume = placed.report.solid_volume;
+  result.solid_volume = fill.report.solid_volume;
   {
     double sum = 0.0;
     for (const auto& particle : packing.particles) {
@@ -396,7 +411,7 @@ ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& prog
       });
   result.stage2_time = world.time() - stage2_begin;
   result.final = world.packing();
-  result.final.provenance.packer = "lattice+repose";
+  result.final.provenance.packer = packer + "+repose";
   const OverlapStatistics overlap = world.overlap_statistics();
   result.max_overlap_fraction = overlap.max_depth_fraction;
   result.max_contact_penetration_fraction =

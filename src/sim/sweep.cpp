@@ -20,8 +20,10 @@ void validate(const SweepOptions& options) {
   validate(options.base);
 }
 
-std::vector<SweepCase> run_sweep(const SweepOptions& options, const SweepCaseCallback& on_case) {
+std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& fill,
+                                 const SweepCaseCallback& on_case) {
   validate(options);
+  if (!fill) throw InvalidInput("sweep fill", "none", "a function making each case's fill");
   const std::size_t total = options.alphas.size() * options.frictions.size();
   std::vector<SweepCase> cases(total);
   std::mutex mutex;
@@ -33,7 +35,7 @@ std::vector<SweepCase> run_sweep(const SweepOptions& options, const SweepCaseCal
     repose.alpha = alpha;
     repose.physics.friction = friction;
     if (options.is_wall_friction_coupled) repose.physics.wall_friction = friction;
-    const ReposeResult result = run_repose(repose);
+    const ReposeResult result = run_repose(repose, fill(repose));
     SweepCase& summary = cases[index];
     summary.index = index;
     summary.alpha = alpha;

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "aggpack/io/config.h"
+#include "aggpack/config/config.h"
 #include "aggpack/io/native.h"
 #include "aggpack/io/stl.h"
 #include "aggpack/pack/verify.h"

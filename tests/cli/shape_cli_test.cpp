@@ -85,7 +85,7 @@ TEST_F(ShapeCliTest, ParticleWritesBinaryAndAsciiStlMatchingTheLibrary) {
 
   const auto ascii = run("particle " + flags + " --ascii --scale 1000 -o a.stl");
   ASSERT_EQ(ascii.exit_code, 0) << ascii.err;
-  EXPECT_EQ(file_text(file("a.stl")).rfind("solid particle", 0), 0U);
+  EXPECT_EQ(file_text(file("a.stl")).rfind("solid aggpack", 0), 0U);
   const StlMesh millimetres = read_stl(file("a.stl").string());
   ASSERT_EQ(millimetres.triangles.size(), mesh.triangles.size());
   EXPECT_LE((millimetres.triangles[3][1] - 1000.0 * mesh.triangles[3][1]).norm(), 1e-3);

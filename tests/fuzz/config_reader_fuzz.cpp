@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "aggpack/config/config.h"
 #include "aggpack/core/error.h"
-#include "aggpack/io/config.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);

@@ -12,8 +12,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "aggpack/config/config.h"
 #include "aggpack/core/error.h"
-#include "aggpack/io/config.h"
 #include "aggpack/io/native.h"
 #include "aggpack/pack/statistics.h"
 

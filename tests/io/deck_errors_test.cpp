@@ -96,7 +96,7 @@ TEST(DeckOutput, SameBytesForAnyThreadCountAndDefaultsFromTheContainer) {
 TEST(DeckCli, ExportDeckEndToEnd) {
   const Packing packing = test::pile_near_floor(2, 1, 1, 0.01);
   ScratchFolder folder;
-  write_packing(folder.file("p.h5"), packing);
+  write_packing(packing, folder.file("p.h5"));
   const std::string binary = AGGPACK_BINARY;
   auto result = test::run_command(binary + " export " + folder.file("p.h5") +
                                   " --deck calculix --friction 0.3 --settle-time 0.2 -o " +

@@ -14,10 +14,13 @@ namespace {
 
 using test::ScratchFolder;
 
-const ExportFormat kAllFormats[] = {
-    ExportFormat::kStl,       ExportFormat::kRockDat, ExportFormat::kAbaqus,
-    ExportFormat::kVtu,       ExportFormat::kGmsh,    ExportFormat::kLsDyna,
-    ExportFormat::kAnsysApdl, ExportFormat::kObj,     ExportFormat::kYade};
+// Every format of the table, the native .h5 file included (export_registry_test.cpp checks that
+// the table is complete).
+std::vector<ExportFormat> all_formats() {
+  std::vector<ExportFormat> formats;
+  for (const FormatInfo& info : export_formats()) formats.push_back(info.format);
+  return formats;
+}
 
 TEST(ExportFormatChoice, ByExtensionAndByName) {
   EXPECT_EQ(format_from_extension("a/b.stl"), ExportFormat::kStl);
@@ -33,7 +36,7 @@ TEST(ExportFormatChoice, ByExtensionAndByName) {
   EXPECT_EQ(parse_export_format("abaqus"), ExportFormat::kAbaqus);
   EXPECT_EQ(parse_export_format("LS-DYNA"), ExportFormat::kLsDyna);
   EXPECT_EQ(parse_export_format("yade"), ExportFormat::kYade);
-  for (ExportFormat format : kAllFormats) {
+  for (ExportFormat format : all_formats()) {
     EXPECT_EQ(parse_export_format(format_name(format)), format);
   }
   EXPECT_THROW(format_from_extension("x.xyz"), InvalidInput);
@@ -43,7 +46,10 @@ TEST(ExportFormatChoice, ByExtensionAndByName) {
     FAIL();
   } catch (const InvalidInput& error) {
     EXPECT_EQ(error.field(), "format");
-    EXPECT_NE(std::string(error.what()).find("stl, dat"), std::string::npos);
+    // Every format of the table, with its aliases.
+    EXPECT_NE(std::string(error.what()).find("h5 (native), stl, obj, vtu (vtk), dat (rock.dat"),
+              std::string::npos)
+        << error.what();
   }
 }
 
@@ -75,7 +81,7 @@ TEST(ExportOptionsCheck, OutOfRangeOptionsNameTheField) {
 TEST(ExportPaths, MissingFolderExistingFileAndNoPermissionLeaveNothing) {
   const Packing packing = test::grid_packing(2, 1, 1);
   ScratchFolder folder;
-  for (ExportFormat format : kAllFormats) {
+  for (ExportFormat format : all_formats()) {
     const ExportOptions options{.format = format};
     // Missing folder.
     try {
@@ -121,7 +127,7 @@ TEST(ExportPaths, MissingFolderExistingFileAndNoPermissionLeaveNothing) {
 TEST(ExportDeterminism, SameBytesWithOneThreadAndWithAll) {
   const Packing packing = test::grid_packing(6, 5, 4, 77, /*share_shapes=*/false);
   ScratchFolder folder;
-  for (ExportFormat format : kAllFormats) {
+  for (ExportFormat format : all_formats()) {
     const std::string name = format_name(format);
     write(packing, folder.file("all." + name), {.format = format});
     {
@@ -140,7 +146,7 @@ TEST(ExportCli, ExportsNativeFileAndFailsCleanly) {
   const Packing packing = test::grid_packing(4, 3, 2, 12);
   ScratchFolder folder;
   const std::string native = folder.file("run.h5");
-  write_packing(native, packing);
+  write_packing(packing, native);
   const std::string binary = AGGPACK_BINARY;
   const std::string inp = folder.file("run.inp");
   auto run = [&](const std::string& arguments) {

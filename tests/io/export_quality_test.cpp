@@ -71,7 +71,7 @@ TEST(ExportQuality, SurfaceFormatsReportNoTetrahedra) {
 TEST(ExportQuality, CliPrintsOneQualityLineForTetrahedra) {
   const Packing packing = test::grid_packing(3, 1, 1, 74);
   ScratchFolder folder;
-  write_packing(folder.file("run.h5"), packing);
+  write_packing(packing, folder.file("run.h5"));
   const std::string command =
       std::string(AGGPACK_BINARY) + " export " + folder.file("run.h5") + " -o ";
   const auto inp = test::run_command(command + folder.file("run.inp"));

@@ -167,13 +167,13 @@ ErrorKind error_kind_of(Function&& function) {
 
 TEST_F(NativeFileTest, RoundTripIsBitExact) {
   const Packing packing = sample_packing();
-  write_packing(path("run.h5"), packing);
+  write_packing(packing, path("run.h5"));
   EXPECT_TRUE(identical(packing, read_packing(path("run.h5"))));
 }
 
 TEST_F(NativeFileTest, RoundTripWithCompressionIsBitExact) {
   const Packing packing = sample_packing(200);
-  write_packing(path("run.h5"), packing, {.compression = 6});
+  write_packing(packing, path("run.h5"), {.compression = 6});
   EXPECT_TRUE(identical(packing, read_packing(path("run.h5"))));
 }
 
@@ -183,7 +183,7 @@ TEST_F(NativeFileTest, CylinderAndEmptyPackingRoundTrip) {
   packing.provenance.config_toml = "";
   packing.provenance.packer = "random";
   packing.provenance.seed = 0;
-  write_packing(path("empty.h5"), packing);
+  write_packing(packing, path("empty.h5"));
   const Packing loaded = read_packing(path("empty.h5"));
   EXPECT_TRUE(identical(packing, loaded));
   EXPECT_EQ(loaded.container.kind, ContainerKind::kCylinder);
@@ -197,43 +197,43 @@ TEST_F(NativeFileTest, LargeConfigTextRoundTrips) {
     packing.provenance.config_toml += "# comment line " + std::to_string(line) + " of the config\n";
   }
   ASSERT_GT(packing.provenance.config_toml.size(), 100000U);  // beyond compact attribute storage
-  write_packing(path("run.h5"), packing);
+  write_packing(packing, path("run.h5"));
   EXPECT_TRUE(identical(packing, read_packing(path("run.h5"))));
 }
 
 TEST_F(NativeFileTest, SameInputGivesByteIdenticalFiles) {
   const Packing packing = sample_packing();
-  write_packing(path("a.h5"), packing);
+  write_packing(packing, path("a.h5"));
   // HDF5 timestamps have one-second resolution; cross a second boundary to prove they are off.
   std::this_thread::sleep_for(std::chrono::milliseconds(1100));
-  write_packing(path("b.h5"), packing);
+  write_packing(packing, path("b.h5"));
   const std::string a = read_bytes(path("a.h5"));
   ASSERT_FALSE(a.empty());
   EXPECT_TRUE(a == read_bytes(path("b.h5")));
 }
 
 TEST_F(NativeFileTest, WritesAtomicallyAndLeavesNoTemporaryFile) {
-  write_packing(path("run.h5"), sample_packing());
+  write_packing(sample_packing(), path("run.h5"));
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(folder_))
     names.push_back(entry.path().filename());
   EXPECT_EQ(names, std::vector<std::string>{"run.h5"});
   EXPECT_EQ(error_kind_of([&] {
-              write_packing(path("run.h5"), sample_packing(), {.overwrite = Overwrite::kForbid});
+              write_packing(sample_packing(), path("run.h5"), {.overwrite = Overwrite::kForbid});
             }),
             ErrorKind::kIoError);
-  EXPECT_EQ(error_kind_of([&] { write_packing(path("missing/run.h5"), sample_packing()); }),
+  EXPECT_EQ(error_kind_of([&] { write_packing(sample_packing(), path("missing/run.h5")); }),
             ErrorKind::kIoError);
   EXPECT_FALSE(fs::exists(path("missing")));
 }
 
 TEST_F(NativeFileTest, RejectsBadWriteOptionsAndShapeIndices) {
   EXPECT_EQ(
-      error_kind_of([&] { write_packing(path("a.h5"), sample_packing(), {.compression = 10}); }),
+      error_kind_of([&] { write_packing(sample_packing(), path("a.h5"), {.compression = 10}); }),
       ErrorKind::kInvalidInput);
   Packing packing = sample_packing();
   packing.particles[3].shape = 99;
-  EXPECT_EQ(error_kind_of([&] { write_packing(path("a.h5"), packing); }), ErrorKind::kInvalidInput);
+  EXPECT_EQ(error_kind_of([&] { write_packing(packing, path("a.h5")); }), ErrorKind::kInvalidInput);
   EXPECT_FALSE(fs::exists(path("a.h5")));
 }
 
@@ -257,7 +257,7 @@ TEST_F(NativeFileTest, NotHdf5IsFormatError) {
 }
 
 TEST_F(NativeFileTest, TruncatedFileIsFormatError) {
-  write_packing(path("run.h5"), sample_packing());
+  write_packing(sample_packing(), path("run.h5"));
   const std::string bytes = read_bytes(path("run.h5"));
   for (std::size_t length : {std::size_t{0}, std::size_t{8}, std::size_t{100}, bytes.size() / 4,
                              bytes.size() / 2, bytes.size() - 100, bytes.size() - 1}) {
@@ -276,7 +276,7 @@ TEST_F(NativeFileTest, TruncatedFileIsFormatError) {
 // corrupt-metadata error paths; aggpack's own code is leak-checked by every other test.
 TEST_F(NativeFileTest, FlippedBytesAreDetectedOrHarmless) {
   const Packing packing = sample_packing(3);
-  write_packing(path("run.h5"), packing);
+  write_packing(packing, path("run.h5"));
   const std::string bytes = read_bytes(path("run.h5"));
   struct Outcome {
     std::uint64_t detected = 0;
@@ -334,7 +334,7 @@ TEST_F(NativeFileTest, WrongVersionAndWrongFormatNameAreFormatErrors) {
   if (!has_python_module("h5py"))
     FAIL()
         << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
-  write_packing(path("v2.h5"), sample_packing());
+  write_packing(sample_packing(), path("v2.h5"));
   ASSERT_EQ(run_python("import h5py; f = h5py.File(\"" + path("v2.h5") +
                        "\", \"r+\"); f.attrs[\"format_version\"] = 2"),
             0);
@@ -377,7 +377,7 @@ TEST_F(NativeFileTest, InvalidContentIsFormatError) {
   std::string script = "import h5py\n";
   for (std::size_t k = 0; k < edits.size(); ++k) {
     const std::string name = path("edit" + std::to_string(k) + ".h5");
-    write_packing(name, sample_packing());
+    write_packing(sample_packing(), name);
     script += "with h5py.File(\"" + name + "\", \"r+\") as f: " + edits[k].second + "\n";
   }
   ASSERT_EQ(run_python(script), 0);
@@ -393,7 +393,7 @@ TEST_F(NativeFileTest, H5pyReadsTheDatasets) {
     FAIL()
         << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
   const Packing packing = sample_packing();
-  write_packing(path("run.h5"), packing);
+  write_packing(packing, path("run.h5"));
   const Particle& p = packing.particles[5];
   char expected[256];
   std::snprintf(expected, sizeof expected, "%.17g,%.17g,%.17g,%d,%.17g", p.pose.position.x(),
@@ -417,7 +417,7 @@ TEST_F(NativeFileTest, H5pyReadsTheDatasets) {
 
 TEST_F(NativeFileTest, XdmfSideFileOpensInMeshio) {
   const Packing packing = sample_packing();
-  write_packing(path("run.h5"), packing, {.write_xdmf = true});
+  write_packing(packing, path("run.h5"), {.write_xdmf = true});
   ASSERT_TRUE(fs::exists(path("run.xdmf")));
   EXPECT_EQ(xdmf_path_for(path("run.h5")), path("run.xdmf"));
   EXPECT_TRUE(identical(packing, read_packing(path("run.h5"))));  // /world is ignored on read
@@ -449,7 +449,7 @@ TEST_F(NativeFileTest, XdmfSideFileOpensInMeshio) {
 TEST_F(NativeFileTest, XdmfParticleAttributeCountsFromOne) {
   ASSERT_TRUE(has_python_module("meshio")) << "python3-meshio not installed";
   const Packing packing = sample_packing();
-  write_packing(path("run.h5"), packing, {.write_xdmf = true});
+  write_packing(packing, path("run.h5"), {.write_xdmf = true});
   std::string expected;
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {
     expected += std::to_string(packing.shapes[packing.particles[i].shape].triangle_count()) + ",";

@@ -179,7 +179,7 @@ TEST(ValidatePacking, ReadPackingUsesTheSameCheck) {
   const std::string path = (std::filesystem::temp_directory_path() /
                             ("aggpack_validate_" + std::to_string(::getpid()) + ".h5"))
                                .string();
-  write_packing(path, packing);
+  write_packing(packing, path);
   std::string message;
   try {
     read_packing(path);

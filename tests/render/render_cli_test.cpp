@@ -30,7 +30,7 @@ class RenderCli : public ::testing::Test {
     dir_ = fs::temp_directory_path() / ("aggpack_render_cli_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
     input_ = (dir_ / "run.h5").string();
-    write_packing(input_, test::grid_packing(4, 2, 3));
+    write_packing(test::grid_packing(4, 2, 3), input_);
   }
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;

@@ -162,12 +162,17 @@ ReposeOptions small_trough() {
   return options;
 }
 
+// The paper's lattice fill of a case (the CLI makes the same one through the pipeline).
+PackResult lattice_fill(const ReposeOptions& options) {
+  return pack_lattice(repose_fill_options(options));
+}
+
 TEST(Repose, AngleRisesWithFrictionAndAsAlphaFalls) {
   SweepOptions sweep;
   sweep.base = small_trough();
   sweep.alphas = {0.9, 0.4};
   sweep.frictions = {0.1, 0.6};
-  const auto cases = run_sweep(sweep);
+  const auto cases = run_sweep(sweep, lattice_fill);
   ASSERT_EQ(cases.size(), 4u);
   for (const auto& c : cases) {
     EXPECT_TRUE(c.is_valid) << "alpha " << c.alpha << " mu " << c.friction;
@@ -190,8 +195,9 @@ TEST(Repose, AngleRisesWithFrictionAndAsAlphaFalls) {
 TEST(Repose, WritesJsonCsvAndPng) {
   ReposeOptions options = small_trough();
   options.fill_height = 0.4;  // 60 particles: only the files are under test here
-  const ReposeResult result = run_repose(options);
+  const ReposeResult result = run_repose(options, lattice_fill(options));
   EXPECT_EQ(result.particle_count, 60u);
+  EXPECT_EQ(result.final.provenance.packer, "lattice+repose");
   EXPECT_EQ(result.escaped_particles, 0u);
   const auto folder = std::filesystem::temp_directory_path() / "aggpack_repose_test";
   std::filesystem::create_directories(folder);
@@ -221,22 +227,43 @@ TEST(Repose, WritesJsonCsvAndPng) {
 
 TEST(Repose, RejectsBadOptions) {
   ReposeOptions options;
+  const PackResult fill = lattice_fill(small_trough());
   options.baffle_speed = 0.0;
   try {
-    run_repose(options);
+    run_repose(options, fill);
     FAIL() << "expected InvalidInput";
   } catch (const InvalidInput& error) {
     EXPECT_EQ(error.field(), "repose.baffle_speed");
   }
   options = ReposeOptions{};
   options.baffle_position = 6.0;
-  EXPECT_THROW(run_repose(options), InvalidInput);
+  EXPECT_THROW(run_repose(options, fill), InvalidInput);
   options = ReposeOptions{};
   options.fit_lower = 0.9;
-  EXPECT_THROW(run_repose(options), InvalidInput);
+  EXPECT_THROW(run_repose(options, fill), InvalidInput);
   SweepOptions sweep;
   sweep.alphas.clear();
-  EXPECT_THROW(run_sweep(sweep), InvalidInput);
+  EXPECT_THROW(run_sweep(sweep, lattice_fill), InvalidInput);
+  sweep = SweepOptions{};
+  EXPECT_THROW(run_sweep(sweep, ReposeFill{}), InvalidInput);
+}
+
+TEST(Repose, RejectsAFillOutsideTheBaffle) {
+  ReposeOptions options = small_trough();
+  PackResult fill = lattice_fill(options);
+  options.baffle_position = 0.3;  // the fill is 0.5 m long
+  try {
+    run_repose(options, fill);
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& error) {
+    EXPECT_EQ(error.field(), "repose fill");
+  }
+  // A lattice fill that is not repose_fill_options()'s cannot be turned about its sites.
+  options = small_trough();
+  LatticeOptions other = repose_fill_options(options);
+  other.radius = 0.04;
+  other.edge_length = 0.04;
+  EXPECT_THROW(run_repose(options, pack_lattice(other)), InvalidInput);
 }
 
 }  // namespace

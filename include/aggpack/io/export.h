@@ -1,8 +1,10 @@
 #pragma once
 // Exporters: one entry point, write(packing, path, options), that turns a Packing into the files
-// 3D printers, finite-element and DEM programs and ParaView read. The format comes from
-// options.format or, when that is kAuto, from the extension of `path`. docs/formats.md gives the
-// exact layout of every format.
+// 3D printers, finite-element and DEM programs and ParaView read, or into the native .h5 file.
+// The format comes from options.format or, when that is kAuto, from the extension of `path`.
+// Every format is one row of export_formats() (src/io/export_formats.cpp): its names, extensions,
+// what its files can hold and its writer; nothing else lists the formats. docs/formats.md gives
+// the exact layout of every format.
 //
 // Common conventions:
 //  - Coordinates are world coordinates (Packing::placed) times options.scale (1000 writes mm).
@@ -14,7 +16,9 @@
 //  - Files are written atomically: a failure leaves no partial file behind.
 
 #include <cstdint>
+#include <iosfwd>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aggpack/core/atomic_file.h"
@@ -25,11 +29,11 @@
 
 namespace aggpack {
 
-/// The names accepted as keys of a config's [output] table, in documentation order: "native"
-/// (the .h5 packing file) and the name of every export format.
-const std::vector<std::string>& output_format_names();
+namespace detail {
+class ExportModel;
+}
 
-/// File formats. The extension each is chosen by (for kAuto) is given after the name.
+/// File formats: an id only; what a format is and does is its row in export_formats().
 enum class ExportFormat {
   kAuto,       ///< from the extension of the output path
   kStl,        ///< STL surface, binary or ASCII (.stl)
@@ -40,7 +44,8 @@ enum class ExportFormat {
   kLsDyna,     ///< LS-DYNA keyword file (.k, .key)
   kAnsysApdl,  ///< ANSYS APDL macro with N and EN commands (.mac, .apdl)
   kObj,        ///< Wavefront OBJ surface (.obj)
-  kYade        ///< YADE Python script that rebuilds the packing as polyhedra (.py)
+  kYade,       ///< YADE Python script that rebuilds the packing as polyhedra (.py)
+  kNative      ///< the native packing file (.h5, aggpack/io/native.h)
 };
 
 /// Which cells a format that can hold either (.vtu, .msh) gets.
@@ -119,7 +124,9 @@ struct ExportOptions {
   bool is_quadratic = false;
   AbaqusLayout abaqus_layout = AbaqusLayout::kElementSets;  ///< .inp only
   MaterialOptions material = {};
-  DeckOptions deck = {};  ///< a complete solver model instead of the mesh alone (.inp, .k, .py)
+  DeckOptions deck = {};    ///< a complete solver model instead of the mesh alone (.inp, .k, .py)
+  int compression = 0;      ///< native .h5 only: deflate level of the datasets, 0 (none) .. 9
+  bool write_xdmf = false;  ///< native .h5 only: also /world and the .xdmf side file (native.h)
 };
 
 /// A shape that TetGen could not mesh (--tet-method tetgen) and that was cut as the paper's
@@ -144,7 +151,8 @@ struct ExportSummary {
   TetQuality quality = {};
 };
 
-/// Writes `packing` to `path` in the chosen format, atomically.
+/// Writes `packing` to `path` in the chosen format, atomically. The native .h5 file too
+/// (write_packing with options.overwrite, compression, write_xdmf; the same bytes).
 /// \throw InvalidInput (options out of range, a format that cannot hold the request, e.g.
 ///        is_quadratic for STL, no format given and an unknown extension),
 ///        IoError (folder missing or not writable, file exists without Overwrite::kAllow, write
@@ -153,9 +161,59 @@ struct ExportSummary {
 ExportSummary write(const Packing& packing, const std::string& path,
                     const ExportOptions& options = {});
 
-/// The format a name or extension denotes: "stl", "dat" (or "rock.dat"), "inp" (or "abaqus"),
-/// "vtu", "msh" (or "gmsh"), "k" (or "key", "lsdyna"), "mac" (or "apdl", "ansys"), "obj",
-/// "py" (or "yade"); case-insensitive. \throw InvalidInput listing the names.
+/// One row of the format table: everything aggpack knows about a format. Adding a format is one
+/// row in export_formats() (src/io/export_formats.cpp) and its writer.
+struct FormatInfo {
+  ExportFormat format = ExportFormat::kAuto;
+  /// Short name: messages, format_name(), --format, and the extension of per-particle files.
+  std::string_view name;
+  /// Its key in a config's [output] table (output_format_names()).
+  std::string_view output_key;
+  /// Other words naming it (--format, output extension), case-insensitive; the name and the
+  /// output key are among name + aliases.
+  std::vector<std::string_view> aliases;
+  std::string_view title;  ///< for help texts, e.g. "Abaqus .inp"
+  // What its files can hold.
+  bool holds_packing = false;   ///< the whole Packing, read back by read_packing (native)
+  bool has_surface = false;     ///< each particle's surface triangles
+  bool has_tetrahedra = false;  ///< each particle's linear tetrahedra
+  bool has_quadratic = false;   ///< 10-node tetrahedra (ExportOptions::is_quadratic)
+  MeshCells default_cells = MeshCells::kDefault;  ///< cells written for MeshCells::kDefault
+  bool has_per_particle = false;  ///< one file per particle in a folder (is_per_particle)
+  bool has_ascii = false;         ///< binary or ASCII (stl_encoding)
+  // The writer: exactly one of the two is set.
+  /// Streams the particles of a mesh view (src/io/export_<format>.cpp); write() opens the file(s).
+  void (*write_mesh)(const detail::ExportModel& model, std::ostream& out) = nullptr;
+  /// Writes the whole file itself and counts it in `summary` (the native file).
+  void (*write_file)(const Packing& packing, const std::string& path, const ExportOptions& options,
+                     ExportSummary& summary) = nullptr;
+};
+
+/// Every format, in documentation order (the order of docs/formats.md and of help texts).
+const std::vector<FormatInfo>& export_formats();
+
+/// The row of `format`. \throw InvalidInput for ExportFormat::kAuto.
+const FormatInfo& format_info(ExportFormat format);
+
+/// The names accepted as keys of a config's [output] table: every row's output_key, in table
+/// order ("native" is the .h5 packing file).
+const std::vector<std::string>& output_format_names();
+
+/// One row of the deck table: a complete solver model written around a format's mesh.
+struct DeckInfo {
+  DeckKind kind = DeckKind::kNone;
+  std::string_view name;                      ///< "calculix"
+  std::vector<std::string_view> aliases;      ///< "ccx"
+  ExportFormat format = ExportFormat::kAuto;  ///< the format the deck is written in
+  void (*write_mesh)(const detail::ExportModel& model, std::ostream& out) = nullptr;
+};
+
+/// Every deck (DeckKind::kNone has no row).
+const std::vector<DeckInfo>& deck_kinds();
+
+/// The format a name or extension denotes: a row's name or one of its aliases ("stl", "dat" or
+/// "rock.dat", "inp" or "abaqus", "h5" or "native", ...); case-insensitive.
+/// \throw InvalidInput listing the names.
 ExportFormat parse_export_format(const std::string& name);
 
 /// The format write() uses: options.format, or when that is kAuto the extension of `path`, or
@@ -173,7 +231,8 @@ DeckKind parse_deck_kind(const std::string& name);
 /// Short name of a deck ("none", "abaqus", "calculix", "lsdyna", "yade").
 std::string deck_name(DeckKind kind);
 
-/// Short name of a format ("stl", "dat", "inp", "vtu", "msh", "k", "mac", "obj", "py").
+/// Short name of a format, its row's name ("stl", "dat", "inp", "vtu", "msh", "k", "mac", "obj",
+/// "py", "h5").
 std::string format_name(ExportFormat format);
 
 /// Throws InvalidInput naming the field unless the options are usable for `format`.

@@ -49,10 +49,11 @@ struct NativeWriteOptions {
 
 /// Writes `packing` to `path` (HDF5) atomically: a temporary file in the same folder is renamed
 /// onto `path` only when complete. With write_xdmf, `path` with extension .xdmf is written too.
+/// The native row of the format table: write(packing, path, options) (export.h) calls this.
 /// \throw InvalidInput (compression outside [0, 9]; a particle's shape index out of range),
 ///        IoError (folder missing or not writable, file exists with Overwrite::kForbid, HDF5 write
 ///        failure).
-void write_packing(const std::string& path, const Packing& packing,
+void write_packing(const Packing& packing, const std::string& path,
                    const NativeWriteOptions& options = {});
 
 /// Reads a packing written by write_packing and validates it: element types exact, every

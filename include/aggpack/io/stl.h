@@ -1,28 +1,18 @@
 #pragma once
-// STL writer/reader. STL stores facets with an outward normal and three vertices counter-clockwise
-// seen from outside (the paper's Section 4). Coordinates are written in metres times `scale`.
+// STL reader, and the encoding choice of the STL writer. STL stores facets with an outward normal
+// and three vertices counter-clockwise seen from outside (the paper's Section 4). The one STL
+// writer is the exporter's (write(packing, path, {.format = ExportFormat::kStl}), export.h;
+// src/io/export_stl.cpp).
 
+#include <array>
 #include <string>
 #include <vector>
 
-#include "aggpack/core/atomic_file.h"
-#include "aggpack/geom/convex_polyhedron.h"
+#include "aggpack/geom/vec.h"
 
 namespace aggpack {
 
 enum class StlEncoding { kBinary, kAscii };
-
-struct StlOptions {
-  StlEncoding encoding = StlEncoding::kBinary;
-  double scale = 1.0;  ///< multiply coordinates by this (1000 writes millimetres), > 0
-  std::string solid_name = "aggpack";
-  Overwrite overwrite = Overwrite::kAllow;
-};
-
-/// Writes `bodies` (already placed in world coordinates) into one STL file, atomically.
-/// \throw InvalidInput (scale), IoError.
-void write_stl(const std::string& path, const std::vector<ConvexPolyhedron>& bodies,
-               const StlOptions& options = {});
 
 /// A triangle soup read from an STL file.
 struct StlMesh {

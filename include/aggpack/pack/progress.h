@@ -12,8 +12,9 @@ namespace aggpack {
 
 /// Which part of a run a progress snapshot is about.
 enum class PackStage {
-  kShapes,    ///< growing the particle shapes (random packer: the size list)
-  kPlacement  ///< placing them
+  kShapes,     ///< growing the particle shapes (random packer: the size list)
+  kPlacement,  ///< placing them
+  kDensify     ///< densifying a fill (the pipeline's "dense" kind; placed = sweeps)
 };
 
 /// A progress snapshot, passed to PackControl::on_progress.

@@ -15,7 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/packing.h"
+#include "aggpack/pack/progress.h"
 #include "aggpack/sim/settle.h"
 #include "aggpack/sim/world.h"
 
@@ -36,8 +38,9 @@ struct ReposeOptions {
   /// largest particle size beyond the pile; if it reaches the far wall first it stops there.
   double baffle_clear_time = 0.2;
 
-  // Particles: the paper's lattice placement (aggpack::pack_lattice) in the box
-  // [0, baffle_position] x [0, trough_width] x [0, fill_height].
+  // Particles: the fill, made by the caller (the pipeline's pack() of repose_fill_options(), the
+  // paper's lattice placement in the box [0, baffle_position] x [0, trough_width] x
+  // [0, fill_height]) and passed to run_repose().
   double alpha = 0.5;        ///< Eq. 3 shape control, [0, 1]
   double radius = 0.1;       ///< control radius R (m), > 0; lattice spacing 2R
   double edge_length = 0.1;  ///< L (m), > 0
@@ -46,6 +49,8 @@ struct ReposeOptions {
   /// Turn each particle by a uniformly random rotation about its lattice site (stream
   /// Rng(seed ^ 0x726f74, i)); it stays inside its site's sphere, so nothing overlaps. Without it
   /// identical shapes (alpha = 1 grows the same body every time) stack into a stable crystal.
+  /// Only for the lattice fill of repose_fill_options() (provenance.packer "lattice"); other
+  /// fills (random, dense) are taken as they are.
   bool is_orientation_random = true;
 
   /// Materials. `friction` is the mu_s of the sweep; walls default to the same value.
@@ -65,6 +70,11 @@ struct ReposeOptions {
 
 /// Throws InvalidInput naming the field ("repose.baffle_speed", ...) unless usable.
 void validate(const ReposeOptions& options);
+
+/// The paper's fill for the test: the lattice placement (alpha, radius, edge_length, seed) in the
+/// box [0, baffle_position] x [0, trough_width] x [0, fill_height]. Pack it with the pipeline's
+/// pack() (or pack_lattice) and pass the result to run_repose().
+LatticeOptions repose_fill_options(const ReposeOptions& options);
 
 /// Height of the pile surface along x: the highest particle point in each bin (0 = bare floor).
 struct SurfaceProfile {
@@ -114,7 +124,7 @@ using ReposeProgress =
 
 /// Everything a repose run measured.
 struct ReposeResult {
-  Packing initial;  ///< the lattice placement in the trough
+  Packing initial;  ///< the fill in the trough (turned, for the lattice fill)
   Packing settled;  ///< after stage 1
   Packing final;    ///< after stage 2
   SurfaceProfile profile;
@@ -138,9 +148,17 @@ struct ReposeResult {
   std::size_t escaped_particles = 0;  ///< particles outside the trough (x, y) or below the floor
 };
 
-/// Runs both stages and measures the angle. Deterministic for given options.
-/// \throw InvalidInput, LimitExceeded (as the lattice packer and World).
-ReposeResult run_repose(const ReposeOptions& options, const ReposeProgress& progress = {});
+/// Runs both stages on `fill` and measures the angle. Deterministic for given options and fill.
+/// `fill`: the particles behind the baffle and their report (report.solid_volume is the exact
+/// solid volume), as the pipeline's pack() returns them; its container must be a box within
+/// [0, baffle_position] x [0, trough_width] (else InvalidInput naming "repose fill"). The
+/// result's packings carry the fill's provenance with packer "<fill packer>+repose".
+/// \throw InvalidInput, LimitExceeded (as validate() and World).
+ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
+                        const ReposeProgress& progress = {});
+
+/// Makes the fill for a repose run (the sweep calls it once per case, from several threads).
+using ReposeFill = std::function<PackResult(const ReposeOptions& options)>;
 
 /// Writes the result as JSON (options, counts, stage summaries, fit) atomically. Wall-clock
 /// times are left out so that the same options always give the same bytes.

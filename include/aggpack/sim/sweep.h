@@ -46,9 +46,10 @@ struct SweepCase {
 using SweepCaseCallback = std::function<void(const SweepCase& summary, const ReposeResult& result,
                                              std::size_t done, std::size_t total)>;
 
-/// Runs every case (in parallel where TBB is available). Returns the cases in index order.
+/// Runs every case (in parallel where TBB is available) on the fill `fill` makes for the case's
+/// options (called concurrently). Returns the cases in index order.
 /// \throw InvalidInput (as validate and run_repose).
-std::vector<SweepCase> run_sweep(const SweepOptions& options,
+std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& fill,
                                  const SweepCaseCallback& on_case = {});
 
 /// Writes the table as CSV (one row per case, columns named in the header; no wall-clock times,

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/config/config.h"
 #include "aggpack/core/error.h"
-#include "aggpack/io/config.h"
 #include "aggpack/pack/lattice_packer.h"
 
 namespace aggpack {
@@ -207,7 +207,7 @@ TEST(Config, OutOfRangeNamesTheKeyValueAndRange) {
                       "packer.target_fraction",
                       {"invalid packer.target_fraction = 0.95 (allowed: (0, 0.9])"});
   expect_config_error("[particle]\nmax_vertices = 3\n", "particle.max_vertices",
-                      {"invalid particle.max_vertices = 3 (allowed: [6, 1000000])"});
+                      {"invalid particle.max_vertices = 3 (allowed: [6, 1e6])"});
   expect_config_error("[particle]\nedge_length = 0.0\n", "particle.edge_length",
                       {"invalid particle.edge_length = 0", "packer.kind = lattice"});
 }

@@ -1,8 +1,9 @@
 #pragma once
 // The pack configuration: a TOML file (toml++) plus `--set key=value` overrides, validated key by
-// key and turned into the packers' option structs. Every key, its unit, default and allowed range
-// is listed by config_keys() and documented in docs/config.md. An empty configuration is the
-// paper's stacking case (lattice placement, alpha 0.5, R 0.1 m, L 0.1 m, box 3.0 x 1.0 x 2.8 m).
+// key and turned into the packers' option structs. Every key is declared once in pack_schema()
+// (src/config/pack_schema.cpp); config_keys() and the tables of docs/config.md come from it. An
+// empty configuration is the paper's stacking case (lattice placement, alpha 0.5, R 0.1 m, L 0.1 m,
+// box 3.0 x 1.0 x 2.8 m).
 
 #include <cstdint>
 #include <map>
@@ -11,27 +12,13 @@
 #include <string_view>
 #include <vector>
 
+#include "aggpack/config/schema.h"
 #include "aggpack/core/error.h"
 #include "aggpack/pack/grading.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/random_packer.h"
 
 namespace aggpack {
-
-/// A configuration that cannot be used: an unknown key (with a suggestion), a value of the wrong
-/// type, out of range or not one of the allowed words. Kind kInvalidInput. The message starts with
-/// where the value came from ("paper.toml:5: ", "--set packer.gap=-1: ") and names the key, the
-/// value and what is allowed.
-class ConfigError : public Error {
- public:
-  ConfigError(std::string key, const std::string& message)
-      : Error(ErrorKind::kInvalidInput, message), key_(std::move(key)) {}
-  /// The dotted key at fault ("packer.gap"), or "" for a syntax error.
-  [[nodiscard]] const std::string& key() const { return key_; }
-
- private:
-  std::string key_;
-};
 
 /// One documented configuration key.
 struct ConfigKey {
@@ -78,6 +65,20 @@ struct PackConfig {
   /// "lattice" or "random".
   [[nodiscard]] std::string packer_name() const;
 };
+
+/// Every pack key, declared once: name, type, unit, range, scope, doc line and the binding to the
+/// PackConfig member it sets (its default is that member's default). Documentation order.
+const Schema<PackConfig>& pack_schema();
+
+/// Resolves given values (from read_values, or typed by a front end such as the GUI, origin in
+/// GivenValue::origin) into a validated configuration: defaults, cross-key rules, scope warnings,
+/// the packers' own validation (messages naming the keys) and resolved_toml.
+/// \throw ConfigError, Error of kind kLimitExceeded, as parse_pack_config.
+PackConfig resolve_pack_config(const GivenValues& given);
+
+/// The docs/config.md table of one pack table ("container", "particle", "grading", "packer",
+/// "output").
+std::string pack_keys_markdown(const std::string& table);
 
 /// Parses TOML text, applies the overrides ("dotted.key=value", the value in TOML syntax; a bare
 /// word is taken as a string) in order, and validates every key.

@@ -1,0 +1,64 @@
+// `aggpack config-keys`: every configuration key from the schemas (pack, repose, sweep), as a
+// list, as the markdown tables of docs/config.md, or rewriting those tables in place.
+
+#include <fmt/core.h>
+
+#include <memory>
+#include <string>
+
+#include "aggpack/config/config.h"
+#include "aggpack/config/docs.h"
+#include "aggpack/core/atomic_file.h"
+#include "commands.h"
+
+namespace aggpack::cli {
+
+namespace {
+
+struct ConfigKeysFlags {
+  std::string markdown_table;
+  std::string update_doc;
+};
+
+void run_config_keys(const ConfigKeysFlags& flags) {
+  if (!flags.update_doc.empty()) {
+    const std::string before = read_config_file(flags.update_doc);
+    const std::string after = regenerate_config_doc(before);
+    if (after == before) {
+      fmt::print("{} is up to date\n", flags.update_doc);
+      return;
+    }
+    AtomicFile file(flags.update_doc, Overwrite::kAllow, std::ios::out | std::ios::binary);
+    file.stream() << after;
+    file.commit();
+    fmt::print("updated the key tables of {}\n", flags.update_doc);
+    return;
+  }
+  if (!flags.markdown_table.empty()) {
+    fmt::print("{}", config_keys_markdown(flags.markdown_table));
+    return;
+  }
+  for (const auto& key : config_keys()) {
+    fmt::print("{}  {}{}  default {}  allowed {}  used when {}\n", key.name, key.type,
+               key.unit.empty() ? "" : " (" + key.unit + ")", key.default_value, key.allowed,
+               key.used_when);
+  }
+}
+
+}  // namespace
+
+void register_config_keys(CLI::App& app) {
+  auto flags = std::make_shared<ConfigKeysFlags>();
+  auto* command = app.add_subcommand(
+      "config-keys",
+      "List every pack configuration key (type, unit, default, range, when it applies), print "
+      "the markdown table of one table, or regenerate the tables of docs/config.md.");
+  command->add_option("--markdown", flags->markdown_table,
+                      "print the docs table of TABLE (container, particle, grading, packer, "
+                      "output, trough, particles, physics, rest, measure, sweep)");
+  command->add_option("--update-doc", flags->update_doc,
+                      "rewrite the generated tables of this file (docs/config.md)");
+  command->callback([flags]() { run_config_keys(*flags); });
+}
+
+}  // namespace aggpack::cli

@@ -1,0 +1,224 @@
+// The configuration sections of the panel, drawn from the schema: one widget per key that applies
+// to the current choices, labelled with the key, its tooltip the key's doc line, allowed range
+// and default (aggpack/config/schema.h). Only the sieve table has a widget of its own.
+
+#include <fmt/core.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+#include "aggpack/core/error.h"
+#include "aggpack/pack/grading.h"
+#include "gui_app.h"
+
+namespace aggpack::gui {
+
+namespace {
+
+// Text and input background of a value outside its range (and of a sieve table error).
+const ImVec4 kErrorText(0.95f, 0.35f, 0.3f, 1.0f);
+const ImVec4 kErrorFrame(0.55f, 0.15f, 0.12f, 1.0f);
+
+// A step for the +/- buttons: a tenth of the value's order of magnitude.
+double step_for(double value) {
+  if (value == 0.0 || !std::isfinite(value)) return 0.001;
+  return std::pow(10.0, std::floor(std::log10(std::abs(value))) - 1.0);
+}
+
+void key_tooltip(const Key<PackConfig>& key, const KeyView& view) {
+  if (!ImGui::IsItemHovered()) return;
+  ImGui::SetTooltip(
+      "%s\n%s: %s%s%s; default %s", key.doc.c_str(), key.name.c_str(), allowed_text(view).c_str(),
+      key.unit.empty() || key.unit == "-" ? "" : " ", key.unit == "-" ? "" : key.unit.c_str(),
+      default_text(view, *key.default_value, key.default_from, key.default_text).c_str());
+}
+
+}  // namespace
+
+void GuiApp::draw_config_section(const char* title, const std::vector<std::string>& tables) {
+  if (!ImGui::CollapsingHeader(title, ImGuiTreeNodeFlags_DefaultOpen)) return;
+  const auto& schema = pack_schema();
+  const auto views = key_views(schema);
+  const PackConfig draft = fields_.draft();
+  // A key another key excludes while that one is given (target_fraction beside target_count).
+  const auto is_excluded = [&](const std::string& name) {
+    for (const auto& other : schema.keys) {
+      if (other.excludes == name && fields_.is_on(other.name)) return true;
+    }
+    return false;
+  };
+  for (const auto& table : tables) {
+    for (std::size_t i = 0; i < schema.keys.size(); ++i) {
+      const auto& key = schema.keys[i];
+      if (key.name.rfind(table + ".", 0) != 0 || !ConfigFields::is_editable(key) ||
+          !key.scope(draft) || is_excluded(key.name)) {
+        continue;
+      }
+      draw_key(key, views[i]);
+    }
+  }
+}
+
+void GuiApp::draw_key(const Key<PackConfig>& key, const KeyView& view) {
+  // The key without its table ("radius"), or the whole key where another table has a key of that
+  // name ("container.kind", "grading.kind").
+  const std::string short_name = key.name.substr(key.name.find('.') + 1);
+  const auto& keys = pack_schema().keys;
+  const bool is_ambiguous = std::count_if(keys.begin(), keys.end(), [&](const auto& other) {
+                              return other.name.substr(other.name.find('.') + 1) == short_name;
+                            }) > 1;
+  const std::string label = (is_ambiguous ? key.name : short_name) + "##" + key.name;
+  Value& value = fields_.value(key.name);
+  if (key.presence == Presence::kOptional && key.type != ValueType::kSieve) {
+    bool is_on = fields_.is_on(key.name);
+    if (ImGui::Checkbox(("##on" + key.name).c_str(), &is_on)) fields_.set_on(key.name, is_on);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("give %s", key.name.c_str());
+    ImGui::SameLine();
+    if (!is_on) ImGui::BeginDisabled();
+    draw_key_input(key, view, label, value);
+    if (!is_on) ImGui::EndDisabled();
+    return;
+  }
+  draw_key_input(key, view, label, value);
+}
+
+void GuiApp::draw_key_input(const Key<PackConfig>& key, const KeyView& view,
+                            const std::string& label, Value& value) {
+  switch (key.type) {
+    case ValueType::kWord: {
+      auto& word = std::get<std::string>(value);
+      if (ImGui::BeginCombo(label.c_str(), word.c_str())) {
+        for (const auto& choice : key.words) {
+          if (ImGui::Selectable(choice.c_str(), choice == word)) word = choice;
+        }
+        ImGui::EndCombo();
+      }
+      break;
+    }
+    case ValueType::kFloat: {
+      auto& number = std::get<double>(value);
+      const bool is_bad = !key.range.contains(number);
+      if (is_bad) ImGui::PushStyleColor(ImGuiCol_FrameBg, kErrorFrame);
+      const double step = step_for(number);
+      const std::string format =
+          key.unit.empty() || key.unit == "-" ? std::string("%.4g") : "%.4g " + key.unit;
+      ImGui::InputDouble(label.c_str(), &number, step, 10.0 * step, format.c_str());
+      if (is_bad) ImGui::PopStyleColor();
+      break;
+    }
+    case ValueType::kInteger: {
+      auto& number = std::get<std::int64_t>(value);
+      const bool is_bad = !key.range.contains(static_cast<double>(number));
+      if (is_bad) ImGui::PushStyleColor(ImGuiCol_FrameBg, kErrorFrame);
+      const std::int64_t step = 1, fast = 100;
+      ImGui::InputScalar(label.c_str(), ImGuiDataType_S64, &number, &step, &fast);
+      if (is_bad) ImGui::PopStyleColor();
+      break;
+    }
+    case ValueType::kBool:
+      ImGui::Checkbox(label.c_str(), &std::get<bool>(value));
+      break;
+    case ValueType::kSieve:
+      key_tooltip(key, view);
+      draw_sieve_table(std::get<std::vector<SieveRow>>(value));
+      return;
+    case ValueType::kNumberList:
+    case ValueType::kPath:
+      return;  // no pack key of these kinds is edited in the panel
+  }
+  key_tooltip(key, view);
+}
+
+void GuiApp::draw_sieve_table(std::vector<SieveRow>& rows) {
+  // The library's own check, so the panel states the rule in the words Pack would use; the
+  // field it names ("grading.sieve[2].size") marks the cell.
+  std::string error, error_field;
+  try {
+    validate(Grading{.kind = GradingKind::kSieve, .sieve = rows});
+  } catch (const InvalidInput& invalid) {
+    error = invalid.what();
+    error_field = invalid.field();
+  } catch (const Error& other) {
+    error = other.what();
+  }
+  ImGui::TextUnformatted("sieve table by volume; d = control diameter");
+  int insert_after = -1, remove = -1;
+  const float button_width = ImGui::GetFrameHeight();
+  constexpr ImGuiTableFlags kTableFlags =
+      ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
+  if (ImGui::BeginTable("sieve", 4, kTableFlags)) {
+    ImGui::TableSetupColumn("#", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("size d", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn("% passing", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn("##rows", ImGuiTableColumnFlags_WidthFixed,
+                            2.0f * button_width + ImGui::GetStyle().ItemSpacing.x);
+    ImGui::TableHeadersRow();
+    for (int k = 0; k < static_cast<int>(rows.size()); ++k) {
+      SieveRow& row = rows[static_cast<std::size_t>(k)];
+      const std::string field = fmt::format("grading.sieve[{}]", k);
+      ImGui::PushID(k);
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::AlignTextToFramePadding();
+      ImGui::Text("%d", k);
+      auto cell = [&error_field](const std::string& name, const char* id, double* value,
+                                 const char* format) {
+        ImGui::TableNextColumn();
+        const bool is_bad = error_field == name;
+        if (is_bad) ImGui::PushStyleColor(ImGuiCol_FrameBg, kErrorFrame);
+        ImGui::SetNextItemWidth(-FLT_MIN);
+        ImGui::InputDouble(id, value, 0.0, 0.0, format);
+        if (is_bad) ImGui::PopStyleColor();
+      };
+      cell(field + ".size", "##size", &row.size, "%.4g m");
+      cell(field + ".percent_passing", "##percent", &row.percent_passing, "%.4g");
+      ImGui::TableNextColumn();
+      if (ImGui::Button("+", ImVec2(button_width, 0))) insert_after = k;
+      if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("Insert a row after this one (midway: the grading stays the same)");
+      }
+      ImGui::SameLine();
+      ImGui::BeginDisabled(rows.size() <= 2);  // a table needs two sieves
+      if (ImGui::Button("-", ImVec2(button_width, 0))) remove = k;
+      ImGui::EndDisabled();
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove this row");
+      ImGui::PopID();
+    }
+    ImGui::EndTable();
+  }
+  if (insert_after >= 0) {
+    const auto after = static_cast<std::size_t>(insert_after);
+    const SieveRow& row = rows[after];
+    // Midway in d with the percent interpolated (P is linear in d between sieves), or a larger
+    // sieve passing 100 % after the last: either way the grading is unchanged until edited.
+    const SieveRow added =
+        after + 1 < rows.size()
+            ? SieveRow{.size = 0.5 * (row.size + rows[after + 1].size),
+                       .percent_passing =
+                           0.5 * (row.percent_passing + rows[after + 1].percent_passing)}
+            : SieveRow{.size = 1.25 * row.size, .percent_passing = 100.0};
+    rows.insert(rows.begin() + insert_after + 1, added);
+  } else if (remove >= 0) {
+    rows.erase(rows.begin() + remove);
+  }
+  ImGui::PushTextWrapPos(0.0f);
+  if (!error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, kErrorText);
+    ImGui::TextUnformatted(error.c_str());
+    ImGui::PopStyleColor();
+  } else {
+    const Grading grading{.kind = GradingKind::kSieve, .sieve = rows};
+    const std::string fines =
+        rows.front().percent_passing > 0.0
+            ? fmt::format("; the {:.4g} % passing the smallest sieve (fines) is not packed",
+                          rows.front().percent_passing)
+            : std::string();
+    ImGui::TextDisabled("d %.4g to %.4g m%s", smallest_size(grading), largest_size(grading),
+                        fines.c_str());
+  }
+  ImGui::PopTextWrapPos();
+}
+
+}  // namespace aggpack::gui

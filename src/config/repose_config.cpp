@@ -1,0 +1,215 @@
+// Every key of the repose / sweep configuration, declared once (see aggpack/config/schema.h).
+// Ranges are those of the sim module's validators; the validators' field names are listed per key
+// so that their messages name the key.
+
+#ifdef AGGPACK_HAS_SIM
+
+#include "aggpack/config/repose_config.h"
+
+#include "binding.h"
+
+namespace aggpack {
+
+namespace {
+
+using config_detail::members;
+using SweepKey = Key<SweepOptions>;
+
+constexpr double kHuge = 1e6;
+
+// A float key of the repose options.
+template <typename Access>
+SweepKey number(const char* name, const char* unit, Range range, const char* doc, Access access,
+                std::vector<std::string> fields, std::string note = {}) {
+  return {.name = name,
+          .unit = unit,
+          .range = range,
+          .note = std::move(note),
+          .doc = doc,
+          .binding = members<SweepOptions>(access),
+          .fields = std::move(fields)};
+}
+
+std::vector<SweepKey> keys() {
+  return {
+      number("trough.length", "m", open_closed(0, kHuge), "trough length (x)",
+             [](auto& o) -> auto& { return o.base.trough_length; }, {"repose.trough_length"}),
+      number("trough.width", "m", open_closed(0, kHuge), "trough width (y)",
+             [](auto& o) -> auto& { return o.base.trough_width; },
+             {"repose.trough_width", "container.width"}),
+      number("trough.height", "m", open_closed(0, kHuge),
+             "trough wall height (walls reach the fill top during stage 1)",
+             [](auto& o) -> auto& { return o.base.trough_height; }, {"repose.trough_height"}),
+      number(
+          "trough.baffle_position", "m", open_closed(0, kHuge),
+          "x of the baffle; particles fill [0, baffle_position]",
+          [](auto& o) -> auto& { return o.base.baffle_position; },
+          {"repose.baffle_position", "container.length"}, "< trough.length"),
+      number("trough.baffle_thickness", "m", open_closed(0, kHuge), "baffle thickness",
+             [](auto& o) -> auto& { return o.base.baffle_thickness; }, {"repose.baffle_thickness"}),
+      number("trough.baffle_speed", "m/s", open_closed(0, kHuge),
+             "baffle speed toward +x in stage 2",
+             [](auto& o) -> auto& { return o.base.baffle_speed; }, {"repose.baffle_speed"}),
+      number("trough.baffle_clear_time", "s", closed(0, 1e3),
+             "baffle removed once untouched this long and clear of the pile",
+             [](auto& o) -> auto& { return o.base.baffle_clear_time; },
+             {"repose.baffle_clear_time"}),
+      number("particles.alpha", "-", closed(0, 1), "Eq. 3 shape control alpha, [0, 1]",
+             [](auto& o) -> auto& { return o.base.alpha; },
+             {"repose.alpha", "lattice.alpha", "alpha"}),
+      number("particles.radius", "m", open_closed(0, kHuge), "control radius R; lattice spacing 2R",
+             [](auto& o) -> auto& { return o.base.radius; },
+             {"repose.radius", "lattice.radius", "radius"}),
+      number("particles.edge_length", "m", open_closed(0, kHuge), "maximum edge length L",
+             [](auto& o) -> auto& { return o.base.edge_length; },
+             {"repose.edge_length", "lattice.edge_length", "lattice.max_vertices", "edge_length",
+              "max_vertices"}),
+      number("particles.fill_height", "m", open_closed(0, kHuge), "height of the lattice region",
+             [](auto& o) -> auto& { return o.base.fill_height; },
+             {"repose.fill_height", "container.depth"}),
+      {.name = "particles.seed",
+       .type = ValueType::kInteger,
+       .unit = "-",
+       .range = {.lo = 0, .hi = 9223372036854775807.0, .hi_text = "2^63 - 1"},
+       .doc = "master seed; particle i uses stream (seed, i)",
+       .binding = members<SweepOptions>([](auto& o) -> auto& { return o.base.seed; })},
+      {.name = "particles.random_orientation",
+       .type = ValueType::kBool,
+       .unit = "-",
+       .doc = "turn each particle randomly about its lattice site",
+       .binding =
+           members<SweepOptions>([](auto& o) -> auto& { return o.base.is_orientation_random; })},
+      number("physics.density", "kg/m^3", open_closed(0, kHuge), "particle density",
+             [](auto& o) -> auto& { return o.base.physics.density; }, {"density"}),
+      number("physics.friction", "-", closed(0, 10), "sliding friction mu_s particle-particle",
+             [](auto& o) -> auto& { return o.base.physics.friction; }, {"friction"}),
+      {.name = "physics.wall_friction",
+       .unit = "-",
+       .range = closed(-1, 10),
+       .note = "< 0 = same as physics.friction",
+       .doc = "sliding friction particle-wall; -1 = same as physics.friction",
+       .binding = {.get = [](const SweepOptions& o) -> Value {
+                     return o.base.physics.wall_friction.value_or(-1.0);
+                   },
+                   .set =
+                       [](SweepOptions& o, const Value& value) {
+                         const double mu = std::get<double>(value);
+                         o.base.physics.wall_friction =
+                             mu < 0.0 ? std::nullopt : std::optional<double>(mu);
+                       }},
+       .fields = {"wall_friction"}},
+      number("physics.restitution", "-", closed(0, 1), "coefficient of restitution, [0, 1]",
+             [](auto& o) -> auto& { return o.base.physics.restitution; }, {"restitution"}),
+      number("physics.rolling_friction", "-", closed(0, 1),
+             "rolling friction mu_r (torque <= mu_r r F_n), 0 = off",
+             [](auto& o) -> auto& { return o.base.physics.rolling_friction; },
+             {"rolling_friction"}),
+      number("physics.time_step", "s", closed(0, 1), "time step, 0 = automatic",
+             [](auto& o) -> auto& { return o.base.physics.time_step; }, {"time_step"}),
+      number("physics.time_step_factor", "-", closed(1e-6, 1),
+             "automatic time step = factor * sqrt(d_min / g)",
+             [](auto& o) -> auto& { return o.base.physics.time_step_factor; },
+             {"time_step_factor"}),
+      {.name = "physics.solver_iterations",
+       .type = ValueType::kInteger,
+       .unit = "-",
+       .range = closed(1, 1000),
+       .doc = "solver iterations per step, [1, 1000]",
+       .binding =
+           members<SweepOptions>([](auto& o) -> auto& { return o.base.physics.solver_iterations; }),
+       .fields = {"solver_iterations"}},
+      number("physics.margin_fraction", "-", closed(1e-4, 0.1), "collision margin / d_min",
+             [](auto& o) -> auto& { return o.base.physics.margin_fraction; }, {"margin_fraction"}),
+      number("rest.kinetic_energy_ratio", "-", closed(1e-12, 1),
+             "at rest when kinetic energy < ratio * M g d",
+             [](auto& o) -> auto& { return o.base.rest.kinetic_energy_ratio; },
+             {"kinetic_energy_ratio"}),
+      number("rest.quiet_time", "s", closed(0, kHuge), "time the rest criterion must hold",
+             [](auto& o) -> auto& { return o.base.rest.quiet_time; }, {"quiet_time"}),
+      number("rest.check_interval", "s", open_closed(0, kHuge), "time between rest checks",
+             [](auto& o) -> auto& { return o.base.rest.check_interval; }, {"check_interval"}),
+      number("rest.max_time", "s", open_closed(0, kHuge), "simulated time limit per stage",
+             [](auto& o) -> auto& { return o.base.rest.max_time; }, {"max_time"}),
+      number(
+          "measure.bin_width", "m", closed(0, kHuge), "profile bin width, 0 = radius / 2",
+          [](auto& o) -> auto& { return o.base.bin_width; }, {"repose.bin_width"},
+          "<= trough.length"),
+      number("measure.fit_upper", "-", closed(1e-6, 1), "slope region below this x pile height",
+             [](auto& o) -> auto& { return o.base.fit_upper; }, {"repose.fit_upper"}),
+      number(
+          "measure.fit_lower", "-", closed(0, 1), "slope region above this x pile height",
+          [](auto& o) -> auto& { return o.base.fit_lower; }, {"repose.fit_lower"},
+          "< measure.fit_upper"),
+      number("measure.surface_tolerance", "-", closed(0, 10),
+             "stage 2 ends when the surface moves less than this x d",
+             [](auto& o) -> auto& { return o.base.surface_tolerance; },
+             {"repose.surface_tolerance"}),
+      {.name = "sweep.alphas",
+       .type = ValueType::kNumberList,
+       .unit = "-",
+       .range = closed(0, 1),
+       .note = "at least one value",
+       .doc = "alpha values of the sweep",
+       .binding = members<SweepOptions>([](auto& o) -> auto& { return o.alphas; })},
+      {.name = "sweep.frictions",
+       .type = ValueType::kNumberList,
+       .unit = "-",
+       .range = closed(0, 10),
+       .note = "at least one value",
+       .doc = "mu_s values of the sweep",
+       .binding = members<SweepOptions>([](auto& o) -> auto& { return o.frictions; })},
+      {.name = "sweep.wall_friction_coupled",
+       .type = ValueType::kBool,
+       .unit = "-",
+       .doc = "walls take each case's mu_s",
+       .binding =
+           members<SweepOptions>([](auto& o) -> auto& { return o.is_wall_friction_coupled; })},
+  };
+}
+
+}  // namespace
+
+const Schema<SweepOptions>& sweep_schema() {
+  static const Schema<SweepOptions> schema = [] {
+    Schema<SweepOptions> s;
+    s.tables = {{.name = "trough"}, {.name = "particles"}, {.name = "physics"},
+                {.name = "rest"},   {.name = "measure"},   {.name = "sweep"}};
+    s.keys = keys();
+    s.aliases = {{"min_time", "fall time from particles.fill_height"}};
+    config_detail::fill_defaults(s, SweepOptions{});
+    return s;
+  }();
+  return schema;
+}
+
+SweepOptions parse_sweep_config(std::string_view text, std::string_view source_name,
+                                const std::vector<std::string>& overrides) {
+  const auto& schema = sweep_schema();
+  const GivenValues given =
+      read_values(schema.tables, key_views(schema), text, source_name, overrides);
+  SweepOptions options;
+  resolve(schema, given, options);
+  return options;
+}
+
+SweepOptions load_sweep_config(const std::string& path, const std::vector<std::string>& overrides) {
+  if (path.empty()) return parse_sweep_config("", "defaults", overrides);
+  return parse_sweep_config(read_config_file(path), path, overrides);
+}
+
+std::string resolved_sweep_config(const SweepOptions& options) {
+  return write_values(sweep_schema(), options, WriteStyle::kCommented);
+}
+
+void with_sweep_key_names(const std::function<void()>& check) {
+  const auto& schema = sweep_schema();
+  with_key_names(key_views(schema), schema.aliases, check);
+}
+
+std::string sweep_keys_markdown(const std::string& table) {
+  return markdown_table(sweep_schema(), table);
+}
+
+}  // namespace aggpack
+
+#endif  // AGGPACK_HAS_SIM
