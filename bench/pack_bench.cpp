@@ -36,7 +36,7 @@ Grading fuller4() {
 Container cube_for(const Grading& grading, double particles, double fraction, double kappa = 0.22) {
   const double solid = particles * kappa * std::numbers::pi / 6.0 * mean_cubed_size(grading);
   const double side = std::cbrt(solid / fraction);
-  return {.length = side, .width = side, .depth = side};
+  return {.shape = BoxContainer{.length = side, .width = side, .depth = side}};
 }
 
 void record(benchmark::State& state, const PackResult& result) {

@@ -33,7 +33,7 @@ constexpr int kHeight = 900;
 const Packing& dense_packing() {
   static const Packing packing = [] {
     RandomPackOptions options;
-    options.container = {.length = 0.85, .width = 0.85, .depth = 0.85};
+    options.container = {.shape = BoxContainer{.length = 0.85, .width = 0.85, .depth = 0.85}};
     options.grading = {.kind = GradingKind::kUniform, .radius_min = 0.01, .radius_max = 0.01};
     options.shape = {.alpha = 0.5, .edge_length_ratio = 1.0, .library_size = 200};
     options.target = PackTarget::kCount;

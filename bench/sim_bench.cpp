@@ -31,10 +31,9 @@ constexpr std::size_t kTimedSteps = 100;
 // `nx` x `ny` x 10 lattice sites of the paper's particles, spacing 2R = 0.2 m.
 Packing lattice(int nx, int ny) {
   LatticeOptions options;
-  options.container.kind = ContainerKind::kBox;
-  options.container.length = 0.2 * nx;
-  options.container.width = 0.2 * ny;
-  options.container.depth = 2.0;
+  options.container.get_if<BoxContainer>()->length = 0.2 * nx;
+  options.container.get_if<BoxContainer>()->width = 0.2 * ny;
+  options.container.get_if<BoxContainer>()->depth = 2.0;
   options.container.wall_gap = 0.0;
   return pack_lattice(options).packing;
 }

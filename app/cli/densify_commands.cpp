@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/io/native.h"
+#include "aggpack/pack/container.h"
 #include "aggpack/pack/dense_packer.h"
 #include "aggpack/pipeline/pipeline.h"
 #include "commands.h"
@@ -61,20 +63,21 @@ Container parse_target_container(const std::string& text, const Container& start
     }
     begin = comma + 1;
   }
-  Container target = start;
-  if (start.kind == ContainerKind::kBox && values.size() == 3) {
-    target.length = values[0];
-    target.width = values[1];
-    target.depth = values[2];
-  } else if (start.kind == ContainerKind::kCylinder && values.size() == 2) {
-    target.radius = values[0];
-    target.height = values[1];
-  } else {
+  // One value per parameter of the input's kind, in order ("LENGTH,WIDTH,DEPTH" for a box).
+  const ContainerKindInfo& kind = container_kind_info(start);
+  if (values.size() != kind.params.size()) {
+    std::string names;
+    for (const ContainerParam& param : kind.params) {
+      if (!names.empty()) names += ",";
+      for (const char* c = param.name; *c != '\0'; ++c) {
+        names += static_cast<char>(std::toupper(static_cast<unsigned char>(*c)));
+      }
+    }
     throw InvalidInput("--target-container", text,
-                       start.kind == ContainerKind::kBox
-                           ? "LENGTH,WIDTH,DEPTH in metres (the input holds a box)"
-                           : "RADIUS,HEIGHT in metres (the input holds a cylinder)");
+                       names + " in metres (the input holds a " + kind.name + ")");
   }
+  Container target = start;
+  for (std::size_t i = 0; i < values.size(); ++i) kind.params[i].set(target, values[i]);
   return target;
 }
 

@@ -1,6 +1,7 @@
 // `aggpack pack` and `aggpack info`: pack particles from a TOML configuration into the native
 // packing file, and print the statistics of a saved packing (issue 3).
 
+#include <fmt/args.h>
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "aggpack/io/packing_stats_json.h"
+#include "aggpack/pack/container.h"
 #include "aggpack/pack/statistics.h"
 #include "aggpack/pipeline/pipeline.h"
 #include "commands.h"
@@ -54,24 +56,21 @@ std::string nest_json(const std::string& json, int indent) {
   return out;
 }
 
+// "box 3 x 1 x 2.8 m, wall gap 0 m": the kind's summary pattern filled with its parameters.
 std::string describe_container(const Container& c) {
-  if (c.kind == ContainerKind::kCylinder) {
-    return fmt::format("cylinder radius {} m x height {} m, wall gap {} m", c.radius, c.height,
-                       c.wall_gap);
-  }
-  return fmt::format("box {} x {} x {} m, wall gap {} m", c.length, c.width, c.depth, c.wall_gap);
+  const ContainerKindInfo& kind = container_kind_info(c);
+  fmt::dynamic_format_arg_store<fmt::format_context> values;
+  for (const ContainerParam& param : kind.params) values.push_back(param.get(c));
+  return fmt::vformat(kind.summary, values) + fmt::format(", wall gap {} m", c.wall_gap);
 }
 
 std::string container_json(const Container& c) {
-  if (c.kind == ContainerKind::kCylinder) {
-    return fmt::format(
-        "{{\"kind\": \"cylinder\", \"radius_m\": {}, \"height_m\": {}, \"wall_gap_m\": {}}}",
-        c.radius, c.height, c.wall_gap);
+  const ContainerKindInfo& kind = container_kind_info(c);
+  std::string json = fmt::format("{{\"kind\": \"{}\"", kind.name);
+  for (const ContainerParam& param : kind.params) {
+    json += fmt::format(", \"{}_m\": {}", param.name, param.get(c));
   }
-  return fmt::format(
-      "{{\"kind\": \"box\", \"length_m\": {}, \"width_m\": {}, \"depth_m\": {}, "
-      "\"wall_gap_m\": {}}}",
-      c.length, c.width, c.depth, c.wall_gap);
+  return json + fmt::format(", \"wall_gap_m\": {}}}", c.wall_gap);
 }
 
 const char* stage_label(PackStage stage) {

@@ -73,17 +73,21 @@ std::vector<PackKey> container_keys() {
                   .words = words,
                   .doc = doc,
                   .binding = {.get = [](const PackConfig& c) -> Value {
-                                return std::string(container_kind_info(c.container().kind).name);
+                                return std::string(container_kind_info(c.container()).name);
                               },
                               .set =
                                   [](PackConfig& c, const Value& value) {
-                                    for (const auto& info : container_kinds()) {
-                                      if (info.name != std::get<std::string>(value)) continue;
-                                      on_containers(c, [&](Container& k) { k.kind = info.kind; });
-                                    }
+                                    // Another kind starts from that kind's defaults; its
+                                    // params are set after this key (schema order).
+                                    const ContainerKindInfo* info =
+                                        find_container_kind(std::get<std::string>(value));
+                                    if (info == nullptr) return;
+                                    on_containers(c, [&](Container& k) {
+                                      if (!info->holds(k)) k.shape = info->defaults.shape;
+                                    });
                                   }}});
   for (const auto& info : container_kinds()) {
-    const ContainerKind kind = info.kind;
+    const ContainerKindInfo* kind = &info;
     for (const auto& param : info.params) {
       const auto set = param.set;
       const auto get = param.get;
@@ -92,7 +96,7 @@ std::vector<PackKey> container_keys() {
            .unit = "m",
            .range = open_closed(0, kHuge),
            .scope = {.text = std::string("container.kind = ") + info.name,
-                     .applies = [kind](const PackConfig& c) { return c.container().kind == kind; }},
+                     .applies = [kind](const PackConfig& c) { return kind->holds(c.container()); }},
            .doc = param.description,
            .binding = {.get = [get](const PackConfig& c) -> Value { return get(c.container()); },
                        .set =

@@ -16,6 +16,7 @@
 
 #include "aggpack/core/error.h"
 #include "hdf5_util.h"
+#include "native_container.h"
 
 namespace aggpack {
 
@@ -129,10 +130,6 @@ class Writer {
   int compression_;
 };
 
-const char* container_kind_name(ContainerKind kind) {
-  return kind == ContainerKind::kCylinder ? "cylinder" : "box";
-}
-
 void write_hdf5(const std::string& file_path, const std::string& display_path,
                 const Packing& packing, const NativeWriteOptions& options) {
   const Writer writer(display_path, options.compression);
@@ -152,13 +149,17 @@ void write_hdf5(const std::string& file_path, const std::string& display_path,
   {
     const Container& c = packing.container;
     Handle group = writer.create_group(root, "container");
-    writer.write_attribute_string(group.get(), "kind", container_kind_name(c.kind));
-    const std::pair<const char*, double> lengths[] = {
-        {"length", c.length}, {"width", c.width},   {"depth", c.depth},
-        {"radius", c.radius}, {"height", c.height}, {"wall_gap", c.wall_gap}};
-    for (const auto& [name, value] : lengths) {
-      writer.write_attribute_number(group.get(), name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, value);
+    writer.write_attribute_string(group.get(), "kind", container_kind_info(c).name);
+    const std::vector<double> values = native_detail::container_values(c);
+    std::size_t field = 0;
+    auto write = [&](const char* name) {
+      writer.write_attribute_number(group.get(), name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                                    values[field++]);
+    };
+    for (const ContainerKindInfo& kind : container_kinds()) {
+      for (const ContainerParam& param : kind.params) write(param.name);
     }
+    write("wall_gap");
   }
 
   {

@@ -21,6 +21,7 @@
 #include "aggpack/core/isolated.h"
 #include "aggpack/core/text.h"
 #include "hdf5_util.h"
+#include "native_container.h"
 
 namespace aggpack {
 
@@ -378,23 +379,30 @@ Packing read_hdf5(const std::string& path) {
   }
 
   Packing packing;
+  std::vector<double> container_values;  // in file order, for the range check
+  const ContainerKindInfo* container_kind = nullptr;
   {
     Handle group = reader.open_group(root, "container");
     Container& c = packing.container;
     const std::string kind = reader.read_attribute_string(group.get(), "/container", "kind");
-    if (kind == "box") {
-      c.kind = ContainerKind::kBox;
-    } else if (kind == "cylinder") {
-      c.kind = ContainerKind::kCylinder;
-    } else {
-      reader.fail("/container/kind = " + echo(kind), "unknown kind (expected box or cylinder)");
+    const ContainerKindInfo* info = find_container_kind(kind);
+    if (info == nullptr) {
+      reader.fail("/container/kind = " + echo(kind),
+                  "unknown kind (expected " + container_kind_names() + ")");
     }
-    c.length = reader.read_attribute_float(group.get(), "/container", "length");
-    c.width = reader.read_attribute_float(group.get(), "/container", "width");
-    c.depth = reader.read_attribute_float(group.get(), "/container", "depth");
-    c.radius = reader.read_attribute_float(group.get(), "/container", "radius");
-    c.height = reader.read_attribute_float(group.get(), "/container", "height");
+    c = info->defaults;
+    // Every kind's parameters are stored; only this kind's are kept (checked before the rest of
+    // the file's content, as validate_packing would).
+    for (const ContainerKindInfo& each : container_kinds()) {
+      for (const ContainerParam& param : each.params) {
+        const double value = reader.read_attribute_float(group.get(), "/container", param.name);
+        container_values.push_back(value);
+        param.set(c, value);
+      }
+    }
     c.wall_gap = reader.read_attribute_float(group.get(), "/container", "wall_gap");
+    container_values.push_back(c.wall_gap);
+    container_kind = info;
   }
 
   {
@@ -526,6 +534,7 @@ Packing read_hdf5(const std::string& path) {
     p.packer = reader.read_attribute_string(group.get(), "/provenance", "packer");
     p.seed = reader.read_attribute_unsigned(group.get(), "/provenance", "seed");
   }
+  native_detail::check_container_values(*container_kind, container_values, path);
   validate_packing(packing, path);
   return packing;
 }

@@ -6,12 +6,12 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "aggpack/core/error.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/io/native.h"
+#include "native_container.h"
 
 namespace aggpack {
 
@@ -32,21 +32,8 @@ std::string range_text(double lo, double hi) {
 bool is_within(double value, double lo, double hi) { return value >= lo && value <= hi; }
 
 void check_container(const Container& c, const std::string& source) {
-  const bool is_box = c.kind == ContainerKind::kBox;
-  const std::tuple<const char*, double, bool> lengths[] = {
-      {"length", c.length, is_box},  {"width", c.width, is_box},
-      {"depth", c.depth, is_box},    {"radius", c.radius, !is_box},
-      {"height", c.height, !is_box}, {"wall_gap", c.wall_gap, false}};
-  for (const auto& [name, value, is_used] : lengths) {
-    // Sizes the container uses must be positive; the others are stored but not used.
-    const double lo = is_used ? Limits::kMinLength : 0.0;
-    if (!is_within(value, lo, Limits::kMaxLength)) {
-      fail(source, std::string("/container/") + name + " = " + format_value(value),
-           "outside " + range_text(lo, Limits::kMaxLength) + " m" +
-               (is_used ? std::string(is_box ? " (a box" : " (a cylinder") + " needs it > 0)"
-                        : std::string()));
-    }
-  }
+  native_detail::check_container_values(container_kind_info(c), native_detail::container_values(c),
+                                        source);
 }
 
 // The first problem of shape `s` (vertex rows from `vertex_row`, triangle rows from
@@ -231,6 +218,38 @@ void check_particles(const Packing& packing, const std::vector<double>& largest,
 }
 
 }  // namespace
+
+namespace native_detail {
+
+std::vector<double> container_values(const Container& container) {
+  std::vector<double> values;
+  for (const ContainerKindInfo& kind : container_kinds()) {
+    for (const ContainerParam& param : kind.params) values.push_back(param.get(container));
+  }
+  values.push_back(container.wall_gap);
+  return values;
+}
+
+void check_container_values(const ContainerKindInfo& kind, const std::vector<double>& values,
+                            const std::string& source) {
+  std::size_t field = 0;
+  auto check = [&](const char* name, bool is_used) {
+    // Sizes the container uses must be positive; the others are stored but not used.
+    const double value = values.at(field++);
+    const double lo = is_used ? Limits::kMinLength : 0.0;
+    if (!is_within(value, lo, Limits::kMaxLength)) {
+      fail(source, std::string("/container/") + name + " = " + format_value(value),
+           "outside " + range_text(lo, Limits::kMaxLength) + " m" +
+               (is_used ? std::string(" (a ") + kind.name + " needs it > 0)" : std::string()));
+    }
+  };
+  for (const ContainerKindInfo& each : container_kinds()) {
+    for (const ContainerParam& param : each.params) check(param.name, &each == &kind);
+  }
+  check("wall_gap", false);
+}
+
+}  // namespace native_detail
 
 void validate_packing(const Packing& packing, const std::string& source) {
   check_container(packing.container, source);

@@ -1,9 +1,11 @@
+// Container operations: each one dispatches to the kind the container holds. The geometry of a
+// kind lives in its own file (container_box.cpp, container_cylinder.cpp); this file only knows
+// the list (ContainerShape in packing.h).
 #include "aggpack/pack/container.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "aggpack/core/error.h"
 
@@ -11,88 +13,76 @@ namespace aggpack {
 
 namespace {
 
-// Area of the disc of radius r centred at 0 with coordinate <= x: the full disc minus the
-// circular segment beyond x (segment area = r^2 acos(x/r) - x sqrt(r^2 - x^2)).
-double disc_area_below(double r, double x) {
-  x = std::clamp(x, -r, r);
-  const double segment = r * r * std::acos(x / r) - x * std::sqrt(std::max(0.0, r * r - x * x));
-  return std::numbers::pi * r * r - segment;
+template <class K>
+ContainerKindInfo kind_info() {
+  static_assert(ContainerKindType<K>, "a container kind must provide every operation");
+  ContainerKindInfo info{
+      K::kName, K::kDescription,     K::kSummary,
+      {},       Container{K{}, 0.0}, [](const Container& c) { return c.get_if<K>() != nullptr; }};
+  for (const KindParam<K>& param : K::params()) {
+    const auto member = param.member;
+    info.params.push_back({param.name, param.description,
+                           [member](const Container& c) {
+                             const K* kind = c.get_if<K>();
+                             return kind != nullptr ? kind->*member : K{}.*member;
+                           },
+                           [member](Container& c, double value) {
+                             if (K* kind = c.get_if<K>()) kind->*member = value;
+                           }});
+  }
+  return info;
+}
+
+template <class... K>
+std::vector<ContainerKindInfo> all_kinds(const std::variant<K...>*) {
+  return {kind_info<K>()...};
 }
 
 }  // namespace
 
 const std::vector<ContainerKindInfo>& container_kinds() {
-  static const std::vector<ContainerKindInfo> kinds = [] {
-    Container box;
-    box.kind = ContainerKind::kBox;
-    Container cylinder;
-    cylinder.kind = ContainerKind::kCylinder;
-    return std::vector<ContainerKindInfo>{
-        {ContainerKind::kBox,
-         "box",
-         "box [0,length]x[0,width]x[0,depth]",
-         {{"length", "box extent along x", [](const Container& c) { return c.length; },
-           [](Container& c, double v) { c.length = v; }},
-          {"width", "box extent along y", [](const Container& c) { return c.width; },
-           [](Container& c, double v) { c.width = v; }},
-          {"depth", "box extent along z (vertical)", [](const Container& c) { return c.depth; },
-           [](Container& c, double v) { c.depth = v; }}},
-         box},
-        {ContainerKind::kCylinder,
-         "cylinder",
-         "cylinder about the z axis",
-         {{"radius", "cylinder radius (axis x = y = 0)",
-           [](const Container& c) { return c.radius; },
-           [](Container& c, double v) { c.radius = v; }},
-          {"height", "cylinder height (z from 0)", [](const Container& c) { return c.height; },
-           [](Container& c, double v) { c.height = v; }}},
-         cylinder}};
-  }();
+  static const std::vector<ContainerKindInfo> kinds =
+      all_kinds(static_cast<const ContainerShape*>(nullptr));
   return kinds;
 }
 
-const ContainerKindInfo& container_kind_info(ContainerKind kind) {
+const ContainerKindInfo& container_kind_info(const Container& container) {
+  return container_kinds().at(container.shape.index());
+}
+
+const ContainerKindInfo* find_container_kind(std::string_view name) {
   for (const auto& info : container_kinds()) {
-    if (info.kind == kind) return info;
+    if (name == info.name) return &info;
   }
-  throw InvalidInput("container.kind", std::to_string(static_cast<int>(kind)), "box or cylinder");
+  return nullptr;
+}
+
+std::string container_kind_names() {
+  std::string text;
+  const auto& kinds = container_kinds();
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    if (k > 0) text += k + 1 == kinds.size() ? " or " : ", ";
+    text += kinds[k].name;
+  }
+  return text;
 }
 
 Aabb Container::bounds() const {
-  Aabb box;
-  if (kind == ContainerKind::kBox) {
-    box.lower = Vec3::Zero();
-    box.upper = Vec3(length, width, depth);
-  } else {
-    box.lower = Vec3(-radius, -radius, 0.0);
-    box.upper = Vec3(radius, radius, height);
-  }
-  return box;
+  return visit([](const auto& kind) { return kind.bounds(); });
 }
 
 double Container::volume() const {
-  if (kind == ContainerKind::kBox) return length * width * depth;
-  return std::numbers::pi * radius * radius * height;
+  return visit([](const auto& kind) { return kind.volume(); });
 }
 
 void validate(const Container& container) {
   if (!std::isfinite(container.wall_gap) || container.wall_gap < 0.0) {
     throw InvalidInput("container.wall_gap", format_value(container.wall_gap), "finite and >= 0");
   }
-  double smallest = 0.0;
-  if (container.kind == ContainerKind::kBox) {
-    require_positive("container.length", container.length);
-    require_positive("container.width", container.width);
-    require_positive("container.depth", container.depth);
-    smallest = std::min({container.length, container.width, container.depth});
-  } else if (container.kind == ContainerKind::kCylinder) {
-    require_positive("container.radius", container.radius);
-    require_positive("container.height", container.height);
-    smallest = std::min(2.0 * container.radius, container.height);
-  } else {
-    throw InvalidInput("container.kind", std::to_string(static_cast<int>(container.kind)),
-                       "box or cylinder");
+  for (const ContainerParam& param : container_kind_info(container).params) {
+    require_positive(std::string("container.") + param.name, param.get(container));
   }
+  const double smallest = container.visit([](const auto& kind) { return kind.smallest_extent(); });
   if (2.0 * container.wall_gap >= smallest) {
     throw InvalidInput(
         "container.wall_gap", format_value(container.wall_gap),
@@ -101,18 +91,7 @@ void validate(const Container& container) {
 }
 
 double wall_clearance(const Container& container, const Vec3& point) {
-  if (container.kind == ContainerKind::kBox) {
-    const Vec3 upper(container.length, container.width, container.depth);
-    const Vec3 below = (-point).cwiseMax(0.0);         // how far below the lower walls
-    const Vec3 above = (point - upper).cwiseMax(0.0);  // how far above the upper walls
-    const double outside = (below + above).norm();
-    if (outside > 0.0) return -outside;
-    return std::min(point.minCoeff(), (upper - point).minCoeff());
-  }
-  const double radial = container.radius - std::hypot(point.x(), point.y());
-  const double axial = std::min(point.z(), container.height - point.z());
-  if (radial >= 0.0 && axial >= 0.0) return std::min(radial, axial);
-  return -std::hypot(std::max(0.0, -radial), std::max(0.0, -axial));
+  return container.visit([&point](const auto& kind) { return kind.clearance(point); });
 }
 
 double wall_clearance(const Container& container, const ConvexPolyhedron& body, const Pose& pose) {
@@ -124,30 +103,10 @@ double wall_clearance(const Container& container, const ConvexPolyhedron& body, 
 }
 
 bool contains(const Container& container, const ConvexPolyhedron& body, const Pose& pose) {
-  // Inside the container shrunk by wall_gap <=> per-wall clearance >= wall_gap; checked per
-  // coordinate (not via wall_clearance) to keep it branch-light in the packers' inner loop.
-  const double gap = container.wall_gap;
   const Mat3 rotation = pose.rotation.toRotationMatrix();
-  if (container.kind == ContainerKind::kBox) {
-    const Vec3 lower = Vec3::Constant(gap);
-    const Vec3 upper =
-        Vec3(container.length, container.width, container.depth) - Vec3::Constant(gap);
-    for (const Vec3& vertex : body.vertices()) {
-      const Vec3 world = rotation * vertex + pose.position;
-      if ((world.array() < lower.array()).any() || (world.array() > upper.array()).any()) {
-        return false;
-      }
-    }
-    return true;
-  }
-  const double radius = container.radius - gap;
-  const double radius_squared = radius * radius;
-  for (const Vec3& vertex : body.vertices()) {
-    const Vec3 world = rotation * vertex + pose.position;
-    if (world.z() < gap || world.z() > container.height - gap) return false;
-    if (world.x() * world.x() + world.y() * world.y() > radius_squared) return false;
-  }
-  return true;
+  return container.visit([&](const auto& kind) {
+    return kind.contains(body, rotation, pose.position, container.wall_gap);
+  });
 }
 
 Aabb centre_region(const Container& container, double radius) {
@@ -160,14 +119,8 @@ Aabb centre_region(const Container& container, double radius) {
 
 bool is_in_centre_region(const Container& container, double radius, const Vec3& centre) {
   const double margin = radius + container.wall_gap;
-  if (container.kind == ContainerKind::kBox) {
-    const Aabb region = centre_region(container, radius);
-    return (centre.array() >= region.lower.array()).all() &&
-           (centre.array() <= region.upper.array()).all();
-  }
-  const double inner = container.radius - margin;
-  return inner >= 0.0 && centre.z() >= margin && centre.z() <= container.height - margin &&
-         centre.x() * centre.x() + centre.y() * centre.y() <= inner * inner;
+  return container.visit(
+      [&](const auto& kind) { return kind.is_in_centre_region(margin, centre); });
 }
 
 double container_slab_volume(const Container& container, int axis, double lo, double hi) {
@@ -176,14 +129,43 @@ double container_slab_volume(const Container& container, int axis, double lo, do
   lo = std::max(lo, box.lower[axis]);
   hi = std::min(hi, box.upper[axis]);
   if (hi <= lo) return 0.0;
-  if (container.kind == ContainerKind::kBox) {
-    Vec3 extent = box.extent();
-    extent[axis] = hi - lo;
-    return extent.prod();
-  }
-  if (axis == 2) return std::numbers::pi * container.radius * container.radius * (hi - lo);
-  return container.height *
-         (disc_area_below(container.radius, hi) - disc_area_below(container.radius, lo));
+  return container.visit([&](const auto& kind) { return kind.slab_volume(axis, lo, hi); });
+}
+
+bool centre_region_is_bounds(const Container& container) {
+  return container.visit(
+      []<class K>(const K&) { return static_cast<bool>(K::kCentreRegionIsBounds); });
+}
+
+double container_floor_area(const Container& container) {
+  return container.visit([](const auto& kind) { return kind.floor_area(); });
+}
+
+std::vector<ContainerWall> container_walls(const Container& container, double thickness,
+                                           double min_height) {
+  return container.visit([&](const auto& kind) { return kind.walls(thickness, min_height); });
+}
+
+std::vector<OutlineSegment> container_outline(const Container& container) {
+  return container.visit([](const auto& kind) { return kind.outline(); });
+}
+
+Vec3 container_ratio(const Container& from, const Container& other) {
+  return from.visit([&other]<class K>(const K& kind) {
+    const K* same = other.get_if<K>();
+    if (same == nullptr) {
+      throw InvalidInput("container kind", container_kind_info(other).name,
+                         std::string("the same kind (") + K::kName + ")");
+    }
+    return kind.ratio(*same);
+  });
+}
+
+Container container_scaled(const Container& container, const Vec3& factor) {
+  Container result = container;
+  result.shape = container.visit(
+      [&factor](const auto& kind) -> ContainerShape { return kind.scaled(factor); });
+  return result;
 }
 
 }  // namespace aggpack

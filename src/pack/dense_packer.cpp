@@ -39,9 +39,9 @@ Container target_of(const Packing& start, const DensifyOptions& options, double 
     Container target = *options.target_container;
     validate(target);
     const std::string field = "densify.target_container";
-    if (target.kind != from.kind) {
-      throw InvalidInput(field, target.kind == ContainerKind::kBox ? "box" : "cylinder",
-                         "the start container's kind");
+    const ContainerKindInfo& kind = container_kind_info(target);
+    if (target.shape.index() != from.shape.index()) {
+      throw InvalidInput(field, kind.name, "the start container's kind");
     }
     if (target.wall_gap != from.wall_gap) {
       throw InvalidInput(field + ".wall_gap", number(target.wall_gap),
@@ -53,13 +53,8 @@ Container target_of(const Packing& start, const DensifyOptions& options, double 
                            "(0, " + number(was) + "], no larger than the start container");
       }
     };
-    if (target.kind == ContainerKind::kBox) {
-      no_larger("length", target.length, from.length);
-      no_larger("width", target.width, from.width);
-      no_larger("depth", target.depth, from.depth);
-    } else {
-      no_larger("radius", target.radius, from.radius);
-      no_larger("height", target.height, from.height);
+    for (const ContainerParam& param : kind.params) {
+      no_larger(param.name, param.get(target), param.get(from));
     }
     return target;
   }
@@ -68,20 +63,13 @@ Container target_of(const Packing& start, const DensifyOptions& options, double 
     const double now = solid_volume / from.volume();
     if (now < options.target_fraction) {
       const double scale = std::cbrt(now / options.target_fraction);
-      target.length *= scale;
-      target.width *= scale;
-      target.depth *= scale;
-      target.radius *= scale;
-      target.height *= scale;
+      target = container_scaled(target, Vec3::Constant(scale));
     }
   }
   return target;
 }
 
-bool same_size(const Container& a, const Container& b) {
-  return a.length == b.length && a.width == b.width && a.depth == b.depth && a.radius == b.radius &&
-         a.height == b.height;
-}
+bool same_size(const Container& a, const Container& b) { return a.shape == b.shape; }
 
 }  // namespace
 
@@ -278,7 +266,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
       // A bed of uniform fraction phi filling [0, H] has its mean centroid height near H / 2:
       // phi ~ V / (A 2 z_mean), a cheap running estimate (the exact bulk figure comes at the end).
       const Container& box = engine.container();
-      const double height = box.kind == ContainerKind::kBox ? box.depth : box.height;
+      const double height = box.bounds().extent().z();
       const double mean = engine.mean_height();
       if (mean > 0.0) {
         progress.solid_fraction =
@@ -365,13 +353,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
       if (!is_consolidating && !is_container_reached && flagged <= allowed_overlaps &&
           (sweep + 1) % options.compress_interval == 0 && squeeze_step > 1e-9) {
         const Container& now = engine.container();
-        double k_max = 0.0;
-        if (now.kind == ContainerKind::kBox) {
-          k_max = std::max({1.0 - target.length / now.length, 1.0 - target.width / now.width,
-                            1.0 - target.depth / now.depth});
-        } else {
-          k_max = std::max(1.0 - target.radius / now.radius, 1.0 - target.height / now.height);
-        }
+        const double k_max = (Vec3::Ones() - container_ratio(now, target)).maxCoeff();
         const std::size_t before = flagged;
         flagged = engine.squeeze(target, std::min(1.0, squeeze_step / k_max));
         ++since_checkpoint;

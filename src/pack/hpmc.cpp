@@ -202,14 +202,7 @@ std::size_t Hpmc::squeeze(const Container& target, double t) {
 }
 
 std::size_t Hpmc::expand(const Container& larger, double t) {
-  Vec3 factor = Vec3::Ones();
-  if (container_.kind == ContainerKind::kBox) {
-    factor = Vec3(larger.length / container_.length, larger.width / container_.width,
-                  larger.depth / container_.depth);
-  } else {
-    const double radial = larger.radius / container_.radius;
-    factor = Vec3(radial, radial, larger.height / container_.height);
-  }
+  Vec3 factor = container_ratio(container_, larger);
   factor = (Vec3::Ones() + std::min(1.0, t) * (factor - Vec3::Ones())).cwiseMax(1.0);
   return rescale(factor, larger, t);
 }
@@ -220,13 +213,8 @@ std::size_t Hpmc::rescale(const Vec3& factor, const Container& end, double t) {
     const double wall_gap = container_.wall_gap;
     container_ = end;
     container_.wall_gap = wall_gap;
-  } else if (container_.kind == ContainerKind::kBox) {
-    container_.length *= factor.x();
-    container_.width *= factor.y();
-    container_.depth *= factor.z();
   } else {
-    container_.radius *= factor.x();
-    container_.height *= factor.z();
+    container_ = container_scaled(container_, factor);
   }
   return refresh_flags();
 }
@@ -382,14 +370,7 @@ SweepCounts Hpmc::sweep(std::uint64_t sweep, const SweepParameters& parameters) 
 }
 
 Vec3 Hpmc::shrink_shares(const Container& target) const {
-  Vec3 k = Vec3::Zero();
-  if (container_.kind == ContainerKind::kBox) {
-    k = Vec3(1.0 - target.length / container_.length, 1.0 - target.width / container_.width,
-             1.0 - target.depth / container_.depth);
-  } else {
-    const double radial = 1.0 - target.radius / container_.radius;
-    k = Vec3(radial, radial, 1.0 - target.height / container_.height);
-  }
+  const Vec3 k = Vec3::Ones() - container_ratio(container_, target);
   return k.cwiseMax(0.0);
 }
 

@@ -152,7 +152,7 @@ inline bool make_candidate(const Container& container, const Aabb& region, const
     const Vec3 centre(region.lower.x() + extent.x() * rng.uniform(),
                       region.lower.y() + extent.y() * rng.uniform(),
                       region.lower.z() + extent.z() * rng.uniform());
-    if (container.kind == ContainerKind::kBox ||
+    if (centre_region_is_bounds(container) ||
         is_in_centre_region(container, item.inner_radius, centre)) {
       pose.position = centre;
       pose.rotation = detail::random_rotation(rng);

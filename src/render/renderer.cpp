@@ -7,6 +7,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/geom/overlap.h"
+#include "aggpack/pack/container.h"
 #include "renderer_state.h"
 
 namespace aggpack {
@@ -187,35 +188,8 @@ void PackingRenderer::set_packing(const Packing& packing) {
       lines.push_back(static_cast<float>(p->z()));
     }
   };
-  const Container& container = packing.container;
-  if (container.kind == ContainerKind::kCylinder) {
-    constexpr int kSegments = 96;
-    for (int k = 0; k < kSegments; ++k) {
-      const double a0 = 2.0 * M_PI * k / kSegments, a1 = 2.0 * M_PI * (k + 1) / kSegments;
-      for (double z : {0.0, container.height}) {
-        add_segment(Vec3(container.radius * std::cos(a0), container.radius * std::sin(a0), z),
-                    Vec3(container.radius * std::cos(a1), container.radius * std::sin(a1), z));
-      }
-      if (k % (kSegments / 4) == 0) {
-        add_segment(Vec3(container.radius * std::cos(a0), container.radius * std::sin(a0), 0.0),
-                    Vec3(container.radius * std::cos(a0), container.radius * std::sin(a0),
-                         container.height));
-      }
-    }
-  } else {
-    const Aabb box = container.bounds();
-    if (!box.is_empty()) {
-      auto corner = [&box](int c) {
-        return Vec3((c & 1) ? box.upper.x() : box.lower.x(),
-                    (c & 2) ? box.upper.y() : box.lower.y(),
-                    (c & 4) ? box.upper.z() : box.lower.z());
-      };
-      for (int c = 0; c < 8; ++c) {
-        for (int bit : {1, 2, 4}) {
-          if ((c & bit) == 0) add_segment(corner(c), corner(c | bit));
-        }
-      }
-    }
+  for (const OutlineSegment& segment : container_outline(packing.container)) {
+    add_segment(segment[0], segment[1]);
   }
   s.line_vertex_count = static_cast<GLsizei>(lines.size() / 3);
   glBindBuffer(GL_ARRAY_BUFFER, s.line_buffer);

@@ -9,6 +9,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/rng.h"
 #include "aggpack/geom/mass_properties.h"
+#include "aggpack/pack/container.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/shape/descriptors.h"
 
@@ -39,10 +40,11 @@ std::vector<double> running_median(const std::vector<double>& values, std::size_
 }
 
 std::string fmt_fill(const Container& c, std::size_t count) {
+  const BoxContainer* box = c.get_if<BoxContainer>();
   return std::to_string(count) + " particles in a " +
-         (c.kind == ContainerKind::kBox
-              ? "box " + format_value(c.length) + " x " + format_value(c.width) + " m"
-              : std::string("cylinder"));
+         (box != nullptr
+              ? "box " + format_value(box->length) + " x " + format_value(box->width) + " m"
+              : std::string(container_kind_info(c).name));
 }
 
 double largest_size(const Packing& packing) {
@@ -139,10 +141,9 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
 // The paper's placement in the half behind the baffle.
 LatticeOptions repose_fill_options(const ReposeOptions& options) {
   LatticeOptions lattice;
-  lattice.container.kind = ContainerKind::kBox;
-  lattice.container.length = options.baffle_position;
-  lattice.container.width = options.trough_width;
-  lattice.container.depth = options.fill_height;
+  lattice.container.shape = BoxContainer{.length = options.baffle_position,
+                                         .width = options.trough_width,
+                                         .depth = options.fill_height};
   lattice.container.wall_gap = 0.0;
   lattice.alpha = options.alpha;
   lattice.radius = options.radius;
@@ -311,19 +312,19 @@ ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
   const auto start = Clock::now();
 
   Packing packing = std::move(fill.packing);
-  const Container& region = packing.container;
-  if (region.kind != ContainerKind::kBox || !(region.length <= options.baffle_position) ||
-      !(region.width <= options.trough_width) || packing.particles.empty()) {
-    throw InvalidInput("repose fill", fmt_fill(region, packing.particles.size()),
+  const BoxContainer* region = packing.container.get_if<BoxContainer>();
+  if (region == nullptr || !(region->length <= options.baffle_position) ||
+      !(region->width <= options.trough_width) || packing.particles.empty()) {
+    throw InvalidInput("repose fill", fmt_fill(packing.container, packing.particles.size()),
                        "a non-empty box packing within [0, baffle_position] x [0, trough_width]");
   }
   const std::string packer = packing.provenance.packer;
   if (options.is_orientation_random && packer == "lattice") {
     randomise_orientations(packing, repose_fill_options(options));
   }
-  packing.container.length = options.trough_length;
-  packing.container.width = options.trough_width;
-  packing.container.depth = options.trough_height;
+  packing.container.shape = BoxContainer{.length = options.trough_length,
+                                         .width = options.trough_width,
+                                         .depth = options.trough_height};
   packing.provenance.packer = packer + "+repose";
   result.initial = packing;
   result.particle_count = packing.particles.size();

@@ -13,11 +13,6 @@ namespace aggpack {
 
 namespace {
 
-double footprint_area(const Container& container) {
-  if (container.kind == ContainerKind::kBox) return container.length * container.width;
-  return std::numbers::pi * container.radius * container.radius;
-}
-
 double solid_volume(const Packing& packing) {
   std::vector<double> shape_volume(packing.shapes.size(), -1.0);
   double volume = 0.0;
@@ -61,7 +56,7 @@ double packing_height(const Packing& packing) {
 
 double bulk_solid_fraction(const Packing& packing, double height) {
   if (!(height > 0.0)) return 0.0;
-  return solid_volume(packing) / (footprint_area(packing.container) * height);
+  return solid_volume(packing) / (container_floor_area(packing.container) * height);
 }
 
 std::size_t steps_per_check(const World& world, const RestCriterion& criterion) {

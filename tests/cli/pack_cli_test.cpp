@@ -49,7 +49,7 @@ TEST_F(PackCliTest, PapersCaseEndToEndThenInfo) {
   EXPECT_EQ(packing.provenance.packer, "lattice");
   EXPECT_EQ(packing.provenance.seed, 1U);
   EXPECT_EQ(packing.provenance.config_toml, parse_pack_config("").resolved_toml);
-  EXPECT_EQ(packing.container.length, 3.0);
+  EXPECT_EQ(packing.container.get_if<BoxContainer>()->length, 3.0);
   EXPECT_TRUE(verify(packing).is_ok);
 
   const CliRun info = run("info aggpack-seed1.h5");

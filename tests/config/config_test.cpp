@@ -47,10 +47,10 @@ TEST(Config, EmptyConfigIsThePapersCase) {
   EXPECT_EQ(o.alpha, 0.5);
   EXPECT_EQ(o.radius, 0.1);
   EXPECT_EQ(o.edge_length, 0.1);
-  EXPECT_EQ(o.container.kind, ContainerKind::kBox);
-  EXPECT_EQ(o.container.length, 3.0);
-  EXPECT_EQ(o.container.width, 1.0);
-  EXPECT_EQ(o.container.depth, 2.8);
+  ASSERT_NE(o.container.get_if<BoxContainer>(), nullptr);
+  EXPECT_EQ(o.container.get_if<BoxContainer>()->length, 3.0);
+  EXPECT_EQ(o.container.get_if<BoxContainer>()->width, 1.0);
+  EXPECT_EQ(o.container.get_if<BoxContainer>()->depth, 2.8);
   EXPECT_EQ(o.seed, 1U);
   EXPECT_EQ(config.seed(), 1U);
   EXPECT_EQ(config.packer_name(), "lattice");
@@ -97,7 +97,7 @@ TEST(Config, ExamplesHaveTheDocumentedSettings) {
   EXPECT_EQ(concrete.random.volume_fraction, 0.30);
   const PackConfig triaxial = load_pack_config(root + "triaxial-cylinder.toml");
   ASSERT_EQ(triaxial.packer, PackerKind::kRandom);
-  EXPECT_EQ(triaxial.container().kind, ContainerKind::kCylinder);
+  EXPECT_NE(triaxial.container().get_if<CylinderContainer>(), nullptr);
   EXPECT_EQ(triaxial.random.grading.kind, GradingKind::kSieve);
   ASSERT_EQ(triaxial.random.grading.sieve.size(), 4U);
   EXPECT_EQ(triaxial.random.grading.sieve[2].size, 0.0112);
@@ -109,9 +109,9 @@ TEST(Config, ResolvedTextKeepsDoublesExactly) {
   const double length = 0.1 + 0.2;  // 0.30000000000000004
   const PackConfig config =
       parse_pack_config("[container]\nlength = 0.30000000000000004\n", "test.toml");
-  EXPECT_EQ(config.lattice.container.length, length);
+  EXPECT_EQ(config.lattice.container.get_if<BoxContainer>()->length, length);
   const PackConfig again = parse_pack_config(config.resolved_toml);
-  EXPECT_EQ(again.lattice.container.length, length);
+  EXPECT_EQ(again.lattice.container.get_if<BoxContainer>()->length, length);
   EXPECT_NE(config.resolved_toml.find("length = 0.30000000000000004"), std::string::npos);
 }
 
@@ -154,8 +154,8 @@ TEST(Config, OverridesBuildARandomSieveConfiguration) {
   EXPECT_EQ(o.shape.edge_length, 0.0);
   EXPECT_EQ(o.target, PackTarget::kCount);
   EXPECT_EQ(o.count, 25U);
-  EXPECT_EQ(o.container.kind, ContainerKind::kCylinder);
-  EXPECT_EQ(o.container.radius, 0.2);
+  ASSERT_NE(o.container.get_if<CylinderContainer>(), nullptr);
+  EXPECT_EQ(o.container.get_if<CylinderContainer>()->radius, 0.2);
   EXPECT_EQ(config.seed(), 12345U);
   ASSERT_TRUE(config.target_grading().has_value());
   EXPECT_TRUE(config.warnings.empty()) << config.warnings.front();

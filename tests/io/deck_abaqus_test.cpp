@@ -196,7 +196,7 @@ TEST(AbaqusDeck, KeywordsSetsNumbersAndTroughGeometry) {
       }
     }
   }
-  const double length = packing.container.length;
+  const double length = packing.container.get_if<BoxContainer>()->length;
   EXPECT_DOUBLE_EQ(step_time["SETTLE"], 0.7);
   EXPECT_DOUBLE_EQ(step_time["BAFFLE"], length / 0.25);  // trough 2 x the container, to the end
   EXPECT_DOUBLE_EQ(step_time["REST"], 0.4);

@@ -37,7 +37,7 @@ TEST(CalculixDeck, CcxRunsTheTroughTestOnASmallPile) {
   options.material.youngs_modulus = 1e7;
   options.deck = {.kind = DeckKind::kCalculix,
                   .friction = 0.4,
-                  .trough_length = packing.container.length + 0.01,
+                  .trough_length = packing.container.get_if<BoxContainer>()->length + 0.01,
                   .baffle_speed = 1.0,
                   .settle_time = 0.03,
                   .rest_time = 0.01,

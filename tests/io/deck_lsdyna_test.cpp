@@ -54,7 +54,7 @@ TEST(LsDynaDeck, FixedColumnsReferencesAndTrough) {
   ExportOptions options;
   options.deck = {.kind = DeckKind::kLsDyna,
                   .friction = 0.2,
-                  .trough_length = packing.container.length + 0.5,
+                  .trough_length = packing.container.get_if<BoxContainer>()->length + 0.5,
                   .baffle_speed = 0.5,
                   .settle_time = 0.6,
                   .rest_time = 0.3};

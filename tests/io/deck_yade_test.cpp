@@ -25,7 +25,7 @@ TEST(YadeDeck, YadeRunsTheExportedScript) {
   options.material = {.density = 2600.0, .youngs_modulus = 1e8, .poisson_ratio = 0.2};
   options.deck = {.kind = DeckKind::kYade,
                   .friction = 0.5,
-                  .trough_length = packing.container.length + 0.05,
+                  .trough_length = packing.container.get_if<BoxContainer>()->length + 0.05,
                   .baffle_speed = 1.0,
                   .settle_time = 0.1,
                   .rest_time = 0.02};
@@ -59,7 +59,7 @@ TEST(YadeDeck, YadeRunsTheExportedScript) {
   EXPECT_LT(end, start - 0.03);
   EXPECT_GT(end, 0.0);
   EXPECT_LT(std::stod(match[7]), 4.0);  // free fall through 0.3 m reaches 2.4 m/s
-  EXPECT_NEAR(std::stod(match[8]), packing.container.length + 0.05, 0.01);
+  EXPECT_NEAR(std::stod(match[8]), packing.container.get_if<BoxContainer>()->length + 0.05, 0.01);
 }
 
 }  // namespace

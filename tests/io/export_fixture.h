@@ -55,9 +55,9 @@ inline Packing grid_packing(int nx, int ny, int nz, std::uint64_t seed = 1,
       }
     }
   }
-  packing.container.length = 0.3 + 0.25 * nx;
-  packing.container.width = 0.3 + 0.25 * ny;
-  packing.container.depth = 0.3 + 0.25 * nz;
+  packing.container.get_if<BoxContainer>()->length = 0.3 + 0.25 * nx;
+  packing.container.get_if<BoxContainer>()->width = 0.3 + 0.25 * ny;
+  packing.container.get_if<BoxContainer>()->depth = 0.3 + 0.25 * nz;
   return packing;
 }
 

@@ -160,7 +160,7 @@ TEST(FormatTable, NativeThroughTheGenericEntry) {
     EXPECT_EQ(a.control_radius, b.control_radius);
     EXPECT_EQ(a.size_class, b.size_class);
   }
-  EXPECT_EQ(loaded.container.length, packing.container.length);
+  EXPECT_EQ(loaded.container, packing.container);
   EXPECT_EQ(loaded.provenance.packer, packing.provenance.packer);
   EXPECT_EQ(loaded.provenance.seed, packing.provenance.seed);
 

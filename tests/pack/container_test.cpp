@@ -13,10 +13,10 @@ namespace {
 using testing::invalid_field;
 
 Container box(double l, double w, double d, double gap = 0.0) {
-  return {.kind = ContainerKind::kBox, .length = l, .width = w, .depth = d, .wall_gap = gap};
+  return {.shape = BoxContainer{.length = l, .width = w, .depth = d}, .wall_gap = gap};
 }
 Container cylinder(double r, double h, double gap = 0.0) {
-  return {.kind = ContainerKind::kCylinder, .radius = r, .height = h, .wall_gap = gap};
+  return {.shape = CylinderContainer{.radius = r, .height = h}, .wall_gap = gap};
 }
 
 TEST(Container, BoundsAndVolumeOfBoxAndCylinder) {

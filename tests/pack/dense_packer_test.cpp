@@ -19,7 +19,8 @@ using testing::invalid_field;
 // ~60 single-size particles (alpha 0.5, L = r) placed by RSA at 25 % in a 0.4 m cube.
 Packing loose_start(double gap = 0.0, double wall_gap = 0.0, std::uint64_t seed = 3) {
   const RandomPackOptions options{
-      .container = {.length = 0.4, .width = 0.4, .depth = 0.4, .wall_gap = wall_gap},
+      .container = {.shape = BoxContainer{.length = 0.4, .width = 0.4, .depth = 0.4},
+                    .wall_gap = wall_gap},
       .grading = {.kind = GradingKind::kUniform, .radius_min = 0.05, .radius_max = 0.05},
       .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
       .target = PackTarget::kVolumeFraction,
@@ -37,7 +38,8 @@ TEST(DensePacker, FixedModeReachesTheTargetFractionExactly) {
   EXPECT_GE(result.report.solid_fraction, 0.42 * (1 - 1e-9));
   EXPECT_LT(result.report.start_fraction, 0.30);
   EXPECT_EQ(result.packing.provenance.packer, "dense");
-  EXPECT_LT(result.packing.container.length, start.container.length);
+  EXPECT_LT(result.packing.container.get_if<BoxContainer>()->length,
+            start.container.get_if<BoxContainer>()->length);
   ASSERT_EQ(result.packing.particles.size(), start.particles.size());
   // Shapes are never deformed: same shapes, scales and classes.
   for (std::size_t i = 0; i < start.particles.size(); ++i) {
@@ -52,14 +54,14 @@ TEST(DensePacker, GapsAndWallGapsAreKeptToAnExplicitTargetContainer) {
   const double wall_gap = 0.003;
   const Packing start = loose_start(gap, wall_gap);
   Container target = start.container;
-  target.length = 0.36;
-  target.depth = 0.37;
+  target.get_if<BoxContainer>()->length = 0.36;
+  target.get_if<BoxContainer>()->depth = 0.37;
   const DensifyOptions options{.target_container = target, .gap = gap, .max_sweeps = 2000};
   const DensifyResult result = densify(start, options);
   EXPECT_EQ(result.report.stop, DensifyStop::kTargetReached) << result.report.summary();
-  EXPECT_EQ(result.packing.container.length, 0.36);
-  EXPECT_EQ(result.packing.container.width, 0.4);
-  EXPECT_EQ(result.packing.container.depth, 0.37);
+  EXPECT_EQ(result.packing.container.get_if<BoxContainer>()->length, 0.36);
+  EXPECT_EQ(result.packing.container.get_if<BoxContainer>()->width, 0.4);
+  EXPECT_EQ(result.packing.container.get_if<BoxContainer>()->depth, 0.37);
   EXPECT_EQ(result.packing.container.wall_gap, wall_gap);
   expect_valid_packing(result.packing, gap);
   EXPECT_GE(result.report.min_distance, gap * (1.0 - 1e-9));
@@ -67,10 +69,7 @@ TEST(DensePacker, GapsAndWallGapsAreKeptToAnExplicitTargetContainer) {
 
 TEST(DensePacker, CylinderIsCompressedTowardItsTarget) {
   const RandomPackOptions random{
-      .container = {.kind = ContainerKind::kCylinder,
-                    .radius = 0.25,
-                    .height = 0.4,
-                    .wall_gap = 0.002},
+      .container = {.shape = CylinderContainer{.radius = 0.25, .height = 0.4}, .wall_gap = 0.002},
       .grading = {.kind = GradingKind::kUniform, .radius_min = 0.04, .radius_max = 0.05},
       .target = PackTarget::kVolumeFraction,
       .volume_fraction = 0.22,
@@ -78,14 +77,14 @@ TEST(DensePacker, CylinderIsCompressedTowardItsTarget) {
       .seed = 8};
   const Packing start = pack_random(random).packing;
   Container target = start.container;
-  target.radius = 0.22;
-  target.height = 0.36;
+  target.get_if<CylinderContainer>()->radius = 0.22;
+  target.get_if<CylinderContainer>()->height = 0.36;
   const DensifyOptions options{.target_container = target, .gap = 0.001, .max_sweeps = 3000};
   const DensifyResult result = densify(start, options);
   EXPECT_EQ(result.report.stop, DensifyStop::kTargetReached) << result.report.summary();
-  EXPECT_EQ(result.packing.container.kind, ContainerKind::kCylinder);
-  EXPECT_EQ(result.packing.container.radius, 0.22);
-  EXPECT_EQ(result.packing.container.height, 0.36);
+  ASSERT_NE(result.packing.container.get_if<CylinderContainer>(), nullptr);
+  EXPECT_EQ(result.packing.container.get_if<CylinderContainer>()->radius, 0.22);
+  EXPECT_EQ(result.packing.container.get_if<CylinderContainer>()->height, 0.36);
   expect_valid_packing(result.packing, 0.001);
 }
 
@@ -103,7 +102,8 @@ TEST(DensePacker, SameSeedIsByteIdenticalAtOneAndTwoThreads) {
     two = densify(start, options);
   }
   expect_identical(one.packing, two.packing);
-  EXPECT_EQ(one.packing.container.length, two.packing.container.length);
+  EXPECT_EQ(one.packing.container.get_if<BoxContainer>()->length,
+            two.packing.container.get_if<BoxContainer>()->length);
   EXPECT_EQ(one.report.moves_accepted, two.report.moves_accepted);
   EXPECT_GT(one.report.moves_accepted, 0u);
   DensifyOptions other = options;
@@ -130,7 +130,7 @@ TEST(DensePacker, FractionRisesMonotonicallyWithTheSweepBudget) {
 
 TEST(DensePacker, GravityBedSinksAndStaysValid) {
   RandomPackOptions random{
-      .container = {.length = 0.3, .width = 0.3, .depth = 0.6},
+      .container = {.shape = BoxContainer{.length = 0.3, .width = 0.3, .depth = 0.6}},
       .grading = {.kind = GradingKind::kUniform, .radius_min = 0.04, .radius_max = 0.05},
       .target = PackTarget::kVolumeFraction,
       .volume_fraction = 0.2,
@@ -149,7 +149,8 @@ TEST(DensePacker, GravityBedSinksAndStaysValid) {
   EXPECT_GT(result.report.bulk_fraction, 0.2);
   EXPECT_GT(result.report.surface_height, 0.0);
   EXPECT_LT(result.report.surface_height, 0.6);
-  EXPECT_EQ(result.packing.container.depth, 0.6);  // the bed's container is not shrunk
+  EXPECT_EQ(result.packing.container.get_if<BoxContainer>()->depth,
+            0.6);  // the bed's container is not shrunk
   expect_valid_packing(result.packing, 0.0);
 }
 
@@ -176,12 +177,12 @@ TEST(DensePacker, EachBadOptionNamesItself) {
   EXPECT_EQ(field([](auto& o) { o.stall_tolerance = -1.0; }), "densify.stall_tolerance");
   EXPECT_EQ(field([&](auto& o) {
               o.target_container = start.container;
-              o.target_container->length = 0.5;
+              std::get<BoxContainer>(o.target_container->shape).length = 0.5;
             }),
             "densify.target_container.length");
   EXPECT_EQ(field([&](auto& o) {
               o.target_container = start.container;
-              o.target_container->kind = ContainerKind::kCylinder;
+              o.target_container->shape = CylinderContainer{};
             }),
             "densify.target_container");
   EXPECT_EQ(field([&](auto& o) {

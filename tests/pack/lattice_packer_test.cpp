@@ -40,15 +40,13 @@ TEST(LatticePacker, PaperCaseIsValidAndReportsItsVolume) {
 }
 
 TEST(LatticePacker, GapsAndCylinderAreRespected) {
-  LatticeOptions options{.container = {.kind = ContainerKind::kCylinder,
-                                       .radius = 0.05,
-                                       .height = 0.1,
-                                       .wall_gap = 0.002},
-                         .alpha = 0.7,
-                         .radius = 0.008,
-                         .edge_length = 0.006,
-                         .gap = 0.001,
-                         .seed = 7};
+  LatticeOptions options{
+      .container = {.shape = CylinderContainer{.radius = 0.05, .height = 0.1}, .wall_gap = 0.002},
+      .alpha = 0.7,
+      .radius = 0.008,
+      .edge_length = 0.006,
+      .gap = 0.001,
+      .seed = 7};
   const PackResult result = pack_lattice(options);
   EXPECT_GT(result.report.placed, 50u);
   expect_valid_packing(result.packing, 0.001);
@@ -58,13 +56,14 @@ TEST(LatticePacker, GapsAndCylinderAreRespected) {
 // shrink where an edge crossing remains) makes the packing valid.
 TEST(LatticePacker, ContactModeIsValidWithGap) {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    LatticeOptions options{.container = {.length = 0.6, .width = 0.6, .depth = 0.6},
-                           .alpha = 0.3,
-                           .radius = 0.1,
-                           .edge_length = 0.05,
-                           .gap = 0.002,
-                           .spacing = 0.15,
-                           .seed = seed};
+    LatticeOptions options{
+        .container = {.shape = BoxContainer{.length = 0.6, .width = 0.6, .depth = 0.6}},
+        .alpha = 0.3,
+        .radius = 0.1,
+        .edge_length = 0.05,
+        .gap = 0.002,
+        .spacing = 0.15,
+        .seed = seed};
     const PackResult result = pack_lattice(options);
     EXPECT_EQ(result.report.placed, 27u);
     expect_valid_packing(result.packing, 0.002);
@@ -73,10 +72,11 @@ TEST(LatticePacker, ContactModeIsValidWithGap) {
 }
 
 TEST(LatticePacker, SameSeedSamePackingWithOneAndTwoThreads) {
-  LatticeOptions options{.container = {.length = 1.0, .width = 0.6, .depth = 0.6},
-                         .radius = 0.05,
-                         .edge_length = 0.03,
-                         .seed = 11};
+  LatticeOptions options{
+      .container = {.shape = BoxContainer{.length = 1.0, .width = 0.6, .depth = 0.6}},
+      .radius = 0.05,
+      .edge_length = 0.03,
+      .seed = 11};
   PackResult one;
   PackResult two;
   {
@@ -125,8 +125,9 @@ TEST(LatticePacker, EachBadOptionIsNamed) {
   EXPECT_EQ(invalid_field([] { pack_lattice({.gap = -0.1}); }), "lattice.gap");
   EXPECT_EQ(invalid_field([] { pack_lattice({.spacing = 0.1}); }), "lattice.spacing");
   EXPECT_EQ(invalid_field([] { pack_lattice({.max_vertices = 3}); }), "lattice.max_vertices");
-  EXPECT_EQ(invalid_field([] { pack_lattice({.container = {.length = -3.0}}); }),
-            "container.length");
+  EXPECT_EQ(
+      invalid_field([] { pack_lattice({.container = {.shape = BoxContainer{.length = -3.0}}}); }),
+      "container.length");
   EXPECT_THROW(pack_lattice({.edge_length = 0.001, .max_vertices = 100}), LimitExceeded);
 }
 

@@ -22,7 +22,7 @@ Grading fuller(double lo, double hi, double q = 0.5) {
 
 // A small graded box run used by several tests (about 400 particles).
 RandomPackOptions small_fuller(std::uint64_t seed) {
-  return {.container = {.length = 0.2, .width = 0.15, .depth = 0.15},
+  return {.container = {.shape = BoxContainer{.length = 0.2, .width = 0.15, .depth = 0.15}},
           .grading = fuller(0.015, 0.06),
           .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
           .target = PackTarget::kVolumeFraction,
@@ -33,7 +33,7 @@ RandomPackOptions small_fuller(std::uint64_t seed) {
 TEST(RandomPacker, CountTargetIsReachedAndValid) {
   for (std::uint64_t seed : {1u, 2u, 3u}) {
     const RandomPackOptions options{
-        .container = {.length = 1.0, .width = 1.0, .depth = 1.0},
+        .container = {.shape = BoxContainer{.length = 1.0, .width = 1.0, .depth = 1.0}},
         .grading = {.kind = GradingKind::kUniform, .radius_min = 0.05, .radius_max = 0.08},
         .target = PackTarget::kCount,
         .count = 300,
@@ -75,10 +75,7 @@ TEST(RandomPacker, VolumeFractionTargetWithGapsIsValidAndGraded) {
 
 TEST(RandomPacker, CylinderAndSieveTable) {
   const RandomPackOptions options{
-      .container = {.kind = ContainerKind::kCylinder,
-                    .radius = 0.05,
-                    .height = 0.1,
-                    .wall_gap = 0.001},
+      .container = {.shape = CylinderContainer{.radius = 0.05, .height = 0.1}, .wall_gap = 0.001},
       .grading = {.kind = GradingKind::kSieve,
                   .sieve = {{0.008, 0.0}, {0.012, 40.0}, {0.016, 75.0}, {0.02, 100.0}}},
       .shape = {.alpha = 0.7, .edge_length_ratio = 0.8},
@@ -115,7 +112,7 @@ TEST(RandomPacker, ShapeLibraryReusesScaledShapes) {
 // limit of RSA is far lower); the packer stops by its failure rule and reports what it reached.
 TEST(RandomPacker, UnreachableTargetStopsAndReports) {
   const RandomPackOptions options{
-      .container = {.length = 0.5, .width = 0.5, .depth = 0.5},
+      .container = {.shape = BoxContainer{.length = 0.5, .width = 0.5, .depth = 0.5}},
       .grading = {.kind = GradingKind::kUniform, .radius_min = 0.06, .radius_max = 0.06},
       .volume_fraction = 0.6,
       .max_attempts_per_particle = 300,
@@ -212,7 +209,8 @@ TEST(RandomPacker, EachBadOptionIsNamed) {
             }),
             "shape.library_size");
   EXPECT_EQ(with([](auto& o) { o.grading.size_max = 0.01; }), "grading.size_max");
-  EXPECT_EQ(with([](auto& o) { o.container.width = 0.0; }), "container.width");
+  EXPECT_EQ(with([](auto& o) { std::get<BoxContainer>(o.container.shape).width = 0.0; }),
+            "container.width");
   EXPECT_EQ(with([](auto& o) {
               o.grading.size_min = 0.5;
               o.grading.size_max = 0.6;
@@ -223,7 +221,7 @@ TEST(RandomPacker, EachBadOptionIsNamed) {
   too_fine.shape.max_vertices = 100;
   EXPECT_THROW(pack_random(too_fine), LimitExceeded);
   RandomPackOptions too_many = small_fuller(1);
-  too_many.container = {.length = 10, .width = 10, .depth = 10};
+  too_many.container = {.shape = BoxContainer{.length = 10, .width = 10, .depth = 10}};
   too_many.grading = fuller(0.0001, 0.0004);
   EXPECT_THROW(pack_random(too_many), LimitExceeded);
 }

@@ -66,14 +66,15 @@ TEST(Resources, CountsTheContainerCanHoldPass) {
 }
 
 TEST(Resources, MeanVolumeEstimateMatchesAPackedRun) {
-  RandomPackOptions options{.container = {.length = 0.4, .width = 0.4, .depth = 0.4},
-                            .grading = {.kind = GradingKind::kFuller,
-                                        .size_min = 0.02,
-                                        .size_max = 0.06,
-                                        .exponent = 0.5},
-                            .target = PackTarget::kCount,
-                            .count = 300,
-                            .seed = 3};
+  RandomPackOptions options{
+      .container = {.shape = BoxContainer{.length = 0.4, .width = 0.4, .depth = 0.4}},
+      .grading = {.kind = GradingKind::kFuller,
+                  .size_min = 0.02,
+                  .size_max = 0.06,
+                  .exponent = 0.5},
+      .target = PackTarget::kCount,
+      .count = 300,
+      .seed = 3};
   const RunEstimate estimate = estimate_run(options);
   const PackResult result = pack_random(options);
   ASSERT_EQ(result.report.placed, 300u);
@@ -145,7 +146,7 @@ TEST(RandomPacker, NonFiniteShapeVolumeStopsTheSizeList) {
   // A grading whose sizes underflow the shape volume to 0 cannot reach a volume target: refused
   // before work (no particle volume) instead of drawing until the 10^8 cap.
   RandomPackOptions options{
-      .container = {.length = 1e-100, .width = 1e-100, .depth = 1e-100},
+      .container = {.shape = BoxContainer{.length = 1e-100, .width = 1e-100, .depth = 1e-100}},
       .grading = {.kind = GradingKind::kUniform, .radius_min = 1e-103, .radius_max = 1e-103}};
   EXPECT_THROW(pack_random(options), Error);
 }

@@ -21,7 +21,7 @@ using testing::invalid_field;
 // Two axis-aligned cubes of side 0.2 in a 1 x 1 x 1 box, at known places.
 Packing two_cubes() {
   Packing packing;
-  packing.container = {.length = 1.0, .width = 1.0, .depth = 1.0};
+  packing.container = {.shape = BoxContainer{.length = 1.0, .width = 1.0, .depth = 1.0}};
   packing.shapes.push_back(make_box(Vec3(-0.1, -0.1, -0.1), Vec3(0.1, 0.1, 0.1)));
   packing.particles.push_back(
       {.shape = 0, .pose = {.position = Vec3(0.15, 0.5, 0.5)}, .control_radius = 0.18});
@@ -91,14 +91,11 @@ TEST(Statistics, KnownPackingHasExactFractionsAndProfiles) {
 
 // Over a real random packing (box and cylinder), each profile integrates back to the solid volume.
 TEST(Statistics, ProfilesIntegrateToTheSolidVolume) {
-  for (ContainerKind kind : {ContainerKind::kBox, ContainerKind::kCylinder}) {
+  for (const ContainerShape& shape :
+       {ContainerShape{BoxContainer{.length = 0.2, .width = 0.1, .depth = 0.15}},
+        ContainerShape{CylinderContainer{.radius = 0.07, .height = 0.12}}}) {
     RandomPackOptions options{
-        .container = {.kind = kind,
-                      .length = 0.2,
-                      .width = 0.1,
-                      .depth = 0.15,
-                      .radius = 0.07,
-                      .height = 0.12},
+        .container = {.shape = shape},
         .grading = {.kind = GradingKind::kFuller, .size_min = 0.01, .size_max = 0.04},
         .volume_fraction = 0.2,
         .seed = 3};

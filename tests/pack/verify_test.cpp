@@ -8,7 +8,8 @@ namespace {
 
 Packing pair_of_cubes(double separation) {
   Packing packing;
-  packing.container = {.length = 2.0, .width = 1.0, .depth = 1.0, .wall_gap = 0.05};
+  packing.container = {.shape = BoxContainer{.length = 2.0, .width = 1.0, .depth = 1.0},
+                       .wall_gap = 0.05};
   packing.shapes.push_back(make_box(Vec3(-0.2, -0.2, -0.2), Vec3(0.2, 0.2, 0.2)));
   packing.particles.push_back({.shape = 0, .pose = {.position = Vec3(0.5, 0.5, 0.5)}});
   packing.particles.push_back({.shape = 0, .pose = {.position = Vec3(0.9 + separation, 0.5, 0.5)}});

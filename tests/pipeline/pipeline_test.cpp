@@ -23,7 +23,7 @@ using testing::invalid_field;
 
 // A few dozen lattice sites in a small box: fast.
 LatticeOptions small_lattice() {
-  return {.container = {.length = 0.6, .width = 0.4, .depth = 0.4},
+  return {.container = {.shape = BoxContainer{.length = 0.6, .width = 0.4, .depth = 0.4}},
           .radius = 0.1,
           .edge_length = 0.1,
           .seed = 7};
@@ -31,7 +31,7 @@ LatticeOptions small_lattice() {
 
 // ~40 single-size particles placed by RSA at 22 % in a 0.4 m cube.
 RandomPackOptions small_random(std::uint64_t seed = 3) {
-  return {.container = {.length = 0.4, .width = 0.4, .depth = 0.4},
+  return {.container = {.shape = BoxContainer{.length = 0.4, .width = 0.4, .depth = 0.4}},
           .grading = {.kind = GradingKind::kUniform, .radius_min = 0.05, .radius_max = 0.05},
           .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
           .target = PackTarget::kVolumeFraction,

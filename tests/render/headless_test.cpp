@@ -105,9 +105,9 @@ TEST(Headless, CubeCoversExactlyItsProjectedSquare) {
   // One cube of side 0.4 m at (1.0, 0.5, 0.5) in a 2 x 1 x 1 box, seen from the top,
   // orthographic: it must cover the square its corners project to, and nothing else.
   Packing packing;
-  packing.container.length = 2.0;
-  packing.container.width = 1.0;
-  packing.container.depth = 1.0;
+  packing.container.get_if<BoxContainer>()->length = 2.0;
+  packing.container.get_if<BoxContainer>()->width = 1.0;
+  packing.container.get_if<BoxContainer>()->depth = 1.0;
   packing.shapes.push_back(make_box(Vec3::Constant(-0.2), Vec3::Constant(0.2)));
   Particle particle;
   particle.pose.position = Vec3(1.0, 0.5, 0.5);
@@ -151,8 +151,8 @@ TEST(Headless, CubeCoversExactlyItsProjectedSquare) {
 TEST(Headless, ParticlesCoverTheRegionTheyOccupy) {
   // 6 x 3 x 3 particles on a grid; only the left half of a container twice as long holds them.
   Packing packing = test::grid_packing(6, 3, 3);
-  const double filled_length = packing.container.length;
-  packing.container.length = 2.0 * filled_length;
+  const double filled_length = packing.container.get_if<BoxContainer>()->length;
+  packing.container.get_if<BoxContainer>()->length = 2.0 * filled_length;
   RenderImageOptions options = small_options();
   options.view = ViewPreset::kFront;
   options.is_orthographic = true;
@@ -163,9 +163,9 @@ TEST(Headless, ParticlesCoverTheRegionTheyOccupy) {
   const Camera camera = Camera::framing(scene, ViewPreset::kFront, 320.0 / 240.0, true);
   const double margin = 0.01;  // grid_packing's margin is 0.1 r = 0.01 m
   const Eigen::Vector2d low = project(camera, image.width, image.height, Vec3(margin, 0.0, margin));
-  const Eigen::Vector2d high =
-      project(camera, image.width, image.height,
-              Vec3(filled_length - margin, 0.0, packing.container.depth - margin));
+  const Eigen::Vector2d high = project(
+      camera, image.width, image.height,
+      Vec3(filled_length - margin, 0.0, packing.container.get_if<BoxContainer>()->depth - margin));
   std::size_t covered_left = 0, pixels_left = 0, covered_right = 0;
   for (int y = 0; y < image.height; ++y) {
     for (int x = 0; x < image.width; ++x) {

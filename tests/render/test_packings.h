@@ -20,10 +20,9 @@ inline Packing grid_packing(int nx, int ny, int nz, double radius = 0.1,
   Packing packing;
   const double spacing = 2.2 * radius;
   const double margin = 0.1 * radius;
-  packing.container.kind = ContainerKind::kBox;
-  packing.container.length = nx * spacing + 2 * margin;
-  packing.container.width = ny * spacing + 2 * margin;
-  packing.container.depth = nz * spacing + 2 * margin;
+  packing.container.get_if<BoxContainer>()->length = nx * spacing + 2 * margin;
+  packing.container.get_if<BoxContainer>()->width = ny * spacing + 2 * margin;
+  packing.container.get_if<BoxContainer>()->depth = nz * spacing + 2 * margin;
   const GeneratorOptions options{.alpha = 0.5,
                                  .radius_min = radius,
                                  .radius_max = radius,

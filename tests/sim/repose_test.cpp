@@ -20,9 +20,9 @@ namespace {
 
 Packing one_box(const Vec3& lower, const Vec3& upper) {
   Packing packing;
-  packing.container.length = 4.0;
-  packing.container.width = 1.0;
-  packing.container.depth = 1.0;
+  packing.container.get_if<BoxContainer>()->length = 4.0;
+  packing.container.get_if<BoxContainer>()->width = 1.0;
+  packing.container.get_if<BoxContainer>()->depth = 1.0;
   const Vec3 centre = 0.5 * (lower + upper);
   packing.shapes.push_back(make_box(lower - centre, upper - centre));
   packing.particles.push_back({.shape = 0, .pose = {.position = centre}});
@@ -117,9 +117,9 @@ TEST(SlopeFit, ReportsWhyItCannotFit) {
 
 TEST(Settle, LatticeFallsToADenserPackingInsideItsContainer) {
   LatticeOptions lattice;
-  lattice.container.length = 0.6;
-  lattice.container.width = 0.4;
-  lattice.container.depth = 1.0;
+  lattice.container.get_if<BoxContainer>()->length = 0.6;
+  lattice.container.get_if<BoxContainer>()->width = 0.4;
+  lattice.container.get_if<BoxContainer>()->depth = 1.0;
   lattice.radius = 0.05;
   lattice.edge_length = 0.05;
   lattice.spacing = 0.14;  // loose: the particles have room to fall and rearrange

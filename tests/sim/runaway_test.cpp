@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 // One 0.1 m cube at `height` in a 1 m box.
 Packing one_cube(double height = 0.5, double scale = 1.0) {
   Packing packing;
-  packing.container = {.kind = ContainerKind::kBox, .length = 1.0, .width = 1.0, .depth = 1.0};
+  packing.container = {.shape = BoxContainer{.length = 1.0, .width = 1.0, .depth = 1.0}};
   packing.shapes.push_back(make_box(Vec3::Constant(-0.05), Vec3::Constant(0.05)));
   packing.particles.push_back(
       {.shape = 0, .pose = {.position = Vec3(0.5, 0.5, height)}, .scale = scale});

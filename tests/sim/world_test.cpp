@@ -18,10 +18,9 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 
 Packing box_container(double length, double width, double depth) {
   Packing packing;
-  packing.container.kind = ContainerKind::kBox;
-  packing.container.length = length;
-  packing.container.width = width;
-  packing.container.depth = depth;
+  packing.container.get_if<BoxContainer>()->length = length;
+  packing.container.get_if<BoxContainer>()->width = width;
+  packing.container.get_if<BoxContainer>()->depth = depth;
   return packing;
 }
 
@@ -218,7 +217,7 @@ TEST(World, KineticEnergyNeverGrowsWithoutInput) {
   // energy (restitution <= 1, Coulomb friction, split-impulse position correction).
   for (const std::uint64_t seed : {1u, 2u}) {
     Packing packing = gas(seed, 3);
-    packing.container.depth = 1.0;
+    packing.container.get_if<BoxContainer>()->depth = 1.0;
     World world(packing, {.restitution = 0.5, .gravity = Vec3::Zero()});
     Rng rng(seed, 99);
     for (std::size_t i = 0; i < world.particle_count(); ++i) {
@@ -244,7 +243,7 @@ TEST(World, KineticEnergyNeverGrowsWithoutInput) {
 
 TEST(World, MechanicalEnergyNeverGrowsUnderGravity) {
   Packing packing = gas(3, 3);
-  packing.container.depth = 1.5;
+  packing.container.get_if<BoxContainer>()->depth = 1.5;
   World world(packing, {.restitution = 0.3});
   const double initial = world.kinetic_energy() + world.potential_energy();
   double previous = initial;
@@ -263,7 +262,7 @@ TEST(World, MechanicalEnergyNeverGrowsUnderGravity) {
 
 TEST(World, PenetrationInASettledPileStaysBelowOnePercent) {
   Packing packing = gas(4, 4);
-  packing.container.depth = 1.2;
+  packing.container.get_if<BoxContainer>()->depth = 1.2;
   World world(packing, {});
   world.step(static_cast<std::size_t>(2.5 / world.time_step()));
   const ContactStatistics contacts = world.contact_statistics();

@@ -1,39 +1,53 @@
 #pragma once
-// Containers (box, cylinder) and the exact containment test for placed convex bodies.
-// The Container value itself lives in packing.h (it is part of every Packing).
+// Container operations: each dispatches to the kind the container holds (container_box.cpp,
+// container_cylinder.cpp, ...). The Container value itself lives in packing.h (it is part of
+// every Packing).
 
 #include "aggpack/geom/convex_polyhedron.h"
 #include "aggpack/pack/packing.h"
 
+#include <functional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace aggpack {
 
 /// One length parameter of a container kind (m, allowed (0, 1e6]): the config key
 /// `container.<name>`, the native-file attribute `<name>` and the GUI field all come from it.
+/// get() of a container of another kind gives this kind's default; set() on a container of
+/// another kind does nothing (the value has no place there).
 struct ContainerParam {
   const char* name;         ///< "length"
   const char* description;  ///< one line for docs and tooltips
-  double (*get)(const Container&);
-  void (*set)(Container&, double);
+  std::function<double(const Container&)> get;
+  std::function<void(Container&, double)> set;
 };
 
 /// One container kind: the word used in configs and native files, its parameters in order, and
 /// the container of that kind with every parameter at its default. Every front end (config keys,
 /// native file fields, GUI) iterates over container_kinds() instead of naming kinds itself.
 struct ContainerKindInfo {
-  ContainerKind kind;
   const char* name;         ///< "box"
   const char* description;  ///< one line
+  const char* summary;      ///< fmt pattern of the CLI summary, the params' values in order
   std::vector<ContainerParam> params;
   Container defaults;
+  /// Whether `container` is of this kind.
+  std::function<bool(const Container&)> holds;
 };
 
-/// Every container kind, in documentation order.
+/// Every container kind, in documentation order (the order of ContainerShape).
 const std::vector<ContainerKindInfo>& container_kinds();
 
-/// The entry of container_kinds() for `kind`.
-const ContainerKindInfo& container_kind_info(ContainerKind kind);
+/// The entry of container_kinds() for the kind `container` holds.
+const ContainerKindInfo& container_kind_info(const Container& container);
+
+/// The entry of container_kinds() named `name` ("box"), or nullptr.
+const ContainerKindInfo* find_container_kind(std::string_view name);
+
+/// The kind names joined for messages: "box or cylinder".
+std::string container_kind_names();
 
 /// Throws InvalidInput naming the field ("container.length", "container.radius",
 /// "container.wall_gap", ...) unless the extents of the chosen kind are finite and > 0 and the
@@ -62,7 +76,29 @@ Aabb centre_region(const Container& container, double radius);
 bool is_in_centre_region(const Container& container, double radius, const Vec3& centre);
 
 /// Volume of the container between planes axis = lo and axis = hi (m^3); axis 0 = x, 1 = y, 2 = z.
-/// Exact for both kinds (circular segments for the cylinder's x and y).
+/// Exact for every kind (circular segments for the cylinder's x and y).
 double container_slab_volume(const Container& container, int axis, double lo, double hi);
+
+/// Whether centre_region() is exactly the region of is_in_centre_region() (a box), so that a
+/// point drawn in it needs no rejection test.
+bool centre_region_is_bounds(const Container& container);
+
+/// Area of the container's floor (z = 0), m^2.
+double container_floor_area(const Container& container);
+
+/// The static walls of the container for the physics: `thickness` thick (m), at least
+/// `min_height` high (m). Every wall lies outside the interior and together they close it.
+std::vector<ContainerWall> container_walls(const Container& container, double thickness,
+                                           double min_height);
+
+/// Line segments that draw the container.
+std::vector<OutlineSegment> container_outline(const Container& container);
+
+/// Per-axis size ratio other / from (x, y, z). Throws InvalidInput if the kinds differ.
+Vec3 container_ratio(const Container& from, const Container& other);
+
+/// The container scaled per axis by `factor` (the kind decides how: a cylinder takes x for its
+/// radius and z for its height); the wall gap is kept.
+Container container_scaled(const Container& container, const Vec3& factor);
 
 }  // namespace aggpack

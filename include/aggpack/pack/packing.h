@@ -5,30 +5,45 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "aggpack/geom/convex_polyhedron.h"
+#include "aggpack/pack/container_box.h"
+#include "aggpack/pack/container_cylinder.h"
 
 namespace aggpack {
 
-enum class ContainerKind { kBox, kCylinder };
+/// Every container kind, one alternative each: the list a new kind is added to (see
+/// container_kind.h for what a kind provides). The first alternative is the default.
+using ContainerShape = std::variant<BoxContainer, CylinderContainer>;
 
-/// The region particles are packed into. Lengths in metres.
-/// Box: [0, length] x [0, width] x [0, depth]  (x = length, y = width, z = depth, z up).
-/// Cylinder: axis along z through x = y = 0, radius `radius`, z in [0, height].
+/// The region particles are packed into: one kind's geometry plus the wall gap. Lengths in metres.
+/// Its operations (bounds, volume, containment, walls, ...) are in container.h.
 struct Container {
-  ContainerKind kind = ContainerKind::kBox;
-  double length = 3.0;    ///< box x extent (m)
-  double width = 1.0;     ///< box y extent (m)
-  double depth = 2.8;     ///< box z extent (m)
-  double radius = 0.05;   ///< cylinder radius (m)
-  double height = 0.1;    ///< cylinder height (m)
-  double wall_gap = 0.0;  ///< minimum distance from any particle to any wall (m), >= 0
+  ContainerShape shape{};  ///< the kind and its sizes
+  double wall_gap = 0.0;   ///< minimum distance from any particle to any wall (m), >= 0
 
   /// Bounding box of the container.
   [[nodiscard]] Aabb bounds() const;
   /// Interior volume (m^3).
   [[nodiscard]] double volume() const;
+  /// The kind's value when the container is of kind K, else nullptr.
+  template <class K>
+  [[nodiscard]] const K* get_if() const {
+    return std::get_if<K>(&shape);
+  }
+  template <class K>
+  [[nodiscard]] K* get_if() {
+    return std::get_if<K>(&shape);
+  }
+  /// f(kind value), for whichever kind the container holds.
+  template <class F>
+  decltype(auto) visit(F&& f) const {
+    return std::visit(std::forward<F>(f), shape);
+  }
+  bool operator==(const Container&) const = default;
 };
 
 /// One placed particle.

@@ -1,0 +1,142 @@
+#pragma once
+// Internal to the sim module: World::Impl and the Bullet types the world's files share.
+// world.cpp: construction, stepping and the per-particle state; world_shapes.cpp: the Bullet hull
+// of each shape; world_walls.cpp: container and user walls; world_contacts.cpp: the broad-phase
+// filter and the contact / overlap statistics.
+
+#include <btBulletDynamicsCommon.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "aggpack/geom/overlap.h"
+#include "aggpack/pack/container.h"
+#include "aggpack/sim/world.h"
+
+namespace aggpack {
+
+namespace detail {
+
+inline btVector3 to_bt(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+inline Vec3 from_bt(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+inline btQuaternion to_bt(const Quat& q) { return {q.x(), q.y(), q.z(), q.w()}; }
+inline Quat from_bt(const btQuaternion& q) { return Quat(q.w(), q.x(), q.y(), q.z()); }
+
+// One Bullet hull per distinct shape, in the shape's principal frame: Bullet wants a diagonal
+// local inertia, so the body frame is the principal frame and the pose is composed with it.
+struct ShapeData {
+  std::unique_ptr<btConvexHullShape> hull;        // principal frame, sim units, with margin
+  std::unique_ptr<btConvexHullShape> exact_hull;  // same, margin 0 (overlap measurement)
+  Vec3 centroid = Vec3::Zero();                   // of the shape in its local frame (m)
+  Quat principal = Quat::Identity();              // principal frame -> local frame
+  double volume = 0.0;                            // m^3
+  Vec3 unit_inertia = Vec3::Zero();               // principal moments per unit density (m^5)
+  double size = 0.0;                              // equivalent diameter (m)
+  SupportShape exact;                             // scaled polyhedron, for aggpack's GJK
+  std::uint32_t source = 0;                       // index into Packing::shapes
+  double scale = 1.0;                             // Particle::scale
+};
+
+// Bullet's sequential-impulse solver, fed in a canonical order. Bullet hands the solver an
+
+// narrow phase; the Gauss-Seidel sweeps, and so the rounding, follow that order. Here the bodies
+// are taken in particle order and the manifolds sorted by the two particles they join (walls have
+// negative indices), a pure function of the contacts: skipping the narrow phase of a pair that
+// cannot touch (near_callback) then changes nothing, and runs stay bit-identical.
+class OrderedSolver final : public btSequentialImpulseConstraintSolver {
+ protected:
+  void convertBodies(btCollisionObject** bodies, int count,
+                     const btContactSolverInfo& info) override {
+    sorted_bodies_.assign(bodies, bodies + count);
+    std::sort(sorted_bodies_.begin(), sorted_bodies_.end(),
+              [](const btCollisionObject* a, const btCollisionObject* b) {
+                return a->getUserIndex() < b->getUserIndex();
+              });
+    btSequentialImpulseConstraintSolver::convertBodies(sorted_bodies_.data(), count, info);
+  }
+
+  void convertContacts(btPersistentManifold** manifolds, int count,
+                       const btContactSolverInfo& info) override {
+    sorted_manifolds_.assign(manifolds, manifolds + count);
+    // One manifold per pair, so the key is unique.
+    auto key = [](const btPersistentManifold* m) {
+      const int a = m->getBody0()->getUserIndex();
+      const int b = m->getBody1()->getUserIndex();
+      return std::pair(std::max(a, b), std::min(a, b));
+    };
+    std::sort(sorted_manifolds_.begin(), sorted_manifolds_.end(),
+              [&key](const btPersistentManifold* a, const btPersistentManifold* b) {
+                return key(a) < key(b);
+              });
+    btSequentialImpulseConstraintSolver::convertContacts(sorted_manifolds_.data(), count, info);
+  }
+
+ private:
+  std::vector<btCollisionObject*> sorted_bodies_;
+  std::vector<btPersistentManifold*> sorted_manifolds_;
+};
+
+struct Wall {
+  std::unique_ptr<btBoxShape> shape;
+  std::unique_ptr<btBoxShape> exact_shape;
+  std::unique_ptr<btDefaultMotionState> motion;
+  std::unique_ptr<btRigidBody> body;
+  Vec3 half_extent = Vec3::Zero();  // m
+  Vec3 velocity = Vec3::Zero();     // m/s
+  bool is_kinematic = false;
+  bool is_removed = false;
+};
+
+}  // namespace detail
+
+struct World::Impl {
+  Packing packing;
+  PhysicsOptions options;
+  double scale = 1.0;  // sim length = scale * SI length
+  double time_step = 0.0;
+  double time = 0.0;
+  std::size_t steps = 0;
+  double smallest_size = 0.0;
+  double median_size = 0.0;
+  double margin = 0.0;          // sim units
+  double wall_thickness = 0.0;  // m
+
+  std::vector<double> bounding_radius;  // per particle, about its centroid (sim units)
+  // Bullet keeps contact points up to gContactBreakingThreshold (0.02) x the shape's angular
+  // motion disc (at most sqrt(3) x its bounding radius + margin); reach 10% beyond the spheres.
+  static constexpr double kPairReach = 1.1;
+  // Largest contact breaking threshold of any shape (sim units): Bullet keeps and adds contact
+  // points up to a manifold's threshold, the smaller of its two shapes'.
+  double breaking_threshold = 0.0;
+  std::vector<detail::ShapeData> shapes;             // one per distinct (shape, scale)
+  std::vector<std::uint32_t> body_shape;             // per particle: index into shapes
+  std::vector<std::unique_ptr<btRigidBody>> bodies;  // one per particle, index = particle index
+  std::vector<detail::Wall> walls;
+
+  // Declared last so they are destroyed first (bodies and shapes must outlive the world).
+  std::unique_ptr<btDefaultCollisionConfiguration> configuration;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  std::unique_ptr<btBroadphaseInterface> broadphase;
+  std::unique_ptr<detail::OrderedSolver> solver;
+  std::unique_ptr<btDiscreteDynamicsWorld> world;
+
+  ~Impl();
+
+  [[nodiscard]] double wall_friction() const {
+    return options.wall_friction.value_or(options.friction);
+  }
+
+  static void near_callback(btBroadphasePair& pair, btCollisionDispatcher& dispatcher,
+                            const btDispatcherInfo& info);
+  void build_shapes();
+  void build_world();
+  void add_particles();
+  void add_container_walls(double wall_height);
+  std::size_t add_wall(const WallBox& wall);
+  std::size_t add_wall(const ContainerWall& wall, bool is_kinematic);
+};
+
+}  // namespace aggpack
