@@ -10,10 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#ifdef AGGPACK_HAS_TBB
-#include <tbb/parallel_for.h>
-#endif
-
+#include "aggpack/core/parallel.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/io/export.h"
 #include "aggpack/shape/generator.h"
@@ -33,11 +30,7 @@ const Packing& packing_of(std::size_t count) {
     ConvexPolyhedron body = generate_particle(generator, i).body;
     packing.shapes[i] = body.translated(-mass_properties(body).centroid);
   };
-#ifdef AGGPACK_HAS_TBB
-  tbb::parallel_for(std::size_t{0}, count, make);
-#else
-  for (std::size_t i = 0; i < count; ++i) make(i);
-#endif
+  parallel_for_index(0, count, make);
   const auto side = static_cast<std::size_t>(std::ceil(std::cbrt(static_cast<double>(count))));
   for (std::size_t i = 0; i < count; ++i) {
     Particle particle;

@@ -36,10 +36,6 @@ if(AGGPACK_BUILD_SIM)
   target_compile_definitions(aggpack_sim PUBLIC AGGPACK_HAS_SIM=1)
 
   target_link_libraries(aggpack PRIVATE aggpack_sim)
-  find_package(tomlplusplus QUIET)
-  if(tomlplusplus_FOUND)
-    # `aggpack repose CONFIG.toml` and `aggpack sweep CONFIG.toml` parse their own tables.
-    target_link_libraries(aggpack PRIVATE tomlplusplus::tomlplusplus)
-    target_compile_definitions(aggpack PRIVATE AGGPACK_HAS_TOML=1)
-  endif()
+  # `aggpack repose CONFIG.toml` and `aggpack sweep CONFIG.toml` parse their own tables.
+  target_link_libraries(aggpack PRIVATE tomlplusplus::tomlplusplus)
 endif()

@@ -87,7 +87,11 @@ double stored_gap(const Packing& packing) {
   try {
     const PackConfig config =
         parse_pack_config(packing.provenance.config_toml, "/provenance/config_toml");
-    return config.packer == PackerKind::kRandom ? config.random.gap : 0.0;
+    if (const auto* dense = std::get_if<DensePackOptions>(&config.packer)) {
+      return dense->densify.gap;
+    }
+    const auto* random = std::get_if<RandomPackOptions>(&config.packer);
+    return random != nullptr ? random->gap : 0.0;
   } catch (const Error&) {
     return 0.0;
   }

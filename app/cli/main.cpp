@@ -18,7 +18,6 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   aggpack::cli::register_particle(app);
   aggpack::cli::register_shapes(app);
-#ifdef AGGPACK_HAS_IO
   aggpack::cli::register_pack(app);
   aggpack::cli::register_info(app);
   aggpack::cli::register_densify(app);
@@ -27,7 +26,6 @@ int main(int argc, char** argv) {
 #endif
   aggpack::cli::register_export(app);
   aggpack::cli::register_config_keys(app);
-#endif
 #ifdef AGGPACK_HAS_SIM
   aggpack::cli::register_sim(app);
 #endif

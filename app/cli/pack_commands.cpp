@@ -210,7 +210,9 @@ void run_pack(const PackFlags& flags) {
                nest_json(to_json(report, 2), 2),
                written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
   } else {
-    fmt::print("{}\n", report.summary());
+    // A dense run's report is its fill's (what the densifier started from), with the final solid
+    // volume and fraction; the densify line says whether the densifier reached its target.
+    fmt::print("{}{}\n", result.densify ? "fill            " : "", report.summary());
     if (result.densify) fmt::print("densify         {}\n", result.densify->summary());
     fmt::print("particles       {}\n", report.placed);
     fmt::print("solid volume    {:.6g} m^3\n", report.solid_volume);
@@ -221,7 +223,13 @@ void run_pack(const PackFlags& flags) {
                flags.has_xdmf ? " and " + xdmf_path_for(output) : std::string());
     for (const auto& line : written) fmt::print("wrote {}\n", line);
   }
-  if (!report.is_target_reached) {
+  const bool is_densify_short = result.densify &&
+                                result.densify->stop != DensifyStop::kTargetReached &&
+                                result.densify->stop != DensifyStop::kSettled;
+  if (is_densify_short) {
+    warn("densify target not reached: " + result.densify->summary() +
+         "; the file holds the densest verified state");
+  } else if (!result.densify && !report.is_target_reached) {
     warn("target not reached (" + to_string(report.stop_reason) + "): placed " +
          std::to_string(report.placed) + " of " + std::to_string(report.requested) +
          " particles; the file holds what was placed");

@@ -1,7 +1,7 @@
 // `aggpack render`: a saved packing to a PNG picture with no display (issue 5). Compiles to
 // nothing when aggpack is built without rendering (AGGPACK_BUILD_RENDER=OFF or no OpenGL/EGL).
 
-#if defined(AGGPACK_HAS_RENDER) && defined(AGGPACK_HAS_IO)
+#ifdef AGGPACK_HAS_RENDER
 
 #include <fmt/core.h>
 
@@ -114,4 +114,4 @@ void register_render(CLI::App& app) {
 
 }  // namespace aggpack::cli
 
-#endif  // AGGPACK_HAS_RENDER && AGGPACK_HAS_IO
+#endif  // AGGPACK_HAS_RENDER

@@ -7,13 +7,9 @@
 #include <string>
 #include <vector>
 
-#ifdef AGGPACK_HAS_TBB
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-#endif
-
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/io/export.h"
 #include "aggpack/shape/descriptors.h"
 #include "aggpack/shape/generator.h"
@@ -99,13 +95,7 @@ void print_descriptors(const ShapeDescriptors& d, double control_radius) {
 
 void set_thread_count(int threads) {
   if (threads < 0) throw InvalidInput("--threads", std::to_string(threads), ">= 0 (0 = all cores)");
-#ifdef AGGPACK_HAS_TBB
-  static std::unique_ptr<tbb::global_control> control;
-  if (threads > 0) {
-    control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                    static_cast<std::size_t>(threads));
-  }
-#endif
+  limit_threads(threads);
 }
 
 void register_particle(CLI::App& app) {
@@ -201,11 +191,7 @@ void register_shapes(CLI::App& app) {
         descriptors[k] = describe(particle.body);
         radii[k] = particle.control_radius;
       };
-#ifdef AGGPACK_HAS_TBB
-      tbb::parallel_for(std::size_t{0}, size, make);
-#else
-      for (std::size_t k = 0; k < size; ++k) make(k);
-#endif
+      parallel_for_index(0, size, make);
       for (std::size_t k = 0; k < size; ++k) {
         for (std::size_t c = 0; c < columns.size(); ++c) {
           summaries[c].add(columns[c].get(descriptors[k]));

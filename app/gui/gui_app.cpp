@@ -132,8 +132,10 @@ void GuiApp::start_pack() {
     control.progress_interval = 0.05;
     control.on_progress = [&job](const PackProgress& progress) {
       job.set_progress(progress.fraction);
-      job.set_detail(fmt::format("placed {} of {}, solid fraction {:.1f} %", progress.placed,
-                                 progress.total, 100.0 * progress.solid_fraction));
+      job.set_detail(
+          fmt::format("{} {} of {}, solid fraction {:.1f} %",
+                      progress.stage == PackStage::kDensify ? "densify: sweep" : "placed",
+                      progress.placed, progress.total, 100.0 * progress.solid_fraction));
     };
     PipelineResult result = pack(config, control);
     JobResult out;
@@ -315,7 +317,7 @@ void GuiApp::draw_panel() {
   ImGui::PushItemWidth(-150.0f);
   draw_config_section("Container", {"container"});
   draw_config_section("Particle shape", {"particle"});
-  draw_config_section("Packer and grading", {"packer", "grading"});
+  draw_config_section("Packer and grading", {"packer", "grading", "densify"});
   ImGui::PopItemWidth();
   draw_job_section();
   draw_file_section();

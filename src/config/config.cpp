@@ -15,15 +15,17 @@ void check_cross_key_rules(const PackConfig& config, const GivenValues& given) {
   const auto value_of = [&](const char* key) {
     return std::get<double>(pack_schema().find(key)->binding.get(config));
   };
-  if (config.packer == PackerKind::kLattice) {
-    if (config.lattice.edge_length == 0) {
+  if (const auto* lattice = find_options<LatticeOptions>(config.packer)) {
+    if (lattice->edge_length == 0) {
       fail_key(given, "particle.edge_length",
                "invalid particle.edge_length = 0 (allowed: > 0 with packer.kind = lattice; "
                "0 = relative edge length exists only for the random packer)");
     }
     return;
   }
-  const Grading& g = config.random.grading;
+  const auto* random = find_options<RandomPackOptions>(config.packer);
+  if (random == nullptr) return;
+  const Grading& g = random->grading;
   if (g.kind == GradingKind::kUniform && g.radius_max < g.radius_min) {
     fail_key(given,
              given.count("particle.radius_max") > 0 ? "particle.radius_max" : "particle.radius_min",
@@ -62,22 +64,13 @@ const std::vector<ConfigKey>& config_keys() {
   return keys;
 }
 
-std::uint64_t PackConfig::seed() const {
-  return packer == PackerKind::kLattice ? lattice.seed : random.seed;
-}
+std::uint64_t PackConfig::seed() const { return packer_seed(packer); }
 
-const Container& PackConfig::container() const {
-  return packer == PackerKind::kLattice ? lattice.container : random.container;
-}
+const Container& PackConfig::container() const { return packer_container(packer); }
 
-std::optional<Grading> PackConfig::target_grading() const {
-  if (packer == PackerKind::kLattice) return std::nullopt;
-  return random.grading;
-}
+std::optional<Grading> PackConfig::target_grading() const { return packer_grading(packer); }
 
-std::string PackConfig::packer_name() const {
-  return packer == PackerKind::kLattice ? "lattice" : "random";
-}
+std::string PackConfig::packer_name() const { return packer_kind_name(packer); }
 
 PackConfig resolve_pack_config(const GivenValues& given) {
   const auto& schema = pack_schema();
@@ -85,13 +78,7 @@ PackConfig resolve_pack_config(const GivenValues& given) {
   resolve(schema, given, config);
   check_cross_key_rules(config, given);
   config.warnings = scope_warnings(schema, given, config);
-  with_key_names(key_views(schema), schema.aliases, [&] {
-    if (config.packer == PackerKind::kLattice) {
-      validate(config.lattice);
-    } else {
-      validate(config.random);
-    }
-  });
+  with_key_names(key_views(schema), schema.aliases, [&] { validate(config.packer); });
   config.resolved_toml = "# aggpack " AGGPACK_VERSION
                          " resolved pack configuration: every key that has an effect, at its "
                          "value\n\n" +

@@ -2,36 +2,52 @@
 // one entry here: its binding names the options member it sets, whose default is the key's.
 // Container keys come from container_kinds(), output keys from output_format_names().
 
+#include <numbers>
+#include <optional>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
 #include "aggpack/config/config.h"
 #include "aggpack/io/export.h"
 #include "aggpack/pack/container.h"
-#include "binding.h"
+#include "pack_binding.h"
 
 namespace aggpack {
 
 namespace {
 
+using config_detail::bind;
+using config_detail::densify_keys;
+using config_detail::get_on;
 using config_detail::members;
+using config_detail::on;
+using config_detail::set_on;
 using PackKey = Key<PackConfig>;
 using PackScope = Scope<PackConfig>;
 
 constexpr double kHuge = 1e6;  // 1000 km: any larger length is a unit mistake
 constexpr double kMaxSeed = 9223372036854775807.0;
 
-bool is_random(const PackConfig& c) { return c.packer == PackerKind::kRandom; }
+const RandomPackOptions* random_of(const PackConfig& c) {
+  return find_options<RandomPackOptions>(c.packer);
+}
+bool is_random(const PackConfig& c) { return random_of(c) != nullptr; }
+bool is_lattice(const PackConfig& c) { return find_options<LatticeOptions>(c.packer) != nullptr; }
 bool has_grading(const PackConfig& c, GradingKind kind) {
-  return is_random(c) && c.random.grading.kind == kind;
+  return is_random(c) && random_of(c)->grading.kind == kind;
 }
 
 const PackScope kAlways{};
 const PackScope kNever{.text = "never", .applies = [](const PackConfig&) { return false; }};
-const PackScope kLattice{.text = "packer.kind = lattice",
-                         .applies = [](const PackConfig& c) { return !is_random(c); }};
-const PackScope kRandom{.text = "packer.kind = random", .applies = is_random};
-const PackScope kLatticeOrUniform{
-    .text = "lattice, or random with grading.kind = uniform", .applies = [](const PackConfig& c) {
-      return !is_random(c) || c.random.grading.kind == GradingKind::kUniform;
-    }};
+const PackScope kLattice{.text = "packer.kind = lattice or packer.fill = lattice",
+                         .applies = is_lattice};
+const PackScope kRandom{.text = "packer.kind = random or packer.fill = random",
+                        .applies = is_random};
+const PackScope kLatticeOrUniform{.text = "lattice, or random with grading.kind = uniform",
+                                  .applies = [](const PackConfig& c) {
+                                    return is_lattice(c) || has_grading(c, GradingKind::kUniform);
+                                  }};
 const PackScope kUniform{
     .text = "random with grading.kind = uniform",
     .applies = [](const PackConfig& c) { return has_grading(c, GradingKind::kUniform); }};
@@ -41,23 +57,22 @@ const PackScope kFuller{
 const PackScope kSieve{
     .text = "random with grading.kind = sieve",
     .applies = [](const PackConfig& c) { return has_grading(c, GradingKind::kSieve); }};
-const PackScope kRelativeEdge{
-    .text = "random with particle.edge_length = 0",
-    .applies = [](const PackConfig& c) { return is_random(c) && c.random.shape.edge_length == 0; }};
+const PackScope kRelativeEdge{.text = "random with particle.edge_length = 0",
+                              .applies = [](const PackConfig& c) {
+                                return is_random(c) && random_of(c)->shape.edge_length == 0;
+                              }};
 const PackScope kCountTarget{.text = "random with packer.target_count",
                              .applies = [](const PackConfig& c) {
-                               return is_random(c) && c.random.target == PackTarget::kCount;
+                               return is_random(c) && random_of(c)->target == PackTarget::kCount;
                              }};
 const PackScope kFractionTarget{
     .text = "random without packer.target_count", .applies = [](const PackConfig& c) {
-      return is_random(c) && c.random.target == PackTarget::kVolumeFraction;
+      return is_random(c) && random_of(c)->target == PackTarget::kVolumeFraction;
     }};
-
-// Both packers' containers.
+// The chosen kind's container (the dense kind's fill's).
 template <typename Set>
 void on_containers(PackConfig& c, Set set) {
-  set(c.lattice.container);
-  set(c.random.container);
+  set(packer_container(c.packer));
 }
 
 std::vector<PackKey> container_keys() {
@@ -107,14 +122,17 @@ std::vector<PackKey> container_keys() {
            .default_value = get(info.defaults)});
     }
   }
-  keys.push_back({.name = "container.wall_gap",
-                  .unit = "m",
-                  .range = closed(0, kHuge),
-                  .note = "< half the smallest extent",
-                  .doc = "minimum distance from every particle to every wall",
-                  .binding = members<PackConfig>(
-                      [](auto& c) -> auto& { return c.lattice.container.wall_gap; },
-                      [](auto& c) -> auto& { return c.random.container.wall_gap; })});
+  keys.push_back(
+      {.name = "container.wall_gap",
+       .unit = "m",
+       .range = closed(0, kHuge),
+       .note = "< half the smallest extent",
+       .doc = "minimum distance from every particle to every wall",
+       .binding = {.get = [](const PackConfig& c) -> Value { return c.container().wall_gap; },
+                   .set =
+                       [](PackConfig& c, const Value& value) {
+                         packer_container(c.packer).wall_gap = std::get<double>(value);
+                       }}});
   return keys;
 }
 
@@ -125,9 +143,8 @@ std::vector<PackKey> particle_keys() {
        .range = closed(0, 1),
        .doc = "the paper's Eq. 3 shape control: 1 = regular, full shapes (octahedron-like); 0 = "
               "sharp, flat shapes",
-       .binding = members<PackConfig>(
-           [](auto& c) -> auto& { return c.lattice.alpha; },
-           [](auto& c) -> auto& { return c.random.shape.alpha; }),
+       .binding = bind(on<LatticeOptions>([](auto& o) -> auto& { return o.alpha; }),
+                       on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.alpha; })),
        .fields = {"lattice.alpha", "shape.alpha"}},
       {.name = "particle.radius",
        .unit = "m",
@@ -136,7 +153,11 @@ std::vector<PackKey> particle_keys() {
        .written = kLattice,
        .doc = "control radius R of every lattice particle; for the random packer the default of "
               "`radius_min` and `radius_max`",
-       .binding = members<PackConfig>([](auto& c) -> auto& { return c.lattice.radius; }),
+       // A random packing keeps it as its smallest radius (set again by radius_min, whose
+       // default it is), so that it reads back as the radius the grading was given.
+       .binding =
+           bind(on<LatticeOptions>([](auto& o) -> auto& { return o.radius; }),
+                on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.radius_min; })),
        .fields = {"lattice.radius"}},
       {.name = "particle.radius_min",
        .unit = "m",
@@ -144,7 +165,8 @@ std::vector<PackKey> particle_keys() {
        .note = "<= radius_max",
        .scope = kUniform,
        .doc = "smallest control radius of the uniform grading (uniform by number)",
-       .binding = members<PackConfig>([](auto& c) -> auto& { return c.random.grading.radius_min; }),
+       .binding =
+           bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.radius_min; })),
        .default_from = "particle.radius",
        .fields = {"grading.radius_min"}},
       {.name = "particle.radius_max",
@@ -153,7 +175,8 @@ std::vector<PackKey> particle_keys() {
        .note = ">= radius_min",
        .scope = kUniform,
        .doc = "largest control radius of the uniform grading",
-       .binding = members<PackConfig>([](auto& c) -> auto& { return c.random.grading.radius_max; }),
+       .binding =
+           bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.radius_max; })),
        .default_from = "particle.radius",
        .fields = {"grading.radius_max"}},
       {.name = "particle.edge_length",
@@ -163,9 +186,8 @@ std::vector<PackKey> particle_keys() {
        .doc = "growth edge-length control L: a particle grows on its longest edge until every "
               "edge is <= L. 0 = relative: L = `edge_length_ratio` x r for each particle (the "
               "same shape statistics at every size)",
-       .binding = members<PackConfig>(
-           [](auto& c) -> auto& { return c.lattice.edge_length; },
-           [](auto& c) -> auto& { return c.random.shape.edge_length; }),
+       .binding = bind(on<LatticeOptions>([](auto& o) -> auto& { return o.edge_length; }),
+                       on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.edge_length; })),
        .fields = {"lattice.edge_length", "shape.edge_length", "edge_length"}},
       {.name = "particle.edge_length_ratio",
        .unit = "-",
@@ -173,16 +195,16 @@ std::vector<PackKey> particle_keys() {
        .scope = kRelativeEdge,
        .doc = "L / r for each particle when particle.edge_length = 0",
        .binding =
-           members<PackConfig>([](auto& c) -> auto& { return c.random.shape.edge_length_ratio; }),
+           bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.edge_length_ratio; })),
        .fields = {"shape.edge_length_ratio"}},
       {.name = "particle.max_vertices",
        .type = ValueType::kInteger,
        .range = closed(6, 1e6),
        .doc = "vertex cap per particle; an L too small for the radius is rejected up front "
               "(LimitExceeded)",
-       .binding = members<PackConfig>(
-           [](auto& c) -> auto& { return c.lattice.max_vertices; },
-           [](auto& c) -> auto& { return c.random.shape.max_vertices; }),
+       .binding =
+           bind(on<LatticeOptions>([](auto& o) -> auto& { return o.max_vertices; }),
+                on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.max_vertices; })),
        .fields = {"lattice.max_vertices", "shape.max_vertices", "max_vertices"}},
   };
 }
@@ -198,13 +220,19 @@ std::vector<PackKey> grading_keys() {
               "uniform by number in [`particle.radius_min`, `particle.radius_max`]; fuller: "
               "power law; sieve: a table",
        .binding = {
-           .get = [](const PackConfig& c) -> Value { return to_string(c.random.grading.kind); },
+           .get = [](const PackConfig& c) -> Value {
+             const RandomPackOptions* random = random_of(c);
+             return to_string(
+                 (random != nullptr ? *random : default_options<RandomPackOptions>()).grading.kind);
+           },
            .set =
                [](PackConfig& c, const Value& value) {
+                 auto* random = find_options<RandomPackOptions>(c.packer);
+                 if (random == nullptr) return;
                  for (const auto kind :
                       {GradingKind::kUniform, GradingKind::kFuller, GradingKind::kSieve}) {
                    if (to_string(kind) == std::get<std::string>(value)) {
-                     c.random.grading.kind = kind;
+                     random->grading.kind = kind;
                    }
                  }
                }}},
@@ -214,21 +242,21 @@ std::vector<PackKey> grading_keys() {
        .note = "< size_max",
        .scope = kFuller,
        .doc = "Fuller curve: smallest control diameter d_min",
-       .binding = members<PackConfig>([](auto& c) -> auto& { return c.random.grading.size_min; })},
+       .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.size_min; }))},
       {.name = "grading.size_max",
        .unit = "m",
        .range = open_closed(0, kHuge),
        .note = "> size_min",
        .scope = kFuller,
        .doc = "Fuller curve: largest control diameter d_max",
-       .binding = members<PackConfig>([](auto& c) -> auto& { return c.random.grading.size_max; })},
+       .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.size_max; }))},
       {.name = "grading.exponent",
        .unit = "-",
        .range = open_closed(0, 10),
        .scope = kFuller,
        .doc = "Fuller curve exponent q in P(d) = (d^q - d_min^q) / (d_max^q - d_min^q); 0.5 = "
               "Fuller-Thompson, 0.45 = FHWA",
-       .binding = members<PackConfig>([](auto& c) -> auto& { return c.random.grading.exponent; })},
+       .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.exponent; }))},
       {.name = "grading.sieve",
        .type = ValueType::kSieve,
        .unit = "m, %",
@@ -238,10 +266,33 @@ std::vector<PackKey> grading_keys() {
        .scope = kSieve,
        .doc = "sieve table by volume, e.g. `[[0.005, 0], [0.01, 40], [0.02, 100]]`; the volume "
               "below the smallest sieve is not generated (fines)",
-       .binding = members<PackConfig>([](auto& c) -> auto& { return c.random.grading.sieve; }),
+       .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.sieve; })),
        .presence = Presence::kOptional,
        .default_text = "(none)"},
   };
+}
+
+// The dense kind's fill kinds: their words are the packer kinds' words.
+using Fill = decltype(DensePackOptions::fill);
+constexpr auto kFillKinds = std::make_index_sequence<std::variant_size_v<Fill>>{};
+
+template <std::size_t... I>
+std::vector<std::string> fill_words(std::index_sequence<I...> /*kinds*/) {
+  return {packer_kind_name(PackerOptions{std::variant_alternative_t<I, Fill>{}})...};
+}
+
+std::string fill_word(const Fill& fill) {
+  return std::visit([](const auto& o) { return packer_kind_name(PackerOptions{o}); }, fill);
+}
+
+template <std::size_t... I>
+Fill fill_of_word(const std::string& word, std::index_sequence<I...> /*kinds*/) {
+  Fill fill;
+  ((fill_word(std::variant_alternative_t<I, Fill>{}) == word
+        ? (fill = std::variant_alternative_t<I, Fill>{}, 0)
+        : 0),
+   ...);
+  return fill;
 }
 
 std::vector<PackKey> packer_keys() {
@@ -252,30 +303,65 @@ std::vector<PackKey> packer_keys() {
                    .range = range,
                    .scope = kRandom,
                    .doc = doc,
-                   .binding = members<PackConfig>(access),
+                   .binding = bind(access),
                    .fields = {field}};
   };
   return {
       {.name = "packer.kind",
        .type = ValueType::kWord,
-       .words = {"lattice", "random"},
+       .words = packer_kind_names(),
        .doc = "lattice = the paper's placement (centres on a regular lattice, shapes grown in "
               "place); random = random sequential addition with a grading, random orientations, "
-              "largest first",
+              "largest first; dense = a fill (`packer.fill`) compressed by hard-particle Monte "
+              "Carlo, exactly overlap-free (`[densify]` keys)",
        .binding = {.get = [](const PackConfig& c) -> Value { return c.packer_name(); },
                    .set =
                        [](PackConfig& c, const Value& value) {
-                         c.packer = std::get<std::string>(value) == "random" ? PackerKind::kRandom
-                                                                             : PackerKind::kLattice;
-                       }}},
+                         const auto& word = std::get<std::string>(value);
+                         if (word != c.packer_name()) c.packer = default_packer_options(word);
+                       }},
+       .is_kind = true},
+      {.name = "packer.fill",
+       .type = ValueType::kWord,
+       .words = fill_words(kFillKinds),
+       .scope = {.text = "packer.kind = dense",
+                 .applies =
+                     [](const PackConfig& c) {
+                       return std::holds_alternative<DensePackOptions>(c.packer);
+                     }},
+       .doc = "the packing the densifier starts from, made with that packer's keys: random "
+              "(grading, target fraction, ...) or lattice",
+       .binding = {.get = [](const PackConfig& c) -> Value {
+                     const auto* dense = std::get_if<DensePackOptions>(&c.packer);
+                     return fill_word((dense != nullptr ? *dense : DensePackOptions{}).fill);
+                   },
+                   .set =
+                       [](PackConfig& c, const Value& value) {
+                         auto* dense = std::get_if<DensePackOptions>(&c.packer);
+                         const auto& word = std::get<std::string>(value);
+                         if (dense != nullptr && word != fill_word(dense->fill)) {
+                           dense->fill = fill_of_word(word, kFillKinds);
+                         }
+                       }},
+       .is_kind = true},
       {.name = "packer.seed",
        .type = ValueType::kInteger,
        .range = {.lo = 0, .hi = kMaxSeed, .hi_text = "2^63 - 1"},
        .doc = "master seed; particle i draws from its own stream (seed, i), so results do not "
-              "depend on the thread count. The default output name contains it",
-       .binding = members<PackConfig>(
-           [](auto& c) -> auto& { return c.lattice.seed; },
-           [](auto& c) -> auto& { return c.random.seed; }),
+              "depend on the thread count. The default output name contains it. With "
+              "packer.kind = dense the fill uses it and the densifier a seed derived from it "
+              "(derived_densify_seed: a SplitMix64 step, so their streams differ)",
+       .binding = {
+           .get = [](const PackConfig& c) -> Value { return static_cast<std::int64_t>(c.seed()); },
+           .set =
+               [](PackConfig& c, const Value& value) {
+                 set_on(on<LatticeOptions>([](auto& o) -> auto& { return o.seed; }), c, value);
+                 set_on(on<RandomPackOptions>([](auto& o) -> auto& { return o.seed; }), c, value);
+                 if (auto* densify = find_options<DensifyOptions>(c.packer)) {
+                   densify->seed = derived_densify_seed(
+                       static_cast<std::uint64_t>(std::get<std::int64_t>(value)));
+                 }
+               }},
        .fields = {"lattice.seed", "random.seed"}},
       {.name = "packer.threads",
        .type = ValueType::kInteger,
@@ -288,9 +374,8 @@ std::vector<PackKey> packer_keys() {
        .unit = "m",
        .range = closed(0, kHuge),
        .doc = "minimum distance between particles",
-       .binding = members<PackConfig>(
-           [](auto& c) -> auto& { return c.lattice.gap; },
-           [](auto& c) -> auto& { return c.random.gap; }),
+       .binding = bind(on<LatticeOptions>([](auto& o) -> auto& { return o.gap; }),
+                       on<RandomPackOptions>([](auto& o) -> auto& { return o.gap; })),
        .fields = {"lattice.gap", "random.gap"}},
       {.name = "packer.spacing",
        .unit = "m",
@@ -301,7 +386,7 @@ std::vector<PackKey> packer_keys() {
               "independently); smaller values pack sites closer and turn on the paper's contact "
               "check (growth toward a neighbour is stopped, and a particle that still touches is "
               "shrunk about its centre)",
-       .binding = members<PackConfig>([](auto& c) -> auto& { return c.lattice.spacing; }),
+       .binding = bind(on<LatticeOptions>([](auto& o) -> auto& { return o.spacing; })),
        .fields = {"lattice.spacing"}},
       {.name = "packer.target_count",
        .type = ValueType::kInteger,
@@ -311,14 +396,19 @@ std::vector<PackKey> packer_keys() {
        .doc = "place this many particles (instead of `target_fraction`). Refused when their "
               "estimated solid volume exceeds 0.74 of the container, or the run's memory "
               "estimate the memory limit (README, \"Runs that cannot work\")",
-       .binding = {.get = [](const PackConfig& c) -> Value {
-                     return static_cast<std::int64_t>(c.random.count);
-                   },
-                   .set =
-                       [](PackConfig& c, const Value& value) {
-                         c.random.count = static_cast<std::uint64_t>(std::get<std::int64_t>(value));
-                         c.random.target = PackTarget::kCount;
-                       }},
+       .binding = {
+           .get = [](const PackConfig& c) -> Value {
+             const RandomPackOptions* random = random_of(c);
+             return static_cast<std::int64_t>(
+                 (random != nullptr ? *random : default_options<RandomPackOptions>()).count);
+           },
+           .set =
+               [](PackConfig& c, const Value& value) {
+                 auto* random = find_options<RandomPackOptions>(c.packer);
+                 if (random == nullptr) return;
+                 random->count = static_cast<std::uint64_t>(std::get<std::int64_t>(value));
+                 random->target = PackTarget::kCount;
+               }},
        .presence = Presence::kOptional,
        .default_text = "(unset)",
        .excludes = "packer.target_fraction",
@@ -330,27 +420,27 @@ std::vector<PackKey> packer_keys() {
        .written = kFractionTarget,
        .doc = "place particles until solid volume / container volume reaches this (the default "
               "target)",
-       .binding = members<PackConfig>([](auto& c) -> auto& { return c.random.volume_fraction; }),
+       .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.volume_fraction; })),
        .fields = {"random.volume_fraction"}},
       random_integer(
           "packer.attempts", closed(1, 1e9), "candidate poses per particle before it is skipped",
-          [](auto& c) -> auto& { return c.random.max_attempts_per_particle; },
+          on<RandomPackOptions>([](auto& o) -> auto& { return o.max_attempts_per_particle; }),
           "random.max_attempts_per_particle"),
-      random_integer(
-          "packer.max_total_attempts", closed(1, 1e12),
-          "candidate poses for the whole run; the run stops when they are used up",
-          [](auto& c) -> auto& { return c.random.max_total_attempts; },
-          "random.max_total_attempts"),
+      random_integer("packer.max_total_attempts", closed(1, 1e12),
+                     "candidate poses for the whole run; the run stops when they are used up",
+                     on<RandomPackOptions>([](auto& o) -> auto& { return o.max_total_attempts; }),
+                     "random.max_total_attempts"),
       random_integer(
           "packer.max_consecutive_failures", closed(1, 1e9),
           "stop when this many particles in a row could not be placed (the packing is jammed)",
-          [](auto& c) -> auto& { return c.random.max_consecutive_failures; },
+          on<RandomPackOptions>([](auto& o) -> auto& { return o.max_consecutive_failures; }),
           "random.max_consecutive_failures"),
       random_integer(
           "packer.shape_library", closed(0, 1e6),
           "0 = a unique shape per particle; K > 0 = K unit-size shapes grown once and reused, "
           "scaled and randomly rotated (for ~10^6 particles; needs `particle.edge_length = 0`)",
-          [](auto& c) -> auto& { return c.random.shape.library_size; }, "shape.library_size"),
+          on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.library_size; }),
+          "shape.library_size"),
   };
 }
 
@@ -388,13 +478,11 @@ std::vector<PackKey> output_keys() {
 const Schema<PackConfig>& pack_schema() {
   static const Schema<PackConfig> schema = [] {
     Schema<PackConfig> s;
-    s.tables = {{.name = "container"},
-                {.name = "particle"},
-                {.name = "grading"},
-                {.name = "packer"},
-                {.name = "output", .member_word = "output format"}};
-    for (auto part :
-         {container_keys(), particle_keys(), grading_keys(), packer_keys(), output_keys()}) {
+    s.tables = {{.name = "container"}, {.name = "particle"},
+                {.name = "grading"},   {.name = "packer"},
+                {.name = "densify"},   {.name = "output", .member_word = "output format"}};
+    for (auto part : {container_keys(), particle_keys(), grading_keys(), packer_keys(),
+                      densify_keys(), output_keys()}) {
       for (auto& key : part) s.keys.push_back(std::move(key));
     }
     config_detail::fill_defaults(s, PackConfig{});

@@ -17,12 +17,8 @@
 #include <deque>
 #include <exception>
 
-#ifdef AGGPACK_HAS_TBB
-#include <tbb/global_control.h>
-#include <tbb/task_arena.h>
-#endif
-
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 
 // Weak: defined only when a sanitizer runtime is linked in.
 extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
@@ -42,15 +38,7 @@ struct RecordHeader {
   std::uint32_t padding;
 };
 
-int default_workers() {
-#ifdef AGGPACK_HAS_TBB
-  const auto allowed = static_cast<int>(
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-  return std::max(1, std::min(tbb::this_task_arena::max_concurrency(), allowed));
-#else
-  return 1;
-#endif
-}
+int default_workers() { return allowed_threads(); }
 
 bool write_all(int fd, const void* data, std::size_t size) {
   const auto* bytes = static_cast<const char*>(data);

@@ -8,11 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#ifdef AGGPACK_HAS_TBB
-#include <tbb/parallel_for.h>
-#endif
-
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/text_number.h"
 
@@ -139,11 +136,7 @@ void stream_items(std::size_t count, std::ostream& out, const Format& format) {
       buffers[j].clear();
       format(begin + j, buffers[j]);
     };
-#ifdef AGGPACK_HAS_TBB
-    tbb::parallel_for(std::size_t{0}, size, run);
-#else
-    for (std::size_t j = 0; j < size; ++j) run(j);
-#endif
+    parallel_for_index(0, size, run);
     for (std::size_t j = 0; j < size; ++j) {
       out.write(buffers[j].data(), static_cast<std::streamsize>(buffers[j].size()));
     }

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "aggpack/geom/mass_properties.h"
+#include "aggpack/shape/descriptors.h"
 #include "export_detail.h"
 
 namespace aggpack::detail {
@@ -26,10 +27,8 @@ ExportModel::ExportModel(const Packing& packing, const ExportOptions& options, E
     info.volume = properties.volume;
     info.centroid = properties.centroid;
     if (properties.volume > 0 && properties.surface_area > 0) {
-      // Eq. 1 and Eq. 2 (alpha = SI^(3/2)).
-      info.sphericity = 4.0 * M_PI / properties.surface_area *
-                        std::pow(3.0 * properties.volume / (4.0 * M_PI), 2.0 / 3.0);
-      info.alpha = std::pow(info.sphericity, 1.5);
+      info.sphericity = aggpack::sphericity(properties.volume, properties.surface_area);
+      info.alpha = aggpack::measured_alpha(properties.volume, properties.surface_area);
     }
     if (mode == ElementMode::kSurface) {
       info.nodes = static_cast<std::uint32_t>(body.vertex_count());
@@ -64,11 +63,7 @@ ExportModel::ExportModel(const Packing& packing, const ExportOptions& options, E
       info.nodes = static_cast<std::uint32_t>(linear_nodes + edges);
     }
   };
-#ifdef AGGPACK_HAS_TBB
-  tbb::parallel_for(std::size_t{0}, packing.shapes.size(), measure);
-#else
-  for (std::size_t s = 0; s < packing.shapes.size(); ++s) measure(s);
-#endif
+  parallel_for_index(0, packing.shapes.size(), measure);
   node_offsets_.resize(size() + 1, 0);
   element_offsets_.resize(size() + 1, 0);
   for (std::size_t k = 0; k < size(); ++k) {

@@ -9,10 +9,10 @@
 #include <map>
 #include <utility>
 
+#include "aggpack/core/parallel.h"
 #include "aggpack/core/rng.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/pack/container.h"
-#include "parallel.h"
 
 namespace aggpack::detail {
 

@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/resources.h"
 #include "aggpack/shape/generator.h"
-#include "parallel.h"
 #include "shape_util.h"
 
 namespace aggpack {
@@ -301,7 +301,7 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
         break;
       }
       const std::size_t end = std::min(site_count, begin + chunk);
-      detail::parallel_for_index(begin, end, [&](std::size_t i) {
+      parallel_for_index(begin, end, [&](std::size_t i) {
         Rng rng(options.seed, i);
         grown[i].body = grow_aggregate(params, rng);
         grown[i].outer_radius = bounding_radius(grown[i].body);
@@ -355,7 +355,7 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
   packing.shapes.resize(done);
   packing.particles.resize(done);
   std::vector<double> volumes(done, 0.0);
-  detail::parallel_for_index(0, done, [&](std::size_t i) {
+  parallel_for_index(0, done, [&](std::size_t i) {
     Vec3 centroid;
     packing.shapes[i] = detail::centred_on_centroid(grown[i].body, centroid, volumes[i]);
     Particle& particle = packing.particles[i];

@@ -5,7 +5,6 @@
 #include <utility>
 
 #include "aggpack/core/error.h"
-#include "aggpack/core/overloaded.h"
 
 namespace aggpack {
 
@@ -74,21 +73,68 @@ PackerOptions default_packer_options(std::string_view word, std::string_view key
   throw InvalidInput(std::string(key), std::string(word), allowed);
 }
 
+namespace {
+
+// A kind's seed and container: its own members, or its fill's (a kind without either fails to
+// compile here).
+template <class Options>
+auto& container_of(Options& o) {
+  if constexpr (requires { o.fill; }) {
+    return std::visit(
+        [](auto& fill) -> auto& { return container_of(fill); }, o.fill);
+  } else {
+    return o.container;
+  }
+}
+
+template <class Options>
+std::uint64_t seed_of(const Options& o) {
+  if constexpr (requires { o.fill; }) {
+    return std::visit([](const auto& fill) { return seed_of(fill); }, o.fill);
+  } else {
+    return o.seed;
+  }
+}
+
+template <class Options>
+std::optional<Grading> grading_of(const Options& o) {
+  if constexpr (requires { o.fill; }) {
+    return std::visit([](const auto& fill) { return grading_of(fill); }, o.fill);
+  } else if constexpr (requires { o.grading; }) {
+    return o.grading;
+  } else {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
 std::uint64_t packer_seed(const PackerOptions& options) {
-  return std::visit(Overloaded{[](const LatticeOptions& o) { return o.seed; },
-                               [](const RandomPackOptions& o) { return o.seed; },
-                               [](const DensePackOptions& o) {
-                                 return std::visit([](const auto& fill) { return fill.seed; },
-                                                   o.fill);
-                               }},
-                    options);
+  return std::visit([](const auto& o) { return seed_of(o); }, options);
+}
+
+std::uint64_t derived_densify_seed(std::uint64_t packer_seed) {
+  // One SplitMix64 step (Steele, Lea, Flood), top 63 bits.
+  std::uint64_t z = packer_seed + 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return (z ^ (z >> 31)) >> 1;
+}
+
+const Container& packer_container(const PackerOptions& options) {
+  return std::visit([](const auto& o) -> const Container& { return container_of(o); }, options);
+}
+
+Container& packer_container(PackerOptions& options) {
+  return std::visit([](auto& o) -> Container& { return container_of(o); }, options);
+}
+
+std::optional<Grading> packer_grading(const PackerOptions& options) {
+  return std::visit([](const auto& o) { return grading_of(o); }, options);
 }
 
 void validate(const PackerOptions& options) {
-  std::visit(Overloaded{[](const LatticeOptions& o) { validate(o); },
-                        [](const RandomPackOptions& o) { validate(o); },
-                        [](const DensePackOptions& o) { validate(o); }},
-             options);
+  std::visit([](const auto& o) { validate(o); }, options);
 }
 
 }  // namespace aggpack

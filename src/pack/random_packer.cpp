@@ -10,26 +10,20 @@
 #include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/resources.h"
 #include "aggpack/shape/generator.h"
-#include "hierarchical_grid.h"
-#include "parallel.h"
-#include "shape_util.h"
+#include "random_placement.h"
 
 namespace aggpack {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using namespace random_detail;  // NOLINT(google-build-using-namespace)
 
-constexpr std::uint64_t kMaxParticles = 100000000;               // size-list cap (10^8)
-constexpr std::uint64_t kMaxLibrary = 1000000;                   // shape-library cap
-constexpr std::uint64_t kPlacementSalt = 0x5851F42D4C957F2DULL;  // placement streams
-constexpr std::uint64_t kLibrarySalt = 0x6C62272E07BB0142ULL;    // library shape streams
-constexpr std::size_t kMaxBatch = 64;  // parallel attempts evaluated together for one particle
-constexpr std::size_t kMaxGroup = 32;  // consecutive particles searched together
+using Clock = std::chrono::steady_clock;
 
 // The outcome of a particle's search: the first feasible attempt and its pose, or none.
 struct Found {
@@ -43,25 +37,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// One entry of the size list.
-struct Item {
-  std::uint64_t draw = 0;     // draw index: the particle's stream
-  double size = 0.0;          // control diameter (m)
-  std::uint32_t shape = 0;    // index into Shapes::bodies
-  double scale = 1.0;         // library: control radius; unique: 1
-  double volume = 0.0;        // exact, at true size (m^3)
-  double outer_radius = 0.0;  // bounding radius about the centroid, true size (m)
-  double inner_radius = 0.0;  // inscribed-ball radius about the centroid, true size (m)
-};
-
-// Unit-size library shape or a per-particle shape, with its radii at stored size.
-struct StoredShape {
-  ConvexPolyhedron body;  // centroid at the origin
-  double volume = 0.0;
-  double outer_radius = 0.0;
-  double inner_radius = 0.0;
-};
-
 double edge_length_for(const ShapeOptions& shape, double radius) {
   return shape.edge_length > 0.0 ? shape.edge_length : shape.edge_length_ratio * radius;
 }
@@ -71,7 +46,7 @@ StoredShape make_stored(const ConvexPolyhedron& grown) {
   Vec3 centroid;
   stored.body = detail::centred_on_centroid(grown, centroid, stored.volume);
   stored.outer_radius = bounding_radius(stored.body);
-  stored.inner_radius = detail::inner_radius(stored.body);
+  stored.inner_radius = inner_radius(stored.body);
   return stored;
 }
 
@@ -122,220 +97,7 @@ class ProgressReporter {
   const PackControl& control_;
   Clock::time_point last_ = Clock::now() - std::chrono::hours(1);
 };
-
-// The particles placed so far, and the broad phase over them.
-class Placement {
- public:
-  Placement(const RandomPackOptions& options, const std::vector<StoredShape>& shapes,
-            const std::vector<Item>& items)
-      : options_(options),
-        shapes_(shapes),
-        items_(items),
-        grid_(options.container.bounds(), min_outer(items) + options.gap / 2.0,
-              max_outer(items) + options.gap / 2.0) {}
-
-  // The true-size body of an item (a copy only for library shapes).
-  [[nodiscard]] ConvexPolyhedron body_of(const Item& item) const {
-    const ConvexPolyhedron& stored = shapes_[item.shape].body;
-    return item.scale == 1.0 ? stored : stored.scaled(item.scale);
-  }
-
-  // Tests one candidate pose: inside the container minus wall_gap, and at least `gap` from every
-  // placed particle. Cheap tests first: centre-region sphere test, vertex containment, then per
-  // neighbour the bounding spheres (grid), the inscribed balls (certain overlap), and finally the
-  // exact GJK test for the remaining close pairs.
-  bool is_feasible(const Item& item, const ConvexPolyhedron& body, const Pose& pose,
-                   std::vector<std::pair<double, std::uint32_t>>& close) const {
-    const Container& container = options_.container;
-    if (!is_in_centre_region(container, item.outer_radius, pose.position) &&
-        !contains(container, body, pose)) {
-      return false;
-    }
-    const double gap = options_.gap;
-    close.clear();
-    const bool is_clear =
-        grid_.for_each_near(pose.position, item.outer_radius + gap / 2.0,
-                            [&](const detail::GridEntry& other, double distance_squared) {
-                              const double inner = item.inner_radius + other.inner_radius + gap;
-                              if (distance_squared < inner * inner)
-                                return false;  // inscribed balls too close
-                              close.emplace_back(distance_squared, other.id);
-                              return true;
-                            });
-    if (!is_clear) return false;
-    // Closest first: the likeliest to conflict, so a rejection costs the fewest GJK calls.
-    std::sort(close.begin(), close.end());
-    for (const auto& [distance_squared, id] : close) {
-      if (!is_separated_from(id, item, body, pose)) return false;
-    }
-    return true;
-  }
-
-  // Whether a pose is at least `gap` from every particle placed as number `first` or later (the
-  // ones placed since a group of searches started).
-  [[nodiscard]] bool is_clear_of_since(const Item& item, const ConvexPolyhedron& body,
-                                       const Pose& pose, std::size_t first) const {
-    // is_separated's own bounding-sphere test answers the far ones, with the same tolerance as
-    // the grid path of is_feasible.
-    for (std::size_t id = first; id < placed_items_.size(); ++id) {
-      if (!is_separated_from(static_cast<std::uint32_t>(id), item, body, pose)) return false;
-    }
-    return true;
-  }
-
-  void add(std::size_t item_index, const Pose& pose) {
-    const Item& item = items_[item_index];
-    grid_.insert(pose.position, item.outer_radius + options_.gap / 2.0, item.inner_radius);
-    placed_items_.push_back(item_index);
-    poses_.push_back(pose);
-  }
-
-  [[nodiscard]] const std::vector<std::size_t>& placed_items() const { return placed_items_; }
-  [[nodiscard]] const std::vector<Pose>& poses() const { return poses_; }
-
- private:
-  // The exact test of a candidate against placed particle `id`.
-  [[nodiscard]] bool is_separated_from(std::uint32_t id, const Item& item,
-                                       const ConvexPolyhedron& body, const Pose& pose) const {
-    // Unique shapes have scale 1 (exact: 1 * x == x), library shapes their control radius.
-    const Item& other = items_[placed_items_[id]];
-    return is_separated(body, pose, item.outer_radius, shapes_[other.shape].body, other.scale,
-                        poses_[id], other.outer_radius, options_.gap);
-  }
-
-  static double min_outer(const std::vector<Item>& items) {
-    double value = std::numeric_limits<double>::infinity();
-    for (const auto& item : items) value = std::min(value, item.outer_radius);
-    return items.empty() ? 1.0 : value;
-  }
-  static double max_outer(const std::vector<Item>& items) {
-    double value = 0.0;
-    for (const auto& item : items) value = std::max(value, item.outer_radius);
-    return items.empty() ? 1.0 : value;
-  }
-
-  const RandomPackOptions& options_;
-  const std::vector<StoredShape>& shapes_;
-  const std::vector<Item>& items_;
-  detail::HierarchicalGrid grid_;
-  std::vector<std::size_t> placed_items_;
-  std::vector<Pose> poses_;
-};
-
-// Candidate pose number `attempt` of an item: from its own stream, so any thread can make it.
-bool make_candidate(const Container& container, const Aabb& region, const Item& item,
-                    std::uint64_t seed, std::uint64_t attempt, Pose& pose) {
-  Rng rng(seed ^ kPlacementSalt, (item.draw << 32) | attempt);
-  const Vec3 extent = region.extent();
-  // Rejection sampling into the cylinder's disc (box: first draw always accepted).
-  for (int tries = 0; tries < 64; ++tries) {
-    const Vec3 centre(region.lower.x() + extent.x() * rng.uniform(),
-                      region.lower.y() + extent.y() * rng.uniform(),
-                      region.lower.z() + extent.z() * rng.uniform());
-    if (centre_region_is_bounds(container) ||
-        is_in_centre_region(container, item.inner_radius, centre)) {
-      pose.position = centre;
-      pose.rotation = detail::random_rotation(rng);
-      return true;
-    }
-  }
-  return false;
-}
-
-void validate_shape(const ShapeOptions& shape, double largest_radius) {
-  require_in_range("shape.alpha", shape.alpha, 0.0, 1.0);
-  if (!std::isfinite(shape.edge_length) || shape.edge_length < 0.0) {
-    throw InvalidInput("shape.edge_length", format_value(shape.edge_length),
-                       "finite and >= 0 (0 = relative, use shape.edge_length_ratio)");
-  }
-  if (shape.edge_length == 0.0) {
-    require_in_range("shape.edge_length_ratio", shape.edge_length_ratio, 0.05, 10.0);
-  }
-  if (shape.max_vertices < 6 || shape.max_vertices > 1000000) {
-    throw InvalidInput("shape.max_vertices", std::to_string(shape.max_vertices), "[6, 1000000]");
-  }
-  if (shape.library_size > kMaxLibrary) {
-    throw InvalidInput("shape.library_size", std::to_string(shape.library_size), "[0, 1000000]");
-  }
-  if (shape.library_size > 0 && shape.edge_length > 0.0) {
-    throw InvalidInput("shape.library_size", std::to_string(shape.library_size),
-                       "0 when shape.edge_length > 0 (a library rescales shapes, so L must be "
-                       "relative: set shape.edge_length = 0 and use shape.edge_length_ratio)");
-  }
-  const double estimate = shape.edge_length > 0.0
-                              ? estimated_vertex_count(largest_radius, shape.edge_length)
-                              : estimated_vertex_count(1.0, shape.edge_length_ratio);
-  if (estimate > shape.max_vertices) {
-    const std::string field =
-        shape.edge_length > 0.0 ? "shape.edge_length" : "shape.edge_length_ratio";
-    throw LimitExceeded(
-        field, format_value(shape.edge_length > 0.0 ? shape.edge_length : shape.edge_length_ratio),
-        "a value needing at most shape.max_vertices = " + std::to_string(shape.max_vertices) +
-            " vertices (needs about " + format_value(std::round(estimate)) + ")");
-  }
-}
-
 }  // namespace
-
-void validate(const RandomPackOptions& options) {
-  validate(options.container);
-  validate(options.grading);
-  validate_shape(options.shape, largest_size(options.grading) / 2.0);
-  if (options.target == PackTarget::kCount) {
-    if (options.count < 1 || options.count > kMaxParticles) {
-      throw InvalidInput("random.count", std::to_string(options.count), "[1, 100000000]");
-    }
-  } else if (options.target == PackTarget::kVolumeFraction) {
-    if (!std::isfinite(options.volume_fraction) || options.volume_fraction <= 0.0 ||
-        options.volume_fraction > 0.9) {
-      throw InvalidInput("random.volume_fraction", format_value(options.volume_fraction),
-                         "(0, 0.9]");
-    }
-  } else {
-    throw InvalidInput("random.target", std::to_string(static_cast<int>(options.target)),
-                       "count or volume_fraction");
-  }
-  if (!std::isfinite(options.gap) || options.gap < 0.0) {
-    throw InvalidInput("random.gap", format_value(options.gap), "finite and >= 0");
-  }
-  if (options.max_attempts_per_particle < 1 || options.max_attempts_per_particle > 1000000000ULL) {
-    throw InvalidInput("random.max_attempts_per_particle",
-                       std::to_string(options.max_attempts_per_particle), "[1, 1000000000]");
-  }
-  if (options.max_total_attempts < 1 || options.max_total_attempts > 1000000000000ULL) {
-    throw InvalidInput("random.max_total_attempts", std::to_string(options.max_total_attempts),
-                       "[1, 1000000000000]");
-  }
-  if (options.max_consecutive_failures < 1 || options.max_consecutive_failures > 1000000000ULL) {
-    throw InvalidInput("random.max_consecutive_failures",
-                       std::to_string(options.max_consecutive_failures), "[1, 1000000000]");
-  }
-  // Every grown particle contains the octahedron of its six base vertices, each at least
-  // r (alpha + 0.2 (1 - alpha)) from the centre (Eq. 3), and so a ball of that radius / sqrt(3).
-  // If even the smallest such ball plus the wall gaps does not fit, nothing can be placed.
-  const Aabb bounds = options.container.bounds();
-  const double interior = bounds.extent().minCoeff() - 2.0 * options.container.wall_gap;
-  const double smallest_ball = smallest_size(options.grading) / 2.0 *
-                               (options.shape.alpha + 0.2 * (1.0 - options.shape.alpha)) /
-                               std::sqrt(3.0);
-  if (2.0 * smallest_ball > interior) {
-    throw InvalidInput(
-        "grading", "smallest size " + format_value(smallest_size(options.grading)) + " m",
-        "particles that fit in the container's interior (" + format_value(interior) + " m across)");
-  }
-  if (options.target == PackTarget::kVolumeFraction) {
-    // Lower bound on the list length: particles no larger than their control spheres.
-    const double sphere = std::numbers::pi / 6.0 * mean_cubed_size(options.grading);
-    const double least = options.volume_fraction * options.container.volume() / sphere;
-    if (least > static_cast<double>(kMaxParticles)) {
-      throw LimitExceeded("random.volume_fraction", format_value(options.volume_fraction),
-                          "a target needing at most 10^8 particles (needs more than " +
-                              format_value(std::round(least)) + ")");
-    }
-  }
-  // Runs the container cannot hold or the memory cannot take (issue 12), before any work.
-  check_resources(options);
-}
 
 PackResult pack_random(const RandomPackOptions& options, const PackControl& control) {
   validate(options);
@@ -355,7 +117,7 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   if (is_library) {
     shapes.resize(options.shape.library_size);
     const double ratio = options.shape.edge_length_ratio;
-    detail::parallel_for_index(0, shapes.size(), [&](std::size_t k) {
+    parallel_for_index(0, shapes.size(), [&](std::size_t k) {
       Rng rng(options.seed ^ kLibrarySalt, k);
       const GrowthParams params{.alpha = options.shape.alpha,
                                 .radius = 1.0,
@@ -380,8 +142,8 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
       }
       const std::uint64_t count = std::min(batch_size, wanted - begin);
       batch.assign(count, Draw{});
-      detail::parallel_for_index(0, count,
-                                 [&](std::size_t k) { batch[k] = make_draw(options, begin + k); });
+      parallel_for_index(0, count,
+                         [&](std::size_t k) { batch[k] = make_draw(options, begin + k); });
       bool is_done = false;
       for (std::uint64_t k = 0; k < count && !is_done; ++k) {
         Draw& draw = batch[k];
@@ -451,7 +213,7 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   //    nearly spent, or with one worker).
   const auto placement_start = Clock::now();
   Placement placement(options, shapes, items);
-  const int threads = detail::concurrency();
+  const int threads = concurrency();
   const std::size_t slots = static_cast<std::size_t>(std::max(1, threads)) + 1;
   std::vector<std::vector<std::pair<double, std::uint32_t>>> scratch(slots);
   std::vector<std::pair<double, std::uint32_t>> sequential_scratch;
@@ -505,9 +267,9 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
         // The lowest successful attempt index wins, exactly as if tried one by one.
         std::atomic<std::uint64_t> best{Found::kNone};
         std::fill(batch_ok.begin(), batch_ok.begin() + static_cast<std::ptrdiff_t>(count), 0);
-        detail::parallel_for_index(0, count, [&](std::size_t k) {
+        parallel_for_index(0, count, [&](std::size_t k) {
           if (attempt + k > best.load(std::memory_order_relaxed)) return;
-          auto& close = scratch[detail::worker_slot() % slots];
+          auto& close = scratch[worker_slot() % slots];
           Pose pose;
           if (make_candidate(options.container, region, item, options.seed, attempt + k, pose) &&
               placement.is_feasible(item, body, pose, close)) {
@@ -551,11 +313,11 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
     }
     const std::size_t first_new = placement.placed_items().size();
     if (group > 1) {
-      detail::parallel_for_index(0, group, [&](std::size_t k) {
+      parallel_for_index(0, group, [&](std::size_t k) {
         const Item& item = items[order[rank + k]];
         group_bodies[k] = placement.body_of(item);
         found[k] = search(item, group_bodies[k], 0, options.max_attempts_per_particle,
-                          scratch[detail::worker_slot() % slots]);
+                          scratch[worker_slot() % slots]);
       });
     }
     for (std::size_t k = 0; k < group && !is_stopped; ++k) {

@@ -12,18 +12,6 @@
 
 namespace aggpack::detail {
 
-/// Radius of the largest origin-centred ball inside a convex body whose interior holds the origin:
-/// the smallest distance from the origin to a face plane.
-inline double inner_radius(const ConvexPolyhedron& body) {
-  double radius = std::numeric_limits<double>::infinity();
-  const auto& vertices = body.vertices();
-  for (std::size_t f = 0; f < body.triangle_count(); ++f) {
-    const Vec3 normal = body.face_normal(f);
-    radius = std::min(radius, normal.dot(vertices[body.triangles()[f][0]]));
-  }
-  return std::max(radius, 0.0);
-}
-
 /// Uniformly distributed rotation (Shoemake 1992, "Uniform random rotations").
 inline Quat random_rotation(Rng& rng) {
   const double u1 = rng.uniform();

@@ -6,9 +6,9 @@
 #include <string>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/pack/container.h"
-#include "parallel.h"
 
 namespace aggpack {
 
@@ -82,7 +82,7 @@ PackingStatistics compute_statistics(const Packing& packing, const StatisticsOpt
   stats.container_volume = packing.container.volume();
 
   std::vector<double> shape_volume(packing.shapes.size());
-  detail::parallel_for_index(0, packing.shapes.size(), [&](std::size_t s) {
+  parallel_for_index(0, packing.shapes.size(), [&](std::size_t s) {
     shape_volume[s] = mass_properties(packing.shapes[s]).volume;
   });
 
@@ -92,7 +92,7 @@ PackingStatistics compute_statistics(const Packing& packing, const StatisticsOpt
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<double> block_volume(blocks, 0.0);
   std::vector<std::vector<double>> block_bins(blocks, std::vector<double>(3 * bins, 0.0));
-  detail::parallel_for_index(0, blocks, [&](std::size_t b) {
+  parallel_for_index(0, blocks, [&](std::size_t b) {
     auto& local = block_bins[b];
     for (std::size_t i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
       const Particle& particle = packing.particles[i];
@@ -154,7 +154,7 @@ PackingStatistics compute_statistics(const Packing& packing, const StatisticsOpt
     std::vector<ShapeDescriptors> per_shape(packing.shapes.size());
     std::vector<char> is_used(packing.shapes.size(), 0);
     for (const auto& particle : packing.particles) is_used[particle.shape] = 1;
-    detail::parallel_for_index(0, packing.shapes.size(), [&](std::size_t s) {
+    parallel_for_index(0, packing.shapes.size(), [&](std::size_t s) {
       if (is_used[s]) per_shape[s] = describe(packing.shapes[s]);
     });
     const auto& columns = descriptor_columns();

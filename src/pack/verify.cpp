@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/container.h"
 #include "hierarchical_grid.h"
-#include "parallel.h"
 
 namespace aggpack {
 
@@ -34,7 +34,7 @@ VerifyResult verify(const Packing& packing, const VerifyOptions& options) {
   // True-size local bodies (copies only for scaled library shapes) and their bounding radii.
   std::vector<ConvexPolyhedron> bodies(n);
   std::vector<double> radius(n);
-  detail::parallel_for_index(0, n, [&](std::size_t i) {
+  parallel_for_index(0, n, [&](std::size_t i) {
     bodies[i] = packing.local_body(i);
     radius[i] = bounding_radius(bodies[i]);
   });
@@ -84,7 +84,7 @@ VerifyResult verify(const Packing& packing, const VerifyOptions& options) {
   }
   result.pairs_tested = pairs.size();
   std::vector<double> distance(pairs.size());
-  detail::parallel_for_index(0, pairs.size(), [&](std::size_t k) {
+  parallel_for_index(0, pairs.size(), [&](std::size_t k) {
     const auto [i, j] = pairs[k];
     distance[k] =
         gjk_distance(bodies[i], packing.particles[i].pose, bodies[j], packing.particles[j].pose)

@@ -76,16 +76,7 @@ void stamp_provenance(Packing& packing, std::string_view packer, std::uint64_t s
 
 }  // namespace
 
-PackerOptions packer_options(const PackConfig& config) {
-  switch (config.packer) {
-    case PackerKind::kLattice:
-      return config.lattice;
-    case PackerKind::kRandom:
-      return config.random;
-  }
-  throw InvalidInput("packer.kind", std::to_string(static_cast<int>(config.packer)),
-                     "lattice, random");
-}
+PackerOptions packer_options(const PackConfig& config) { return config.packer; }
 
 PipelineResult pack(const PackerOptions& options, const PackControl& control) {
   // Every packer validates its options first (the key named in the error).

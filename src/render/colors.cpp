@@ -6,6 +6,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/geom/mass_properties.h"
+#include "aggpack/shape/descriptors.h"
 
 namespace aggpack {
 
@@ -85,11 +86,9 @@ ShapeMeasures measure_shapes(const Packing& packing) {
   for (const auto& shape : packing.shapes) {
     const MassProperties mass = mass_properties(shape);
     const double volume = std::max(mass.volume, 0.0);
-    measures.equivalent_diameter.push_back(std::cbrt(6.0 * volume / std::numbers::pi));
-    // Eq. 2: V_b = S^(3/2) / (6 sqrt(pi)) is the volume of the sphere with surface S.
-    const double sphere_volume =
-        std::pow(mass.surface_area, 1.5) / (6.0 * std::sqrt(std::numbers::pi));
-    measures.measured_alpha.push_back(sphere_volume > 0.0 ? volume / sphere_volume : 0.0);
+    measures.equivalent_diameter.push_back(equivalent_diameter(volume));
+    measures.measured_alpha.push_back(
+        volume > 0.0 && mass.surface_area > 0.0 ? measured_alpha(volume, mass.surface_area) : 0.0);
   }
   return measures;
 }

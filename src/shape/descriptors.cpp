@@ -10,6 +10,17 @@
 
 namespace aggpack {
 
+double sphericity(double volume, double surface_area) {
+  const double pi = std::numbers::pi;
+  return (4.0 * pi / surface_area) * std::pow(3.0 * volume / (4.0 * pi), 2.0 / 3.0);
+}
+
+double measured_alpha(double volume, double surface_area) {
+  return std::pow(sphericity(volume, surface_area), 1.5);
+}
+
+double equivalent_diameter(double volume) { return std::cbrt(6.0 * volume / std::numbers::pi); }
+
 ShapeDescriptors describe(const ConvexPolyhedron& body) {
   ShapeDescriptors result;
   const MassProperties mass = mass_properties(body);
@@ -18,12 +29,8 @@ ShapeDescriptors describe(const ConvexPolyhedron& body) {
   }
   result.volume = mass.volume;
   result.surface_area = mass.surface_area;
-  const double pi = std::numbers::pi;
-  result.sphericity =
-      (4.0 * pi / mass.surface_area) * std::pow(3.0 * mass.volume / (4.0 * pi), 2.0 / 3.0);
-  const double equal_surface_radius = std::sqrt(mass.surface_area / (4.0 * pi));
-  result.measured_alpha = mass.volume / (4.0 / 3.0 * pi * equal_surface_radius *
-                                         equal_surface_radius * equal_surface_radius);
+  result.sphericity = sphericity(mass.volume, mass.surface_area);
+  result.measured_alpha = measured_alpha(mass.volume, mass.surface_area);
   result.vertex_count = body.vertex_count();
   result.face_count = body.triangle_count();
   result.edge_count = body.vertex_count() + body.triangle_count() - 2;  // Euler, closed genus 0
@@ -51,7 +58,7 @@ ShapeDescriptors describe(const ConvexPolyhedron& body) {
   for (const auto& v : body.vertices()) {
     result.circumscribed_radius = std::max(result.circumscribed_radius, (v - mass.centroid).norm());
   }
-  result.equivalent_diameter = std::cbrt(6.0 * mass.volume / pi);
+  result.equivalent_diameter = equivalent_diameter(mass.volume);
   result.longest_edge = body.longest_edge();
   return result;
 }

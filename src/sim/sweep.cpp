@@ -4,12 +4,9 @@
 #include <mutex>
 #include <string>
 
-#ifdef AGGPACK_HAS_TBB
-#include <tbb/parallel_for.h>
-#endif
-
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 
 namespace aggpack {
 
@@ -56,13 +53,9 @@ std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& 
     ++done;
     if (on_case) on_case(summary, result, done, total);
   };
-#ifdef AGGPACK_HAS_TBB
-  // One case per task: cases take about the same time, and each is single-threaded inside
-  // (Bullet's world), so the cores are used by running cases side by side.
-  tbb::parallel_for(std::size_t{0}, total, run_case);
-#else
-  for (std::size_t i = 0; i < total; ++i) run_case(i);
-#endif
+  // Cases take about the same time, and each is single-threaded inside (Bullet's world), so the
+  // cores are used by running cases side by side.
+  parallel_for_index(0, total, run_case);
   return cases;
 }
 

@@ -11,6 +11,7 @@
 #include <iterator>
 #include <string>
 
+#include "aggpack/config/config.h"
 #include "aggpack/io/native.h"
 #include "aggpack/pack/verify.h"
 #include "support/cli_test.h"
@@ -72,6 +73,39 @@ TEST_F(DensifyCliTest, FixedModeWritesAVerifiedDensePackingWithProvenance) {
   const CliRun info = run("info dense.h5 --no-descriptors");
   EXPECT_EQ(info.exit_code, 0) << info.err;
   EXPECT_EQ(info.out.find("not readable"), std::string::npos) << info.out;
+}
+
+// The dense packer kind through the config: `aggpack pack --set packer.kind=dense`.
+TEST_F(DensifyCliTest, PackWithTheDenseKindWritesAVerifiedPackingWhoseConfigRepacksIt) {
+  const CliRun result =
+      run("pack loose.toml --set packer.kind=dense --set densify.target_fraction=0.32 "
+          "--set densify.max_sweeps=2000 -o dense.h5 --progress none");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("dense packer, seed 3"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("target reached"), std::string::npos) << result.out;
+  const Packing dense = read_packing((folder_ / "dense.h5").string());
+  EXPECT_EQ(dense.provenance.packer, "dense");
+  EXPECT_EQ(dense.provenance.seed, 3u);
+  const VerifyResult check = verify(dense, {.is_brute_force = true});
+  EXPECT_TRUE(check.is_ok) << check.message;
+  const auto at = result.out.find("solid fraction  ");
+  ASSERT_NE(at, std::string::npos) << result.out;
+  const double fraction = std::stod(result.out.substr(at + 16, 6));
+  EXPECT_GE(fraction, 0.32);  // printed with 4 decimals
+  // The stored (resolved) configuration is a config file that packs the same file again.
+  const PackConfig stored = parse_pack_config(dense.provenance.config_toml, "stored");
+  EXPECT_EQ(stored.resolved_toml, dense.provenance.config_toml);
+  std::ofstream(folder_ / "resolved.toml") << dense.provenance.config_toml;
+  const CliRun again = run("pack resolved.toml -o again.h5 --progress none -j 1");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(file_text(folder_ / "again.h5"), file_text(folder_ / "dense.h5"));
+  // A bad densify key is named; nothing is written.
+  const CliRun bad =
+      run("pack loose.toml --set packer.kind=dense --set densify.max_sweeps=0 -o bad.h5");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("densify.max_sweeps"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_FALSE(fs::exists(folder_ / "bad.h5"));
 }
 
 TEST_F(DensifyCliTest, SameSeedIsByteIdenticalAtOneAndTwoThreads) {

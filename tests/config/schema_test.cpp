@@ -44,19 +44,41 @@ void expect_defaults_from_struct(const Schema<Target>& schema, const Target& def
 TEST(ConfigSchema, PackDefaultsAreTheOptionsStructDefaults) {
   const PackConfig lattice = parse_pack_config("");
   const PackConfig random = parse_pack_config("", "t", {"packer.kind=random"});
+  const PackConfig dense = parse_pack_config("", "t", {"packer.kind=dense"});
   expect_defaults_from_struct(pack_schema(), PackConfig{}, [&](const Key<PackConfig>& key) {
-    return key.scope(lattice) ? lattice : random;
+    return key.scope(lattice) ? lattice : key.scope(random) ? random : dense;
   });
   // Spot checks against the structs themselves (not through the schema).
-  EXPECT_EQ(lattice.lattice.radius, LatticeOptions{}.radius);
-  EXPECT_EQ(lattice.lattice.max_vertices, LatticeOptions{}.max_vertices);
-  EXPECT_EQ(random.random.max_total_attempts, RandomPackOptions{}.max_total_attempts);
-  EXPECT_EQ(random.random.volume_fraction, RandomPackOptions{}.volume_fraction);
-  EXPECT_EQ(random.random.grading.exponent, Grading{}.exponent);
+  EXPECT_EQ(std::get<LatticeOptions>(lattice.packer).radius, LatticeOptions{}.radius);
+  EXPECT_EQ(std::get<LatticeOptions>(lattice.packer).max_vertices, LatticeOptions{}.max_vertices);
+  EXPECT_EQ(std::get<RandomPackOptions>(random.packer).max_total_attempts,
+            RandomPackOptions{}.max_total_attempts);
+  EXPECT_EQ(std::get<RandomPackOptions>(random.packer).volume_fraction,
+            RandomPackOptions{}.volume_fraction);
+  EXPECT_EQ(std::get<RandomPackOptions>(random.packer).grading.exponent, Grading{}.exponent);
   // particle.radius_min / radius_max default to particle.radius.
-  EXPECT_EQ(parse_pack_config("", "t", {"packer.kind=random", "particle.radius=0.2"})
-                .random.grading.radius_min,
+  EXPECT_EQ(std::get<RandomPackOptions>(
+                parse_pack_config("", "t", {"packer.kind=random", "particle.radius=0.2"}).packer)
+                .grading.radius_min,
             0.2);
+  // The dense kind: DensePackOptions{}'s fill and densifier options.
+  const auto& d = std::get<DensePackOptions>(dense.packer);
+  EXPECT_TRUE(std::holds_alternative<RandomPackOptions>(d.fill));
+  EXPECT_EQ(d.densify.max_sweeps, DensifyOptions{}.max_sweeps);
+  EXPECT_EQ(d.densify.bed_cooling, DensifyOptions{}.bed_cooling);
+  EXPECT_EQ(d.densify.mode, DensifyMode::kFixed);
+  EXPECT_EQ(std::get<RandomPackOptions>(d.fill).volume_fraction,
+            RandomPackOptions{}.volume_fraction);
+}
+
+TEST(ConfigSchema, PackerKindWordsAreThePackerKinds) {
+  const auto* kind = pack_schema().find("packer.kind");
+  ASSERT_NE(kind, nullptr);
+  EXPECT_EQ(kind->words, packer_kind_names());
+  EXPECT_TRUE(kind->is_kind);
+  for (const auto& word : packer_kind_names()) {
+    EXPECT_EQ(parse_pack_config("", "t", {"packer.kind=" + word}).packer_name(), word);
+  }
 }
 
 TEST(ConfigSchema, ContainerKeysComeFromContainerKinds) {

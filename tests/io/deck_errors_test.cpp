@@ -1,11 +1,8 @@
 // --deck: names, format choice, deterministic output, and bad options: each gives a one-line
 // error naming the option and leaves no file behind; the CLI end to end.
 
-#ifdef AGGPACK_HAS_TBB
-#include <tbb/global_control.h>
-#endif
-
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "deck_fixture.h"
@@ -84,9 +81,7 @@ TEST(DeckOutput, SameBytesForAnyThreadCountAndDefaultsFromTheContainer) {
     const std::string name = deck_name(kind) + "." + format_name(resolve_format("x", options));
     write(packing, folder.file("n" + name), options);
     {
-#ifdef AGGPACK_HAS_TBB
-      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-#endif
+      const ThreadLimit one(1);
       write(packing, folder.file("1" + name), options);
     }
     const std::string text = test::read_text(folder.file("1" + name));

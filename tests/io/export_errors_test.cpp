@@ -3,11 +3,8 @@
 
 #include <unistd.h>
 
-#ifdef AGGPACK_HAS_TBB
-#include <tbb/global_control.h>
-#endif
-
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "export_fixture.h"
@@ -134,9 +131,7 @@ TEST(ExportDeterminism, SameBytesWithOneThreadAndWithAll) {
     const std::string name = format_name(format);
     write(packing, folder.file("all." + name), {.format = format});
     {
-#ifdef AGGPACK_HAS_TBB
-      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-#endif
+      const ThreadLimit one(1);
       write(packing, folder.file("one." + name), {.format = format});
     }
     EXPECT_EQ(test::read_text(folder.file("all." + name)),

@@ -4,9 +4,8 @@
 
 #include <atomic>
 
-#include <tbb/global_control.h>
-
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/pack/random_packer.h"
 #include "pack/pack_test_util.h"
 
@@ -95,11 +94,11 @@ TEST(DensePacker, SameSeedIsByteIdenticalAtOneAndTwoThreads) {
   DensifyResult one;
   DensifyResult two;
   {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    const ThreadLimit limit(1);
     one = densify(start, options);
   }
   {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    const ThreadLimit limit(2);
     two = densify(start, options);
   }
   expect_identical(one.packing, two.packing);

@@ -2,9 +2,8 @@
 
 #include <atomic>
 
-#include <tbb/global_control.h>
-
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/verify.h"
 #include "pack/pack_test_util.h"
@@ -81,11 +80,11 @@ TEST(LatticePacker, SameSeedSamePackingWithOneAndTwoThreads) {
   PackResult one;
   PackResult two;
   {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    const ThreadLimit limit(1);
     one = pack_lattice(options);
   }
   {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    const ThreadLimit limit(2);
     two = pack_lattice(options);
   }
   expect_identical(one.packing, two.packing);

@@ -2,9 +2,8 @@
 
 #include <atomic>
 
-#include <tbb/global_control.h>
-
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/pack/random_packer.h"
 #include "aggpack/pack/statistics.h"
 #include "aggpack/pack/verify.h"
@@ -143,11 +142,11 @@ TEST(RandomPacker, SameSeedSamePackingWithOneAndTwoThreads) {
   PackResult one;
   PackResult two;
   {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    const ThreadLimit limit(1);
     one = pack_random(options);
   }
   {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    const ThreadLimit limit(2);
     two = pack_random(options);
   }
   expect_identical(one.packing, two.packing);

@@ -90,6 +90,27 @@ TEST(Pipeline, DenseKindIsTheFillThenTheDensifier) {
   expect_valid_packing(piped.packing, 0.0);
 }
 
+TEST(Pipeline, DenseConfigRunEqualsTheOptionsRunAndItsResolvedConfig) {
+  const PackConfig config = parse_pack_config(
+      "", "test",
+      {"packer.kind=dense", "packer.seed=3", "container.length=0.4", "container.width=0.4",
+       "container.depth=0.4", "particle.radius=0.05", "particle.edge_length=0",
+       "packer.target_fraction=0.22", "densify.target_fraction=0.3", "densify.max_sweeps=400"});
+  DensePackOptions options = small_dense();
+  options.densify.seed = derived_densify_seed(3);  // what packer.seed = 3 gives the densifier
+  const PipelineResult piped = pack(config);
+  const PipelineResult direct = pack(PackerOptions{options});
+  expect_identical(piped.packing, direct.packing);
+  EXPECT_GE(piped.report.solid_fraction, 0.3 * (1 - 1e-9));
+  EXPECT_EQ(piped.packing.provenance.config_toml, config.resolved_toml);
+  EXPECT_EQ(piped.packing.provenance.packer, "dense");
+  EXPECT_EQ(piped.packing.provenance.seed, 3u);
+  expect_valid_packing(piped.packing, 0.0);
+  // The stored configuration packs the same packing again.
+  const PipelineResult again = pack(parse_pack_config(piped.packing.provenance.config_toml));
+  expect_identical(again.packing, piped.packing);
+}
+
 TEST(Pipeline, ConfigRunStampsTheResolvedConfiguration) {
   const PackConfig config = parse_pack_config(
       "", "test",
@@ -97,7 +118,7 @@ TEST(Pipeline, ConfigRunStampsTheResolvedConfiguration) {
        "container.depth=0.4", "particle.radius=0.05", "packer.target_count=15"});
   ASSERT_TRUE(std::holds_alternative<RandomPackOptions>(packer_options(config)));
   const PipelineResult piped = pack(config);
-  const PackResult direct = pack_random(config.random);
+  const PackResult direct = pack_random(std::get<RandomPackOptions>(config.packer));
   ASSERT_EQ(piped.packing.particles.size(), 15u);
   expect_identical(piped.packing, direct.packing);
   const Provenance& p = piped.packing.provenance;

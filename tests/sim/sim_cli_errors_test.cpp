@@ -84,15 +84,18 @@ TEST_F(SimCliErrors, MessagesNameTheUsersKeys) {
   const auto radius = aggpack("repose --set particles.radius=-1 --print-config");
   EXPECT_EQ(radius.exit_code, 2);
   EXPECT_EQ(radius.output,
-            "aggpack: error: invalid particles.radius = -1 (allowed: finite and > 0)\n");
+            "aggpack: error: --set particles.radius=-1: invalid particles.radius = -1 (allowed: "
+            "(0, 1e6] m)\n");
   const auto friction = aggpack("repose --set physics.friction=11 --print-config");
-  EXPECT_EQ(friction.output, "aggpack: error: invalid physics.friction = 11 (allowed: [0, 10])\n");
+  EXPECT_EQ(friction.output,
+            "aggpack: error: --set physics.friction=11: invalid physics.friction = 11 (allowed: "
+            "[0, 10])\n");
   const auto newline =
       aggpack("repose --set \"$(printf 'physics.friction=0.3\\ntrough.length=1')\" --print-config");
   EXPECT_EQ(newline.exit_code, 2);
   EXPECT_EQ(newline.output,
-            "aggpack: error: invalid --set = physics.friction=0.3\\ntrough.length=1 (allowed: one "
-            "line key=value, e.g. physics.friction=0.3)\n");
+            "aggpack: error: --set physics.friction=0.3\\ntrough.length=1: a --set value must be "
+            "one line (it contains a line break)\n");
   const auto mu = aggpack("settle in.h5 -o " + path("out.h5") + " --mu 20");
   EXPECT_EQ(mu.exit_code, 2);
   EXPECT_EQ(mu.output, "aggpack: error: invalid --mu = 20 (allowed: [0, 10])\n");

@@ -15,8 +15,7 @@
 #include "aggpack/config/schema.h"
 #include "aggpack/core/error.h"
 #include "aggpack/pack/grading.h"
-#include "aggpack/pack/lattice_packer.h"
-#include "aggpack/pack/random_packer.h"
+#include "aggpack/pack/packer_kinds.h"
 
 namespace aggpack {
 
@@ -38,13 +37,11 @@ const std::vector<ConfigKey>& config_keys();
 /// Format names accepted as keys of the [output] table ("native", "stl", ...).
 const std::vector<std::string>& output_formats();
 
-enum class PackerKind { kLattice, kRandom };
-
 /// A resolved, validated configuration.
 struct PackConfig {
-  PackerKind packer = PackerKind::kLattice;
-  LatticeOptions lattice;    ///< the options used when packer == kLattice
-  RandomPackOptions random;  ///< the options used when packer == kRandom
+  /// The chosen packer kind's options (packer.kind; the first kind, lattice, by default). Keys
+  /// bind to the options structs the kind holds (find_options(), aggpack/pack/packer_kinds.h).
+  PackerOptions packer{};
   int threads = 0;  ///< packer.threads: worker threads, 0 = all cores (no effect on results)
   /// The [output] table: format name -> path. "native" is the .h5 file `aggpack pack` writes when
   /// no -o is given; the others are for the exporters.
@@ -60,9 +57,10 @@ struct PackConfig {
   [[nodiscard]] std::uint64_t seed() const;
   /// The chosen packer's container.
   [[nodiscard]] const Container& container() const;
-  /// The target grading to compare a packing with: the random packer's grading, none for lattice.
+  /// The target grading to compare a packing with: the random packer's grading (also as a dense
+  /// fill), none for lattice.
   [[nodiscard]] std::optional<Grading> target_grading() const;
-  /// "lattice" or "random".
+  /// The kind's word: "lattice", "random", "dense" (packer_kind_names()).
   [[nodiscard]] std::string packer_name() const;
 };
 

@@ -126,6 +126,9 @@ struct Key {
   /// ("packer.target_fraction" for packer.target_count), or empty.
   std::string excludes;
   std::vector<std::string> fields;  ///< the options' validators' names for it ("lattice.radius")
+  /// A key that picks the options struct other keys bind to (packer.kind, packer.fill): resolve()
+  /// sets such keys first, in schema order, then the others.
+  bool is_kind = false;
 };
 
 /// A table of a schema ("container"). `member_word` names its keys in messages when they are a
@@ -220,11 +223,19 @@ std::string to_key_names(const std::vector<KeyView>& keys,
 
 /// Sets every key of `schema` on `target`: the given value, else the value of default_from, else
 /// the default (Presence::kOptional keys that are not given are left alone). Keys are set in
-/// schema order.
+/// schema order, the kind keys (Key::is_kind) first.
 template <typename Target>
 void resolve(const Schema<Target>& schema, const GivenValues& given, Target& target) {
   std::map<std::string, Value> resolved;
+  std::vector<const Key<Target>*> order;
   for (const auto& key : schema.keys) {
+    if (key.is_kind) order.push_back(&key);
+  }
+  for (const auto& key : schema.keys) {
+    if (!key.is_kind) order.push_back(&key);
+  }
+  for (const auto* k : order) {
+    const Key<Target>& key = *k;
     const auto found = given.find(key.name);
     Value value;
     if (found != given.end()) {

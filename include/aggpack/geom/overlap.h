@@ -53,6 +53,12 @@ struct DistanceResult {
 /// Largest distance from the local origin to a vertex (bounding-sphere radius about the origin).
 double bounding_radius(const ConvexPolyhedron& body);
 
+/// Radius of the largest ball about the local origin inside a convex body: the smallest distance
+/// from the origin to a face plane. 0 when the origin is not inside (or on a zero-area face's
+/// line), infinity for a body without faces. The one definition used by the packers, the
+/// SupportShape inner-ball test and the renderer's occluders.
+double inner_radius(const ConvexPolyhedron& body);
+
 /// How SupportShape finds the vertex farthest along a direction.
 enum class SupportSearch {
   kAuto,      ///< hill-climbing above kHillClimbMinVertices hull vertices, else a linear scan

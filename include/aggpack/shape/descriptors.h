@@ -34,6 +34,17 @@ struct ShapeDescriptors {
   double longest_edge = 0;
 };
 
+/// Eq. 1: sphericity SI = (4 pi / S) (3 V / (4 pi))^(2/3) of a body of volume V (m^3) and
+/// surface area S (m^2); 1 for a sphere. Precondition: V > 0, S > 0.
+double sphericity(double volume, double surface_area);
+
+/// Eq. 2: measured alpha = V / V_b, V_b the volume of the sphere with the body's surface area;
+/// computed as SI^(3/2) (the same number). Precondition: V > 0, S > 0.
+double measured_alpha(double volume, double surface_area);
+
+/// Diameter (m) of the sphere of volume `volume` (m^3): cbrt(6 V / pi).
+double equivalent_diameter(double volume);
+
 /// Measures a particle. \throw InvalidInput if the body has no positive volume.
 ShapeDescriptors describe(const ConvexPolyhedron& body);
 

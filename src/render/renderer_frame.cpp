@@ -1,0 +1,306 @@
+// A frame of PackingRenderer: frustum culling and front-to-back order (begin_frame), then the
+// steps of step_frame (first pass, depth read-back and occlusion test, the rest, the outline).
+
+#include "aggpack/core/parallel.h"
+#include "renderer_state.h"
+
+namespace aggpack {
+
+namespace render_detail {
+
+void sort_by_high_word(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& scratch) {
+  const std::size_t n = keys.size();
+  scratch.resize(n);
+  std::array<std::uint32_t, 65536> counts;
+  for (int shift : {32, 48}) {
+    counts.fill(0u);
+    for (std::size_t c = 0; c < n; ++c) ++counts[(keys[c] >> shift) & 0xffffu];
+    std::uint32_t sum = 0;
+    for (auto& count : counts) {
+      const std::uint32_t here = count;
+      count = sum;
+      sum += here;
+    }
+    for (std::size_t c = 0; c < n; ++c) scratch[counts[(keys[c] >> shift) & 0xffffu]++] = keys[c];
+    keys.swap(scratch);
+  }
+}
+
+}  // namespace render_detail
+
+namespace {
+
+// Sorts by near_depth, ties in their present order.
+void sort_front_to_back(std::vector<Candidate>& candidates, std::vector<std::uint64_t>& keys,
+                        std::vector<std::uint64_t>& key_scratch, std::vector<Candidate>& scratch) {
+  const std::size_t n = candidates.size();
+  keys.resize(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    keys[c] = (static_cast<std::uint64_t>(float_order_key(candidates[c].near_depth)) << 32) | c;
+  }
+  sort_by_high_word(keys, key_scratch);
+  scratch.resize(n);
+  for (std::size_t c = 0; c < n; ++c) scratch[c] = candidates[keys[c] & 0xffffffffu];
+  candidates.swap(scratch);
+}
+
+}  // namespace
+
+DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
+                                const RenderStyle& style) {
+  begin_frame(camera, width, height, style);
+  while (!step_frame()) {
+  }
+  return state_->frame.stats;
+}
+
+void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
+                                  const RenderStyle& style) {
+  State& s = *state_;
+  State::Frame& f = s.frame;
+  f = State::Frame{};
+  f.style = style;
+  DrawStats& stats = f.stats;
+  width = std::max(width, 1);
+  height = std::max(height, 1);
+  f.width = width;
+  f.height = height;
+  if (s.uploaded_color != static_cast<int>(style.color)) s.upload_colors(style.color);
+
+  f.view = camera.view_matrix();
+  f.projection = camera.projection_matrix(static_cast<double>(width) / static_cast<double>(height));
+  const Eigen::Matrix4f& view = f.view;
+  const Eigen::Matrix4f view_projection = f.projection * view;
+  f.is_orthographic = camera.is_orthographic();
+
+  glViewport(0, 0, width, height);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_BLEND);
+  glClearColor(style.background.r / 255.0f, style.background.g / 255.0f,
+               style.background.b / 255.0f, 1.0f);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+
+  auto start = std::chrono::steady_clock::now();
+  // 1. Frustum: keep a particle unless its bounding sphere is wholly outside a plane of the
+  //    view volume (planes from the combined matrix, Gribb-Hartmann).
+  std::array<Eigen::Vector4f, 6> planes;
+  for (int k = 0; k < 3; ++k) {
+    planes[static_cast<std::size_t>(2 * k)] = view_projection.row(3) + view_projection.row(k);
+    planes[static_cast<std::size_t>(2 * k + 1)] = view_projection.row(3) - view_projection.row(k);
+  }
+  for (auto& plane : planes) plane /= plane.head<3>().norm();
+  const Eigen::Vector4f depth_row = -view.row(2);
+  const float pixel_scale = static_cast<float>(camera.pixels_per_metre(1.0, height));
+  const bool is_orthographic = f.is_orthographic;
+  // Pixels per metre at a view depth; perspective shrinks with depth.
+  auto pixels_per_metre = [&](float depth) {
+    return is_orthographic ? pixel_scale : pixel_scale / std::max(depth, 1e-9f);
+  };
+  const std::size_t particle_count = s.particle_shape.size();
+  // Whether particle i is in view, and its candidate record if so.
+  auto make_candidate = [&](std::size_t i, Candidate& candidate) {
+    const ParticleSphere& sphere = s.particle_sphere[i];
+    const Eigen::Vector4f centre(sphere.x, sphere.y, sphere.z, 1.0f);
+    bool is_inside = true;
+    for (const auto& plane : planes) {
+      if (plane.dot(centre) < -sphere.radius) {
+        is_inside = false;
+        break;
+      }
+    }
+    if (!is_inside) return false;
+    const Eigen::Vector4f clip = view_projection * centre;
+    candidate.particle = static_cast<std::uint32_t>(i);
+    candidate.depth = depth_row.dot(centre);
+    candidate.near_depth = candidate.depth - sphere.radius;
+    const bool is_in_front = is_orthographic || candidate.near_depth > 0.0f;
+    candidate.pixels = is_in_front ? 2.0f * sphere.radius * pixels_per_metre(candidate.depth)
+                                   : std::numeric_limits<float>::infinity();
+    // The outline of the bounding sphere: orthographic, a disc of the projected radius; in
+    // perspective an ellipse stretched by 1 / cos^2 of the off-axis angle (cos = depth /
+    // distance) whose centre moves outward by a second-order amount that 2 % and half a pixel
+    // cover.
+    candidate.footprint = sphere.radius * pixel_scale;
+    if (!is_orthographic && is_in_front) {
+      const float distance = (view * centre).head<3>().norm();
+      const float sine = std::min(sphere.radius / std::max(distance, 1e-9f), 0.99f);
+      candidate.footprint = pixel_scale * sphere.radius * distance /
+                            (candidate.depth * candidate.depth * std::sqrt(1.0f - sine * sine));
+    }
+    candidate.footprint = 1.02f * candidate.footprint + 0.5f;
+    const float w = clip.w() > 1e-9f ? clip.w() : 1e-9f;
+    candidate.screen_x = (clip.x() / w + 1.0f) * 0.5f * static_cast<float>(width);
+    candidate.screen_y = (clip.y() / w + 1.0f) * 0.5f * static_cast<float>(height);
+    return true;
+  };
+  // In chunks of consecutive particles on all cores (the rasteriser is idle at the start of a
+  // frame), joined in chunk order: the same list as one loop would make.
+  constexpr std::size_t kChunk = 8192;
+  const std::size_t chunk_count = (particle_count + kChunk - 1) / kChunk;
+  s.chunk_candidates.resize(std::max(s.chunk_candidates.size(), chunk_count));
+  parallel_for_index(0, chunk_count, [&](std::size_t chunk) {
+    std::vector<Candidate>& out = s.chunk_candidates[chunk];
+    out.clear();
+    Candidate candidate;
+    for (std::size_t i = chunk * kChunk; i < std::min(particle_count, (chunk + 1) * kChunk); ++i) {
+      if (make_candidate(i, candidate)) out.push_back(candidate);
+    }
+  });
+  s.candidates.clear();
+  for (std::size_t chunk = 0; chunk < chunk_count; ++chunk) {
+    s.candidates.insert(s.candidates.end(), s.chunk_candidates[chunk].begin(),
+                        s.chunk_candidates[chunk].end());
+  }
+  // Front to back: lets the rasteriser's early depth test reject hidden fragments. Not for a
+  // frame of impostors only (budget 1): their fragment shader discards, which turns the early
+  // test off, so the order would buy nothing (the depth test still gives the same picture).
+  if (style.triangle_budget != 1) {
+    sort_front_to_back(s.candidates, s.sort_keys, s.sort_scratch, s.sorted);
+  }
+  const std::size_t in_frustum = s.candidates.size();
+  stats.particles_in_frustum = in_frustum;
+  stats.frustum_sort_seconds = seconds_since(start);
+
+  // 2. Draw, with occlusion culling when it can pay: llvmpipe pays per primitive, and in a
+  //    packing of many small particles the view sees only the first few layers. Particles not
+  //    hidden last frame are drawn first; the depth they leave is read back, and the others
+  //    are drawn only if some pixel under their bounding sphere lies behind the sphere's nearest
+  //    point. Exact (never drops a particle that would show), whatever last frame was.
+  GLint samples = 0;
+  glGetIntegerv(GL_SAMPLES, &samples);
+  f.is_culled = style.is_occlusion_culled && !style.is_wireframe && samples <= 1 &&
+                in_frustum >= kOcclusionMinParticles;
+  if (s.was_visible.size() != particle_count) {
+    s.was_visible.assign(particle_count, 0);
+    s.has_visibility = false;
+  }
+  // A thinned light frame (particle cap) skips the culling, whose read-back and test cost more
+  // than drawing the few particles; it keeps the last full frame's visible set for the next
+  // (culling is exact with any set; a recent one only makes it faster).
+  // Not thinned when last frame's visible set fits under the cap: culling then draws about that
+  // many, all of what shows, where a thinning of everything in view would look sparse.
+  const bool is_thinned =
+      style.max_particles > 0 && in_frustum > style.max_particles &&
+      !(f.is_culled && s.has_visibility && s.visible_count <= style.max_particles);
+  f.first = in_frustum;
+  if (!f.is_culled || is_thinned) {
+    f.is_culled = false;
+    if (!is_thinned) s.has_visibility = false;
+  } else if (s.has_visibility) {
+    // First the particles seen last frame (all of them when there is no last frame).
+    f.first = static_cast<std::size_t>(
+        std::stable_partition(s.candidates.begin(), s.candidates.end(),
+                              [&](const Candidate& c) { return s.was_visible[c.particle] != 0; }) -
+        s.candidates.begin());
+  }
+  // A large first pass in two steps (nearer half first, with the first claim on the triangle
+  // budget), so no step is much longer than the others.
+  f.split = f.is_culled && f.first >= 2 * kOcclusionMinParticles ? f.first / 2 : f.first;
+  f.step = 1;
+}
+
+bool PackingRenderer::step_frame() {
+  State& s = *state_;
+  State::Frame& f = s.frame;
+  DrawStats& stats = f.stats;
+  const RenderStyle& style = f.style;
+  if (f.step == 0) return true;  // no frame begun, or finished
+  glViewport(0, 0, f.width, f.height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_TRUE);
+  const std::size_t in_frustum = stats.particles_in_frustum;
+  // The triangle budget left after `used` mesh triangles (0 = no limit; 1 when used up: the rest
+  // are points).
+  auto budget_after = [&](std::size_t used) -> std::size_t {
+    if (style.triangle_budget == 0) return 0;
+    return used < style.triangle_budget ? style.triangle_budget - used : 1;
+  };
+  if (f.step == 1) {
+    // Everything (no culling), or the particles seen last frame (or the nearer half of them).
+    f.used = s.submit(0, f.split, style.triangle_budget, style, f.view, f.projection, stats);
+    f.step = f.split < f.first ? 5 : f.is_culled ? 2 : 4;
+    return false;
+  }
+  if (f.step == 5) {
+    f.used += s.submit(f.split, f.first, budget_after(f.used), style, f.view, f.projection, stats);
+    f.step = 2;
+    return false;
+  }
+  if (f.step == 2) {
+    auto start = std::chrono::steady_clock::now();
+    s.depth_pyramid.build(f.width, f.height);
+    stats.depth_readback_seconds = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    const Eigen::Matrix4f& projection = f.projection;
+    // Window depth of a view depth (both projections map view depth alone to window depth).
+    auto window_depth = [&](float depth) {
+      const float clip_z = -projection(2, 2) * depth + projection(2, 3);
+      const float clip_w = -projection(3, 2) * depth + projection(3, 3);
+      return 0.5f * clip_z / clip_w + 0.5f;
+    };
+    auto is_hidden = [&](const Candidate& c) {
+      if (!f.is_orthographic && !(c.near_depth > 1e-6f)) return false;
+      return s.depth_pyramid.is_hidden(c.screen_x, c.screen_y, c.footprint,
+                                       window_depth(c.near_depth));
+    };
+    // Seen now: the first group unless hidden behind the rest of it, the others unless hidden.
+    // The tests run on all cores (the rasteriser has finished the first pass).
+    s.is_hidden_flag.resize(in_frustum);
+    parallel_for_index(0, (in_frustum + 1023) / 1024, [&](std::size_t block) {
+      for (std::size_t c = 1024 * block; c < std::min(in_frustum, 1024 * (block + 1)); ++c) {
+        s.is_hidden_flag[c] = is_hidden(s.candidates[c]) ? 1 : 0;
+      }
+    });
+    std::fill(s.was_visible.begin(), s.was_visible.end(), std::uint8_t{0});
+    s.visible_count = 0;
+    for (std::size_t c = 0; c < f.first; ++c) {
+      if (s.is_hidden_flag[c] != 0) continue;
+      s.was_visible[s.candidates[c].particle] = 1;
+      ++s.visible_count;
+    }
+    std::size_t kept = f.first;
+    for (std::size_t c = f.first; c < in_frustum; ++c) {
+      if (s.is_hidden_flag[c] != 0) continue;
+      s.was_visible[s.candidates[c].particle] = 1;
+      s.candidates[kept++] = s.candidates[c];
+    }
+    s.visible_count += kept - f.first;
+    s.candidates.resize(kept);
+    s.has_visibility = true;
+    stats.occlusion_test_seconds = seconds_since(start);
+    f.step = 3;
+    return false;
+  }
+  if (f.step == 3) {
+    // Budget used up: the newly seen are points this frame (and first next frame).
+    s.submit(f.first, s.candidates.size(), budget_after(f.used), style, f.view, f.projection,
+             stats);
+  }
+
+  if (style.show_container && s.line_vertex_count > 0) {
+    const Eigen::Matrix4f view_projection = f.projection * f.view;
+    glUseProgram(s.line_program);
+    glUniformMatrix4fv(s.u_view_projection, 1, GL_FALSE, view_projection.data());
+    glUniform3f(s.u_line_color, style.container_color.r / 255.0f, style.container_color.g / 255.0f,
+                style.container_color.b / 255.0f);
+    glBindVertexArray(s.line_array);
+    glDrawArrays(GL_LINES, 0, s.line_vertex_count);
+    glBindVertexArray(0);
+    ++stats.draw_calls;
+  }
+  glUseProgram(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  f.step = 0;
+  return true;
+}
+
+}  // namespace aggpack

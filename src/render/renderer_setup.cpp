@@ -1,0 +1,246 @@
+// PackingRenderer's GL objects: shader programs, buffers and vertex layouts (constructor,
+// destructor).
+
+#include "aggpack/core/error.h"
+#include "renderer_state.h"
+
+namespace aggpack {
+
+namespace {
+
+constexpr const char* kParticleVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in uint a_particle;
+layout(location = 2) in uint a_instance;
+uniform samplerBuffer u_transforms;  // four texels per particle: rows of [scale * R | t], radius
+uniform samplerBuffer u_colors;      // one normalised RGBA8 texel per particle
+uniform mat4 u_view;
+uniform mat4 u_projection;
+out vec3 v_view_position;
+flat out vec3 v_color;
+void main() {
+  int id = int(a_particle + a_instance);
+  vec4 p = vec4(a_position, 1.0);
+  vec3 world = vec3(dot(texelFetch(u_transforms, 4 * id), p),
+                    dot(texelFetch(u_transforms, 4 * id + 1), p),
+                    dot(texelFetch(u_transforms, 4 * id + 2), p));
+  vec4 view = u_view * vec4(world, 1.0);
+  v_view_position = view.xyz;
+  v_color = texelFetch(u_colors, id).rgb;
+  gl_Position = u_projection * view;
+}
+)";
+
+// Flat facet normal from screen-space derivatives of the view position: exact per triangle
+// (position is linear across a triangle) and needs no per-face vertices. Two lights fixed to the
+// camera (key from the upper left, weaker fill from the lower right) plus ambient, and a small
+// specular term so neighbouring facets of similar orientation still read as separate.
+#define AGGPACK_SHADE_GLSL                                                                   \
+  "vec3 shade(vec3 color, vec3 n) {\n"                                                       \
+  "  vec3 key = normalize(vec3(-0.45, 0.6, 0.65));\n"                                        \
+  "  vec3 fill = normalize(vec3(0.55, -0.35, 0.55));\n"                                      \
+  "  float diffuse = 0.28 + 0.62 * max(dot(n, key), 0.0) + 0.22 * max(dot(n, fill), 0.0);\n" \
+  "  vec3 half_vector = normalize(key + vec3(0.0, 0.0, 1.0));\n"                             \
+  "  float power = max(dot(n, half_vector), 0.0);\n"                                         \
+  "  power *= power; power *= power; power *= power; power *= power; power *= power;\n"      \
+  "  float specular = 0.22 * power;\n"                                                       \
+  "  return color * diffuse + vec3(specular);\n"                                             \
+  "}\n"
+
+constexpr const char* kParticleFragmentShader = "#version 330 core\n" AGGPACK_SHADE_GLSL R"(
+in vec3 v_view_position;
+flat in vec3 v_color;
+uniform int u_lit;
+out vec4 fragment;
+void main() {
+  vec3 color = v_color;
+  if (u_lit != 0) color = shade(color, normalize(cross(dFdx(v_view_position), dFdy(v_view_position))));
+  fragment = vec4(color, 1.0);
+}
+)";
+
+// Impostor for particles a few pixels across: one view-facing triangle circumscribing a disc of
+// the volume-equivalent radius, shaded as a ball with the same lights as the facets. One
+// triangle, not a point sprite: llvmpipe expands wide points into two triangles on a slow path.
+// Per-impostor data comes as vertex attributes (repeated on the triangle's three vertices), not
+// buffer-texture fetches, which llvmpipe runs far slower in vertex shaders.
+constexpr const char* kPointVertexShader = R"(#version 330 core
+layout(location = 0) in vec4 a_sphere;  // centre (m), impostor radius (m)
+layout(location = 1) in vec4 a_color;   // normalised RGBA8
+uniform mat4 u_view;
+uniform mat4 u_projection;
+flat out vec3 v_color;
+out vec2 v_disc;  // position in units of the disc radius
+void main() {
+  // Corners of the equilateral triangle whose inscribed circle is the unit circle.
+  const vec2 corners[3] = vec2[3](vec2(0.0, 2.0), vec2(-1.7320508, -1.0), vec2(1.7320508, -1.0));
+  v_disc = corners[gl_VertexID % 3];
+  vec4 view = u_view * vec4(a_sphere.xyz, 1.0);
+  // Bring the billboard forward by the radius so it is not hidden inside neighbouring facets.
+  view.xyz += vec3(v_disc * a_sphere.w, 0.0) + normalize(-view.xyz) * a_sphere.w * 0.5;
+  v_color = a_color.rgb;
+  gl_Position = u_projection * view;
+}
+)";
+
+constexpr const char* kPointFragmentShader = "#version 330 core\n" AGGPACK_SHADE_GLSL R"(
+flat in vec3 v_color;
+in vec2 v_disc;
+uniform int u_lit;
+out vec4 fragment;
+void main() {
+  vec2 q = v_disc;
+  float r2 = dot(q, q);
+  if (r2 > 1.0) discard;
+  vec3 color = u_lit != 0 ? shade(v_color, vec3(q, sqrt(1.0 - r2))) : v_color;
+  fragment = vec4(color, 1.0);
+}
+)";
+
+constexpr const char* kLineVertexShader = R"(#version 330 core
+layout(location = 0) in vec3 a_position;
+uniform mat4 u_view_projection;
+void main() { gl_Position = u_view_projection * vec4(a_position, 1.0); }
+)";
+
+constexpr const char* kLineFragmentShader = R"(#version 330 core
+uniform vec3 u_color;
+out vec4 fragment;
+void main() { fragment = vec4(u_color, 1.0); }
+)";
+
+[[noreturn]] void throw_gl(const std::string& message) { throw IoError("OpenGL: " + message); }
+
+GLuint compile_shader(GLenum type, const char* source) {
+  const GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint is_compiled = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &is_compiled);
+  if (is_compiled == 0) {
+    std::array<char, 2048> log{};
+    glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    glDeleteShader(shader);
+    throw_gl(std::string("shader compilation failed: ") + log.data());
+  }
+  return shader;
+}
+
+GLuint link_program(const char* vertex_source, const char* fragment_source) {
+  const GLuint vertex = compile_shader(GL_VERTEX_SHADER, vertex_source);
+  const GLuint fragment = compile_shader(GL_FRAGMENT_SHADER, fragment_source);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vertex);
+  glAttachShader(program, fragment);
+  glLinkProgram(program);
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  GLint is_linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &is_linked);
+  if (is_linked == 0) {
+    std::array<char, 2048> log{};
+    glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    glDeleteProgram(program);
+    throw_gl(std::string("shader link failed: ") + log.data());
+  }
+  return program;
+}
+
+}  // namespace
+
+PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
+  GLint major = 0, minor = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  if (major < 3 || (major == 3 && minor < 3)) {
+    const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
+    throw_gl(std::string("need a 3.3 core context, have ") + (version ? version : "none"));
+  }
+  State& s = *state_;
+  s.particle_program = link_program(kParticleVertexShader, kParticleFragmentShader);
+  s.u_transforms = glGetUniformLocation(s.particle_program, "u_transforms");
+  s.u_colors = glGetUniformLocation(s.particle_program, "u_colors");
+  s.u_view = glGetUniformLocation(s.particle_program, "u_view");
+  s.u_projection = glGetUniformLocation(s.particle_program, "u_projection");
+  s.u_lit = glGetUniformLocation(s.particle_program, "u_lit");
+  s.line_program = link_program(kLineVertexShader, kLineFragmentShader);
+  s.u_view_projection = glGetUniformLocation(s.line_program, "u_view_projection");
+  s.u_line_color = glGetUniformLocation(s.line_program, "u_color");
+  s.point_program = link_program(kPointVertexShader, kPointFragmentShader);
+  s.p_view = glGetUniformLocation(s.point_program, "u_view");
+  s.p_projection = glGetUniformLocation(s.point_program, "u_projection");
+  s.p_lit = glGetUniformLocation(s.point_program, "u_lit");
+  glGenVertexArrays(1, &s.point_array);
+  glGenBuffers(1, &s.point_buffer);
+  glBindVertexArray(s.point_array);
+  glBindBuffer(GL_ARRAY_BUFFER, s.point_buffer);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 4, GL_FLOAT, GL_FALSE, sizeof(GpuPoint), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(GpuPoint),
+                        reinterpret_cast<const void*>(offsetof(GpuPoint, r)));
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  glGenVertexArrays(1, &s.vertex_array);
+  glGenBuffers(1, &s.vertex_buffer);
+  glGenBuffers(1, &s.index_buffer);
+  glGenBuffers(1, &s.instance_buffer);
+  glGenBuffers(1, &s.transform_buffer);
+  glGenBuffers(1, &s.color_buffer);
+  glGenTextures(1, &s.transform_texture);
+  glGenTextures(1, &s.color_texture);
+  glGenVertexArrays(1, &s.line_array);
+  glGenBuffers(1, &s.line_buffer);
+
+  glBindVertexArray(s.vertex_array);
+  glBindBuffer(GL_ARRAY_BUFFER, s.vertex_buffer);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(GpuVertex), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(GpuVertex),
+                         reinterpret_cast<const void*>(offsetof(GpuVertex, particle)));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.index_buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, s.instance_buffer);
+  const std::uint32_t zero = 0;
+  glBufferData(GL_ARRAY_BUFFER, sizeof(zero), &zero, GL_STREAM_DRAW);
+  glEnableVertexAttribArray(2);
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  glVertexAttribDivisor(2, 1);
+  glBindVertexArray(0);
+
+  glBindVertexArray(s.line_array);
+  glBindBuffer(GL_ARRAY_BUFFER, s.line_buffer);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  // Empty texel stores so the samplers are valid before the first packing; nothing to draw yet.
+  set_packing(Packing{});
+  s.line_vertex_count = 0;
+  s.bounds = Aabb{};
+}
+
+PackingRenderer::~PackingRenderer() {
+  State& s = *state_;
+  glDeleteProgram(s.particle_program);
+  glDeleteProgram(s.line_program);
+  glDeleteProgram(s.point_program);
+  glDeleteBuffers(1, &s.point_buffer);
+  glDeleteVertexArrays(1, &s.point_array);
+  const std::array<GLuint, 7> buffers = {s.vertex_buffer,
+                                         s.index_buffer,
+                                         s.instance_buffer,
+                                         s.transform_buffer,
+                                         s.color_buffer,
+                                         s.line_buffer,
+                                         0};
+  glDeleteBuffers(6, buffers.data());
+  const std::array<GLuint, 2> textures = {s.transform_texture, s.color_texture};
+  glDeleteTextures(2, textures.data());
+  const std::array<GLuint, 2> arrays = {s.vertex_array, s.line_array};
+  glDeleteVertexArrays(2, arrays.data());
+}
+
+}  // namespace aggpack

@@ -1,0 +1,199 @@
+#pragma once
+// Internal to the renderer (renderer*.cpp): the GPU-side types, the depth pyramid and
+// PackingRenderer::State, which the renderer's files share.
+
+#define GL_GLEXT_PROTOTYPES 1
+#include <GL/glcorearb.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "aggpack/render/renderer.h"
+#include "depth_pyramid.h"
+
+namespace aggpack {
+
+namespace render_detail {
+
+// One particle (for shapes used once: its index) or 0 (instanced shapes: the particle index
+// comes from the per-instance attribute). The shader adds both, so one program serves both paths.
+struct GpuVertex {
+  float x, y, z;
+  std::uint32_t particle;
+};
+
+// Where a shape's data lives in the shared vertex and index buffers.
+struct ShapeRange {
+  GLint base_vertex = 0;
+  GLuint full_offset = 0;  // first index (not bytes)
+  GLsizei full_count = 0;
+  GLuint coarse_offset = 0;
+  GLsizei coarse_count = 0;
+  std::uint32_t instances = 0;
+  double radius = 0.0;  // largest vertex distance from the local origin (m, before scale)
+  // Radius of the ball about the local origin that lies inside the shape (smallest distance to
+  // a face plane): certainly solid, so it may hide what is behind it (m, before scale).
+  double inner_radius = 0.0;
+};
+
+// A particle's bounding and inscribed spheres in world coordinates (m).
+struct ParticleSphere {
+  float x, y, z;
+  float radius;
+  float inner_radius;
+};
+
+// A particle in the view, for culling and level-of-detail decisions.
+struct Candidate {
+  float near_depth;          // view depth of the nearest point of the bounding sphere (m)
+  float footprint;           // half-width of a screen square holding the bounding sphere (px)
+  float depth;               // view depth of the centre (m)
+  float pixels;              // projected diameter of the bounding sphere (px)
+  float screen_x, screen_y;  // projected centre (px, origin lower left)
+  std::uint32_t particle;
+};
+
+// One point of the impostor stream.
+struct GpuPoint {
+  float x, y, z, radius;
+  std::uint8_t r, g, b, a;
+};
+
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Unsigned key that orders like the float (negative values first).
+inline std::uint32_t float_order_key(float value) {
+  std::uint32_t bits = 0;
+  std::memcpy(&bits, &value, sizeof(bits));
+  return (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
+}
+
+// Sorts 64-bit keys by their upper 32 bits, ties in their present order, with two 16-bit radix
+// passes: linear in the count, where std::sort on 10^5 keys cost several milliseconds a frame.
+void sort_by_high_word(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& scratch);
+
+}  // namespace render_detail
+
+using namespace render_detail;  // NOLINT(google-build-using-namespace): internal header
+
+// Below this many particles in view, drawing them all costs less than a depth read-back.
+constexpr std::size_t kOcclusionMinParticles = 4000;
+
+struct PackingRenderer::State {
+  GLuint particle_program = 0;
+  GLint u_transforms = -1, u_colors = -1, u_view = -1, u_projection = -1, u_lit = -1;
+  GLuint line_program = 0;
+  GLint u_view_projection = -1, u_line_color = -1;
+  GLuint point_program = 0;
+  GLint p_view = -1, p_projection = -1, p_lit = -1;
+  GLuint point_array = 0, point_buffer = 0;
+
+  GLuint vertex_array = 0;
+  GLuint vertex_buffer = 0;
+  GLuint index_buffer = 0;
+  GLuint instance_buffer = 0;
+  GLuint transform_buffer = 0, transform_texture = 0;
+  GLuint color_buffer = 0, color_texture = 0;
+  GLuint line_array = 0, line_buffer = 0;
+  GLsizei line_vertex_count = 0;
+
+  std::vector<ShapeRange> shapes;
+  std::vector<std::uint32_t> instanced_shapes;  // shapes drawn instanced (>= 2 particles)
+  std::vector<std::uint32_t> particle_shape;
+  std::vector<ParticleSphere> particle_sphere;
+  std::array<ParticleColors, 3> colors;
+  int uploaded_color = -1;  // ColorMode whose colours are in color_buffer, -1 = none
+  Aabb bounds;
+
+  // Per-frame scratch, kept to avoid reallocating.
+  std::vector<Candidate> candidates;
+  std::vector<Candidate> sorted;
+  std::vector<std::uint64_t> sort_keys, sort_scratch;
+  std::vector<std::vector<Candidate>> chunk_candidates;  // frustum pass, per chunk of particles
+  std::vector<std::uint8_t> is_hidden_flag;              // occlusion test, per candidate
+  std::vector<std::uint8_t> level;                       // per candidate: 0 full, 1 coarse, 2 point
+  DepthPyramid depth_pyramid;
+  // Per particle: not found hidden when last drawn (drawn first next frame, as occluders).
+  std::vector<std::uint8_t> was_visible;
+  bool has_visibility = false;    // was_visible holds a frame's result
+  std::size_t visible_count = 0;  // particles set in was_visible
+  std::vector<std::uint32_t> point_list;
+  std::vector<GpuPoint> points;
+  std::vector<float> impostor_radius;  // per particle (m)
+  std::vector<std::uint32_t> instance_list;
+  std::vector<std::uint32_t> group_counts;
+  std::vector<std::uint32_t> group_start, cursor;
+  std::vector<GLsizei> single_counts;
+  std::vector<const void*> single_offsets;
+  std::vector<GLint> single_base_vertices;
+
+  // The frame begun by begin_frame(), drawn by step_frame().
+  struct Frame {
+    // Next step: 1 first pass (or its nearer half), 5 the first pass's farther half, 2 read-back
+    // + occlusion test, 3 rest, 4 container outline only, 0 done.
+    int step = 0;
+    int width = 1, height = 1;
+    RenderStyle style;
+    Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
+    Eigen::Matrix4f projection = Eigen::Matrix4f::Identity();
+    bool is_orthographic = false;
+    bool is_culled = false;  // occlusion culling this frame
+    std::size_t first = 0;   // candidates [0, first) are drawn in the first pass
+    std::size_t split = 0;   // ... in two steps, [0, split) and [split, first)
+    std::size_t used = 0;    // mesh triangles of the first pass
+    DrawStats stats;
+  };
+  Frame frame;
+
+  // Draws candidates [begin, end) (front to back) with levels of detail chosen by size and at
+  // most `budget` mesh triangles (0 = no limit); adds to `stats`; returns the mesh triangles.
+  std::size_t submit(std::size_t begin, std::size_t end, std::size_t budget,
+                     const RenderStyle& style, const Eigen::Matrix4f& view,
+                     const Eigen::Matrix4f& projection, DrawStats& stats);
+
+  // The steps of submit (renderer_submit.cpp), over candidates [begin, begin + count).
+  // Hash threshold under the particle cap: particles whose mix_hash is >= it are left out.
+  [[nodiscard]] std::uint64_t keep_below(std::size_t count, const RenderStyle& style,
+                                         const DrawStats& stats) const;
+  // Mesh triangles of candidate begin + k at its level (0 for points and left-out ones).
+  [[nodiscard]] std::size_t triangles_of(std::size_t begin, std::size_t k) const;
+  // Sets `level` (0 full, 1 coarse, 2 point, 3 left out) by size, cap and triangle budget;
+  // returns the mesh triangles and counts the left-out candidates.
+  std::size_t choose_levels(std::size_t begin, std::size_t count, std::size_t budget,
+                            const RenderStyle& style, std::uint64_t keep_below_hash,
+                            std::size_t& left_out);
+  // Fills single_*, group_counts and point_list by level; returns the coarse particles.
+  std::size_t build_draw_lists(std::size_t begin, std::size_t count);
+  // Fills instance_list (element 0, then one block per (shape, level) group) and group_start;
+  // returns its length.
+  std::uint32_t build_instance_list(std::size_t begin, std::size_t count);
+  void draw_meshes(const RenderStyle& style, const Eigen::Matrix4f& view,
+                   const Eigen::Matrix4f& projection, DrawStats& stats);
+  void draw_points(const RenderStyle& style, const Eigen::Matrix4f& view,
+                   const Eigen::Matrix4f& projection, DrawStats& stats);
+
+  void upload_colors(ColorMode mode) {
+    const auto& source = colors[static_cast<std::size_t>(mode)].colors;
+    std::vector<std::uint8_t> texels(std::max<std::size_t>(source.size(), 1) * 4, 255);
+    for (std::size_t i = 0; i < source.size(); ++i) {
+      texels[4 * i] = source[i].r;
+      texels[4 * i + 1] = source[i].g;
+      texels[4 * i + 2] = source[i].b;
+    }
+    glBindBuffer(GL_TEXTURE_BUFFER, color_buffer);
+    glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(texels.size()), texels.data(),
+                 GL_STATIC_DRAW);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    uploaded_color = static_cast<int>(mode);
+  }
+};
+
+}  // namespace aggpack
