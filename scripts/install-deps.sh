@@ -13,6 +13,8 @@ packages=(
   libstb-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev clang-format
+  # naming and bugprone checks (scripts/tidy.sh, .clang-tidy)
+  clang-tidy
   # fuzzing (scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes
   clang-14 libclang-rt-14-dev
   # independent readers used by the tests, and tools used by commands

@@ -118,9 +118,11 @@ void run_pack(const PackFlags& flags) {
   for (const auto& [format, path] : config.outputs) {
     if (format == "native") continue;
     ExportOptions options{.format = parse_export_format(format), .overwrite = overwrite};
-    const bool is_taken = same_file(path, output) ||
-                          std::any_of(exports.begin(), exports.end(),
-                                      [&](const auto& e) { return same_file(path, e.first); });
+    const bool is_taken =
+        same_file(path, output) ||
+        std::any_of(exports.begin(), exports.end(),
+                    // Named capture: clang 14 (clang-tidy) cannot capture a structured binding.
+                    [&, &target = path](const auto& e) { return same_file(target, e.first); });
     if (is_taken) {
       throw InvalidInput("output." + format, path,
                          "a path other than the native file's and the other outputs'");

@@ -485,8 +485,8 @@ inline FastAnswer update_tetrahedron(std::array<Vec3, 4>& p, std::array<std::uin
   const Vec3 a = p[3];
   const Vec3 ao = -a;
   // Faces through a, each with the vertex opposite: (a, b, c | d), (a, c, d | b), (a, d, b | c).
-  constexpr int faces[3][3] = {{2, 1, 0}, {1, 0, 2}, {0, 2, 1}};
-  for (const auto& face : faces) {
+  constexpr int kFaces[3][3] = {{2, 1, 0}, {1, 0, 2}, {0, 2, 1}};
+  for (const auto& face : kFaces) {
     const Vec3& x = p[face[0]];
     const Vec3& y = p[face[1]];
     const Vec3& opposite = p[face[2]];

@@ -7,6 +7,7 @@
 
 #include "aggpack/io/export.h"
 #include "deck_fixture.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -27,7 +28,7 @@ std::vector<Vec3> total_forces(const std::string& dat, const std::string& set) {
 
 TEST(CalculixDeck, CcxRunsTheTroughTestOnASmallPile) {
   // Fails (not skips) without ccx: scripts/install-deps.sh installs calculix-ccx.
-  ASSERT_TRUE(test::has_program("ccx")) << "ccx (calculix-ccx) is required for this test";
+  AGGPACK_REQUIRE_READER("ccx");
   const Packing packing = test::pile_near_floor(3, 2, 1, 0.0005, 71);
   ScratchFolder folder;
   ExportOptions options;

@@ -7,6 +7,7 @@
 
 #include "aggpack/io/export.h"
 #include "deck_fixture.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -15,7 +16,7 @@ using test::ScratchFolder;
 
 TEST(YadeDeck, YadeRunsTheExportedScript) {
   // Fails (not skips) without YADE.
-  ASSERT_TRUE(test::has_program("yade")) << "yade is required for this test";
+  AGGPACK_REQUIRE_READER("yade");
   // Two layers, the lower 5 cm above the floor.
   const Packing packing = test::pile_near_floor(3, 2, 2, 0.05, 101);
   ScratchFolder folder;

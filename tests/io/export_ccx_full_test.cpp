@@ -10,6 +10,7 @@
 #include "aggpack/io/native.h"
 #include "ccx_fixture.h"
 #include "export_fixture.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -31,7 +32,7 @@ class PaperPackingInCalculix : public ::testing::Test {
   // with `export_flags`, runs ccx and checks the run and the mass.
   static void run(const std::string& pack_flags, const std::string& export_flags,
                   const std::string& element_type) {
-    ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
+    AGGPACK_REQUIRE_READER("ccx");
     const std::string h5 = folder_->file("paper" + std::to_string(volumes_.size()) + ".h5");
     if (volumes_.count(pack_flags) == 0) {
       const auto pack =

@@ -10,6 +10,7 @@
 #include "aggpack/io/export.h"
 #include "ccx_fixture.h"
 #include "export_fixture.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -21,7 +22,7 @@ using test::ScratchFolder;
 using test::upper;
 
 TEST(AbaqusExport, CalculixRunsAGravityStepOnC3D4) {
-  ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("ccx");
   const Packing packing = test::grid_packing(2, 2, 1, 31);
   ScratchFolder folder;
   write(packing, folder.file("packing.inp"));
@@ -29,7 +30,7 @@ TEST(AbaqusExport, CalculixRunsAGravityStepOnC3D4) {
 }
 
 TEST(AbaqusExport, CalculixRunsAGravityStepOnC3D10) {
-  ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("ccx");
   const Packing packing = test::grid_packing(2, 1, 1, 32);
   ScratchFolder folder;
   write(packing, folder.file("packing.inp"), {.is_quadratic = true});
@@ -39,7 +40,7 @@ TEST(AbaqusExport, CalculixRunsAGravityStepOnC3D10) {
 
 #ifdef AGGPACK_HAS_TETGEN
 TEST(AbaqusExport, CalculixRunsOnTetGenMeshWithFaceSurfaces) {
-  ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("ccx");
   const Packing packing = test::grid_packing(2, 1, 1, 33);
   ScratchFolder folder;
   write(packing, folder.file("packing.inp"),
@@ -51,9 +52,7 @@ TEST(AbaqusExport, CalculixRunsOnTetGenMeshWithFaceSurfaces) {
 #endif
 
 TEST(AbaqusExport, MeshioReadsTheSameCountsAndSets) {
-  if (!test::has_python_module("meshio"))
-    FAIL()
-        << "python3-meshio not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("meshio");
   const Packing packing = test::grid_packing(3, 2, 1, 34, /*share_shapes=*/true);
   ScratchFolder folder;
   for (bool is_quadratic : {false, true}) {
@@ -208,7 +207,7 @@ std::map<std::uint64_t, Vec3> read_msh_nodes(const std::string& path) {
 // reads back within the documented precision (>= 15 significant digits) of the exact value (the
 // same packing's .msh, in the shortest round-trip form), and ccx runs the tiny model.
 TEST(AbaqusExport, EveryNumberFitsTwentyCharacters) {
-  ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("ccx");
   Packing packing = test::grid_packing(3, 2, 1, 37);
   for (auto& particle : packing.particles) particle.pose.position -= Vec3(0.4, 0.3, 0.15);
   for (const double scale : {1.0, 1e-4}) {

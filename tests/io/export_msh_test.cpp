@@ -3,6 +3,7 @@
 
 #include "aggpack/io/export.h"
 #include "export_fixture.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -19,6 +20,8 @@ print(len(mesh.points), cells, mesh.cells[0].type, groups[0], groups[-1], len(gr
 )";
 
 void check_round_trip(const Packing& packing, MeshCells cells, const std::string& name) {
+  AGGPACK_REQUIRE_READER("meshio");
+  AGGPACK_REQUIRE_READER("gmsh");
   ScratchFolder folder;
   const std::string path = folder.file(name);
   const ExportSummary summary = write(packing, path, {.cells = cells});
@@ -26,23 +29,17 @@ void check_round_trip(const Packing& packing, MeshCells cells, const std::string
   const std::string expected =
       std::to_string(summary.nodes) + " " + std::to_string(summary.elements) + " " +
       (cells == MeshCells::kSurface ? "triangle" : "tetra") + " 1 " + n + " " + n + " " + n;
-  if (test::has_python_module("meshio")) {
-    const auto ours = test::run_python(folder, kMeshioScript, path);
-    ASSERT_EQ(ours.exit_code, 0) << ours.output;
-    EXPECT_EQ(test::trim(ours.output), expected);
-  }
-  if (!test::has_program("gmsh"))
-    FAIL() << "gmsh not installed (a test dependency, installed by scripts/install-deps.sh)";
+  const auto ours = test::run_python(folder, kMeshioScript, path);
+  ASSERT_EQ(ours.exit_code, 0) << ours.output;
+  EXPECT_EQ(test::trim(ours.output), expected);
   const std::string again = folder.file("again.msh");
   const auto gmsh = test::run_command("gmsh " + path + " -0 -format msh41 -o " + again);
   ASSERT_EQ(gmsh.exit_code, 0) << gmsh.output;
   EXPECT_EQ(gmsh.output.find("Error"), std::string::npos) << gmsh.output;
   ASSERT_TRUE(std::filesystem::exists(again)) << gmsh.output;
-  if (test::has_python_module("meshio")) {
-    const auto theirs = test::run_python(folder, kMeshioScript, again);
-    ASSERT_EQ(theirs.exit_code, 0) << theirs.output;
-    EXPECT_EQ(test::trim(theirs.output), expected);
-  }
+  const auto theirs = test::run_python(folder, kMeshioScript, again);
+  ASSERT_EQ(theirs.exit_code, 0) << theirs.output;
+  EXPECT_EQ(test::trim(theirs.output), expected);
 }
 
 TEST(GmshExport, GmshReadsTetrahedraWithOneGroupPerParticle) {

@@ -10,6 +10,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/mesh/tetrahedra.h"
 #include "export_fixture.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -156,9 +157,7 @@ TEST(ObjExport, MeshioReadsVerticesAndFaces) {
   const std::string text = test::read_text(folder.file("p.obj"));
   EXPECT_NE(text.find("\no P1\nv "), std::string::npos);
   EXPECT_NE(text.find("\no P4\nv "), std::string::npos);
-  if (!test::has_python_module("meshio"))
-    FAIL()
-        << "python3-meshio not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("meshio");
   const auto result = test::run_python(folder, R"(
 import sys, meshio
 mesh = meshio.read(sys.argv[1])

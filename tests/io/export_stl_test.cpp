@@ -8,6 +8,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/io/stl.h"
 #include "export_fixture.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -99,8 +100,7 @@ TEST(StlExport, AsciiAndBinaryAgreeAndScaleToMillimetres) {
 }
 
 TEST(StlExport, AdmeshFindsClosedPartsWithTheParticleVolume) {
-  if (!test::has_program("admesh"))
-    FAIL() << "admesh not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("admesh");
   const Packing packing = test::grid_packing(3, 2, 2, 3);
   double total = 0;
   std::size_t facets = 0;
@@ -135,8 +135,7 @@ TEST(StlExport, PerParticleFolderHasOneClosedFilePerParticle) {
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, expected);
   EXPECT_EQ(folder.entries(), std::vector<std::string>{"prints"});  // no staging folder left
-  ASSERT_TRUE(test::has_program("admesh"))
-      << "admesh not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("admesh");
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {
     const std::string file = path + "/" + expected[i];
     EXPECT_EQ(read_stl(file).triangles.size(), packing.placed(i).triangle_count());

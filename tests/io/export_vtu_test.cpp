@@ -6,6 +6,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/shape/descriptors.h"
 #include "export_fixture.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -107,9 +108,7 @@ void check_with_vtk(const Packing& packing, const ScratchFolder& folder, const s
 }
 
 TEST(VtuExport, VtkReadsSurfacesWithParticleData) {
-  if (!test::has_python_module("vtk"))
-    FAIL()
-        << "python3-vtk9 not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("vtk");
   const Packing packing = test::grid_packing(3, 2, 2, 41, /*share_shapes=*/true);
   ScratchFolder folder;
   const std::string path = folder.file("surface.vtu");
@@ -118,9 +117,7 @@ TEST(VtuExport, VtkReadsSurfacesWithParticleData) {
 }
 
 TEST(VtuExport, VtkReadsPositiveTetrahedraThatSumToTheParticleVolume) {
-  if (!test::has_python_module("vtk"))
-    FAIL()
-        << "python3-vtk9 not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("vtk");
   const Packing packing = test::grid_packing(2, 2, 2, 42);
   ScratchFolder folder;
   const std::string path = folder.file("tetra.vtu");
@@ -142,9 +139,7 @@ TEST(VtuExport, VtkReadsPositiveTetrahedraThatSumToTheParticleVolume) {
 }
 
 TEST(VtuExport, MeshioReadsTheSameCountsAndData) {
-  if (!test::has_python_module("meshio"))
-    FAIL()
-        << "python3-meshio not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("meshio");
   const Packing packing = test::grid_packing(2, 2, 1, 43);
   ScratchFolder folder;
   for (auto cells : {MeshCells::kSurface, MeshCells::kTetrahedra}) {

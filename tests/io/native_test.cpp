@@ -24,6 +24,7 @@
 #include "aggpack/io/native.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/shape/generator.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -133,14 +134,6 @@ std::string read_bytes(const std::string& path) {
 void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
-// The system Python with h5py/meshio (Debian python3-h5py, python3-meshio), if present.
-bool has_python_module(const std::string& module) {
-  static std::map<std::string, bool> known;  // tests run on one thread
-  if (auto found = known.find(module); found != known.end()) return found->second;
-  const std::string command = "/usr/bin/python3 -c 'import " + module + "' >/dev/null 2>&1";
-  return known[module] = std::system(command.c_str()) == 0;
 }
 
 int run_python(const std::string& script) {
@@ -353,9 +346,7 @@ TEST_F(NativeFileTest, FlippedBytesAreDetectedOrHarmless) {
 }
 
 TEST_F(NativeFileTest, WrongVersionAndWrongFormatNameAreFormatErrors) {
-  if (!has_python_module("h5py"))
-    FAIL()
-        << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("h5py");
   write_packing(sample_packing(), path("v2.h5"));
   ASSERT_EQ(run_python("import h5py; f = h5py.File(\"" + path("v2.h5") +
                        "\", \"r+\"); f.attrs[\"format_version\"] = 2"),
@@ -384,9 +375,7 @@ TEST_F(NativeFileTest, WrongVersionAndWrongFormatNameAreFormatErrors) {
 // container_kinds() order; the byte-identical outputs against the previous release show that). A
 // size the kind does not use may be 0 (it is not kept) but not negative.
 TEST_F(NativeFileTest, ContainerFieldsFollowTheKindList) {
-  if (!has_python_module("h5py"))
-    FAIL()
-        << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("h5py");
   write_packing(sample_packing(), path("box.h5"));
   std::string expected = "kind";
   for (const ContainerKindInfo& kind : container_kinds()) {
@@ -418,9 +407,7 @@ TEST_F(NativeFileTest, ContainerFieldsFollowTheKindList) {
 
 // Content that is well-formed HDF5 but invalid as a packing (written by another program).
 TEST_F(NativeFileTest, InvalidContentIsFormatError) {
-  if (!has_python_module("h5py"))
-    FAIL()
-        << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("h5py");
   const std::vector<std::pair<std::string, std::string>> edits = {
       {"shape index", "f[\"particles/shape\"][2] = 4"},
       {"non-finite", "f[\"particles/position\"][1, 0] = float(\"nan\")"},
@@ -447,9 +434,7 @@ TEST_F(NativeFileTest, InvalidContentIsFormatError) {
 }
 
 TEST_F(NativeFileTest, H5pyReadsTheDatasets) {
-  if (!has_python_module("h5py"))
-    FAIL()
-        << "python3-h5py not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("h5py");
   const Packing packing = sample_packing();
   write_packing(packing, path("run.h5"));
   const Particle& p = packing.particles[5];
@@ -479,9 +464,7 @@ TEST_F(NativeFileTest, XdmfSideFileOpensInMeshio) {
   ASSERT_TRUE(fs::exists(path("run.xdmf")));
   EXPECT_EQ(xdmf_path_for(path("run.h5")), path("run.xdmf"));
   EXPECT_TRUE(identical(packing, read_packing(path("run.h5"))));  // /world is ignored on read
-  if (!has_python_module("meshio"))
-    FAIL()
-        << "python3-meshio not installed (a test dependency, installed by scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("meshio");
   std::size_t vertices = 0;
   std::size_t triangles = 0;
   for (const auto& particle : packing.particles) {
@@ -505,7 +488,7 @@ TEST_F(NativeFileTest, XdmfSideFileOpensInMeshio) {
 // 1..N, each triangle carrying its particle's number (read through meshio's XDMF reader, which
 // follows the HDF5 references with h5py).
 TEST_F(NativeFileTest, XdmfParticleAttributeCountsFromOne) {
-  ASSERT_TRUE(has_python_module("meshio")) << "python3-meshio not installed";
+  AGGPACK_REQUIRE_READER("meshio");
   const Packing packing = sample_packing();
   write_packing(packing, path("run.h5"), {.write_xdmf = true});
   std::string expected;

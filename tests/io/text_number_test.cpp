@@ -13,6 +13,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/io/export.h"
 #include "export_fixture.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -79,7 +80,7 @@ TEST(TextNumber, RejectsFieldsTooNarrowForAnyDouble) { EXPECT_THROW(fitted(1.0, 
 
 // The fixture as aggpack 0.1.0 wrote it stops ccx; the same coordinate in 20 characters runs.
 TEST(TextNumber, CalculixReadsTwentyCharactersAndNoMore) {
-  ASSERT_TRUE(test::has_program("ccx")) << "calculix-ccx not installed (scripts/install-deps.sh)";
+  AGGPACK_REQUIRE_READER("ccx");
   const std::string fixture = test::read_text(std::string(AGGPACK_SOURCE_DIR) +
                                               "/tests/io/fixtures/inp-long-numbers/single_tet.inp");
   const std::string long_number = "-1.1006292118507371e-05";

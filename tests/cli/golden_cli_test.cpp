@@ -1,0 +1,202 @@
+// Golden CLI tests: every folder of tests/cli/cases/ is one test, GoldenCli/Case.Matches/<name>.
+// Its commands run in a scratch folder and their printed text (and the output files it lists) must
+// match the references in its expected/ folder: text exactly, numbers within a relative 1e-9,
+// timings and paths masked. Layout and the regenerate mode: tests/cli/cases/README.md.
+//
+//   AGGPACK_REGENERATE_GOLDEN=1 ctest --test-dir build -R GoldenCli   rewrites every expected/
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/cli_test.h"
+#include "support/golden.h"
+
+namespace aggpack {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kCases = fs::path(AGGPACK_SOURCE_DIR) / "tests" / "cli" / "cases";
+
+bool is_regenerating() {
+  const char* value = std::getenv("AGGPACK_REGENERATE_GOLDEN");
+  return value != nullptr && std::string(value) == "1";
+}
+
+// Non-empty lines of a case file, without `#` comment lines.
+std::vector<std::string> lines_of(const fs::path& path) {
+  std::vector<std::string> lines;
+  std::istringstream in(test::file_text(path));
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line[0] != '#') lines.push_back(line);
+  }
+  return lines;
+}
+
+std::vector<std::string> case_names() {
+  std::vector<std::string> names;
+  if (!fs::is_directory(kCases)) return names;
+  for (const auto& entry : fs::directory_iterator(kCases)) {
+    if (entry.is_directory()) names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// True when `aggpack <subcommand> --help` works (the sanitized build has no settle/repose/sweep
+// and no render).
+bool has_subcommand(const std::string& subcommand) {
+  const std::string command = "'" AGGPACK_BINARY "' " + subcommand + " --help >/dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+class Case : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    source_ = kCases / GetParam();
+    scratch_ = fs::temp_directory_path() /
+               ("aggpack_golden_" + GetParam() + "_" + std::to_string(::getpid()));
+    fs::remove_all(scratch_);
+    fs::create_directories(scratch_);
+  }
+  void TearDown() override { fs::remove_all(scratch_); }
+
+  // Runs one command line inside scratch_; returns its transcript block.
+  [[nodiscard]] std::string run(const std::string& arguments) const {
+    const std::string out = scratch_.string() + ".stdout";
+    const std::string err = scratch_.string() + ".stderr";
+    const std::string command = "cd '" + scratch_.string() + "' && '" AGGPACK_BINARY "' " +
+                                arguments + " >'" + out + "' 2>'" + err + "' </dev/null";
+    const int status = std::system(command.c_str());
+    const int exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::string block = "$ aggpack " + arguments + "\n" + test::file_text(out);
+    const std::string error_text = test::file_text(err);
+    if (!error_text.empty()) block += "[stderr]\n" + error_text;
+    block += "[exit " + std::to_string(exit_code) + "]\n";
+    fs::remove(out);
+    fs::remove(err);
+    return test::mask_volatile(block, scratch_.string(), AGGPACK_BINARY);
+  }
+
+  fs::path source_;
+  fs::path scratch_;
+};
+
+TEST_P(Case, Matches) {
+  for (const std::string& subcommand : lines_of(source_ / "requires")) {
+    if (!has_subcommand(subcommand)) {
+      GTEST_SKIP() << "this aggpack has no '" << subcommand << "' subcommand";
+    }
+  }
+  const std::vector<std::string> commands = lines_of(source_ / "cmd");
+  ASSERT_FALSE(commands.empty()) << source_ / "cmd"
+                                 << " has no command";
+  // Every file of the case folder except its own control files is an input.
+  for (const auto& entry : fs::directory_iterator(source_)) {
+    const std::string name = entry.path().filename().string();
+    if (name == "cmd" || name == "outputs" || name == "requires" || name == "expected") continue;
+    fs::copy(entry.path(), scratch_ / name, fs::copy_options::recursive);
+  }
+  std::string transcript;
+  for (const std::string& command : commands) transcript += run(command);
+
+  std::vector<std::pair<std::string, std::string>> results = {{"transcript.txt", transcript}};
+  for (const std::string& output : lines_of(source_ / "outputs")) {
+    ASSERT_TRUE(fs::exists(scratch_ / output))
+        << "the case lists output " << output << " but the commands did not write it\n"
+        << transcript;
+    results.emplace_back(output, test::mask_volatile(test::file_text(scratch_ / output),
+                                                     scratch_.string(), AGGPACK_BINARY));
+  }
+
+  const fs::path expected = source_ / "expected";
+  if (is_regenerating()) {
+    fs::remove_all(expected);
+    for (const auto& [name, text] : results) write_file(expected / name, text);
+    std::cout << "[golden] regenerated " << expected.string() << "\n";
+    return;
+  }
+  for (const auto& [name, text] : results) {
+    const fs::path reference = expected / name;
+    ASSERT_TRUE(fs::exists(reference))
+        << reference << " is missing; write it with AGGPACK_REGENERATE_GOLDEN=1 ctest -R GoldenCli";
+    const std::string difference = test::golden_difference(test::file_text(reference), text);
+    EXPECT_TRUE(difference.empty())
+        << GetParam() << "/expected/" << name << " differs (" << difference
+        << ").\nIf the change is intended: AGGPACK_REGENERATE_GOLDEN=1 ctest --test-dir build -R "
+           "GoldenCli, then review `git diff tests/cli/cases`.\n--- got:\n"
+        << text;
+  }
+}
+
+// gtest names allow letters, digits and '_' only.
+std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param;
+  std::replace_if(
+      name.begin(), name.end(),
+      [](char c) { return std::isalnum(static_cast<unsigned char>(c)) == 0; }, '_');
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(GoldenCli, Case, ::testing::ValuesIn(case_names()), test_name);
+
+TEST(GoldenCli, EveryCaseHasACommandAndReferences) {
+  const std::vector<std::string> names = case_names();
+  ASSERT_FALSE(names.empty()) << kCases << " has no cases";
+  for (const std::string& name : names) {
+    EXPECT_TRUE(fs::exists(kCases / name / "cmd")) << name;
+    EXPECT_TRUE(fs::exists(kCases / name / "expected" / "transcript.txt")) << name;
+  }
+}
+
+// A new subcommand needs a golden case: every name under "Subcommands:" in `aggpack --help` is the
+// first word of some case's command.
+TEST(GoldenCli, EverySubcommandHasACase) {
+  const std::string help_path =
+      (fs::temp_directory_path() / ("aggpack_golden_help_" + std::to_string(::getpid()))).string();
+  const std::string command = "'" AGGPACK_BINARY "' --help >'" + help_path + "' 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::istringstream help(test::file_text(help_path));
+  fs::remove(help_path);
+  std::vector<std::string> subcommands;
+  bool is_listing = false;
+  for (std::string line; std::getline(help, line);) {
+    if (line.rfind("Subcommands:", 0) == 0) {
+      is_listing = true;
+    } else if (is_listing && line.size() > 2 && line[0] == ' ' && line[2] != ' ') {
+      subcommands.push_back(line.substr(2, line.find(' ', 2) - 2));
+    }
+  }
+  ASSERT_FALSE(subcommands.empty());
+  std::vector<std::string> covered;
+  for (const std::string& name : case_names()) {
+    for (const std::string& line : lines_of(kCases / name / "cmd")) {
+      covered.push_back(line.substr(0, line.find(' ')));
+    }
+  }
+  for (const std::string& subcommand : subcommands) {
+    EXPECT_NE(std::find(covered.begin(), covered.end(), subcommand), covered.end())
+        << "no golden case runs `aggpack " << subcommand << "` (add tests/cli/cases/" << subcommand
+        << "/)";
+  }
+}
+
+}  // namespace
+}  // namespace aggpack
