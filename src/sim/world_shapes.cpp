@@ -14,6 +14,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/geom/mass_properties.h"
+#include "aggpack/shape/descriptors.h"
 #include "world_impl.h"
 
 namespace aggpack {
@@ -23,8 +24,6 @@ namespace {
 constexpr double kMinSize = 1e-9;      // m, smallest equivalent diameter simulated
 constexpr double kMaxSize = 1e6;       // m, largest
 constexpr double kMaxSizeRatio = 1e6;  // largest / smallest in one world
-
-double equivalent_diameter(double volume) { return std::cbrt(6.0 * volume / std::numbers::pi); }
 
 }  // namespace
 
