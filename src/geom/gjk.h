@@ -516,12 +516,16 @@ inline FastAnswer update_tetrahedron(std::array<Vec3, 4>& p, std::array<std::uin
 }
 
 // kSeparated: distance certainly > threshold; kOverlapping: the bodies certainly overlap.
+// `axis` (A's frame, from A towards B; null or zero = none) is tried as the first search
+// direction; on kSeparated it receives the separating direction found (a warm start for the next
+// query of the same pair).
 template <class SupportA, class SupportB>
 FastAnswer boolean_gjk(const SupportA& a, const SupportB& b, const Mat3& rotation,
-                       const Vec3& translation, double threshold) {
+                       const Vec3& translation, double threshold, Vec3* axis = nullptr) {
   const double threshold_squared = threshold * threshold;
   // Towards the origin from the point (centre of A) - (centre of B) = -translation.
   Vec3 search = translation;
+  if (axis != nullptr && axis->squaredNorm() > 0.0) search = *axis;
   if (!(search.squaredNorm() > 0.0)) search = Vec3::UnitX();
   std::array<Vec3, 4> p;
   std::array<std::uint64_t, 4> key{};
@@ -536,9 +540,11 @@ FastAnswer boolean_gjk(const SupportA& a, const SupportB& b, const Mat3& rotatio
     if (!(progress > 0.0)) {
       // w did not pass the origin: the plane through w normal to `search` separates A - B from
       // the origin by -progress / |search|.
-      return (progress < 0.0 && progress * progress > threshold_squared * search.squaredNorm())
-                 ? FastAnswer::kSeparated
-                 : FastAnswer::kUnknown;
+      if (progress < 0.0 && progress * progress > threshold_squared * search.squaredNorm()) {
+        if (axis != nullptr) *axis = search;
+        return FastAnswer::kSeparated;
+      }
+      return FastAnswer::kUnknown;
     }
     const std::uint64_t new_key = (static_cast<std::uint64_t>(hint_a) << 32) | hint_b;
     for (int m = 0; m < size; ++m) {

@@ -70,12 +70,17 @@ DistanceResult distance_query(const SupportA& a, const Pose& pose_a, const Suppo
   return result;
 }
 
+// `axis`: see is_separated's warm-started overload (world frame; null = none).
 template <class SupportA, class SupportB>
 bool separation_query(const SupportA& a, const Pose& pose_a, const SupportB& b, const Pose& pose_b,
-                      double scale, double gap) {
+                      double scale, double gap, Vec3* axis = nullptr) {
   const RelativeFrame frame = relative_frame(pose_a, pose_b);
   const double tolerance = kProximityTolerance * scale;
-  const FastAnswer fast = boolean_gjk(a, b, frame.rotation, frame.translation, gap + tolerance);
+  Vec3 local = Vec3::Zero();
+  if (axis != nullptr) local = pose_a.rotation.conjugate() * *axis;
+  const FastAnswer fast = boolean_gjk(a, b, frame.rotation, frame.translation, gap + tolerance,
+                                      axis != nullptr ? &local : nullptr);
+  if (axis != nullptr && fast == FastAnswer::kSeparated) *axis = pose_a.rotation * local;
   if (fast != FastAnswer::kUnknown) return fast == FastAnswer::kSeparated;
   const GjkResult run =
       run_gjk(a, b, frame.rotation, frame.translation, tolerance, gap + tolerance);
@@ -161,6 +166,12 @@ bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a
 
 bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape& b,
                   const Pose& pose_b, double gap) {
+  Vec3 none = Vec3::Zero();
+  return is_separated(a, pose_a, b, pose_b, gap, none);
+}
+
+bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape& b,
+                  const Pose& pose_b, double gap, Vec3& axis) {
   if (a.vertex_count() == 0 || b.vertex_count() == 0) {
     throw InvalidInput("is_separated", "empty support shape", ">= 4 vertices");
   }
@@ -177,7 +188,7 @@ bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape&
     if (centre_distance_squared < inner_reach * inner_reach) return false;
   }
   return separation_query(ShapeSupport{a}, pose_a, ShapeSupport{b}, pose_b,
-                          a.bounding_radius() + b.bounding_radius(), gap);
+                          a.bounding_radius() + b.bounding_radius(), gap, &axis);
 }
 
 }  // namespace aggpack

@@ -102,13 +102,13 @@ class Hpmc {
   /// Whether particle i placed at `pose` is clear of every other particle (exact test, gap
   /// `gap`, neighbours from the grid).
   [[nodiscard]] bool is_clear(std::uint32_t i, const Pose& pose, double gap) const;
-  /// Whether particle i at `pose` has no new overlap partner compared with its current pose,
-  /// and `is_clean` = it overlaps nothing there.
-  [[nodiscard]] bool is_no_worse(std::uint32_t i, const Pose& pose, bool& is_clean) const;
   /// Calls visit(j) for every other particle j whose bounding sphere comes within `gap` of
   /// particle i's centred at `centre` (neighbour cells of i's cell); stops when visit is false.
   template <class Visit>
   void for_each_close(std::uint32_t i, const Vec3& centre, double gap, Visit&& visit) const;
+  /// The exact test of particle i at `pose` against particle j where it is (is_separated), warm-
+  /// started from i's cached separating direction for j and updating it.
+  [[nodiscard]] bool is_apart(std::uint32_t i, const Pose& pose, std::uint32_t j, double gap) const;
   /// Moves particle i to `pose` (its packed sphere too).
   void place(std::uint32_t i, const Pose& pose);
   [[nodiscard]] bool is_inside(std::uint32_t i, const Pose& pose, const Container& box) const;
@@ -128,6 +128,18 @@ class Hpmc {
   double solid_volume_ = 0.0;
   Grid grid_;
   std::vector<std::uint8_t> flagged_;  // may overlap something / be outside (squeeze)
+  // Warm starts of the exact test: per particle, the separating directions last found against
+  // up to kAxes neighbours (replaced round robin). They only make is_separated faster (most
+  // repeated queries of a slowly moving pair take one support pair instead of a whole GJK run);
+  // answers do not depend on them. Written only by the particle's own tests (its moves, repairs
+  // and flag refresh), so the cache, like everything else, is independent of the thread count.
+  static constexpr int kAxes = 8;
+  struct AxisCache {
+    std::uint32_t neighbour[kAxes];
+    float axis[kAxes][3];
+    std::uint8_t next;
+  };
+  mutable std::vector<AxisCache> axes_;
 };
 
 }  // namespace aggpack::detail

@@ -514,6 +514,20 @@ TEST(Overlap, AgreesWithBruteForceOnRandomPairs) {
     ASSERT_NEAR(by_polyhedron.distance, by_shape.distance, 1e-12 * scale);
     ASSERT_EQ(separated_0, !by_shape.is_intersecting);
     ASSERT_EQ(separated_0_polyhedron, !by_shape.is_intersecting);
+    // Warm-started queries answer the same whatever the hint (none, random, the contact normal
+    // and its opposite); an axis the query hands back separates the two bodies' vertices.
+    Rng hint_rng(77, static_cast<std::uint64_t>(trial));
+    for (const Vec3& hint : {Vec3(Vec3::Zero()), random_unit(hint_rng), normal, Vec3(-normal)}) {
+      Vec3 axis = hint;
+      ASSERT_EQ(is_separated(a.shape, pose_a, b.shape, pose_b, 0.0, axis), separated_0);
+      if (separated_0 && axis != hint) {
+        double top_a = -1e300;
+        double bottom_b = 1e300;
+        for (const Vec3& v : world_a.vertices()) top_a = std::max(top_a, axis.dot(v));
+        for (const Vec3& v : world_b.vertices()) bottom_b = std::min(bottom_b, axis.dot(v));
+        ASSERT_LT(top_a, bottom_b);
+      }
+    }
     switch (category) {
       case 2:  // touching: distance 0, and the brute force sees no strict overlap
         ASSERT_TRUE(by_shape.is_intersecting);

@@ -142,5 +142,12 @@ bool is_separated(const ConvexPolyhedron& a, const Pose& pose_a, double radius_a
 /// answer "certainly overlapping" without GJK).
 bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape& b,
                   const Pose& pose_b, double gap);
+/// As above, warm-started for bodies that move a little between queries (Monte Carlo): `axis`
+/// (world frame, any length; zero = none) is the first search direction, from a towards b; when
+/// the answer is a separation certified along the search it receives that separating direction.
+/// A caller that keeps `axis` per pair answers most repeated queries with one support pair. The
+/// answer is the same as without the hint (only certified separations count either way).
+bool is_separated(const SupportShape& a, const Pose& pose_a, const SupportShape& b,
+                  const Pose& pose_b, double gap, Vec3& axis);
 
 }  // namespace aggpack

@@ -70,7 +70,7 @@ struct DensifyOptions {
   double rotation_step = 0.1;         ///< initial rotation step (rad), (0, pi]
   double rotation_probability = 0.5;  ///< share of trial moves that rotate, [0, 1]
   /// kFixed: squeezes happen only on sweeps whose number is a multiple of this, [1, 1000].
-  std::uint32_t compress_interval = 1;
+  std::uint32_t compress_interval = 4;
   /// kFixed: largest relative shrink of any container extent in one squeeze, (0, 0.1]; the
   /// step starts at a quarter of it and adapts (x1.2 when a squeeze flags < 3 % of the
   /// particles, x0.7 above 12 % and for every stalled repair).
