@@ -91,8 +91,7 @@ void warn(const std::string& text) {
 
 // The dense kind's summary: the fill (in the enlarged container for fixed mode), the densifier,
 // the final container and fraction against the asked one, the grading per sieve size.
-void print_dense_summary(const PipelineResult& result, const Container& given,
-                         const std::vector<GradingPoint>& grading) {
+void print_dense_summary(const PipelineResult& result, const std::vector<GradingPoint>& grading) {
   const DenseFill& fill = *result.fill;
   const PackReport& report = result.report;
   fmt::print("fill            {}\n", fill.report.summary());
@@ -102,6 +101,7 @@ void print_dense_summary(const PipelineResult& result, const Container& given,
   }
   if (result.densify) fmt::print("densify         {}\n", result.densify->summary());
   fmt::print("particles       {}\n", report.placed);
+  const Container& given = fill.given;
   const bool is_given = result.packing.container.shape == given.shape;
   fmt::print("container       {}{}\n", describe_container(result.packing.container),
              is_given ? "" : fmt::format(" (given: {})", describe_container(given)));
@@ -114,34 +114,6 @@ void print_dense_summary(const PipelineResult& result, const Container& given,
                result.densify->bulk_upper, result.densify->surface_height);
   }
   fmt::print("{}", format_grading(grading));
-}
-
-// Warnings when a dense run ends short of what was asked: the fill jammed below its target
-// (fixed mode: the given container then holds less than asked), the densifier stopped early.
-void warn_dense_short(const PipelineResult& result, const Container& given) {
-  const DenseFill& fill = *result.fill;
-  const PackReport& report = result.report;
-  if (report.stop_reason == StopReason::kCancelled) {
-    warn("cancelled; the file holds the last verified state");
-    return;
-  }
-  if (fill.scale != 1.0 && fill.report.stop_reason != StopReason::kTargetReached) {
-    warn(fmt::format(
-        "the random fill stopped at {:.4f} solid, below packer.target_fraction {:.4f} in the "
-        "enlarged container ({}); compressed into the given container it is {:.4f} solid, below "
-        "densify.target_fraction {:.4f} (lower packer.target_fraction or raise packer.attempts)",
-        fill.report.solid_fraction, fill.report.target_solid_fraction,
-        to_string(fill.report.stop_reason), report.solid_fraction, fill.asked_fraction));
-  }
-  const DensifyReport& dense = *result.densify;
-  if (dense.stop != DensifyStop::kTargetReached && dense.stop != DensifyStop::kSettled) {
-    const bool is_given = result.packing.container.shape == given.shape;
-    warn("densify target not reached: " + dense.summary() +
-         "; the file holds the densest verified state" +
-         (is_given ? std::string()
-                   : " in " + describe_container(result.packing.container) +
-                         ", larger than the given " + describe_container(given)));
-  }
 }
 
 void run_pack(const PackFlags& flags) {
@@ -283,7 +255,7 @@ void run_pack(const PackFlags& flags) {
                nest_json(to_json(report, 2), 2), dense_json,
                written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
   } else if (result.fill) {
-    print_dense_summary(result, config.container(), grading);
+    print_dense_summary(result, grading);
     fmt::print("time            {:.2f} s shapes + {:.2f} s placement{}\n", report.shape_seconds,
                report.placement_seconds,
                result.densify ? fmt::format(" + {:.2f} s densify", result.densify->seconds) : "");
@@ -301,7 +273,7 @@ void run_pack(const PackFlags& flags) {
     for (const auto& line : written) fmt::print("wrote {}\n", line);
   }
   if (result.fill) {
-    warn_dense_short(result, config.container());
+    for (const std::string& line : dense_shortfalls(result)) warn(line);
   } else if (!report.is_target_reached) {
     warn("target not reached (" + to_string(report.stop_reason) + "): placed " +
          std::to_string(report.placed) + " of " + std::to_string(report.requested) +

@@ -141,10 +141,17 @@ void GuiApp::start_pack() {
     JobResult out;
     const bool is_cancelled = result.report.stop_reason == StopReason::kCancelled;
     out.is_ok = true;
-    out.message = fmt::format("{} {} particles, solid fraction {:.2f} %.\n{}",
-                              is_cancelled ? "Cancelled:" : "Packing finished!",
-                              result.packing.particles.size(), 100.0 * result.report.solid_fraction,
-                              result.report.summary());
+    out.message = fmt::format(
+        "{} {} particles, solid fraction {:.2f} %.\n{}",
+        is_cancelled ? "Cancelled:" : "Packing finished!", result.packing.particles.size(),
+        100.0 * result.report.solid_fraction,
+        result.fill ? "fill: " + result.fill->report.summary() : result.report.summary());
+    // The dense kind: the densifier, the asked fraction, and what fell short of it.
+    if (result.densify) out.message += "\ndensify: " + result.densify->summary();
+    if (result.fill && result.fill->asked_fraction > 0) {
+      out.message += fmt::format(" (asked {:.2f} %)", 100.0 * result.fill->asked_fraction);
+    }
+    for (const std::string& line : dense_shortfalls(result)) out.message += "\nWarning: " + line;
     out.packing = std::make_shared<const Packing>(std::move(result.packing));
     return out;
   });

@@ -1,10 +1,12 @@
 #include "aggpack/pipeline/pipeline.h"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "aggpack/core/error.h"
 #include "aggpack/pack/container.h"
@@ -51,13 +53,14 @@ struct PackerRun<DensePackOptions> {
         .report = result.report,
         .container = result.packing.container,
         .scale = 1.0,
-        .asked_fraction = o.densify.mode == DensifyMode::kFixed ? o.densify.target_fraction : 0.0};
+        .asked_fraction = o.densify.mode == DensifyMode::kFixed ? o.densify.target_fraction : 0.0,
+        .given = packer_container(PackerOptions{o})};
     DensifyOptions densify_options = o.densify;
     if (is_enlarged) {
       // Compress into exactly the given container. A fill that jammed below its target holds
       // less than asked x the given volume: then only the container is the target (the fraction
       // reached is reported, lower than asked).
-      const Container& given = std::get<RandomPackOptions>(o.fill).container;
+      const Container& given = fill.given;
       fill.scale = container_ratio(given, fill.container).x();
       densify_options.target_container = given;
       if (result.report.solid_volume < o.densify.target_fraction * given.volume()) {
@@ -130,6 +133,44 @@ PipelineResult pack(const PackerOptions& options, const PackControl& control) {
       options);
   stamp_provenance(result.packing, packer_kind_name(options), packer_seed(options), {});
   return result;
+}
+
+std::vector<std::string> dense_shortfalls(const PipelineResult& result) {
+  std::vector<std::string> lines;
+  if (!result.fill) return lines;
+  const DenseFill& fill = *result.fill;
+  const PackReport& report = result.report;
+  if (report.stop_reason == StopReason::kCancelled) {
+    lines.emplace_back("cancelled; the packing holds the last verified state");
+    return lines;
+  }
+  char text[1024];
+  if (fill.scale != 1.0 && fill.report.stop_reason != StopReason::kTargetReached) {
+    std::snprintf(text, sizeof text,
+                  "the random fill stopped at %.4f solid, below packer.target_fraction %.4f in the "
+                  "enlarged container (%s); compressed into the given container it is %.4f "
+                  "solid, below densify.target_fraction %.4f (lower packer.target_fraction or "
+                  "raise packer.attempts)",
+                  fill.report.solid_fraction, fill.report.target_solid_fraction,
+                  to_string(fill.report.stop_reason).c_str(), report.solid_fraction,
+                  fill.asked_fraction);
+    lines.emplace_back(text);
+  }
+  if (!result.densify) return lines;
+  const DensifyReport& dense = *result.densify;
+  if (dense.stop != DensifyStop::kTargetReached && dense.stop != DensifyStop::kSettled) {
+    std::string line = "densify target not reached: " + dense.summary() +
+                       "; the packing holds the densest verified state";
+    if (!(result.packing.container.shape == fill.given.shape)) {
+      std::snprintf(text, sizeof text,
+                    ", its container %.6g m^3, larger than the given %.6g m^3 (raise "
+                    "densify.max_sweeps or lower densify.target_fraction)",
+                    result.packing.container.volume(), fill.given.volume());
+      line += text;
+    }
+    lines.push_back(std::move(line));
+  }
+  return lines;
 }
 
 PipelineResult pack(const PackConfig& config, const PackControl& control) {

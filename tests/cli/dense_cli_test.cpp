@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -136,6 +137,36 @@ TEST_F(DenseCliTest, AJammedFillIsAWarningNamingBothFractions) {
   EXPECT_NE(bad.err.find("densify.target_fraction"), std::string::npos) << bad.err;
   EXPECT_EQ(bad.err.find('\n'), bad.err.size() - 1) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(path("bad.h5")));
+}
+
+// Every examples/dense-*.toml runs (small budgets), and so do the continue-from-file commands of
+// examples/dense-bed.toml's header.
+TEST_F(DenseCliTest, DenseExamplesAndTheContinueCommandsRun) {
+  int count = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(AGGPACK_SOURCE_DIR) + "/examples")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("dense-", 0) != 0 || entry.path().extension() != ".toml") continue;
+    ++count;
+    const PackConfig config = load_pack_config(entry.path().string());
+    const CliRun result = run("pack '" + entry.path().string() + "' -o " + name +
+                              ".h5 --progress none --set densify.max_sweeps=10");
+    ASSERT_EQ(result.exit_code, 0) << name << ": " << result.err;
+    EXPECT_NE(result.out.find("densify         "), std::string::npos) << name << result.out;
+    const Packing packing = read_packing(path(name + ".h5"));
+    EXPECT_EQ(packing.provenance.packer, "dense") << name;
+    EXPECT_GT(packing.particles.size(), 100u) << name;
+    // Bed: the given container; fixed after 10 sweeps: not compressed yet, never smaller.
+    EXPECT_GE(packing.container.volume(), config.container().volume() * (1 - 1e-12)) << name;
+  }
+  EXPECT_GE(count, 3);
+  const std::string paper = std::string(AGGPACK_SOURCE_DIR) + "/examples/paper.toml";
+  const CliRun lattice = run("pack '" + paper + "' -o lattice.h5 --progress none");
+  ASSERT_EQ(lattice.exit_code, 0) << lattice.err;
+  const CliRun bed =
+      run("densify lattice.h5 -o lattice-bed.h5 --mode bed --sweeps 5 --progress none");
+  ASSERT_EQ(bed.exit_code, 0) << bed.err;
+  EXPECT_NE(bed.out.find("bulk fraction"), std::string::npos) << bed.out;
 }
 
 }  // namespace

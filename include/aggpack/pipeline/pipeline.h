@@ -8,7 +8,10 @@
 // PackerRun specialisation in src/pipeline/pipeline.cpp; a kind without one fails to compile.
 
 #include <optional>
+#include <string>
 #include <string_view>
+#include <variant>
+#include <vector>
 
 #include "aggpack/config/config.h"
 #include "aggpack/pack/dense_packer.h"
@@ -29,6 +32,7 @@ struct DenseFill {
   Container container{};        ///< the container the fill ran in
   double scale = 1.0;           ///< k above; 1 when the fill ran in the user's container
   double asked_fraction = 0.0;  ///< d (fixed mode), 0 when no fraction was asked
+  Container given{};            ///< the user's container (the final one when all went well)
 };
 
 /// What pack() made. `report` is the packer's report (for "dense": the fill's counts and times,
@@ -39,6 +43,13 @@ struct PipelineResult : PackResult {
   std::optional<DensifyReport> densify{};
   std::optional<DenseFill> fill{};
 };
+
+/// What a "dense" run fell short of, one sentence each, for the front ends to show as warnings
+/// (empty when it reached what was asked, or for another kind): cancelled; the random fill
+/// stopped below its target (fixed mode: the given container then holds less than asked); the
+/// densifier stopped before its target (jammed, budget: the container may be larger than the
+/// given one).
+std::vector<std::string> dense_shortfalls(const PipelineResult& result);
 
 /// The "dense" kind's fill options as pack() runs them: in fixed mode with
 /// densify.target_fraction > 0 the random fill's container enlarged by DenseFill::scale (same
