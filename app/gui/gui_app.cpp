@@ -321,19 +321,20 @@ void GuiApp::draw_panel() {
   ImGui::SetNextWindowSize(ImVec2(static_cast<float>(panel_width()), static_cast<float>(height)));
   ImGui::Begin("aggpack", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  // Pack / Cancel, the progress and the status first: always in view, however many keys the
+  // chosen packer shows below (the dense kind adds its densify keys).
+  draw_job_section();
   ImGui::PushItemWidth(-150.0f);
   draw_config_section("Container", {"container"});
   draw_config_section("Particle shape", {"particle"});
   draw_config_section("Packer and grading", {"packer", "grading", "densify"});
   ImGui::PopItemWidth();
-  draw_job_section();
   draw_file_section();
   draw_view_section();
   ImGui::End();
 }
 
 void GuiApp::draw_job_section() {
-  ImGui::Separator();
   if (job_.is_running()) {
     ImGui::BeginDisabled();
     ImGui::Button("Pack", ImVec2(120, 0));
@@ -356,6 +357,7 @@ void GuiApp::draw_job_section() {
   } else {
     ImGui::TextWrapped("%s", status_.c_str());
   }
+  ImGui::Separator();
 }
 
 void GuiApp::draw_file_section() {
