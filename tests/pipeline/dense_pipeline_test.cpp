@@ -164,5 +164,39 @@ TEST(DensePipeline, BadCombinationsNameBothKeys) {
             "random.volume_fraction");
 }
 
+TEST(DensePipeline, DenseExamplesHaveTheDocumentedSettings) {
+  const std::string root = std::string(AGGPACK_SOURCE_DIR) + "/examples/";
+  const auto dense_of = [](const PackConfig& config) {
+    return std::get<DensePackOptions>(config.packer);
+  };
+  const PackConfig fuller = load_pack_config(root + "dense-fuller.toml");
+  const DensePackOptions f = dense_of(fuller);
+  const auto& f_fill = std::get<RandomPackOptions>(f.fill);
+  EXPECT_EQ(f_fill.grading.kind, GradingKind::kFuller);
+  EXPECT_EQ(f_fill.grading.size_min, 0.005);
+  EXPECT_EQ(f_fill.grading.size_max, 0.02);
+  EXPECT_EQ(f_fill.grading.exponent, 0.5);
+  EXPECT_EQ(fuller.container().get_if<BoxContainer>()->length, 0.1);
+  EXPECT_EQ(f.densify.mode, DensifyMode::kFixed);
+  EXPECT_EQ(f.densify.target_fraction, 0.5);
+  EXPECT_EQ(f_fill.volume_fraction, 0.35);
+  const DensePackOptions box = dense_of(load_pack_config(root + "dense-box.toml"));
+  EXPECT_EQ(box.densify.target_fraction, 0.56);
+  EXPECT_EQ(std::get<RandomPackOptions>(box.fill).volume_fraction, 0.2);
+  EXPECT_TRUE(is_into_given_container(box));
+  const PackConfig bed_config = load_pack_config(root + "dense-bed.toml");
+  const DensePackOptions bed = dense_of(bed_config);
+  const auto& b_fill = std::get<RandomPackOptions>(bed.fill);
+  EXPECT_EQ(bed.densify.mode, DensifyMode::kBed);
+  EXPECT_EQ(b_fill.shape.alpha, 0.5);
+  EXPECT_EQ(b_fill.grading.radius_min, 0.1);
+  EXPECT_EQ(b_fill.grading.radius_max, 0.1);
+  EXPECT_EQ(b_fill.shape.edge_length, 0.1);
+  EXPECT_EQ(b_fill.target, PackTarget::kCount);
+  EXPECT_EQ(b_fill.count, 1050u);
+  EXPECT_EQ(bed_config.container().get_if<BoxContainer>()->depth, 3.5);
+  EXPECT_FALSE(is_into_given_container(bed));
+}
+
 }  // namespace
 }  // namespace aggpack
