@@ -19,7 +19,7 @@ packages=(
   clang-14 libclang-rt-14-dev
   # independent readers used by the tests, and tools used by commands
   admesh calculix-ccx gmsh python3 python3-meshio python3-vtk9 python3-h5py python3-numpy
-  xvfb xauth gnuplot-nox
+  xvfb xauth xdotool gnuplot-nox
   # runs the exported YADE deck (export --deck yade); ~105 MB download, ~1.1 GB installed
   yade
 )

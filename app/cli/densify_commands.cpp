@@ -18,6 +18,8 @@
 #include "aggpack/io/native.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/dense_packer.h"
+#include "aggpack/pack/grading.h"
+#include "aggpack/pack/statistics.h"
 #include "aggpack/pipeline/pipeline.h"
 #include "commands.h"
 #include "progress.h"
@@ -97,6 +99,17 @@ double stored_gap(const Packing& packing) {
   }
 }
 
+// The target grading of the input's stored configuration, if it names one.
+std::optional<Grading> stored_grading(const Packing& packing) {
+  if (packing.provenance.config_toml.empty()) return std::nullopt;
+  try {
+    return parse_pack_config(packing.provenance.config_toml, "/provenance/config_toml")
+        .target_grading();
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
 // The densify run, as TOML comments appended to the stored configuration (the pack keys stay
 // parseable by `aggpack info`; issue 13 gives densify its own config table).
 std::string provenance_lines(const DensifyFlags& flags, const DensifyOptions& options) {
@@ -123,6 +136,7 @@ void run_densify(const DensifyFlags& flags) {
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   check_writable(flags.output, overwrite);
   Packing start = read_packing(flags.input);
+  const std::optional<Grading> target = stored_grading(start);
   DensifyOptions options;
   options.mode = parse_densify_mode("--mode", flags.mode);
   options.target_fraction = flags.target_fraction;
@@ -178,6 +192,9 @@ void run_densify(const DensifyFlags& flags) {
              report.moves_accepted, report.compressions);
   fmt::print("verified        {} close pairs by the exact test, min distance {:.6g} m\n",
              report.verified_pairs, report.min_distance);
+  // The grading of the final packing against the input's target, per sieve size (shapes and
+  // sizes never change, so it is the input's).
+  if (target) fmt::print("{}", format_grading(achieved_grading(result.packing, *target)));
   fmt::print("wrote {}\n", flags.output);
 }
 

@@ -89,6 +89,33 @@ void warn(const std::string& text) {
   std::fprintf(stderr, "aggpack: warning: %s\n", aggpack::clipped(text, 1000).c_str());
 }
 
+// The dense kind's summary: the fill (in the enlarged container for fixed mode), the densifier,
+// the final container and fraction against the asked one, the grading per sieve size.
+void print_dense_summary(const PipelineResult& result, const std::vector<GradingPoint>& grading) {
+  const DenseFill& fill = *result.fill;
+  const PackReport& report = result.report;
+  fmt::print("fill            {}\n", fill.report.summary());
+  if (fill.scale != 1.0) {
+    fmt::print("fill container  {} (the given one x {:.4f} in every extent)\n",
+               describe_container(fill.container), fill.scale);
+  }
+  if (result.densify) fmt::print("densify         {}\n", result.densify->summary());
+  fmt::print("particles       {}\n", report.placed);
+  const Container& given = fill.given;
+  const bool is_given = result.packing.container.shape == given.shape;
+  fmt::print("container       {}{}\n", describe_container(result.packing.container),
+             is_given ? "" : fmt::format(" (given: {})", describe_container(given)));
+  fmt::print("solid volume    {:.6g} m^3\n", report.solid_volume);
+  fmt::print("solid fraction  {:.4f}{}\n", report.solid_fraction,
+             fill.asked_fraction > 0 ? fmt::format(" (asked {:.4f})", fill.asked_fraction) : "");
+  if (result.densify && result.densify->bulk_fraction > 0) {
+    fmt::print("bulk fraction   {:.4f} in z [{:.6g}, {:.6g}] m, free surface at {:.6g} m\n",
+               result.densify->bulk_fraction, result.densify->bulk_lower,
+               result.densify->bulk_upper, result.densify->surface_height);
+  }
+  fmt::print("{}", format_grading(grading));
+}
+
 void run_pack(const PackFlags& flags) {
   std::vector<std::string> overrides = flags.overrides;
   // --seed and --threads are shortcuts for --set and win over it.
@@ -201,35 +228,53 @@ void run_pack(const PackFlags& flags) {
   outputs.commit();
 
   const PackReport& report = result.report;
+  // The dense kind: its final packing's grading against the target, per sieve size.
+  std::vector<GradingPoint> grading;
+  if (const std::optional<Grading> target = config.target_grading(); target && result.fill) {
+    grading = achieved_grading(packing, *target);
+  }
   if (flags.is_json) {
     std::string exports_json;
     for (const auto& entry : written_json) {
       exports_json += (exports_json.empty() ? "\n    " : ",\n    ") + entry;
     }
-    fmt::print("{{\n  \"output\": {},\n  \"report\": {}{}\n}}\n", aggpack::quoted(output),
-               nest_json(to_json(report, 2), 2),
+    std::string dense_json;
+    if (result.fill) {
+      dense_json += fmt::format(
+          ",\n  \"container\": {},\n  \"fill\": {{\n    \"container\": {},\n    \"scale\": {},\n"
+          "    \"asked_fraction\": {},\n    \"report\": {}\n  }}",
+          container_json(packing.container), container_json(result.fill->container),
+          result.fill->scale, result.fill->asked_fraction,
+          nest_json(to_json(result.fill->report, 2), 4));
+    }
+    if (result.densify) {
+      dense_json += ",\n  \"densify\": " + nest_json(to_json(*result.densify, 2), 2);
+    }
+    if (result.fill) dense_json += ",\n  \"grading\": " + nest_json(to_json(grading, 2), 2);
+    fmt::print("{{\n  \"output\": {},\n  \"report\": {}{}{}\n}}\n", aggpack::quoted(output),
+               nest_json(to_json(report, 2), 2), dense_json,
                written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
+  } else if (result.fill) {
+    print_dense_summary(result, grading);
+    fmt::print("time            {:.2f} s shapes + {:.2f} s placement{}\n", report.shape_seconds,
+               report.placement_seconds,
+               result.densify ? fmt::format(" + {:.2f} s densify", result.densify->seconds) : "");
   } else {
-    // A dense run's report is its fill's (what the densifier started from), with the final solid
-    // volume and fraction; the densify line says whether the densifier reached its target.
-    fmt::print("{}{}\n", result.densify ? "fill            " : "", report.summary());
-    if (result.densify) fmt::print("densify         {}\n", result.densify->summary());
+    fmt::print("{}\n", report.summary());
     fmt::print("particles       {}\n", report.placed);
     fmt::print("solid volume    {:.6g} m^3\n", report.solid_volume);
     fmt::print("solid fraction  {:.4f}\n", report.solid_fraction);
     fmt::print("time            {:.2f} s shapes + {:.2f} s placement\n", report.shape_seconds,
                report.placement_seconds);
+  }
+  if (!flags.is_json) {
     fmt::print("wrote {}{}\n", output,
                flags.has_xdmf ? " and " + xdmf_path_for(output) : std::string());
     for (const auto& line : written) fmt::print("wrote {}\n", line);
   }
-  const bool is_densify_short = result.densify &&
-                                result.densify->stop != DensifyStop::kTargetReached &&
-                                result.densify->stop != DensifyStop::kSettled;
-  if (is_densify_short) {
-    warn("densify target not reached: " + result.densify->summary() +
-         "; the file holds the densest verified state");
-  } else if (!result.densify && !report.is_target_reached) {
+  if (result.fill) {
+    for (const std::string& line : dense_shortfalls(result)) warn(line);
+  } else if (!report.is_target_reached) {
     warn("target not reached (" + to_string(report.stop_reason) + "): placed " +
          std::to_string(report.placed) + " of " + std::to_string(report.requested) +
          " particles; the file holds what was placed");

@@ -141,10 +141,17 @@ void GuiApp::start_pack() {
     JobResult out;
     const bool is_cancelled = result.report.stop_reason == StopReason::kCancelled;
     out.is_ok = true;
-    out.message = fmt::format("{} {} particles, solid fraction {:.2f} %.\n{}",
-                              is_cancelled ? "Cancelled:" : "Packing finished!",
-                              result.packing.particles.size(), 100.0 * result.report.solid_fraction,
-                              result.report.summary());
+    out.message = fmt::format(
+        "{} {} particles, solid fraction {:.2f} %.\n{}",
+        is_cancelled ? "Cancelled:" : "Packing finished!", result.packing.particles.size(),
+        100.0 * result.report.solid_fraction,
+        result.fill ? "fill: " + result.fill->report.summary() : result.report.summary());
+    // The dense kind: the densifier, the asked fraction, and what fell short of it.
+    if (result.densify) out.message += "\ndensify: " + result.densify->summary();
+    if (result.fill && result.fill->asked_fraction > 0) {
+      out.message += fmt::format(" (asked {:.2f} %)", 100.0 * result.fill->asked_fraction);
+    }
+    for (const std::string& line : dense_shortfalls(result)) out.message += "\nWarning: " + line;
     out.packing = std::make_shared<const Packing>(std::move(result.packing));
     return out;
   });
@@ -314,19 +321,20 @@ void GuiApp::draw_panel() {
   ImGui::SetNextWindowSize(ImVec2(static_cast<float>(panel_width()), static_cast<float>(height)));
   ImGui::Begin("aggpack", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  // Pack / Cancel, the progress and the status first: always in view, however many keys the
+  // chosen packer shows below (the dense kind adds its densify keys).
+  draw_job_section();
   ImGui::PushItemWidth(-150.0f);
   draw_config_section("Container", {"container"});
   draw_config_section("Particle shape", {"particle"});
   draw_config_section("Packer and grading", {"packer", "grading", "densify"});
   ImGui::PopItemWidth();
-  draw_job_section();
   draw_file_section();
   draw_view_section();
   ImGui::End();
 }
 
 void GuiApp::draw_job_section() {
-  ImGui::Separator();
   if (job_.is_running()) {
     ImGui::BeginDisabled();
     ImGui::Button("Pack", ImVec2(120, 0));
@@ -349,6 +357,7 @@ void GuiApp::draw_job_section() {
   } else {
     ImGui::TextWrapped("%s", status_.c_str());
   }
+  ImGui::Separator();
 }
 
 void GuiApp::draw_file_section() {

@@ -55,9 +55,11 @@ std::vector<PackKey> densify_keys() {
        .type = ValueType::kWord,
        .words = {to_string(DensifyMode::kFixed), to_string(DensifyMode::kBed)},
        .scope = kDense,
-       .doc = "fixed = compress the fill toward `densify.target_fraction` (the container shrinks "
-              "uniformly, moving positions only; shapes are never deformed); bed = a gravity "
-              "bed: moves biased downward until the bed stops sinking",
+       .doc = "fixed = end in the given container at `densify.target_fraction`: the random fill "
+              "runs in the container enlarged by (densify.target_fraction / "
+              "packer.target_fraction)^(1/3) in every extent and is compressed into the given one "
+              "(positions only; shapes are never deformed); bed = a gravity bed in the given "
+              "container: moves biased downward until the bed stops sinking",
        .binding = {.get = [](const PackConfig& c) -> Value {
                      const DensifyOptions* d = densify_of(c);
                      return to_string((d != nullptr ? *d : default_options<DensifyOptions>()).mode);
@@ -72,8 +74,10 @@ std::vector<PackKey> densify_keys() {
   keys.push_back(key(
       "densify.target_fraction", kFloat, "-", {.lo = 0, .hi = 0.95, .hi_end = End::kOpen},
       kFixedMode,
-      "solid fraction to compress to; 0 = no compression (the fill is only "
-      "shaken). The run stops there, or earlier when jammed or out of budget",
+      "solid fraction to reach in the given container (> packer.target_fraction, the fill's; "
+      "needs packer.fill = random); 0 = no compression (the fill is only shaken). The run "
+      "stops there, or earlier when jammed or out of budget (then the container is larger); a "
+      "fill that jams below its target gives a lower fraction; both are reported",
       [](auto& o) -> auto& { return o.target_fraction; }));
   PackKey gap = key(
       "densify.gap", kFloat, "m", closed(0, kHuge), kDense,

@@ -419,7 +419,8 @@ std::vector<PackKey> packer_keys() {
        .scope = kRandom,
        .written = kFractionTarget,
        .doc = "place particles until solid volume / container volume reaches this (the default "
-              "target)",
+              "target). packer.kind = dense, densify.mode = fixed: the fill's fraction in the "
+              "enlarged container, below `densify.target_fraction`",
        .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.volume_fraction; })),
        .fields = {"random.volume_fraction"}},
       random_integer(

@@ -19,6 +19,16 @@ std::string dump(const nlohmann::ordered_json& json, int indent) {
   return json.dump(indent < 0 ? -1 : indent) + (indent < 0 ? "" : "\n");
 }
 
+nlohmann::ordered_json grading_json(const std::vector<GradingPoint>& points) {
+  nlohmann::ordered_json grading = nlohmann::ordered_json::array();
+  for (const auto& point : points) {
+    grading.push_back({{"size_m", point.size},
+                       {"target_percent", point.target_percent},
+                       {"achieved_percent", point.achieved_percent}});
+  }
+  return grading;
+}
+
 }  // namespace
 
 std::string to_json(const PackingStatistics& statistics, int indent) {
@@ -36,13 +46,7 @@ std::string to_json(const PackingStatistics& statistics, int indent) {
                                      {"solid_fraction", profile.solid_fraction}};
   }
   json["profiles"] = profiles;
-  nlohmann::ordered_json grading = nlohmann::ordered_json::array();
-  for (const auto& point : statistics.grading) {
-    grading.push_back({{"size_m", point.size},
-                       {"target_percent", point.target_percent},
-                       {"achieved_percent", point.achieved_percent}});
-  }
-  json["grading"] = grading;
+  json["grading"] = grading_json(statistics.grading);
   nlohmann::ordered_json descriptors = nlohmann::ordered_json::object();
   for (const auto& descriptor : statistics.descriptors) {
     nlohmann::ordered_json entry = summary_json(descriptor.stats);
@@ -68,6 +72,29 @@ std::string to_json(const PackReport& report, int indent) {
   json["target_solid_fraction"] = report.target_solid_fraction;
   json["shape_seconds"] = report.shape_seconds;
   json["placement_seconds"] = report.placement_seconds;
+  return dump(json, indent);
+}
+
+std::string to_json(const std::vector<GradingPoint>& grading, int indent) {
+  return dump(grading_json(grading), indent);
+}
+
+std::string to_json(const DensifyReport& report, int indent) {
+  nlohmann::ordered_json json;
+  json["stop"] = to_string(report.stop);
+  json["sweeps"] = report.sweeps;
+  json["moves_tried"] = report.moves_tried;
+  json["moves_accepted"] = report.moves_accepted;
+  json["compressions"] = report.compressions;
+  json["start_fraction"] = report.start_fraction;
+  json["solid_fraction"] = report.solid_fraction;
+  json["bulk_fraction"] = report.bulk_fraction;
+  json["bulk_lower_m"] = report.bulk_lower;
+  json["bulk_upper_m"] = report.bulk_upper;
+  json["surface_height_m"] = report.surface_height;
+  json["seconds"] = report.seconds;
+  json["verified_pairs"] = report.verified_pairs;
+  json["min_distance_m"] = report.min_distance;
   return dump(json, indent);
 }
 

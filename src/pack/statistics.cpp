@@ -172,6 +172,22 @@ PackingStatistics compute_statistics(const Packing& packing, const StatisticsOpt
   return stats;
 }
 
+std::string format_grading(const std::vector<GradingPoint>& grading) {
+  if (grading.empty()) return "";
+  std::string text = "grading (volume % passing, size = control diameter)\n";
+  char line[256];
+  std::snprintf(line, sizeof line, "  %12s %10s %10s %8s\n", "size [m]", "target", "achieved",
+                "diff");
+  text += line;
+  for (const auto& point : grading) {
+    std::snprintf(line, sizeof line, "  %12.6g %10.2f %10.2f %+8.2f\n", point.size,
+                  point.target_percent, point.achieved_percent,
+                  point.achieved_percent - point.target_percent);
+    text += line;
+  }
+  return text;
+}
+
 std::string format_statistics(const PackingStatistics& stats) {
   std::string text;
   char line[512];
@@ -191,14 +207,7 @@ std::string format_statistics(const PackingStatistics& stats) {
     for (double value : profile.solid_fraction) add(" %.3f", value);
     text += "\n";
   }
-  if (!stats.grading.empty()) {
-    text += "grading (volume % passing, size = control diameter)\n";
-    add("  %12s %10s %10s %8s\n", "size [m]", "target", "achieved", "diff");
-    for (const auto& point : stats.grading) {
-      add("  %12.6g %10.2f %10.2f %+8.2f\n", point.size, point.target_percent,
-          point.achieved_percent, point.achieved_percent - point.target_percent);
-    }
-  }
+  text += format_grading(stats.grading);
   if (!stats.descriptors.empty()) {
     text += "shape descriptors (per particle)\n";
     add("  %-22s %-5s %12s %12s %12s %12s\n", "name", "unit", "mean", "std dev", "min", "max");

@@ -1,10 +1,15 @@
 #include "aggpack/pipeline/pipeline.h"
 
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <variant>
+#include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/pack/container.h"
 
 namespace aggpack {
 
@@ -37,11 +42,32 @@ template <>
 struct PackerRun<DensePackOptions> {
   static PipelineResult run(const DensePackOptions& o, const PackControl& control) {
     validate(o);  // all of it before the fill runs
+    const auto fill_options = dense_fill_options(o);
+    const bool is_enlarged = is_into_given_container(o);
     PipelineResult result = std::visit(
         [&](const auto& fill) {
           return PackerRun<std::decay_t<decltype(fill)>>::run(fill, control);
         },
-        o.fill);
+        fill_options);
+    DenseFill fill{
+        .report = result.report,
+        .container = result.packing.container,
+        .scale = 1.0,
+        .asked_fraction = o.densify.mode == DensifyMode::kFixed ? o.densify.target_fraction : 0.0,
+        .given = packer_container(PackerOptions{o})};
+    DensifyOptions densify_options = o.densify;
+    if (is_enlarged) {
+      // Compress into exactly the given container. A fill that jammed below its target holds
+      // less than asked x the given volume: then only the container is the target (the fraction
+      // reached is reported, lower than asked).
+      const Container& given = fill.given;
+      fill.scale = container_ratio(given, fill.container).x();
+      densify_options.target_container = given;
+      if (result.report.solid_volume < o.densify.target_fraction * given.volume()) {
+        densify_options.target_fraction = 0.0;
+      }
+    }
+    result.fill = fill;
     if (result.report.stop_reason == StopReason::kCancelled) return result;
     PackControl densify_control = control;
     if (control.on_progress) {
@@ -51,11 +77,16 @@ struct PackerRun<DensePackOptions> {
         control.on_progress(staged);
       };
     }
-    DensifyResult dense = densify(std::move(result.packing), o.densify, densify_control);
+    DensifyResult dense = densify(std::move(result.packing), densify_options, densify_control);
     result.packing = std::move(dense.packing);
     PackReport& report = result.report;
     report.container_volume = result.packing.container.volume();
     report.solid_fraction = dense.report.solid_fraction;
+    report.target_solid_fraction = fill.asked_fraction;
+    const bool is_densified = dense.report.stop == DensifyStop::kTargetReached ||
+                              dense.report.stop == DensifyStop::kSettled;
+    report.is_target_reached =
+        is_densified && report.solid_fraction >= fill.asked_fraction * (1 - 1e-9);
     if (dense.report.stop == DensifyStop::kCancelled) {
       report.stop_reason = StopReason::kCancelled;
       report.is_target_reached = false;
@@ -78,6 +109,23 @@ void stamp_provenance(Packing& packing, std::string_view packer, std::uint64_t s
 
 PackerOptions packer_options(const PackConfig& config) { return config.packer; }
 
+bool is_into_given_container(const DensePackOptions& options) {
+  return options.densify.mode == DensifyMode::kFixed && options.densify.target_fraction > 0.0 &&
+         std::holds_alternative<RandomPackOptions>(options.fill);
+}
+
+std::variant<RandomPackOptions, LatticeOptions> dense_fill_options(
+    const DensePackOptions& options) {
+  validate(options);  // packer.target_fraction < densify.target_fraction, a random fill, ...
+  if (!is_into_given_container(options)) return options.fill;
+  RandomPackOptions fill = std::get<RandomPackOptions>(options.fill);
+  // Every extent by k = (d / p)^(1/3): the fill's target p in the enlarged container is a solid
+  // volume of d x the given container's volume.
+  const double scale = std::cbrt(options.densify.target_fraction / fill.volume_fraction);
+  fill.container = container_scaled(fill.container, Vec3::Constant(scale));
+  return fill;
+}
+
 PipelineResult pack(const PackerOptions& options, const PackControl& control) {
   // Every packer validates its options first (the key named in the error).
   PipelineResult result = std::visit(
@@ -85,6 +133,44 @@ PipelineResult pack(const PackerOptions& options, const PackControl& control) {
       options);
   stamp_provenance(result.packing, packer_kind_name(options), packer_seed(options), {});
   return result;
+}
+
+std::vector<std::string> dense_shortfalls(const PipelineResult& result) {
+  std::vector<std::string> lines;
+  if (!result.fill) return lines;
+  const DenseFill& fill = *result.fill;
+  const PackReport& report = result.report;
+  if (report.stop_reason == StopReason::kCancelled) {
+    lines.emplace_back("cancelled; the packing holds the last verified state");
+    return lines;
+  }
+  char text[1024];
+  if (fill.scale != 1.0 && fill.report.stop_reason != StopReason::kTargetReached) {
+    std::snprintf(text, sizeof text,
+                  "the random fill stopped at %.4f solid, below packer.target_fraction %.4f in the "
+                  "enlarged container (%s); compressed into the given container it is %.4f "
+                  "solid, below densify.target_fraction %.4f (lower packer.target_fraction or "
+                  "raise packer.attempts)",
+                  fill.report.solid_fraction, fill.report.target_solid_fraction,
+                  to_string(fill.report.stop_reason).c_str(), report.solid_fraction,
+                  fill.asked_fraction);
+    lines.emplace_back(text);
+  }
+  if (!result.densify) return lines;
+  const DensifyReport& dense = *result.densify;
+  if (dense.stop != DensifyStop::kTargetReached && dense.stop != DensifyStop::kSettled) {
+    std::string line = "densify target not reached: " + dense.summary() +
+                       "; the packing holds the densest verified state";
+    if (!(result.packing.container.shape == fill.given.shape)) {
+      std::snprintf(text, sizeof text,
+                    ", its container %.6g m^3, larger than the given %.6g m^3 (raise "
+                    "densify.max_sweeps or lower densify.target_fraction)",
+                    result.packing.container.volume(), fill.given.volume());
+      line += text;
+    }
+    lines.push_back(std::move(line));
+  }
+  return lines;
 }
 
 PipelineResult pack(const PackConfig& config, const PackControl& control) {

@@ -78,12 +78,24 @@ TEST_F(DensifyCliTest, FixedModeWritesAVerifiedDensePackingWithProvenance) {
 // The dense packer kind through the config: `aggpack pack --set packer.kind=dense`.
 TEST_F(DensifyCliTest, PackWithTheDenseKindWritesAVerifiedPackingWhoseConfigRepacksIt) {
   const CliRun result =
-      run("pack loose.toml --set packer.kind=dense --set densify.target_fraction=0.32 "
-          "--set densify.max_sweeps=2000 -o dense.h5 --progress none");
+      run("pack loose.toml --set packer.kind=dense --set packer.target_fraction=0.2 "
+          "--set densify.target_fraction=0.32 --set densify.max_sweeps=2000 -o dense.h5 "
+          "--progress none");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.out.find("dense packer, seed 3"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("target reached"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("(asked 0.3200)"), std::string::npos) << result.out;
+  EXPECT_TRUE(result.err.empty()) << result.err;  // no warning: fill and densifier reached
+  // The fill ran enlarged; the output box is the given one.
+  EXPECT_NE(result.out.find("fill container  box 0.4678"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("container       box 0.4 x 0.4 x 0.4 m"), std::string::npos)
+      << result.out;
   const Packing dense = read_packing((folder_ / "dense.h5").string());
+  const auto* box = dense.container.get_if<BoxContainer>();
+  ASSERT_NE(box, nullptr);
+  EXPECT_EQ(box->length, 0.4);
+  EXPECT_EQ(box->width, 0.4);
+  EXPECT_EQ(box->depth, 0.4);
   EXPECT_EQ(dense.provenance.packer, "dense");
   EXPECT_EQ(dense.provenance.seed, 3u);
   const VerifyResult check = verify(dense, {.is_brute_force = true});

@@ -2,7 +2,8 @@
 # GUI smoke test: under a virtual X server, aggpack-gui packs a small lattice (--pack), saves a
 # screenshot of its window (--screenshot) and exits (--quit); check_screenshot.py then inspects
 # the picture. With the CLI it also opens CLI-made packings (a uniform and a sieve grading) and
-# checks the panel they fill, and packs a sieve grading in the GUI.
+# checks the panel they fill, and packs a sieve grading in the GUI. Then the dense packer kind:
+# Pack, and the Cancel button (clicked with xdotool) stops its densifier.
 # Usage: smoke_test.sh AGGPACK_GUI OUTPUT_DIR [AGGPACK_CLI]
 set -euo pipefail
 gui="$1"
@@ -76,3 +77,21 @@ if [ -n "$cli" ]; then
     grep -qF ' grading.sieve=[[0.005,0.0],[0.008,20.0],[0.0112,50.0],[0.016,100.0]]' ||
     { echo "the packing panel line lacks the sieve table"; exit 1; }
 fi
+
+# The dense kind (examples/dense-box.toml, a budget it cannot finish for minutes): Pack at start,
+# click Cancel (the job section is at the top of the panel: Pack at x 8-128, Cancel right of it,
+# y ~37 below the title bar); the run ends cancelled with the last verified state shown.
+command -v xdotool > /dev/null || { echo "xdotool is missing (scripts/install-deps.sh)"; exit 1; }
+rm -f "$out/dense-cancel.txt" "$out/dense-cancel.png"
+xvfb-run -a -s "-screen 0 1000x700x24" bash -c '
+  "$1" "$2" --set densify.max_sweeps=1000000 --pack --quit --size 1000x700 \
+    --screenshot "$3.png" > "$3.txt" 2>&1 &
+  pid=$!
+  sleep 5
+  xdotool mousemove 236 37 click 1
+  wait $pid' _ "$gui" "$here/../../examples/dense-box.toml" "$out/dense-cancel" ||
+  { cat "$out/dense-cancel.txt"; exit 1; }
+cat "$out/dense-cancel.txt"
+grep -q "status: Cancelled: 1055 particles" "$out/dense-cancel.txt"
+grep -q "^Warning: cancelled; the packing holds the last verified state" "$out/dense-cancel.txt"
+python3 "$here/check_screenshot.py" "$out/dense-cancel.png" 1000 700

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <string>
 #include <variant>
 #include <vector>
@@ -75,15 +76,29 @@ TEST(Pipeline, RandomKindGivesTheRandomPackersPacking) {
 }
 
 TEST(Pipeline, DenseKindIsTheFillThenTheDensifier) {
+  // Fixed mode with a fraction target: the fill runs in the given container enlarged by
+  // (0.3 / 0.22)^(1/3), the densifier compresses it into the given container.
   const DensePackOptions options = small_dense();
-  const DensifyResult direct = densify(pack_random(small_random()).packing, options.densify);
+  RandomPackOptions fill = small_random();
+  volatile double fraction = 0.22;  // cbrt at run time, as the pipeline (no constant folding)
+  fill.container = container_scaled(fill.container, Vec3::Constant(std::cbrt(0.3 / fraction)));
+  DensifyOptions densify_options = options.densify;
+  densify_options.target_container = small_random().container;
+  const PackResult filled = pack_random(fill);
+  if (filled.report.solid_volume < 0.3 * small_random().container.volume()) {
+    densify_options.target_fraction = 0.0;  // the fill jammed: the given container only
+  }
+  const DensifyResult direct = densify(filled.packing, densify_options);
   const PipelineResult piped = pack(PackerOptions{options});
   expect_identical(piped.packing, direct.packing);
   ASSERT_TRUE(piped.densify);
   EXPECT_EQ(piped.densify->sweeps, direct.report.sweeps);
   EXPECT_EQ(piped.densify->stop, DensifyStop::kTargetReached) << piped.densify->summary();
   EXPECT_EQ(piped.report.solid_fraction, direct.report.solid_fraction);
-  EXPECT_GE(piped.report.solid_fraction, 0.3 * (1 - 1e-9));
+  EXPECT_TRUE(piped.packing.container.shape == small_random().container.shape);
+  ASSERT_TRUE(piped.fill);
+  EXPECT_EQ(piped.fill->report.placed, filled.report.placed);
+  EXPECT_TRUE(piped.fill->container.shape == fill.container.shape);
   EXPECT_EQ(piped.report.container_volume, piped.packing.container.volume());
   EXPECT_EQ(piped.packing.provenance.packer, "dense");
   EXPECT_EQ(piped.packing.provenance.seed, 3u);  // the fill's seed
@@ -101,7 +116,7 @@ TEST(Pipeline, DenseConfigRunEqualsTheOptionsRunAndItsResolvedConfig) {
   const PipelineResult piped = pack(config);
   const PipelineResult direct = pack(PackerOptions{options});
   expect_identical(piped.packing, direct.packing);
-  EXPECT_GE(piped.report.solid_fraction, 0.3 * (1 - 1e-9));
+  EXPECT_EQ(piped.report.solid_fraction, direct.report.solid_fraction);
   EXPECT_EQ(piped.packing.provenance.config_toml, config.resolved_toml);
   EXPECT_EQ(piped.packing.provenance.packer, "dense");
   EXPECT_EQ(piped.packing.provenance.seed, 3u);

@@ -2,7 +2,9 @@
 // JSON text of packing statistics and pack reports (nlohmann-json, in aggpack_io).
 
 #include <string>
+#include <vector>
 
+#include "aggpack/pack/dense_packer.h"
 #include "aggpack/pack/progress.h"
 #include "aggpack/pack/statistics.h"
 
@@ -20,5 +22,14 @@ std::string to_json(const PackingStatistics& statistics, int indent = 2);
 /// attempts, solid_volume_m3, container_volume_m3, solid_fraction, target_solid_fraction,
 /// shape_seconds, placement_seconds).
 std::string to_json(const PackReport& report, int indent = 2);
+
+/// An achieved-vs-target grading table as a JSON array [{size_m, target_percent,
+/// achieved_percent}] (the "grading" of the statistics).
+std::string to_json(const std::vector<GradingPoint>& grading, int indent = 2);
+
+/// A densify report as a JSON object (stop, sweeps, moves_tried, moves_accepted, compressions,
+/// start_fraction, solid_fraction, bulk_fraction, bulk_lower_m, bulk_upper_m, surface_height_m,
+/// seconds, verified_pairs, min_distance_m).
+std::string to_json(const DensifyReport& report, int indent = 2);
 
 }  // namespace aggpack

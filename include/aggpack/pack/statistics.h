@@ -57,6 +57,10 @@ PackingStatistics compute_statistics(const Packing& packing, const StatisticsOpt
 /// A readable multi-line summary (count, volumes, fraction, profiles, grading table, descriptors).
 std::string format_statistics(const PackingStatistics& statistics);
 
+/// The achieved-vs-target grading table of format_statistics (a title line and one row per sieve
+/// size: size, target, achieved, difference in volume % passing); "" when `grading` is empty.
+std::string format_grading(const std::vector<GradingPoint>& grading);
+
 /// Volume (m^3) of the part of a convex body with coordinate `axis` <= `level` (exact slicing).
 double volume_below(const ConvexPolyhedron& body, int axis, double level);
 

@@ -8,7 +8,10 @@
 // PackerRun specialisation in src/pipeline/pipeline.cpp; a kind without one fails to compile.
 
 #include <optional>
+#include <string>
 #include <string_view>
+#include <variant>
+#include <vector>
 
 #include "aggpack/config/config.h"
 #include "aggpack/pack/dense_packer.h"
@@ -20,12 +23,42 @@ namespace aggpack {
 /// The packer options a resolved configuration selects.
 PackerOptions packer_options(const PackConfig& config);
 
+/// The "dense" kind's fill as it ran. In fixed mode with densify.target_fraction d > 0 the fill
+/// runs in the user's container scaled by k = (d / p)^(1/3) in every extent (p = the fill's
+/// target fraction, packer.target_fraction), so its solid volume is about d x the user's
+/// container volume, and the densifier compresses it into exactly the user's container.
+struct DenseFill {
+  PackReport report{};          ///< the fill's own report (its container, counts, fraction)
+  Container container{};        ///< the container the fill ran in
+  double scale = 1.0;           ///< k above; 1 when the fill ran in the user's container
+  double asked_fraction = 0.0;  ///< d (fixed mode), 0 when no fraction was asked
+  Container given{};            ///< the user's container (the final one when all went well)
+};
+
 /// What pack() made. `report` is the packer's report (for "dense": the fill's counts and times,
-/// with container_volume, solid_fraction and stop_reason of the final, densified packing);
-/// `densify` is set for the "dense" kind unless the fill was cancelled.
+/// with container_volume, solid_fraction, is_target_reached and stop_reason of the final,
+/// densified packing); `densify` and `fill` are set for the "dense" kind (densify unless the fill
+/// was cancelled).
 struct PipelineResult : PackResult {
   std::optional<DensifyReport> densify{};
+  std::optional<DenseFill> fill{};
 };
+
+/// What a "dense" run fell short of, one sentence each, for the front ends to show as warnings
+/// (empty when it reached what was asked, or for another kind): cancelled; the random fill
+/// stopped below its target (fixed mode: the given container then holds less than asked); the
+/// densifier stopped before its target (jammed, budget: the container may be larger than the
+/// given one).
+std::vector<std::string> dense_shortfalls(const PipelineResult& result);
+
+/// The "dense" kind's fill options as pack() runs them: in fixed mode with
+/// densify.target_fraction > 0 the random fill's container enlarged by DenseFill::scale (same
+/// wall_gap); otherwise the fill unchanged. \throw InvalidInput as validate(DensePackOptions).
+std::variant<RandomPackOptions, LatticeOptions> dense_fill_options(const DensePackOptions& options);
+
+/// Whether pack() runs the "dense" kind's fill enlarged and compresses it into the user's
+/// container (fixed mode, densify.target_fraction > 0, random fill).
+bool is_into_given_container(const DensePackOptions& options);
 
 /// Runs the kind's packer and stamps the provenance: aggpack version, seed (packer_seed()),
 /// packer (the kind's word), no configuration text. Progress stages: kShapes and kPlacement of
