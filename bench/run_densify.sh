@@ -26,8 +26,9 @@ log=summary.txt
   echo "# $("$aggpack" --version 2>/dev/null || true)"
 } >>"$log"
 
-# name, container edge (m), fill fraction; single size alpha 0.5, L = r, r = 10 mm.
-single() {
+# config NAME EDGE FILL SIZES: a random-packing config in a cube of EDGE m filled to FILL, alpha
+# 0.5, L = r; SIZES is the size block (single size or a grading).
+config() {
   cat >"$1.toml" <<EOF
 [container]
 kind = "box"
@@ -36,9 +37,9 @@ width = $2
 depth = $2
 [particle]
 alpha = 0.5
-radius = 0.01
 edge_length = 0.0
 edge_length_ratio = 1.0
+$4
 [packer]
 kind = "random"
 seed = 1
@@ -46,34 +47,17 @@ target_fraction = $3
 gap = 0.0
 EOF
 }
-# Fuller d 5-20 mm (d_max/d_min = 4), q = 0.5, alpha 0.5, L = r.
-fuller() {
-  cat >"$1.toml" <<EOF
-[container]
-kind = "box"
-length = $2
-width = $2
-depth = $2
-[particle]
-alpha = 0.5
-edge_length = 0.0
-edge_length_ratio = 1.0
-[grading]
+single_size='radius = 0.01'  # r = 10 mm
+# Fuller d 5-20 mm (d_max/d_min = 4), q = 0.5.
+fuller_grading='[grading]
 kind = "fuller"
 size_min = 0.005
 size_max = 0.02
-exponent = 0.5
-[packer]
-kind = "random"
-seed = 1
-target_fraction = $3
-gap = 0.0
-EOF
-}
+exponent = 0.5'
 
-single single-10k 0.302 0.33
-single single-100k 0.672 0.33
-fuller fuller-10k 0.12 0.45
+config single-10k 0.302 0.33 "$single_size"
+config single-100k 0.672 0.33 "$single_size"
+config fuller-10k 0.12 0.45 "$fuller_grading"
 for start in single-10k single-100k fuller-10k; do
   [ -f "$start.h5" ] || "$aggpack" pack "$start.toml" -o "$start.h5" --progress none >/dev/null
 done
