@@ -355,14 +355,22 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
         const Container& now = engine.container();
         const double k_max = (Vec3::Ones() - container_ratio(now, target)).maxCoeff();
         const std::size_t before = flagged;
-        flagged = engine.squeeze(target, std::min(1.0, squeeze_step / k_max));
+        // Aim at 3-12 % of the particles made to overlap per squeeze. A squeeze that flags more
+        // is undone at once and retried half as large (a step adapted at a lower density, or a
+        // continued run's first squeeze, would otherwise leave more overlaps than the repair can
+        // undo at this density).
+        const detail::Hpmc::State unsqueezed = engine.state(true);
+        double fresh = 0.0;
+        for (int retry = 0;; ++retry) {
+          flagged = engine.squeeze(target, std::min(1.0, squeeze_step / k_max));
+          fresh = flagged > before ? static_cast<double>(flagged - before) : 0.0;
+          if (fresh <= 0.12 * particle_count || retry == 8) break;
+          engine.restore(unsqueezed);
+          squeeze_step *= 0.5;
+        }
         ++since_checkpoint;
-        // Aim at 3-12 % of the particles made to overlap per squeeze.
-        const double fresh = flagged > before ? static_cast<double>(flagged - before) : 0.0;
         if (fresh < 0.03 * particle_count) {
           squeeze_step = std::min(options.max_compression, squeeze_step * 1.2);
-        } else if (fresh > 0.12 * particle_count) {
-          squeeze_step *= 0.7;
         }
         if (flagged == 0) {
           report.compressions += since_checkpoint;
@@ -376,6 +384,12 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
             consolidate_sweeps = 0;
           }
         }
+      }
+      if (is_repairing && !is_consolidating && flagged > allowed_overlaps) {
+        // No squeeze until the repair gets below the allowance: stalls are handled as in a
+        // consolidation (partial undo, then the checkpoint), else the run could wait forever.
+        is_consolidating = true;
+        consolidate_sweeps = 0;
       }
       history.push_back(fraction_now());
       if (history.size() > options.stall_sweeps) {

@@ -227,7 +227,12 @@ std::size_t Hpmc::flagged_count() const {
 void Hpmc::restore(const State& state) {
   container_ = state.container;
   poses_ = state.poses;
-  std::fill(flagged_.begin(), flagged_.end(), 0);
+  if (state.flagged.empty()) {
+    std::fill(flagged_.begin(), flagged_.end(), 0);
+  } else {
+    flagged_ = state.flagged;
+  }
+  build_grid(Vec3::Zero());  // the packed spheres follow the poses
 }
 
 std::size_t Hpmc::squeeze(const Container& target, double t) {

@@ -59,8 +59,12 @@ class Hpmc {
   struct State {
     Container container;
     std::vector<Pose> poses;
+    std::vector<std::uint8_t> flagged;  // empty: none (a checkpoint is clean)
   };
-  [[nodiscard]] State state() const { return {container_, poses_}; }
+  /// The container and poses; with `with_flags`, the flags too (a state taken mid-repair).
+  [[nodiscard]] State state(bool with_flags = false) const {
+    return {container_, poses_, with_flags ? flagged_ : std::vector<std::uint8_t>{}};
+  }
   void restore(const State& state);
 
   [[nodiscard]] const Container& container() const { return container_; }

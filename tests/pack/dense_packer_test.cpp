@@ -128,6 +128,22 @@ TEST(DensePacker, FractionRisesMonotonicallyWithTheSweepBudget) {
   EXPECT_GT(previous, first + 0.01);
 }
 
+// A run continued from a dense packing starts with a squeeze sized for a loose one (here the
+// largest allowed, max_compression 0.1, a quarter of it first); it must still compress (an early
+// version waited forever: more than 5 % flagged, so no squeeze, so no consolidation, so no stall
+// handling, and it stopped as jammed with nothing gained).
+TEST(DensePacker, ContinuingFromADensePackingKeepsCompressing) {
+  const DensifyOptions first{.target_fraction = 0.62, .seed = 2, .max_sweeps = 1500};
+  const DensifyResult dense = densify(loose_start(), first);
+  ASSERT_GT(dense.report.solid_fraction, 0.45) << dense.report.summary();
+  const DensifyOptions more{
+      .target_fraction = 0.62, .seed = 3, .max_sweeps = 800, .max_compression = 0.1};
+  const DensifyResult continued = densify(dense.packing, more);
+  EXPECT_GT(continued.report.solid_fraction, dense.report.solid_fraction + 0.003)
+      << continued.report.summary();
+  expect_valid_packing(continued.packing, 0.0);
+}
+
 TEST(DensePacker, GravityBedSinksAndStaysValid) {
   RandomPackOptions random{
       .container = {.shape = BoxContainer{.length = 0.3, .width = 0.3, .depth = 0.6}},
