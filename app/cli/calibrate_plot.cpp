@@ -95,7 +95,7 @@ void write_calibration_plot(const std::string& path, const CalibrationOptions& o
   constexpr int kHeight = 560;
   constexpr int kLeft = 90;
   constexpr int kRight = 30;
-  constexpr int kTop = 50;
+  constexpr int kTop = 70;
   constexpr int kBottom = 70;
   const Rgb black{0, 0, 0};
   const Rgb grey{200, 200, 200};
@@ -137,13 +137,13 @@ void write_calibration_plot(const std::string& path, const CalibrationOptions& o
                 static_cast<int>(x) + 5, static_cast<int>(py(p.achieved.mean)) + 5, blue);
   }
   const std::string name = calibration_target_name(options.target);
-  canvas.text(fmt::format("{}: mean +- sd vs Eq. 3 alpha (blue); target {:.4g} (red); "
-                          "found alpha {:.4f} (green)",
-                          name, options.value, result.alpha),
-              kLeft - 60, 12, 2, black);
-  canvas.text(fmt::format("Eq. 3 alpha   (L/R = {:.3g}, {} particles per point, seed {})",
-                          options.edge_ratio, options.samples, options.seed),
-              kLeft + 120, kHeight - 30, 2, black);
+  canvas.text(fmt::format("{} vs Eq. 3 alpha: mean +- sd (blue)", name), 20, 8, 2, black);
+  canvas.text(
+      fmt::format("target {:.4g} (red), found alpha {:.4f} (green)", options.value, result.alpha),
+      20, 32, 2, black);
+  canvas.text(fmt::format("Eq. 3 alpha (L/R {:.3g}, {} per point, seed {})", options.edge_ratio,
+                          options.samples, options.seed),
+              kLeft + 60, kHeight - 30, 2, black);
 
   AtomicFile file(path);
   auto writer = [](void* context, void* data, int size) {
