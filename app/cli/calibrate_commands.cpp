@@ -153,7 +153,7 @@ void register_calibrate(CLI::App& app) {
     }
     fmt::print(
         "config lines (under [particles] in repose/sweep configs, [particle] in pack configs):\n"
-        "alpha = {:.4f}\nradius = {:.6g}\nedge_length = {:.6g}\n",
+        "alpha = {:.6g}\nradius = {:.6g}\nedge_length = {:.6g}\n",
         result.alpha, result.radius, result.edge_length);
     if (!flags->table.empty()) {
       write_table(flags->table, options, result, overwrite);
