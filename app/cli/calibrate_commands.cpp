@@ -24,6 +24,8 @@ struct CalibrateFlags {
   double volume = 0;
   double alpha = 0;
   double sphericity = 0;
+  double elongation = 0;
+  double flatness = 0;
   int samples = 200;
   int grid = 11;
   double seed = 1;  // read as a number, checked to be a whole number >= 0
@@ -35,11 +37,12 @@ struct CalibrateFlags {
 
 // Exactly one target option; --volume is V in m^3 at --diameter, i.e. a volume ratio.
 void resolve_target(CalibrateFlags& flags, const CLI::App& command) {
-  const char* names[] = {"--volume-ratio", "--volume", "--alpha", "--sphericity"};
+  const char* names[] = {"--volume-ratio", "--volume",     "--alpha",
+                         "--sphericity",   "--elongation", "--flatness"};
   int given = 0;
   for (const char* name : names) given += command.count(name) > 0 ? 1 : 0;
   if (given != 1) {
-    throw InvalidInput("--volume-ratio/--volume/--alpha/--sphericity",
+    throw InvalidInput("--volume-ratio/--volume/--alpha/--sphericity/--elongation/--flatness",
                        std::to_string(given) + " given", "exactly one");
   }
   auto& o = flags.options;
@@ -57,10 +60,18 @@ void resolve_target(CalibrateFlags& flags, const CLI::App& command) {
     require_in_range("--alpha", flags.alpha, 1e-9, 1.0);
     o.target = CalibrationTarget::kMeasuredAlpha;
     o.value = flags.alpha;
-  } else {
+  } else if (command.count("--sphericity") > 0) {
     require_in_range("--sphericity", flags.sphericity, 1e-9, 1.0);
     o.target = CalibrationTarget::kSphericity;
     o.value = flags.sphericity;
+  } else if (command.count("--elongation") > 0) {
+    require_in_range("--elongation", flags.elongation, 1e-9, 1.0);
+    o.target = CalibrationTarget::kElongation;
+    o.value = flags.elongation;
+  } else {
+    require_in_range("--flatness", flags.flatness, 1e-9, 1.0);
+    o.target = CalibrationTarget::kFlatness;
+    o.value = flags.flatness;
   }
   require_in_range("--edge-ratio", o.edge_ratio, 0.05, 1.5);
   if (flags.samples < 2 || flags.samples > 100000) {
@@ -99,13 +110,18 @@ void register_calibrate(CLI::App& app) {
   auto* command = app.add_subcommand(
       "calibrate",
       "Find the Eq. 3 alpha whose particles match a measured mean descriptor (V / V_circ, Eq. 2 "
-      "alpha or sphericity); print the inputs, the achieved mean +- sd and the config lines.");
+      "alpha, sphericity, elongation or flatness); print the inputs, the achieved mean +- sd and "
+      "the config lines.");
   command->add_option("--volume-ratio", flags->volume_ratio,
                       "target mean V / V_circumscribed-sphere (the paper's Table 1 alpha), (0, 1]");
   command->add_option("--volume", flags->volume,
                       "target mean particle volume (m^3) at --diameter (= a volume ratio)");
   command->add_option("--alpha", flags->alpha, "target mean Eq. 2 measured alpha, (0, 1]");
   command->add_option("--sphericity", flags->sphericity, "target mean Eq. 1 sphericity, (0, 1]");
+  command->add_option("--elongation", flags->elongation,
+                      "target mean elongation (intermediate / long), (0, 1]");
+  command->add_option("--flatness", flags->flatness,
+                      "target mean flatness (short / intermediate), (0, 1]");
   command->add_option("--diameter", o.diameter, "circumscribed (control) diameter D = 2 R (m)")
       ->capture_default_str();
   command->add_option("--edge-ratio", o.edge_ratio, "edge-length ratio L / R, [0.05, 1.5]")
@@ -146,6 +162,12 @@ void register_calibrate(CLI::App& app) {
     fmt::print("volume        {:.6g} +- {:.3g} mm^3 (sphere of diameter D: {:.6g} mm^3)\n",
                result.volume.mean * 1e9, result.volume.standard_deviation * 1e9,
                std::numbers::pi / 6.0 * std::pow(options.diameter, 3) * 1e9);
+    for (std::size_t t = 0; t < result.all_descriptors.size(); ++t) {
+      if (kCalibrationTargets[t] == options.target) continue;
+      fmt::print("also          {} = {:.6g} +- {:.3g}\n",
+                 calibration_target_name(kCalibrationTargets[t]), result.all_descriptors[t].mean,
+                 result.all_descriptors[t].standard_deviation);
+    }
     fmt::print("evaluations   {} (grid {} + bisection)\n", result.evaluated.size(),
                options.grid_points);
     if (std::abs(miss) > 2.0) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -48,6 +49,10 @@ const char* calibration_target_name(CalibrationTarget target) {
       return "measured_alpha";
     case CalibrationTarget::kSphericity:
       return "sphericity";
+    case CalibrationTarget::kElongation:
+      return "elongation";
+    case CalibrationTarget::kFlatness:
+      return "flatness";
   }
   return "?";
 }
@@ -62,6 +67,10 @@ double calibration_value(CalibrationTarget target, const ShapeDescriptors& descr
       return descriptors.measured_alpha;
     case CalibrationTarget::kSphericity:
       return descriptors.sphericity;
+    case CalibrationTarget::kElongation:
+      return descriptors.elongation;
+    case CalibrationTarget::kFlatness:
+      return descriptors.flatness;
   }
   return 0.0;
 }
@@ -86,18 +95,32 @@ void validate(const CalibrationOptions& options) {
 }
 
 SummaryStatistics evaluate_calibration(const CalibrationOptions& options, double alpha,
-                                       SummaryStatistics* volume) {
+                                       SummaryStatistics* volume,
+                                       std::vector<SummaryStatistics>* all) {
   const GeneratorOptions generator = generator_options(options, alpha);
-  std::vector<double> values(options.samples);
+  constexpr std::size_t kTargets = std::size(kCalibrationTargets);
+  std::vector<double> values(options.samples * kTargets);  // [target][sample]
   std::vector<double> volumes(options.samples);
   parallel_for_index(0, options.samples, [&](std::size_t i) {
     const GeneratedParticle particle = generate_particle(generator, i);
     const ShapeDescriptors d = describe(particle.body);
-    values[i] = calibration_value(options.target, d, particle.control_radius);
+    for (std::size_t t = 0; t < kTargets; ++t) {
+      values[t * options.samples + i] =
+          calibration_value(kCalibrationTargets[t], d, particle.control_radius);
+    }
     volumes[i] = d.volume;
   });
   if (volume != nullptr) *volume = summarize(volumes);
-  return summarize(values);
+  SummaryStatistics target;
+  if (all != nullptr) all->clear();
+  for (std::size_t t = 0; t < kTargets; ++t) {
+    const auto begin = values.begin() + static_cast<std::ptrdiff_t>(t * options.samples);
+    const SummaryStatistics stats =
+        summarize(std::vector<double>(begin, begin + static_cast<std::ptrdiff_t>(options.samples)));
+    if (kCalibrationTargets[t] == options.target) target = stats;
+    if (all != nullptr) all->push_back(stats);
+  }
+  return target;
 }
 
 CalibrationResult calibrate(const CalibrationOptions& options) {
@@ -163,7 +186,8 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
   std::sort(evaluated.begin(), evaluated.end(),
             [](const auto& a, const auto& b) { return a.alpha < b.alpha; });
   result.alpha = best.alpha;
-  result.achieved = evaluate_calibration(options, best.alpha, &result.volume);
+  result.achieved =
+      evaluate_calibration(options, best.alpha, &result.volume, &result.all_descriptors);
   result.within_tolerance = relative_miss(result.achieved.mean, value) <= options.tolerance;
   return result;
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -89,6 +90,17 @@ TEST(Calibrate, SphericityTargetIsMet) {
   const auto options = small_options(CalibrationTarget::kSphericity, 0.85);
   const auto result = calibrate(options);
   EXPECT_LE(std::abs(result.achieved.mean - 0.85) / 0.85, 0.02);
+}
+
+TEST(Calibrate, ElongationTargetIsMetAndOtherDescriptorsAreReported) {
+  const auto options = small_options(CalibrationTarget::kElongation, 0.85);
+  const auto result = calibrate(options);
+  EXPECT_LE(std::abs(result.achieved.mean - 0.85) / 0.85, 0.02);
+  ASSERT_EQ(result.all_descriptors.size(), std::size(kCalibrationTargets));
+  const Means means = regenerate(options, result.alpha);
+  EXPECT_NEAR(result.all_descriptors[0].mean, means.volume_ratio, 1e-12);  // volume_ratio
+  EXPECT_NEAR(result.all_descriptors[1].mean, means.measured_alpha, 1e-12);
+  EXPECT_EQ(result.all_descriptors[3].mean, result.achieved.mean);  // elongation
 }
 
 TEST(Calibrate, SameSeedSameResultAtAnyThreadCount) {

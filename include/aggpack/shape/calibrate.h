@@ -23,9 +23,15 @@ enum class CalibrationTarget {
   kVolumeRatio,    ///< V / (pi/6 D^3), D = 2 r the control (circumscribed) diameter: Table 1
   kMeasuredAlpha,  ///< Eq. 2 alpha = SI^(3/2)
   kSphericity,     ///< Eq. 1 SI
+  kElongation,     ///< intermediate / long principal dimension
+  kFlatness,       ///< short / intermediate principal dimension
 };
 
-/// "volume_ratio", "measured_alpha", "sphericity".
+constexpr CalibrationTarget kCalibrationTargets[] = {
+    CalibrationTarget::kVolumeRatio, CalibrationTarget::kMeasuredAlpha,
+    CalibrationTarget::kSphericity, CalibrationTarget::kElongation, CalibrationTarget::kFlatness};
+
+/// "volume_ratio", "measured_alpha", "sphericity", "elongation", "flatness".
 const char* calibration_target_name(CalibrationTarget target);
 
 /// The target descriptor of a particle grown with control radius `control_radius` (m).
@@ -54,21 +60,26 @@ struct CalibrationPoint {
 };
 
 struct CalibrationResult {
-  double alpha = 0;                         ///< the Eq. 3 input found
-  double radius = 0;                        ///< control radius r = D / 2 (m)
-  double edge_length = 0;                   ///< L = edge_ratio * r (m)
-  SummaryStatistics achieved;               ///< target descriptor at `alpha`
-  SummaryStatistics volume;                 ///< particle volume at `alpha` (m^3)
+  double alpha = 0;            ///< the Eq. 3 input found
+  double radius = 0;           ///< control radius r = D / 2 (m)
+  double edge_length = 0;      ///< L = edge_ratio * r (m)
+  SummaryStatistics achieved;  ///< target descriptor at `alpha`
+  SummaryStatistics volume;    ///< particle volume at `alpha` (m^3)
+  /// Every target descriptor at `alpha`, in kCalibrationTargets order (the other measures of
+  /// the particles found: e.g. the Eq. 2 alpha of a volume-ratio match).
+  std::vector<SummaryStatistics> all_descriptors;
   double reachable_minimum = 0;             ///< smallest grid mean
   double reachable_maximum = 0;             ///< largest grid mean
   bool within_tolerance = false;            ///< |achieved.mean - value| <= tolerance * value
   std::vector<CalibrationPoint> evaluated;  ///< every point evaluated, sorted by alpha
 };
 
-/// Mean and spread of the target descriptor (and of the volume, when `volume` is given) over
-/// `options.samples` particles grown with Eq. 3 input `alpha`. Deterministic at any thread count.
+/// Mean and spread of the target descriptor over `options.samples` particles grown with Eq. 3
+/// input `alpha`; when given, `volume` gets the volume's and `all` every target descriptor's (in
+/// kCalibrationTargets order). Deterministic at any thread count.
 SummaryStatistics evaluate_calibration(const CalibrationOptions& options, double alpha,
-                                       SummaryStatistics* volume = nullptr);
+                                       SummaryStatistics* volume = nullptr,
+                                       std::vector<SummaryStatistics>* all = nullptr);
 
 /// Finds the alpha whose particles' mean descriptor is `options.value`.
 /// \throw InvalidInput naming the descriptor, the value and the reachable range when the target
