@@ -11,6 +11,7 @@ namespace aggpack::cli {
 
 void register_particle(CLI::App& app);
 void register_shapes(CLI::App& app);
+void register_calibrate(CLI::App& app);  // calibrate_commands.cpp
 void register_pack(CLI::App& app);
 void register_info(CLI::App& app);
 void register_densify(CLI::App& app);  // densify_commands.cpp

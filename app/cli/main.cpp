@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   aggpack::cli::register_particle(app);
   aggpack::cli::register_shapes(app);
+  aggpack::cli::register_calibrate(app);
   aggpack::cli::register_pack(app);
   aggpack::cli::register_info(app);
   aggpack::cli::register_densify(app);
