@@ -24,6 +24,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
 #include "aggpack/pipeline/pipeline.h"
+#include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/sweep.h"
 #include "commands.h"
@@ -67,6 +68,8 @@ struct ReposeFlags {
   std::optional<double> friction;
   std::optional<double> alpha;
   std::optional<std::uint64_t> seed;
+  std::string seeds;  ///< repose only: an ensemble, "1-16" or "1,4,9"
+  bool has_seeds = false;
   int threads = 0;
   int image_width = 1600;
   std::string progress = "auto";
@@ -155,6 +158,88 @@ PackResult repose_fill(const ReposeOptions& options) {
   return pack(PackerOptions{repose_fill_options(options)});
 }
 
+// `repose --seeds`: one run per seed in DIR/seed-<k>/, the angles and their statistics in
+// DIR/ensemble.json|csv|png. Seeds run in parallel, each single-threaded (as the sweep's cases).
+void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options) {
+  const std::vector<std::uint64_t> seeds = parse_seed_list(flags.seeds, "--seeds");
+  set_thread_count(flags.threads);
+  const ProgressStyle style = parse_progress_style("--progress", flags.progress);
+  const std::vector<std::string> seed_files = {"repose.json", "profile.csv", "side.png",
+                                               "final.h5"};
+  CreatedFolder created(flags.output);
+  const std::string folder = prepare_folder(flags.output, flags.is_forced,
+                                            {"ensemble.json", "ensemble.csv", "ensemble.png"});
+  for (const auto seed : seeds) {
+    std::vector<std::string> names;
+    for (const auto& name : seed_files) names.push_back(fmt::format("seed-{}/{}", seed, name));
+    // A seed's folder is made when its run ends; an existing one must not hold its files.
+    if (!std::filesystem::exists(in_folder(folder, fmt::format("seed-{}", seed)))) continue;
+    for (const auto& name : names) {
+      check_writable(in_folder(folder, name),
+                     flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid);
+    }
+  }
+  fmt::print("ensemble: {} seeds\n", seeds.size());
+  ProgressBar bar("ensemble", "seeds", style);
+  EnsembleResult ensemble;
+  with_sweep_key_names([&] {
+    ensemble = run_ensemble(
+        options.base, seeds, repose_fill,
+        [&](const EnsembleSeed& s, const ReposeResult* result, std::size_t done,
+            std::size_t total) {
+          if (result != nullptr) {
+            const std::string sub = in_folder(folder, fmt::format("seed-{}", s.seed));
+            try {
+              std::filesystem::create_directories(sub);
+              ReposeOptions repose = options.base;
+              repose.seed = s.seed;
+              write_repose_json(in_folder(sub, "repose.json"), repose, *result);
+              write_profile_csv(in_folder(sub, "profile.csv"), *result);
+              write_side_view_png(in_folder(sub, "side.png"), result->final, result->profile,
+                                  result->fit, std::min(flags.image_width, 1200));
+              write_packing(result->final, in_folder(sub, "final.h5"));
+            } catch (const std::exception& error) {
+              std::fprintf(stderr, "aggpack: warning: seed %llu: %s\n",
+                           static_cast<unsigned long long>(s.seed), error.what());
+            }
+          }
+          bar.update(static_cast<double>(done) / static_cast<double>(total), done, total,
+                     s.is_valid ? fmt::format("seed {}: {:.2f} deg", s.seed, s.angle_degrees)
+                                : fmt::format("seed {}: failed", s.seed));
+        });
+  });
+  bar.finish();
+  created.keep();
+  write_ensemble_json(in_folder(folder, "ensemble.json"), options.base, ensemble);
+  write_ensemble_csv(in_folder(folder, "ensemble.csv"), ensemble);
+  write_ensemble_png(in_folder(folder, "ensemble.png"), ensemble,
+                     std::min(flags.image_width, 1600));
+  fmt::print("{:>8} {:>9} {:>7} {:>6}\n", "seed", "angle", "R^2", "rest");
+  for (const auto& s : ensemble.seeds) {
+    if (s.is_valid) {
+      fmt::print("{:>8} {:9.2f} {:7.3f} {:>6}\n", s.seed, s.angle_degrees, s.r_squared,
+                 s.is_at_rest ? "yes" : "no");
+    } else {
+      fmt::print("{:>8} {:>9} {}\n", s.seed, "FAILED", s.error);
+    }
+  }
+  const EnsembleStatistics& st = ensemble.statistics;
+  if (st.has_interval) {
+    fmt::print(
+        "angle of repose      {:.2f} deg mean, sd {:.2f}, 95% CI [{:.2f}, {:.2f}] "
+        "(+/- {:.2f}, t {:.3f}), {} of {} seeds\n",
+        st.mean, st.std_dev, st.lower(), st.upper(), st.half_width, st.t_quantile, st.count,
+        ensemble.seeds.size());
+  } else {
+    fmt::print("angle of repose      {} of {} seeds measured: no confidence interval (needs 2)\n",
+               st.count, ensemble.seeds.size());
+  }
+  fmt::print("wrote {}/ensemble.json, ensemble.csv, ensemble.png and seed-<k>/\n", folder);
+  if (st.count == 0) {
+    throw LimitExceeded("--seeds", flags.seeds, "at least one seed with a measured angle");
+  }
+}
+
 void run_repose_command(const ReposeFlags& flags) {
   const SweepOptions options = resolve(flags);
   // Everything the run checks, --print-config included, before any folder is created.
@@ -163,10 +248,14 @@ void run_repose_command(const ReposeFlags& flags) {
     fmt::print("{}", resolved_sweep_config(options));
     return;
   }
-  const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   if (flags.image_width < 64 || flags.image_width > 16384) {
     throw InvalidInput("--width", std::to_string(flags.image_width), "[64, 16384]");
   }
+  if (flags.has_seeds) {
+    run_ensemble_command(flags, options);
+    return;
+  }
+  const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   CreatedFolder created(flags.output);
   std::vector<std::string> names = {"repose.json", "profile.csv", "side.png"};
   names.push_back("final.h5");
@@ -315,7 +404,20 @@ void register_sim(CLI::App& app) {
         "the paper's case (trough 6 x 1 x 1 m, alpha 0.5, R 0.1 m, L 0.1 m, 1,050 "
         "particles). Writes repose.json, profile.csv, side.png (and final.h5).");
     add_config_options(*command, *flags);
-    command->callback([flags]() { run_repose_command(*flags); });
+    command
+        ->add_option("--seeds", flags->seeds,
+                     "seed ensemble: run once per master seed (1-16, 1,4,9 or 1-4,9; at most "
+                     "10000) in parallel; writes ensemble.json|csv|png (each angle, mean, sd, 95% "
+                     "CI) and seed-<k>/")
+        ->excludes("--seed");
+    command
+        ->add_option("-j,--threads", flags->threads,
+                     "worker threads for --seeds (0 = all cores); results do not depend on it")
+        ->capture_default_str();
+    command->callback([flags, command]() {
+      flags->has_seeds = command->count("--seeds") > 0;
+      run_repose_command(*flags);
+    });
   }
   {
     auto flags = std::make_shared<ReposeFlags>();

@@ -28,6 +28,7 @@
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
+#include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
 
 namespace aggpack {
@@ -325,6 +326,90 @@ void write_side_view_png(const std::string& path, const Packing& packing,
     caption = "no slope fit: " + fit.message;
   }
   image.text(caption, 10, 10, std::max(2, width / 600), {0, 0, 0});
+  write_png(path, image);
+}
+
+void write_ensemble_png(const std::string& path, const EnsembleResult& ensemble, int width) {
+  if (width < 64 || width > 16384) {
+    throw InvalidInput("width", std::to_string(width), "[64, 16384] pixels");
+  }
+  check_writable(path, Overwrite::kAllow);
+  const int height = std::max(48, width * 3 / 5);
+  Image image(width, height);
+  const EnsembleStatistics& st = ensemble.statistics;
+  // Vertical range: every valid angle and the interval, padded by a tenth (at least 1 degree).
+  double low = 1e300;
+  double high = -1e300;
+  for (const auto& s : ensemble.seeds) {
+    if (!s.is_valid) continue;
+    low = std::min(low, s.angle_degrees);
+    high = std::max(high, s.angle_degrees);
+  }
+  if (st.has_interval) {
+    low = std::min(low, st.lower());
+    high = std::max(high, st.upper());
+  }
+  if (low > high) {
+    low = 0.0;
+    high = 90.0;
+  }
+  const double pad = std::max(1.0, 0.1 * (high - low));
+  low = std::floor(low - pad);
+  high = std::ceil(high + pad);
+  const int text_scale = std::max(1, width / 600);
+  const double left = 12.0 * 6 * text_scale;
+  const double right = width - 20.0;
+  const double top = 30.0 * text_scale;
+  const double bottom = height - 20.0 * text_scale;
+  const std::size_t n = ensemble.seeds.size();
+  auto px = [&](std::size_t index) {
+    return left + (static_cast<double>(index) + 0.5) / static_cast<double>(n) * (right - left);
+  };
+  auto py = [&](double angle) { return bottom - (angle - low) / (high - low) * (bottom - top); };
+  // The 95 % band, then the mean line, then the axes and the seeds.
+  if (st.has_interval) {
+    image.fill_rect(static_cast<int>(left), static_cast<int>(std::lround(py(st.upper()))),
+                    static_cast<int>(right), static_cast<int>(std::lround(py(st.lower()))) + 1,
+                    {255, 215, 215});
+  }
+  if (st.count > 0) image.line(left, py(st.mean), right, py(st.mean), 2, {220, 20, 20});
+  const Rgb axis{30, 30, 30};
+  image.line(left, top, left, bottom, 2, axis);
+  image.line(left, bottom, right, bottom, 2, axis);
+  for (const double tick : {low, 0.5 * (low + high), high}) {
+    char label[32];
+    std::snprintf(label, sizeof label, "%.1f", tick);
+    image.line(left - 5, py(tick), left, py(tick), 1, axis);
+    image.text(label, 4, static_cast<int>(py(tick)) - 3 * text_scale, text_scale, axis);
+  }
+  const int dot = std::max(5, width / 150);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& s = ensemble.seeds[i];
+    const int x = static_cast<int>(std::lround(px(i)));
+    if (s.is_valid) {
+      const int y = static_cast<int>(std::lround(py(s.angle_degrees)));
+      image.fill_rect(x - dot / 2, y - dot / 2, x - dot / 2 + dot, y - dot / 2 + dot,
+                      {30, 60, 220});
+    } else {  // a failed seed: a red cross on the axis
+      image.line(x - dot, bottom - dot, x + dot, bottom + dot, 2, {200, 0, 0});
+      image.line(x - dot, bottom + dot, x + dot, bottom - dot, 2, {200, 0, 0});
+    }
+    if (n <= 40) {
+      image.text(std::to_string(s.seed), x - 3 * text_scale, static_cast<int>(bottom) + 6,
+                 text_scale, axis);
+    }
+  }
+  char caption[200];
+  if (st.has_interval) {
+    std::snprintf(caption, sizeof caption,
+                  "angle of repose %.2f deg, sd %.2f, 95%% CI [%.2f, %.2f]  (%zu of %zu seeds)",
+                  st.mean, st.std_dev, st.lower(), st.upper(), st.count, n);
+  } else {
+    std::snprintf(caption, sizeof caption,
+                  "angle of repose %.2f deg, no interval  (%zu of %zu seeds)", st.mean, st.count,
+                  n);
+  }
+  image.text(caption, 10, 8, text_scale, {0, 0, 0});
   write_png(path, image);
 }
 
