@@ -18,7 +18,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "aggpack/config/repose_config.h"
 #include "aggpack/core/error.h"
+#include "aggpack/pack/lattice_packer.h"
+#include "aggpack/sim/sweep.h"
 
 namespace aggpack {
 namespace {
@@ -119,6 +122,38 @@ std::string read_all(const fs::path& path) {
 
 // The golden CLI test's tiny trough (a few particles, short rest times): seconds per seed.
 const std::string kTinyCase = AGGPACK_SOURCE_DIR "/tests/cli/cases/repose/trough.toml";
+
+TEST(Ensemble, AFailingSeedIsReportedAndLeftOutOfTheStatistics) {
+  const ReposeOptions base = load_sweep_config(kTinyCase, {}).base;
+  std::vector<std::uint64_t> reported;
+  const auto ensemble = run_ensemble(
+      base, {3, 2, 1},
+      [](const ReposeOptions& options) {
+        if (options.seed == 2) throw LimitExceeded("test fill", "seed 2", "a fill that works");
+        return pack_lattice(repose_fill_options(options));
+      },
+      [&](const EnsembleSeed& s, const ReposeResult* result, std::size_t, std::size_t total) {
+        EXPECT_EQ(total, 3U);
+        EXPECT_EQ(result == nullptr, s.seed == 2);
+        reported.push_back(s.seed);
+      });
+  EXPECT_EQ(reported.size(), 3U);
+  ASSERT_EQ(ensemble.seeds.size(), 3U);
+  EXPECT_EQ(ensemble.seeds[1].seed, 2U);
+  EXPECT_FALSE(ensemble.seeds[1].is_valid);
+  EXPECT_NE(ensemble.seeds[1].error.find("test fill"), std::string::npos);
+  EXPECT_EQ(ensemble.statistics.count, 2U);
+  EXPECT_EQ(ensemble.failed_count(), 1U);
+  EXPECT_TRUE(ensemble.seeds[0].is_valid);
+  EXPECT_DOUBLE_EQ(ensemble.statistics.mean,
+                   0.5 * (ensemble.seeds[0].angle_degrees + ensemble.seeds[2].angle_degrees));
+  const fs::path csv = fs::temp_directory_path() / ("aggpack_ens_" + std::to_string(::getpid()));
+  write_ensemble_csv(csv.string(), ensemble);
+  const std::string text = read_all(csv);
+  fs::remove(csv);
+  EXPECT_NE(text.find("\n2,,,0,0,0,\"limit exceeded for test fill"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nseeds_used,2,,,,,\n"), std::string::npos) << text;
+}
 
 class EnsembleCli : public ::testing::Test {
  protected:
