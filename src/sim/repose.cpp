@@ -12,6 +12,7 @@
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/shape/descriptors.h"
+#include "aggpack/sim/ensemble.h"
 
 namespace aggpack {
 
@@ -301,6 +302,11 @@ SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper, double fit_l
   fit.intercept = mz - fit.slope * mx;
   fit.angle_degrees = std::atan(-fit.slope) * 180.0 / std::numbers::pi;
   fit.r_squared = szz > 0.0 ? (sxz * sxz) / (sxx * szz) : 1.0;
+  const double residual = std::max(0.0, szz - sxz * sxz / sxx);
+  const double half_width =
+      student_t_quantile(0.975, count - 2.0) * std::sqrt(residual / (count - 2.0) / sxx);
+  fit.angle_ci_lower = std::atan(-(fit.slope + half_width)) * 180.0 / std::numbers::pi;
+  fit.angle_ci_upper = std::atan(-(fit.slope - half_width)) * 180.0 / std::numbers::pi;
   fit.is_valid = true;
   return fit;
 }

@@ -225,6 +225,8 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
       {"message", fit.message},
       {"angle_degrees", fit.angle_degrees},
       {"r_squared", fit.r_squared},
+      {"angle_ci95_lower_degrees", fit.angle_ci_lower},
+      {"angle_ci95_upper_degrees", fit.angle_ci_upper},
       {"slope", fit.slope},
       {"intercept_m", fit.intercept},
       {"pile_height_m", fit.pile_height},
@@ -315,12 +317,22 @@ void write_side_view_png(const std::string& path, const Packing& packing,
     const double extra = (x1 - x0) / 3.0;
     const double a = x0 - extra;
     const double b = x1 + extra;
+    // The fit's 95 % interval: the lines at its two angles through the fit's centre (thin).
+    const double xm = 0.5 * (x0 + x1);
+    const double zm = fit.intercept + fit.slope * xm;
+    for (const double angle : {fit.angle_ci_lower, fit.angle_ci_upper}) {
+      const double slope = -std::tan(angle * 3.14159265358979323846 / 180.0);
+      image.line(px(a), py(zm + slope * (a - xm)), px(b), py(zm + slope * (b - xm)), 1,
+                 {240, 140, 140});
+    }
     image.line(px(a), py(fit.intercept + fit.slope * a), px(b), py(fit.intercept + fit.slope * b),
                std::max(2, width / 500), {220, 20, 20});
-    char buffer[160];
+    char buffer[200];
     std::snprintf(buffer, sizeof buffer,
-                  "angle of repose %.1f deg  (R^2 %.3f, %zu bins)  %zu particles",
-                  fit.angle_degrees, fit.r_squared, fit.bin_count, packing.particles.size());
+                  "angle of repose %.1f deg, fit 95%% CI [%.1f, %.1f]  (R^2 %.3f, %zu bins)  %zu "
+                  "particles",
+                  fit.angle_degrees, fit.angle_ci_lower, fit.angle_ci_upper, fit.r_squared,
+                  fit.bin_count, packing.particles.size());
     caption = buffer;
   } else {
     caption = "no slope fit: " + fit.message;

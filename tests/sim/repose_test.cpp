@@ -11,6 +11,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/pack/lattice_packer.h"
+#include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/settle.h"
 #include "aggpack/sim/sweep.h"
@@ -90,6 +91,39 @@ TEST(SlopeFit, RecoversTheAngleOfAnExactSlopeAndLeavesOutPlateauAndToe) {
       EXPECT_LE(profile.height[i], 0.8 * 0.8 + 1e-12);
     }
   }
+}
+
+TEST(SlopeFit, IntervalOfTheAngleFromTheSlopeStandardError) {
+  // An exact slope has no residual: the interval is the angle itself.
+  const SlopeFit exact = fit_slope(synthetic(0.8, 2.0, 30.0, 120), 0.8, 0.2, 3);
+  ASSERT_TRUE(exact.is_valid);
+  EXPECT_NEAR(exact.angle_ci_lower, 30.0, 1e-6);
+  EXPECT_NEAR(exact.angle_ci_upper, 30.0, 1e-6);
+  // Alternating +-1 cm on the slope: the interval widens around the angle. By hand: residual
+  // sum of squares ~ n 1e-4 (the alternation is almost orthogonal to x), slope se = sqrt(rss /
+  // (n - 2) / sxx); checked against that formula with the fit's own bins.
+  SurfaceProfile noisy = synthetic(0.8, 2.0, 30.0, 120);
+  for (std::size_t i = 0; i < noisy.height.size(); ++i) {
+    if (noisy.height[i] > 0.0 && noisy.height[i] < 0.8) noisy.height[i] += i % 2 ? 0.01 : -0.01;
+  }
+  const SlopeFit fit = fit_slope(noisy, 0.8, 0.2, 3);
+  ASSERT_TRUE(fit.is_valid);
+  EXPECT_LT(fit.angle_ci_lower, fit.angle_degrees);
+  EXPECT_GT(fit.angle_ci_upper, fit.angle_degrees);
+  const auto n = static_cast<double>(fit.bin_count);
+  double mx = 0.0;
+  for (std::size_t i = fit.first_bin; i <= fit.last_bin; ++i) mx += noisy.centre(i) / n;
+  double sxx = 0.0;
+  double rss = 0.0;
+  for (std::size_t i = fit.first_bin; i <= fit.last_bin; ++i) {
+    const double x = noisy.centre(i);
+    sxx += (x - mx) * (x - mx);
+    const double r = noisy.height[i] - (fit.intercept + fit.slope * x);
+    rss += r * r;
+  }
+  const double half = student_t_quantile(0.975, n - 2.0) * std::sqrt(rss / (n - 2.0) / sxx);
+  EXPECT_NEAR(fit.angle_ci_upper, std::atan(-(fit.slope - half)) * 180.0 / std::numbers::pi, 1e-9);
+  EXPECT_NEAR(fit.angle_ci_lower, std::atan(-(fit.slope + half)) * 180.0 / std::numbers::pi, 1e-9);
 }
 
 TEST(SlopeFit, IgnoresASingleHighParticleAndAHeapAgainstTheFarWall) {

@@ -105,6 +105,11 @@ struct SlopeFit {
   double intercept = 0.0;      ///< z at x = 0 (m)
   double angle_degrees = 0.0;  ///< atan(-slope) in degrees: the angle of repose
   double r_squared = 0.0;      ///< coefficient of determination of the line, [0, 1]
+  /// 95 % confidence interval of the angle from the line fit alone (slope standard error, Student
+  /// t with bin_count - 2 degrees of freedom). Neighbouring bins are correlated (a particle spans
+  /// several), so this understates the uncertainty; a seed ensemble (`repose --seeds`) measures it.
+  double angle_ci_lower = 0.0;
+  double angle_ci_upper = 0.0;
 };
 
 /// Chooses the slope region and fits a line to the profile's heights there. The profile is
