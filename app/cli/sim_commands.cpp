@@ -293,7 +293,7 @@ void run_repose_command(const ReposeFlags& flags) {
 }
 
 // The sweep plot: angle against mu_s, one line per alpha (gnuplot, run when it is installed).
-std::string gnuplot_script(const std::vector<double>& alphas) {
+std::string gnuplot_script(const std::vector<double>& alphas, bool has_error_bars) {
   std::string script =
       "# angle of repose against sliding friction, one curve per alpha (aggpack sweep)\n"
       "set terminal pngcairo size 1000,700 font ',12'\n"
@@ -306,9 +306,10 @@ std::string gnuplot_script(const std::vector<double>& alphas) {
       "plot ";
   for (std::size_t i = 0; i < alphas.size(); ++i) {
     script += fmt::format(
-        "{}'sweep.csv' every ::1 using ($1 == {} && $6 == 1 ? $2 : 1/0):3 with linespoints "
+        "{}'sweep.csv' every ::1 using ($1 == {} && $6 == 1 ? $2 : 1/0):3{} with {} "
         "lw 2 pt 7 title '{}'",
-        i > 0 ? ", \\\n     " : "", alphas[i], alphas[i]);
+        i > 0 ? ", \\\n     " : "", alphas[i], has_error_bars ? ":14:15" : "",
+        has_error_bars ? "yerrorlines" : "linespoints", alphas[i]);
   }
   return script + "\n";
 }
@@ -334,8 +335,10 @@ bool run_gnuplot(const std::string& folder) {
 }
 
 void run_sweep_command(const ReposeFlags& flags) {
-  const SweepOptions options = resolve(flags);
+  SweepOptions options = resolve(flags);
   with_sweep_key_names([&] { validate(options); });
+  if (flags.has_seeds) options.seeds = parse_seed_list(flags.seeds, "--seeds");
+  const bool is_ensemble = !options.seeds.empty();
   if (flags.is_print_config) {
     fmt::print("{}", resolved_sweep_config(options));
     return;
@@ -347,15 +350,18 @@ void run_sweep_command(const ReposeFlags& flags) {
       prepare_folder(flags.output, flags.is_forced, {"sweep.csv", "sweep.gp", "sweep.png"});
   std::filesystem::create_directories(std::filesystem::path(folder) / "cases");
   const std::size_t total = options.alphas.size() * options.frictions.size();
-  fmt::print("sweep: {} alpha x {} mu_s = {} cases\n", options.alphas.size(),
+  fmt::print("sweep: {} alpha x {} mu_s = {} cases", options.alphas.size(),
              options.frictions.size(), total);
+  fmt::print("{}\n", is_ensemble ? fmt::format(" x {} seeds", options.seeds.size()) : "");
   ProgressBar bar("sweep", "cases", style);
   const auto cases = run_sweep(
       options, repose_fill,
       [&](const SweepCase& c, const ReposeResult& result, std::size_t done, std::size_t count) {
-        const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction);
+        const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction) +
+                                 (is_ensemble ? fmt::format("_seed{}", c.seed) : std::string());
         try {
           ReposeOptions repose = options.base;
+          repose.seed = c.seed;
           repose.alpha = c.alpha;
           repose.physics.friction = c.friction;
           if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
@@ -372,15 +378,24 @@ void run_sweep_command(const ReposeFlags& flags) {
   bar.finish();
   created.keep();
   write_sweep_csv(in_folder(folder, "sweep.csv"), cases);
-  fmt::print("{:>6} {:>6} {:>9} {:>7} {:>6}\n", "alpha", "mu_s", "angle", "R^2", "rest");
+  fmt::print("{:>6} {:>6} {:>9} {:>7} {:>6}{}\n", "alpha", "mu_s", "angle", "R^2", "rest",
+             is_ensemble ? "  95% CI        seeds" : "");
   for (const auto& c : cases) {
-    fmt::print("{:6.2f} {:6.2f} {:>9} {:7.3f} {:>6}\n", c.alpha, c.friction,
+    fmt::print("{:6.2f} {:6.2f} {:>9} {:7.3f} {:>6}", c.alpha, c.friction,
                c.is_valid ? fmt::format("{:.2f}", c.angle_degrees) : std::string("-"), c.r_squared,
                c.is_at_rest ? "yes" : "no");
+    if (is_ensemble) {
+      fmt::print("  {:<14} {}/{}",
+                 c.statistics.has_interval
+                     ? fmt::format("[{:.2f}, {:.2f}]", c.statistics.lower(), c.statistics.upper())
+                     : std::string("-"),
+                 c.seeds_used, c.seed_count);
+    }
+    fmt::print("\n");
   }
   {
     AtomicFile script(in_folder(folder, "sweep.gp"), Overwrite::kAllow, std::ios::out);
-    script.stream() << gnuplot_script(options.alphas);
+    script.stream() << gnuplot_script(options.alphas, is_ensemble);
     script.commit();
   }
   if (!flags.is_without_plot && run_gnuplot(folder)) {
@@ -431,7 +446,15 @@ void register_sim(CLI::App& app) {
     command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
         ->capture_default_str();
     command->add_flag("--no-plot", flags->is_without_plot, "do not run gnuplot");
-    command->callback([flags]() { run_sweep_command(*flags); });
+    command
+        ->add_option("--seeds", flags->seeds,
+                     "a seed ensemble per case (1-4, 1,4,9): sweep.csv gets the mean, sd and 95% "
+                     "CI, sweep.png error bars; cases/*_seed<k>.json|png")
+        ->excludes("--seed");
+    command->callback([flags, command]() {
+      flags->has_seeds = command->count("--seeds") > 0;
+      run_sweep_command(*flags);
+    });
   }
 }
 

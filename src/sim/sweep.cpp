@@ -1,5 +1,6 @@
 #include "aggpack/sim/sweep.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <mutex>
 #include <string>
@@ -24,22 +25,32 @@ std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& 
                                  const SweepCaseCallback& on_case) {
   validate(options);
   if (!fill) throw InvalidInput("sweep fill", "none", "a function making each case's fill");
-  const std::size_t total = options.alphas.size() * options.frictions.size();
-  std::vector<SweepCase> cases(total);
+  if (options.seeds.size() > kMaxEnsembleSeeds) {
+    throw InvalidInput("--seeds", std::to_string(options.seeds.size()) + " seeds",
+                       "at most " + std::to_string(kMaxEnsembleSeeds));
+  }
+  const std::size_t case_count = options.alphas.size() * options.frictions.size();
+  const bool is_ensemble = !options.seeds.empty();
+  const std::size_t seed_count = is_ensemble ? options.seeds.size() : 1;
+  const std::size_t total = case_count * seed_count;
+  std::vector<SweepCase> runs(total);
   std::mutex mutex;
   std::size_t done = 0;
   auto run_case = [&](std::size_t index) {
-    const double alpha = options.alphas[index / options.frictions.size()];
-    const double friction = options.frictions[index % options.frictions.size()];
+    const std::size_t case_index = index / seed_count;
+    const double alpha = options.alphas[case_index / options.frictions.size()];
+    const double friction = options.frictions[case_index % options.frictions.size()];
     ReposeOptions repose = options.base;
     repose.alpha = alpha;
     repose.physics.friction = friction;
     if (options.is_wall_friction_coupled) repose.physics.wall_friction = friction;
+    if (is_ensemble) repose.seed = options.seeds[index % seed_count];
     const ReposeResult result = run_repose(repose, fill(repose));
-    SweepCase& summary = cases[index];
-    summary.index = index;
+    SweepCase& summary = runs[index];
+    summary.index = case_index;
     summary.alpha = alpha;
     summary.friction = friction;
+    summary.seed = repose.seed;
     summary.mean_measured_alpha = result.mean_measured_alpha;
     summary.particle_count = result.particle_count;
     summary.is_valid = result.fit.is_valid;
@@ -49,27 +60,72 @@ std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& 
     summary.is_at_rest = result.is_stage1_at_rest && result.is_stage2_at_rest;
     summary.simulated_time = result.stage1_time + result.stage2_time;
     summary.wall_seconds = result.stage1_seconds + result.stage2_seconds;
+    summary.seeds_used = summary.is_valid ? 1 : 0;
     const std::lock_guard lock(mutex);
     ++done;
     if (on_case) on_case(summary, result, done, total);
   };
-  // Cases take about the same time, and each is single-threaded inside (Bullet's world), so the
-  // cores are used by running cases side by side.
+  // Runs take about the same time, and each is single-threaded inside (Bullet's world), so the
+  // cores are used by running cases (and seeds) side by side.
   parallel_for_index(0, total, run_case);
+  if (!is_ensemble) return runs;
+  // One row per case: means over the seeds' valid runs, in seed order.
+  std::vector<SweepCase> cases(case_count);
+  for (std::size_t c = 0; c < case_count; ++c) {
+    SweepCase& row = cases[c];
+    row = runs[c * seed_count];
+    row.seed_count = seed_count;
+    std::vector<double> angles;
+    double r_squared = 0.0;
+    double measured_alpha = 0.0;
+    std::size_t bins = 0;
+    row.is_at_rest = true;
+    row.simulated_time = 0.0;
+    row.wall_seconds = 0.0;
+    for (std::size_t k = 0; k < seed_count; ++k) {
+      const SweepCase& run = runs[c * seed_count + k];
+      row.is_at_rest = row.is_at_rest && run.is_at_rest;
+      row.simulated_time += run.simulated_time;
+      row.wall_seconds += run.wall_seconds;
+      measured_alpha += run.mean_measured_alpha;
+      if (!run.is_valid) continue;
+      angles.push_back(run.angle_degrees);
+      r_squared += run.r_squared;
+      bins += run.fit_bins;
+    }
+    row.statistics = ensemble_statistics(angles);
+    row.seeds_used = angles.size();
+    row.is_valid = !angles.empty();
+    row.angle_degrees = row.statistics.mean;
+    const double used = std::max<double>(1.0, static_cast<double>(angles.size()));
+    row.r_squared = r_squared / used;
+    row.fit_bins = static_cast<std::size_t>(static_cast<double>(bins) / used + 0.5);
+    row.mean_measured_alpha = measured_alpha / static_cast<double>(seed_count);
+  }
   return cases;
 }
 
 void write_sweep_csv(const std::string& path, const std::vector<SweepCase>& cases) {
   AtomicFile file(path, Overwrite::kAllow, std::ios::out);
   auto& out = file.stream();
+  const bool is_ensemble = !cases.empty() && cases.front().seed_count > 1;
   out << "alpha,friction,angle_deg,r_squared,fit_bins,valid,at_rest,particles,"
-         "measured_alpha,simulated_s\n";
+         "measured_alpha,simulated_s"
+      << (is_ensemble ? ",seeds,seeds_used,std_dev_deg,ci95_lower_deg,ci95_upper_deg" : "") << '\n';
   char line[512];
   for (const auto& c : cases) {
-    std::snprintf(line, sizeof line, "%.6g,%.6g,%.6f,%.6f,%zu,%d,%d,%zu,%.6f,%.4f\n", c.alpha,
+    std::snprintf(line, sizeof line, "%.6g,%.6g,%.6f,%.6f,%zu,%d,%d,%zu,%.6f,%.4f", c.alpha,
                   c.friction, c.angle_degrees, c.r_squared, c.fit_bins, c.is_valid ? 1 : 0,
                   c.is_at_rest ? 1 : 0, c.particle_count, c.mean_measured_alpha, c.simulated_time);
     out << line;
+    if (is_ensemble) {
+      const EnsembleStatistics& st = c.statistics;
+      // Without an interval (fewer than 2 angles) the band is the mean itself.
+      std::snprintf(line, sizeof line, ",%zu,%zu,%.6f,%.6f,%.6f", c.seed_count, c.seeds_used,
+                    st.std_dev, st.lower(), st.upper());
+      out << line;
+    }
+    out << '\n';
   }
   file.commit();
 }

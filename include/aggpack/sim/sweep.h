@@ -5,10 +5,12 @@
 // table does not depend on the thread count.
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
 
 namespace aggpack {
@@ -20,6 +22,9 @@ struct SweepOptions {
                                    0.5,  0.6, 0.7,  0.8, 0.9,  1.0};  ///< each in [0, 10]
   /// Walls take each case's mu_s too (the paper's setting); false keeps base.physics.wall_friction.
   bool is_wall_friction_coupled = true;
+  /// Empty: one run per case at base.seed. Else a seed ensemble per case (`sweep --seeds`): each
+  /// case's angle is the mean over these seeds' valid runs, with sd and 95 % interval.
+  std::vector<std::uint64_t> seeds;
 };
 
 /// Throws InvalidInput naming the field unless usable.
@@ -39,10 +44,17 @@ struct SweepCase {
   bool is_at_rest = false;      ///< both stages reached rest
   double simulated_time = 0.0;  ///< s, both stages
   double wall_seconds = 0.0;    ///< wall-clock s (not reproducible)
+  std::uint64_t seed = 0;       ///< the run's seed (per-run summaries; the first seed for a case)
+  /// Seed ensembles (options.seeds): runs of the case, runs with an angle (angle_degrees and
+  /// r_squared are then their means), and the angles' statistics.
+  std::size_t seed_count = 1;
+  std::size_t seeds_used = 0;
+  EnsembleStatistics statistics;
 };
 
-/// Called once per finished case, in completion order, from a worker thread but never two at
-/// a time. `result` holds the full run (packings, profile) for per-case output. Must not throw.
+/// Called once per finished run (case, or case and seed for ensembles), in completion order, from a
+/// worker thread but never two at a time. `result` holds the full run (packings, profile) for
+/// per-case output. Must not throw.
 using SweepCaseCallback = std::function<void(const SweepCase& summary, const ReposeResult& result,
                                              std::size_t done, std::size_t total)>;
 
