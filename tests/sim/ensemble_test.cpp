@@ -155,6 +155,40 @@ TEST(Ensemble, AFailingSeedIsReportedAndLeftOutOfTheStatistics) {
   EXPECT_NE(text.find("\nseeds_used,2,,,,,\n"), std::string::npos) << text;
 }
 
+TEST(Ensemble, SweepWithSeedsGivesEachCaseTheEnsembleStatistics) {
+  SweepOptions sweep = load_sweep_config(kTinyCase, {});
+  sweep.alphas = {0.5};
+  sweep.frictions = {0.3};
+  sweep.seeds = {1, 9};
+  const auto fill = [](const ReposeOptions& options) {
+    return pack_lattice(repose_fill_options(options));
+  };
+  std::vector<std::uint64_t> run_seeds;
+  const auto cases = run_sweep(
+      sweep, fill, [&](const SweepCase& c, const ReposeResult&, std::size_t, std::size_t) {
+        run_seeds.push_back(c.seed);
+      });
+  EXPECT_EQ(run_seeds.size(), 2U);
+  ASSERT_EQ(cases.size(), 1U);
+  ReposeOptions base = sweep.base;
+  base.alpha = 0.5;
+  base.physics.friction = 0.3;
+  base.physics.wall_friction = 0.3;
+  const auto ensemble = run_ensemble(base, {1, 9}, fill);
+  ASSERT_EQ(ensemble.statistics.count, 2U);
+  EXPECT_EQ(cases[0].seed_count, 2U);
+  EXPECT_EQ(cases[0].seeds_used, 2U);
+  EXPECT_DOUBLE_EQ(cases[0].angle_degrees, ensemble.statistics.mean);
+  EXPECT_DOUBLE_EQ(cases[0].statistics.upper(), ensemble.statistics.upper());
+  const fs::path csv = fs::temp_directory_path() / ("aggpack_sweep_" + std::to_string(::getpid()));
+  write_sweep_csv(csv.string(), cases);
+  const std::string text = read_all(csv);
+  fs::remove(csv);
+  EXPECT_NE(text.find(",seeds,seeds_used,std_dev_deg,ci95_lower_deg,ci95_upper_deg\n"),
+            std::string::npos)
+      << text;
+}
+
 class EnsembleCli : public ::testing::Test {
  protected:
   void SetUp() override {
