@@ -5,7 +5,6 @@
 #include "aggpack/sim/ensemble.h"
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -22,6 +21,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/sim/sweep.h"
+#include "support/cli_test.h"
 
 namespace aggpack {
 namespace {
@@ -94,32 +94,6 @@ TEST(SeedList, RejectsBadValuesNamingTheFlag) {
   expect_rejected("0-18446744073709551615", "at most 10000 seeds");
 }
 
-struct Run {
-  int exit_code = -1;
-  std::string output;
-};
-
-Run aggpack(const std::string& arguments) {
-  Run result;
-  const std::string command = "'" AGGPACK_BINARY "' " + arguments + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  for (std::size_t got = 0; (got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
-    result.output.append(buffer, got);
-  }
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 // The golden CLI test's tiny trough (a few particles, short rest times): seconds per seed.
 const std::string kTinyCase = AGGPACK_SOURCE_DIR "/tests/cli/cases/repose/trough.toml";
 
@@ -149,7 +123,7 @@ TEST(Ensemble, AFailingSeedIsReportedAndLeftOutOfTheStatistics) {
                    0.5 * (ensemble.seeds[0].angle_degrees + ensemble.seeds[2].angle_degrees));
   const fs::path csv = fs::temp_directory_path() / ("aggpack_ens_" + std::to_string(::getpid()));
   write_ensemble_csv(csv.string(), ensemble);
-  const std::string text = read_all(csv);
+  const std::string text = test::file_text(csv);
   fs::remove(csv);
   EXPECT_NE(text.find("\n2,,,0,0,0,\"limit exceeded for test fill"), std::string::npos) << text;
   EXPECT_NE(text.find("\nseeds_used,2,,,,,\n"), std::string::npos) << text;
@@ -182,40 +156,35 @@ TEST(Ensemble, SweepWithSeedsGivesEachCaseTheEnsembleStatistics) {
   EXPECT_DOUBLE_EQ(cases[0].statistics.upper(), ensemble.statistics.upper());
   const fs::path csv = fs::temp_directory_path() / ("aggpack_sweep_" + std::to_string(::getpid()));
   write_sweep_csv(csv.string(), cases);
-  const std::string text = read_all(csv);
+  const std::string text = test::file_text(csv);
   fs::remove(csv);
   EXPECT_NE(text.find(",seeds,seeds_used,std_dev_deg,ci95_lower_deg,ci95_upper_deg\n"),
             std::string::npos)
       << text;
 }
 
-class EnsembleCli : public ::testing::Test {
+class EnsembleCli : public test::CliTest {
  protected:
-  void SetUp() override {
-    folder_ = fs::temp_directory_path() / ("aggpack_ensemble_" + std::to_string(::getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
+  EnsembleCli() : CliTest("aggpack_ensemble_") {}
   [[nodiscard]] std::string path(const std::string& name) const {
     return (folder_ / name).string();
   }
-  fs::path folder_;
 };
 
 TEST_F(EnsembleCli, PerSeedResultsStatisticsAndThreadIndependence) {
   const std::string common = "repose " + kTinyCase + " --seeds 3,1-2 --width 64 --progress none";
-  const auto one = aggpack(common + " -j 1 -o " + path("j1"));
-  ASSERT_EQ(one.exit_code, 0) << one.output;
-  const auto two = aggpack(common + " -j 2 -o " + path("j2"));
-  ASSERT_EQ(two.exit_code, 0) << two.output;
+  const auto one = run(common + " -j 1 -o " + path("j1"));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto two = run(common + " -j 2 -o " + path("j2"));
+  ASSERT_EQ(two.exit_code, 0) << two.err;
   for (const char* name : {"ensemble.json", "ensemble.csv", "ensemble.png", "seed-1/repose.json",
                            "seed-2/profile.csv", "seed-3/repose.json"}) {
-    const std::string a = read_all(fs::path(path("j1")) / name);
+    const std::string a = test::file_text(fs::path(path("j1")) / name);
     EXPECT_FALSE(a.empty()) << name;
-    EXPECT_EQ(a, read_all(fs::path(path("j2")) / name)) << name << " differs between -j 1 and 2";
+    EXPECT_EQ(a, test::file_text(fs::path(path("j2")) / name))
+        << name << " differs between -j 1 and 2";
   }
-  const auto json = nlohmann::json::parse(read_all(fs::path(path("j1")) / "ensemble.json"));
+  const auto json = nlohmann::json::parse(test::file_text(fs::path(path("j1")) / "ensemble.json"));
   ASSERT_EQ(json["seeds"].size(), 3U);
   const std::vector<std::uint64_t> order = {3, 1, 2};
   std::vector<double> angles;
@@ -226,8 +195,8 @@ TEST_F(EnsembleCli, PerSeedResultsStatisticsAndThreadIndependence) {
   for (std::size_t i = 0; i < order.size(); ++i) {
     const auto& seed = json["seeds"][i];
     EXPECT_EQ(seed["seed"].get<std::uint64_t>(), order[i]);
-    const auto own = nlohmann::json::parse(
-        read_all(fs::path(path("j1")) / ("seed-" + std::to_string(order[i])) / "repose.json"));
+    const auto own = nlohmann::json::parse(test::file_text(
+        fs::path(path("j1")) / ("seed-" + std::to_string(order[i])) / "repose.json"));
     EXPECT_EQ(own["options"]["seed"].get<std::uint64_t>(), order[i]);
     ASSERT_TRUE(seed["valid"].get<bool>()) << seed.dump();
     EXPECT_EQ(seed["angle_degrees"].get<double>(), own["fit"]["angle_degrees"].get<double>());
@@ -256,10 +225,10 @@ TEST_F(EnsembleCli, PerSeedResultsStatisticsAndThreadIndependence) {
 
 TEST_F(EnsembleCli, BadSeedsGiveOneLineErrorsAndNoFolder) {
   for (const std::string seeds : {"''", "5-2", "x", "1-20000", "1,1"}) {
-    const auto run = aggpack("repose " + kTinyCase + " --seeds " + seeds + " -o " + path("bad"));
-    EXPECT_NE(run.exit_code, 0) << seeds;
-    EXPECT_EQ(run.output.rfind("aggpack: error: invalid --seeds = ", 0), 0U) << run.output;
-    EXPECT_EQ(run.output.find('\n'), run.output.size() - 1) << run.output;
+    const auto bad = run("repose " + kTinyCase + " --seeds " + seeds + " -o " + path("bad"));
+    EXPECT_NE(bad.exit_code, 0) << seeds;
+    EXPECT_EQ(bad.err.rfind("aggpack: error: invalid --seeds = ", 0), 0U) << bad.err;
+    EXPECT_EQ(bad.err.find('\n'), bad.err.size() - 1) << bad.err;
     EXPECT_FALSE(fs::exists(path("bad"))) << seeds;
   }
 }
