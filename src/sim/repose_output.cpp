@@ -174,7 +174,8 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
   json["aggpack_version"] = AGGPACK_VERSION;
   json["options"] = {
       {"trough_length_m", options.trough_length},
-      {"trough_width_m", options.trough_width},
+      {"trough_width_m", options.width()},
+      {"width_factor", options.width_factor},
       {"trough_height_m", options.trough_height},
       {"baffle_position_m", options.baffle_position},
       {"baffle_thickness_m", options.baffle_thickness},
@@ -227,7 +228,7 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
       {"restarts_by_speed", confirmation.speed_restarts},
       {"angle_change_degrees", confirmation.angle_change},
       {"crest_height_change_m", confirmation.height_change},
-      {"max_pile_speed_m_per_s", confirmation.max_speed},
+      {"max_pile_speed99_m_per_s", confirmation.max_speed},
       {"speed_limit_m_per_s", confirmation.speed_limit},
   };
   json["final"] = {

@@ -28,6 +28,11 @@ namespace aggpack {
 struct ReposeOptions {
   double trough_length = 6.0;  ///< m, x extent, > 0
   double trough_width = 1.0;   ///< m, y extent, > 0
+  /// Multiplies trough_width (and with it the fill's width): a wider trough, less wall effect
+  /// and more particles, the pile's side view (height : length) unchanged. [1, 100].
+  double width_factor = 1.0;
+  /// The trough's y extent in use: trough_width x width_factor (m).
+  [[nodiscard]] double width() const { return trough_width * width_factor; }
   /// m, z extent of the trough walls, > 0. While particles are placed above it (stage 1) the
   /// walls and the baffle reach up to the top of the lattice region.
   double trough_height = 1.0;
@@ -39,7 +44,7 @@ struct ReposeOptions {
   double baffle_clear_time = 0.2;
 
   // Particles: the fill, made by the caller (the pipeline's pack() of repose_fill_options(), the
-  // paper's lattice placement in the box [0, baffle_position] x [0, trough_width] x
+  // paper's lattice placement in the box [0, baffle_position] x [0, width()] x
   // [0, fill_height]) and passed to run_repose().
   double alpha = 0.5;        ///< Eq. 3 shape control, [0, 1]
   double radius = 0.1;       ///< control radius R (m), > 0; lattice spacing 2R
@@ -68,15 +73,18 @@ struct ReposeOptions {
   /// median equivalent diameter: a Froude-scaled time, the same number of particle fall times at
   /// any scale) and counts as at rest only if, over that whole window, the angle (fit as measured)
   /// stays within confirm_angle_tolerance of its value at the window's start, the crest height
-  /// within confirm_height_tolerance x d, and no particle of the pile (centre above fit_lower x
-  /// crest) moves faster than confirm_speed x sqrt(g d). Any violation restarts the wait (the
-  /// energy/surface tests too). The window bounds the creep rate of the crest to
-  /// confirm_height_tolerance / confirm_window x sqrt(g d). rest.max_time still bounds stage 2;
-  /// a run that hits it reports is_stage2_at_rest = false. confirm_window = 0 turns it off.
+  /// within confirm_height_tolerance x d, and 99 % of the pile's particles (centres above
+  /// fit_lower x crest; all of them when fewer than 100) move slower than confirm_speed x
+  /// sqrt(g d): single particles popping in Bullet's contact solver (seen up to 0.45 sqrt(g d))
+  /// do not count, a collective motion does. Any violation restarts the wait (the energy/surface
+  /// tests too). The window bounds the drift rates: angle confirm_angle_tolerance /
+  /// confirm_window, crest confirm_height_tolerance / confirm_window x sqrt(g d). rest.max_time
+  /// still bounds stage 2; a run that hits it reports is_stage2_at_rest = false.
+  /// confirm_window = 0 turns the confirmation off.
   double confirm_window = 30.0;           ///< in units of sqrt(d / g), [0, 1e4]
-  double confirm_angle_tolerance = 0.25;  ///< degrees, (0, 90]
+  double confirm_angle_tolerance = 0.5;   ///< degrees, (0, 90]
   double confirm_height_tolerance = 0.1;  ///< fraction of d, (0, 10]
-  double confirm_speed = 0.02;            ///< fraction of sqrt(g d), (0, 10]
+  double confirm_speed = 0.05;            ///< fraction of sqrt(g d), (0, 10]
   /// Diagnostic: after rest, follow the pile this many more simulated seconds and measure the
   /// angle again (ReposeResult::follow); the reported angle stays the one at rest. [0, 1e3].
   double follow_time = 0.0;
@@ -91,7 +99,7 @@ struct ReposeOptions {
 void validate(const ReposeOptions& options);
 
 /// The paper's fill for the test: the lattice placement (alpha, radius, edge_length, seed) in the
-/// box [0, baffle_position] x [0, trough_width] x [0, fill_height]. Pack it with the pipeline's
+/// box [0, baffle_position] x [0, width()] x [0, fill_height]. Pack it with the pipeline's
 /// pack() (or pack_lattice) and pass the result to run_repose().
 LatticeOptions repose_fill_options(const ReposeOptions& options);
 
@@ -210,7 +218,7 @@ struct ReposeResult {
     std::size_t speed_restarts = 0;   ///< a fast pile particle
     double angle_change = 0.0;        ///< degrees, largest |change| over the last (passed) window
     double height_change = 0.0;       ///< m, largest |crest change| over the last window
-    double max_speed = 0.0;           ///< m/s, fastest pile particle over the last window
+    double max_speed = 0.0;           ///< m/s, largest 99 % pile speed over the last window
     double speed_limit = 0.0;         ///< m/s, confirm_speed x sqrt(g d)
   } confirmation;
   /// The measurement follow_time after rest (when follow_time > 0).
@@ -225,7 +233,7 @@ struct ReposeResult {
 /// Runs both stages on `fill` and measures the angle. Deterministic for given options and fill.
 /// `fill`: the particles behind the baffle and their report (report.solid_volume is the exact
 /// solid volume), as the pipeline's pack() returns them; its container must be a box within
-/// [0, baffle_position] x [0, trough_width] (else InvalidInput naming "repose fill"). The
+/// [0, baffle_position] x [0, width()] (else InvalidInput naming "repose fill"). The
 /// result's packings carry the fill's provenance with packer "<fill packer>+repose".
 /// \throw InvalidInput, LimitExceeded (as validate() and World).
 ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
