@@ -292,8 +292,9 @@ TEST(Repose, ReportsTheAngleSensitivityToFitWindowAndBinWidth) {
   EXPECT_EQ(own, 1u);
   EXPECT_GE(valid, 20u);
   EXPECT_DOUBLE_EQ(table.max_deviation, largest);
-  // A small pile (3 particles high): a few degrees at most, not the < 0.5 deg of a paper-size one.
-  EXPECT_LT(table.max_deviation, 6.0);
+  // A small pile (3 particles high, a dozen bins on its slope) is sensitive: degrees, not the
+  // < 0.5 deg wanted of a measurement (see README, repose).
+  EXPECT_LT(table.max_deviation, 15.0);
 }
 
 // The rest criterion: once stage 2 stops, following the pile 2 s longer (about 20 particle fall
