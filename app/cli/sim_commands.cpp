@@ -148,8 +148,12 @@ void print_result(const ReposeResult& r) {
         "pile height {:.3f} m)\n",
         r.fit.angle_degrees, r.fit.r_squared, r.fit.bin_count, r.profile.centre(r.fit.first_bin),
         r.profile.centre(r.fit.last_bin), r.fit.pile_height);
-    fmt::print("fit sensitivity      max deviation {:.2f} deg over fit windows and bin widths\n",
-               r.sensitivity.max_deviation);
+    fmt::print(
+        "fit sensitivity      max deviation {:.2f} deg (fit window +-0.05: {:.2f}, bin width "
+        "x0.5-2: "
+        "{:.2f})\n",
+        r.sensitivity.max_deviation, r.sensitivity.max_deviation_window,
+        r.sensitivity.max_deviation_bins);
   } else {
     fmt::print("angle of repose      not measured: {}\n", r.fit.message);
   }

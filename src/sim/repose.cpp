@@ -601,8 +601,15 @@ FitSensitivity fit_sensitivity(const Packing& packing, const ReposeOptions& opti
           entry.is_valid = fit.is_valid;
           entry.angle_degrees = fit.angle_degrees;
           if (fit.is_valid && reference.is_valid) {
-            sensitivity.max_deviation = std::max(
-                sensitivity.max_deviation, std::abs(fit.angle_degrees - reference.angle_degrees));
+            const double deviation = std::abs(fit.angle_degrees - reference.angle_degrees);
+            sensitivity.max_deviation = std::max(sensitivity.max_deviation, deviation);
+            if (factor == 1.0) {
+              sensitivity.max_deviation_window =
+                  std::max(sensitivity.max_deviation_window, deviation);
+            }
+            if (dl == 0.0 && du == 0.0) {
+              sensitivity.max_deviation_bins = std::max(sensitivity.max_deviation_bins, deviation);
+            }
           }
         }
         sensitivity.entries.push_back(entry);

@@ -262,6 +262,8 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
   }
   json["sensitivity"] = {
       {"max_deviation_degrees", result.sensitivity.max_deviation},
+      {"max_deviation_fit_window_degrees", result.sensitivity.max_deviation_window},
+      {"max_deviation_bin_width_degrees", result.sensitivity.max_deviation_bins},
       {"entries", std::move(table)},
   };
   if (options.follow_time > 0.0) {

@@ -292,6 +292,21 @@ TEST(Repose, ReportsTheAngleSensitivityToFitWindowAndBinWidth) {
   EXPECT_EQ(own, 1u);
   EXPECT_GE(valid, 20u);
   EXPECT_DOUBLE_EQ(table.max_deviation, largest);
+  // The two one-at-a-time deviations are parts of the table's (8 and 2 of its 26 other entries).
+  EXPECT_LE(table.max_deviation_window, table.max_deviation);
+  EXPECT_LE(table.max_deviation_bins, table.max_deviation);
+  double window = 0.0;
+  double bins = 0.0;
+  for (const auto& entry : table.entries) {
+    if (!entry.is_valid) continue;
+    const double deviation = std::abs(entry.angle_degrees - result.fit.angle_degrees);
+    if (entry.bin_factor == 1.0) window = std::max(window, deviation);
+    if (entry.fit_lower == options.fit_lower && entry.fit_upper == options.fit_upper) {
+      bins = std::max(bins, deviation);
+    }
+  }
+  EXPECT_DOUBLE_EQ(table.max_deviation_window, window);
+  EXPECT_DOUBLE_EQ(table.max_deviation_bins, bins);
   // A small pile (3 particles high, a dozen bins on its slope) is sensitive: degrees, not the
   // < 0.5 deg wanted of a measurement (see README, repose).
   EXPECT_LT(table.max_deviation, 15.0);

@@ -175,7 +175,9 @@ struct SensitivityEntry {
 /// own setting among them. max_deviation: largest |angle - the run's angle| over valid entries.
 struct FitSensitivity {
   std::vector<SensitivityEntry> entries;
-  double max_deviation = 0.0;  ///< degrees
+  double max_deviation = 0.0;         ///< degrees
+  double max_deviation_window = 0.0;  ///< degrees, over the fit windows at the run's bin width
+  double max_deviation_bins = 0.0;    ///< degrees, over the bin widths at the run's fit window
 };
 FitSensitivity fit_sensitivity(const Packing& packing, const ReposeOptions& options,
                                const SlopeFit& reference);
