@@ -144,7 +144,6 @@ void register_calibrate(CLI::App& app) {
     const Overwrite overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!flags->table.empty()) check_writable(flags->table, overwrite);
     if (!flags->plot.empty()) {
-      check_plot_available("--plot");
       check_writable(flags->plot, overwrite);
     }
     const CalibrationOptions& options = flags->options;
