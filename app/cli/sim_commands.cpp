@@ -49,6 +49,7 @@ class CreatedFolder {
     if (!is_created_ || is_kept_) return;
     std::error_code error;
     std::filesystem::remove(std::filesystem::path(folder_) / "cases", error);  // only if empty
+    std::filesystem::remove(std::filesystem::path(folder_) / "runs", error);   // only if empty
     std::filesystem::remove(folder_, error);                                   // only if empty
   }
   void keep() { is_kept_ = true; }
@@ -181,6 +182,27 @@ RunRecord plan_record(RunKind kind, const SweepOptions& options, std::size_t run
   return record;
 }
 
+// Workers share a folder: one whose runs/ holds records of another plan (configuration, seed
+// list or kind) is refused before anything runs, so that a folder never mixes plans.
+void check_same_plan(const std::string& folder, const RunRecord& plan) {
+  const std::filesystem::path runs = std::filesystem::path(folder) / "runs";
+  std::error_code error;
+  if (!std::filesystem::is_directory(runs, error)) return;
+  for (const auto& entry : std::filesystem::directory_iterator(runs, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.front() == '.' || entry.path().extension() != ".json") continue;
+    const RunRecord other = read_run_record(entry.path().string());
+    if (other.kind != plan.kind || other.hash != plan.hash) {
+      throw InvalidInput(
+          "-o " + folder,
+          "a folder holding " + entry.path().string() + " (configuration " + other.hash + ")",
+          "a new folder, or one of the same configuration and seed list (this "
+          "run's configuration is " +
+              plan.hash + ")");
+    }
+  }
+}
+
 void print_share(const RunShare& share, std::size_t owned, std::size_t total,
                  const std::string& folder) {
   fmt::print(
@@ -220,6 +242,7 @@ void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options,
     }
   }
   const RunRecord plan = plan_record(RunKind::kEnsemble, options, seeds.size());
+  check_same_plan(folder, plan);
   std::filesystem::create_directories(in_folder(folder, "runs"));
   fmt::print("ensemble: {} seeds{}\n", seeds.size(),
              share.is_split() ? fmt::format(" (worker {} of {})", share.worker, share.of) : "");
@@ -347,6 +370,7 @@ void run_sweep_command(const ReposeFlags& flags) {
   fmt::print("{}{}\n", is_ensemble ? fmt::format(" x {} seeds", options.seeds.size()) : "",
              share.is_split() ? fmt::format(" (worker {} of {})", share.worker, share.of) : "");
   const RunRecord plan = plan_record(RunKind::kSweep, options, total * seed_count);
+  check_same_plan(folder, plan);
   std::map<std::uint64_t, std::size_t> seed_index;
   for (std::size_t k = 0; k < options.seeds.size(); ++k) seed_index[options.seeds[k]] = k;
   ProgressBar bar("sweep", "cases", style);
