@@ -178,8 +178,7 @@ void run_merge_command(const MergeFlags& flags) {
     for (const auto& run : runs.runs) seeds.push_back(run->ensemble);
     const EnsembleResult ensemble = summarize_ensemble(std::move(seeds));
     prepare_folder(output, flags.is_forced, {"ensemble.json", "ensemble.csv", "ensemble.png"});
-    fmt::print("merge: ensemble of {} seeds, configuration {}\n", ensemble.seeds.size(),
-               first.hash);
+    fmt::print("merge: ensemble of {} seeds\n", ensemble.seeds.size());
     write_ensemble_summary(output, plan.base, ensemble, flags.image_width);
     return;
   }
@@ -187,8 +186,8 @@ void run_merge_command(const MergeFlags& flags) {
   for (const auto& run : runs.runs) cases.push_back(run->sweep);
   cases = summarize_sweep(plan, std::move(cases));
   prepare_folder(output, flags.is_forced, {"sweep.csv", "sweep.gp", "sweep.png"});
-  fmt::print("merge: sweep of {} cases x {} seeds, configuration {}\n", cases.size(),
-             std::max<std::size_t>(1, plan.seeds.size()), first.hash);
+  fmt::print("merge: sweep of {} cases x {} seeds\n", cases.size(),
+             std::max<std::size_t>(1, plan.seeds.size()));
   write_sweep_summary(output, plan, cases, flags.is_without_plot);
 }
 

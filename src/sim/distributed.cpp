@@ -63,9 +63,36 @@ std::string format_seed_list(const std::vector<std::uint64_t>& seeds) {
 
 std::string config_hash(const std::string& text) {
   std::uint64_t hash = 14695981039346656037ULL;
-  for (const char c : text) {
+  const auto add = [&](char c) {
     hash ^= static_cast<unsigned char>(c);
     hash *= 1099511628211ULL;
+  };
+  // Comments (the keys' documentation) are not part of the configuration: skip from a '#'
+  // outside a string to the end of the line, and the blanks before it.
+  bool is_quoted = false;
+  bool is_comment = false;
+  std::string blanks;
+  for (const char c : text) {
+    if (c == '\n') {
+      is_comment = false;
+      is_quoted = false;
+      blanks.clear();
+      add(c);
+      continue;
+    }
+    if (is_comment) continue;
+    if (c == '#' && !is_quoted) {
+      is_comment = true;
+      continue;
+    }
+    if (c == ' ' && !is_quoted) {
+      blanks += c;
+      continue;
+    }
+    for (const char b : blanks) add(b);
+    blanks.clear();
+    if (c == '"') is_quoted = !is_quoted;
+    add(c);
   }
   return fmt::format("{:016x}", hash);
 }

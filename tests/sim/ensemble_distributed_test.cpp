@@ -66,6 +66,9 @@ TEST(RunShare, SeedListsFormatBackAndHashesTellTextsApart) {
   EXPECT_EQ(config_hash("").size(), 16U);
   EXPECT_EQ(config_hash("a = 1\n"), config_hash("a = 1\n"));
   EXPECT_NE(config_hash("a = 1\n"), config_hash("a = 2\n"));
+  // Comments (key documentation) do not count; values, also with a '#' in a string, do.
+  EXPECT_EQ(config_hash("a = 1  # the a\n"), config_hash("a = 1\n"));
+  EXPECT_NE(config_hash("a = \"x # y\"\n"), config_hash("a = \"x\"\n"));
 }
 
 TEST(EnsembleSeedsKey, ConfigKeyGivesTheSeedListAndWritesItBack) {

@@ -36,7 +36,8 @@ RunShare parse_run_share(const std::optional<std::string>& worker,
 /// "1-4,9": the seed list in parse_seed_list's syntax, consecutive runs as ranges.
 std::string format_seed_list(const std::vector<std::uint64_t>& seeds);
 
-/// 16 hex digits: FNV-1a 64 of `text` (the resolved configuration), to tell configurations apart.
+/// 16 hex digits: FNV-1a 64 of `text` (the resolved configuration) without its TOML comments
+/// (the keys' documentation) and the blanks before them, to tell configurations apart.
 std::string config_hash(const std::string& text);
 
 /// What kind of plan a run belongs to.
