@@ -179,7 +179,7 @@ std::vector<SweepKey> ensemble_keys() {
       {.name = "ensemble.seeds",
        .type = ValueType::kPath,
        .unit = "-",
-       .note = "seeds as 1-16, 1,4,9 or 1-4,9 (at most 10000)",
+       .note = "a non-empty seed list: 1-16, 1,4,9 or 1-4,9 (at most 10000 seeds)",
        .written = {.text = "given",
                    .applies = [](const SweepOptions& o) { return !o.seeds.empty(); }},
        .doc = "seed ensemble: `repose` runs once per seed (ensemble.json), `sweep` once per "
