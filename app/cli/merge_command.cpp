@@ -146,7 +146,15 @@ struct MergeFlags {
   bool is_forced = false;
 };
 
-void run_merge_command(const MergeFlags& flags) {
+}  // namespace
+
+void merge_run_folder(const std::string& folder, const std::string& output_folder, int width,
+                      bool is_without_plot, bool is_forced) {
+  const MergeFlags flags{.folder = folder,
+                         .output = output_folder,
+                         .image_width = width,
+                         .is_without_plot = is_without_plot,
+                         .is_forced = is_forced};
   if (flags.image_width < 64 || flags.image_width > 16384) {
     throw InvalidInput("--width", std::to_string(flags.image_width), "[64, 16384]");
   }
@@ -191,8 +199,6 @@ void run_merge_command(const MergeFlags& flags) {
   write_sweep_summary(output, plan, cases, flags.is_without_plot);
 }
 
-}  // namespace
-
 void register_merge(CLI::App& app) {
   auto flags = std::make_shared<MergeFlags>();
   auto* command = app.add_subcommand(
@@ -206,7 +212,10 @@ void register_merge(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("--no-plot", flags->is_without_plot, "sweep: do not run gnuplot");
   command->add_flag("-f,--force", flags->is_forced, "replace an existing summary");
-  command->callback([flags]() { run_merge_command(*flags); });
+  command->callback([flags]() {
+    merge_run_folder(flags->folder, flags->output, flags->image_width, flags->is_without_plot,
+                     flags->is_forced);
+  });
 }
 
 }  // namespace aggpack::cli

@@ -27,6 +27,7 @@
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/sweep.h"
 #include "commands.h"
+#include "mpi_world.h"
 #include "progress.h"
 #include "sim_summary.h"
 
@@ -214,9 +215,9 @@ void print_share(const RunShare& share, std::size_t owned, std::size_t total,
 // `repose --seeds`: one run per seed in DIR/seed-<k>/ and its record in DIR/runs/seed-<k>.json,
 // the angles and their statistics in DIR/ensemble.json|csv|png. Seeds run in parallel, each
 // single-threaded (as the sweep's cases). With --case K --of N only worker K's seeds run and the
-// summary is left to `aggpack merge`.
-void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options,
-                          const RunShare& share) {
+// summary is left to `aggpack merge` (`is_merged_later`: also under mpirun).
+EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& options,
+                                 const RunShare& share, bool is_merged_later) {
   const std::vector<std::uint64_t>& seeds = options.seeds;
   set_thread_count(flags.threads);
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
@@ -225,8 +226,8 @@ void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options,
   CreatedFolder created(flags.output);
   const std::string folder = prepare_folder(
       flags.output, flags.is_forced,
-      share.is_split() ? std::vector<std::string>{}
-                       : std::vector<std::string>{"ensemble.json", "ensemble.csv", "ensemble.png"});
+      is_merged_later ? std::vector<std::string>{}
+                      : std::vector<std::string>{"ensemble.json", "ensemble.csv", "ensemble.png"});
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   std::map<std::uint64_t, std::size_t> run_index;
   for (std::size_t i = 0; i < seeds.size(); ++i) {
@@ -281,11 +282,32 @@ void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options,
   });
   bar.finish();
   created.keep();
-  if (share.is_split()) {
-    print_share(share, ensemble.seeds.size(), seeds.size(), folder);
+  if (share.is_split()) print_share(share, ensemble.seeds.size(), seeds.size(), folder);
+  return ensemble;
+}
+
+// The ensemble in this process (`--case K --of N`: its share), or over the ranks of mpirun.
+void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options,
+                          const RunShare& given) {
+  if (given.is_split()) {
+    run_ensemble_part(flags, options, given, true);
     return;
   }
-  write_ensemble_summary(folder, options.base, ensemble, flags.image_width);
+  bool is_mpi = false;
+  EnsembleResult ensemble;
+  run_on_mpi_world(
+      [&](const MpiWorld& world) {
+        is_mpi = world.is_split();
+        const RunShare share = is_mpi ? RunShare{world.rank + 1, world.size} : RunShare{};
+        ensemble = run_ensemble_part(flags, options, share, false);
+      },
+      [&] {
+        if (is_mpi) {
+          merge_run_folder(flags.output, "", flags.image_width, false, flags.is_forced);
+        } else {
+          write_ensemble_summary(flags.output, options.base, ensemble, flags.image_width);
+        }
+      });
 }
 
 void run_repose_command(const ReposeFlags& flags) {
@@ -345,22 +367,17 @@ void run_repose_command(const ReposeFlags& flags) {
   fmt::print("wrote {}/repose.json, profile.csv, side.png, final.h5\n", folder);
 }
 
-void run_sweep_command(const ReposeFlags& flags) {
-  const SweepOptions options = resolve(flags);
-  with_sweep_key_names([&] { validate(options); });
-  const RunShare share = parse_run_share(flags.worker, flags.of);
+// The runs of a sweep (`share`'s only when split), as run_ensemble_part.
+std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptions& options,
+                                      const RunShare& share, bool is_merged_later) {
   const bool is_ensemble = !options.seeds.empty();
-  if (flags.is_print_config) {
-    fmt::print("{}", resolved_sweep_config(options));
-    return;
-  }
   set_thread_count(flags.threads);
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   CreatedFolder created(flags.output);
   const std::string folder = prepare_folder(
       flags.output, flags.is_forced,
-      share.is_split() ? std::vector<std::string>{}
-                       : std::vector<std::string>{"sweep.csv", "sweep.gp", "sweep.png"});
+      is_merged_later ? std::vector<std::string>{}
+                      : std::vector<std::string>{"sweep.csv", "sweep.gp", "sweep.png"});
   std::filesystem::create_directories(std::filesystem::path(folder) / "cases");
   std::filesystem::create_directories(std::filesystem::path(folder) / "runs");
   const std::size_t seed_count = is_ensemble ? options.seeds.size() : 1;
@@ -405,12 +422,39 @@ void run_sweep_command(const ReposeFlags& flags) {
   });
   bar.finish();
   created.keep();
-  if (share.is_split()) {
-    print_share(share, runs.size(), total * seed_count, folder);
+  if (share.is_split()) print_share(share, runs.size(), total * seed_count, folder);
+  return runs;
+}
+
+void run_sweep_command(const ReposeFlags& flags) {
+  const SweepOptions options = resolve(flags);
+  with_sweep_key_names([&] { validate(options); });
+  const RunShare given = parse_run_share(flags.worker, flags.of);
+  if (flags.is_print_config) {
+    fmt::print("{}", resolved_sweep_config(options));
     return;
   }
-  write_sweep_summary(folder, options, summarize_sweep(options, std::move(runs)),
-                      flags.is_without_plot);
+  if (given.is_split()) {
+    run_sweep_part(flags, options, given, true);
+    return;
+  }
+  bool is_mpi = false;
+  std::vector<SweepCase> runs;
+  run_on_mpi_world(
+      [&](const MpiWorld& world) {
+        is_mpi = world.is_split();
+        const RunShare share = is_mpi ? RunShare{world.rank + 1, world.size} : RunShare{};
+        runs = run_sweep_part(flags, options, share, false);
+      },
+      [&] {
+        if (is_mpi) {
+          merge_run_folder(flags.output, "", flags.image_width, flags.is_without_plot,
+                           flags.is_forced);
+        } else {
+          write_sweep_summary(flags.output, options, summarize_sweep(options, std::move(runs)),
+                              flags.is_without_plot);
+        }
+      });
 }
 
 }  // namespace

@@ -30,6 +30,11 @@ void write_ensemble_summary(const std::string& folder, const ReposeOptions& base
 void write_sweep_summary(const std::string& folder, const SweepOptions& options,
                          const std::vector<SweepCase>& cases, bool is_without_plot);
 
+/// `aggpack merge FOLDER`: checks the run records of FOLDER/runs/ and writes the summary into
+/// `output` (empty: FOLDER). \throw InvalidInput naming missing runs or records of another plan.
+void merge_run_folder(const std::string& folder, const std::string& output, int width,
+                      bool is_without_plot, bool is_forced);
+
 /// `aggpack merge` (merge_command.cpp), registered by register_sim.
 void register_merge(CLI::App& app);
 
