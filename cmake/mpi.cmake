@@ -8,6 +8,7 @@ if(AGGPACK_WITH_MPI AND TARGET aggpack_sim)
   if(MPI_C_FOUND)
     target_link_libraries(aggpack PRIVATE MPI::MPI_C)
     target_compile_definitions(aggpack PRIVATE AGGPACK_HAS_MPI=1)
+    set(AGGPACK_HAS_MPI ON)  # tests/CMakeLists.txt: test_sim runs the mpirun test
     message(STATUS "aggpack: MPI found (${MPI_C_LIBRARY_NAMES}): mpirun -n N aggpack sweep")
   else()
     message(STATUS "aggpack: MPI not found: no mpirun support (--case K --of N still works)")

@@ -219,6 +219,27 @@ TEST_F(DistributedCli, MergeRefusesMissingRunsOtherConfigurationsAndEditedRecord
   EXPECT_NE(empty.err.find("none found"), std::string::npos) << empty.err;
 }
 
+#ifdef AGGPACK_HAS_MPI
+// `mpirun -n 2 aggpack sweep`: rank r runs --case r+1 --of 2, rank 0 merges after both are done.
+// Built with MPI, mpirun must work (the test fails, not skips, without it).
+TEST_F(DistributedCli, MpirunWithTwoRanksGivesTheSingleProcessSweep) {
+  const std::string common = "sweep " + kTinyCase +
+                             " --set sweep.alphas=[0.5] --set sweep.frictions=[0.2,0.4] "
+                             "--seeds 1-2 --width 64 --progress none --no-plot -j 1";
+  const auto single = run(common + " -o single");
+  ASSERT_EQ(single.exit_code, 0) << single.err;
+  // As root (containers, CI) OpenMPI needs both variables; --oversubscribe: 2 ranks on any CPU.
+  const auto mpi = run(common + " -o ranks",
+                       "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                       "OMPI_MCA_rmaps_base_oversubscribe=1 mpirun -n 2");
+  ASSERT_EQ(mpi.exit_code, 0) << mpi.out << mpi.err;
+  EXPECT_NE(mpi.out.find("worker 1 of 2"), std::string::npos) << mpi.out;
+  EXPECT_NE(mpi.out.find("worker 2 of 2"), std::string::npos) << mpi.out;
+  EXPECT_NE(mpi.out.find("merge: sweep of 2 cases x 2 seeds"), std::string::npos) << mpi.out;
+  expect_same_tree("single", "ranks");
+}
+#endif
+
 TEST_F(DistributedCli, BadCaseAndOfGiveOneLineErrorsAndNoFolder) {
   const std::string common = "repose " + kTinyCase + " --seeds 1-2 --progress none -o bad";
   for (const std::string flags :
