@@ -461,7 +461,6 @@ void run_sweep_command(const ReposeFlags& flags) {
 
 void register_sim(CLI::App& app) {
   register_settle(app);
-  register_merge(app);
   {
     auto flags = std::make_shared<ReposeFlags>();
     auto* command = app.add_subcommand(
@@ -508,6 +507,7 @@ void register_sim(CLI::App& app) {
       run_sweep_command(*flags);
     });
   }
+  register_merge(app);
 }
 
 }  // namespace aggpack::cli
