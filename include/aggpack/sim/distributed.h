@@ -56,8 +56,8 @@ struct RunRecord {
   SweepCase sweep;            ///< kSweep: the run's summary (wall_seconds not recorded)
 };
 
-/// The record's file name in DIR/runs/: "seed-<k>.json", or the case's
-/// "alpha<a>_mu<m>[_seed<k>].json" as in DIR/cases/.
+/// An ensemble record's file name in DIR/runs/: "seed-<k>.json". (`sweep` names its records as
+/// its cases/ files, "alpha<a>_mu<m>[_seed<k>].json"; merge finds records by content, not name.)
 std::string run_record_name(const RunRecord& record);
 
 /// Writes the record atomically (temporary file + rename). \throw IoError.
