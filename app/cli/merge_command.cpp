@@ -141,7 +141,7 @@ namespace {
 struct MergeFlags {
   std::string folder;
   std::string output;
-  int image_width = 1600;
+  int image_width = 0;  ///< 0: the workers' --width (from the records), else 1600
   bool is_without_plot = false;
   bool is_forced = false;
 };
@@ -155,11 +155,15 @@ void merge_run_folder(const std::string& folder, const std::string& output_folde
                          .image_width = width,
                          .is_without_plot = is_without_plot,
                          .is_forced = is_forced};
-  if (flags.image_width < 64 || flags.image_width > 16384) {
+  if (flags.image_width != 0 && (flags.image_width < 64 || flags.image_width > 16384)) {
     throw InvalidInput("--width", std::to_string(flags.image_width), "[64, 16384]");
   }
   const RunFolder runs = read_run_folder(flags.folder);
   const RunRecord& first = runs.any();
+  int image_width = flags.image_width;
+  if (image_width == 0) {
+    image_width = first.image_width >= 64 && first.image_width <= 16384 ? first.image_width : 1600;
+  }
   SweepOptions plan;
   with_sweep_key_names(
       [&] { plan = parse_sweep_config(first.config, "run record configuration"); });
@@ -187,7 +191,7 @@ void merge_run_folder(const std::string& folder, const std::string& output_folde
     const EnsembleResult ensemble = summarize_ensemble(std::move(seeds));
     prepare_folder(output, flags.is_forced, {"ensemble.json", "ensemble.csv", "ensemble.png"});
     fmt::print("merge: ensemble of {} seeds\n", ensemble.seeds.size());
-    write_ensemble_summary(output, plan.base, ensemble, flags.image_width);
+    write_ensemble_summary(output, plan.base, ensemble, image_width);
     return;
   }
   std::vector<SweepCase> cases;
@@ -208,8 +212,8 @@ void register_merge(CLI::App& app) {
       "ensemble.json|csv|png or sweep.csv|gp|png as the single-process run does.");
   command->add_option("folder", flags->folder, "the workers' shared output folder")->required();
   command->add_option("-o,--output", flags->output, "where the summary goes (default: the folder)");
-  command->add_option("--width", flags->image_width, "ensemble.png width in pixels, [64, 16384]")
-      ->capture_default_str();
+  command->add_option("--width", flags->image_width,
+                      "ensemble.png width in pixels, [64, 16384] (default: the workers' --width)");
   command->add_flag("--no-plot", flags->is_without_plot, "sweep: do not run gnuplot");
   command->add_flag("-f,--force", flags->is_forced, "replace an existing summary");
   command->callback([flags]() {

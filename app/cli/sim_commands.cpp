@@ -174,8 +174,10 @@ PackResult repose_fill(const ReposeOptions& options) {
 }
 
 // The plan of a distributed run: the resolved configuration (with the seed list) and its hash.
-RunRecord plan_record(RunKind kind, const SweepOptions& options, std::size_t run_count) {
+RunRecord plan_record(RunKind kind, const SweepOptions& options, std::size_t run_count,
+                      int image_width) {
   RunRecord record;
+  record.image_width = image_width;
   record.kind = kind;
   record.config = resolved_sweep_config(options);
   record.hash = config_hash(record.config);
@@ -242,7 +244,7 @@ EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& o
       check_writable(in_folder(folder, fmt::format("seed-{}/{}", seeds[i], name)), overwrite);
     }
   }
-  const RunRecord plan = plan_record(RunKind::kEnsemble, options, seeds.size());
+  const RunRecord plan = plan_record(RunKind::kEnsemble, options, seeds.size(), flags.image_width);
   check_same_plan(folder, plan);
   std::filesystem::create_directories(in_folder(folder, "runs"));
   fmt::print("ensemble: {} seeds{}\n", seeds.size(),
@@ -386,7 +388,8 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
              options.frictions.size(), total);
   fmt::print("{}{}\n", is_ensemble ? fmt::format(" x {} seeds", options.seeds.size()) : "",
              share.is_split() ? fmt::format(" (worker {} of {})", share.worker, share.of) : "");
-  const RunRecord plan = plan_record(RunKind::kSweep, options, total * seed_count);
+  const RunRecord plan =
+      plan_record(RunKind::kSweep, options, total * seed_count, flags.image_width);
   check_same_plan(folder, plan);
   std::map<std::uint64_t, std::size_t> seed_index;
   for (std::size_t k = 0; k < options.seeds.size(); ++k) seed_index[options.seeds[k]] = k;

@@ -111,6 +111,7 @@ void write_run_record(const std::string& path, const RunRecord& record) {
   json["config_hash"] = record.hash;
   json["run_index"] = record.run_index;
   json["run_count"] = record.run_count;
+  json["image_width"] = record.image_width;
   if (record.kind == RunKind::kEnsemble) {
     const EnsembleSeed& s = record.ensemble;
     json["result"] = {{"seed", s.seed},           {"valid", s.is_valid},
@@ -159,6 +160,7 @@ RunRecord read_run_record(const std::string& path) {
     record.hash = json.at("config_hash").get<std::string>();
     record.run_index = json.at("run_index").get<std::size_t>();
     record.run_count = json.at("run_count").get<std::size_t>();
+    record.image_width = json.value("image_width", 0);
     const auto& r = json.at("result");
     if (record.kind == RunKind::kEnsemble) {
       EnsembleSeed& s = record.ensemble;

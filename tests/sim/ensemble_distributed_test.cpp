@@ -132,7 +132,8 @@ TEST_F(DistributedCli, TwoWorkersAndMergeGiveTheSingleProcessEnsemble) {
   EXPECT_FALSE(fs::exists(path("parts/ensemble.json")));
   EXPECT_TRUE(fs::exists(path("parts/runs/seed-5.json")));
   EXPECT_TRUE(fs::exists(path("parts/seed-2/repose.json")));
-  const auto merged = run("merge parts --width 64");
+  // ensemble.png at the workers' --width 64 (from their records).
+  const auto merged = run("merge parts");
   ASSERT_EQ(merged.exit_code, 0) << merged.err;
   EXPECT_NE(merged.out.find("merge: ensemble of 4 seeds"), std::string::npos) << merged.out;
   // ensemble.json|csv|png, runs/*.json and seed-<k>/*: the same files, the same bytes.
@@ -144,13 +145,19 @@ TEST_F(DistributedCli, TwoWorkersAndMergeGiveTheSingleProcessEnsemble) {
   };
   EXPECT_EQ(table(single.out), table(merged.out));
   // -o: the summary elsewhere, the same bytes.
-  const auto elsewhere = run("merge parts --width 64 -o summary");
+  const auto elsewhere = run("merge parts -o summary");
   ASSERT_EQ(elsewhere.exit_code, 0) << elsewhere.err;
   EXPECT_EQ(test::file_text(path("summary/ensemble.csv")),
             test::file_text(path("single/ensemble.csv")));
   // An existing summary is kept unless -f.
-  EXPECT_NE(run("merge parts --width 64").exit_code, 0);
-  EXPECT_EQ(run("merge parts --width 64 -f").exit_code, 0);
+  EXPECT_NE(run("merge parts").exit_code, 0);
+  EXPECT_EQ(run("merge parts -f").exit_code, 0);
+  EXPECT_EQ(test::file_text(path("parts/ensemble.png")),
+            test::file_text(path("single/ensemble.png")));
+  // --width overrides it.
+  EXPECT_EQ(run("merge parts -f --width 100").exit_code, 0);
+  EXPECT_NE(test::file_text(path("parts/ensemble.png")),
+            test::file_text(path("single/ensemble.png")));
 }
 
 TEST_F(DistributedCli, ThreeWorkersAndMergeGiveTheSingleProcessSweep) {

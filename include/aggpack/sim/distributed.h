@@ -52,6 +52,7 @@ struct RunRecord {
   std::string hash;           ///< config_hash(config)
   std::size_t run_index = 0;  ///< place in the plan: case index * seeds + seed index
   std::size_t run_count = 0;  ///< runs in the plan
+  int image_width = 0;        ///< the run's --width (merge draws ensemble.png with it); 0 unknown
   EnsembleSeed ensemble;      ///< kEnsemble: the seed's summary
   SweepCase sweep;            ///< kSweep: the run's summary (wall_seconds not recorded)
 };
