@@ -31,7 +31,8 @@ void write_sweep_summary(const std::string& folder, const SweepOptions& options,
                          const std::vector<SweepCase>& cases, bool is_without_plot);
 
 /// `aggpack merge FOLDER`: checks the run records of FOLDER/runs/ and writes the summary into
-/// `output` (empty: FOLDER); `width` of ensemble.png, 0 = the workers' --width. \throw InvalidInput naming missing runs or records of another plan.
+/// `output` (empty: FOLDER); `width` of ensemble.png, 0 = the workers' --width.
+/// \throw InvalidInput naming missing runs or records of another plan.
 void merge_run_folder(const std::string& folder, const std::string& output, int width,
                       bool is_without_plot, bool is_forced);
 
