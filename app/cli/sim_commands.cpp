@@ -163,8 +163,18 @@ void print_result(const ReposeResult& r) {
         "pile height {:.3f} m)\n",
         r.fit.angle_degrees, r.fit.r_squared, r.fit.bin_count, r.profile.centre(r.fit.first_bin),
         r.profile.centre(r.fit.last_bin), r.fit.pile_height);
+    fmt::print("fit sensitivity      max deviation {:.2f} deg over fit windows and bin widths\n",
+               r.sensitivity.max_deviation);
   } else {
     fmt::print("angle of repose      not measured: {}\n", r.fit.message);
+  }
+  if (r.confirmation.window > 0.0) {
+    fmt::print("rest confirmation    {:.2f} s window {}, {} restarts\n", r.confirmation.window,
+               r.is_stage2_at_rest ? "passed" : "not passed", r.confirmation.restarts);
+  }
+  if (r.follow.time > 0.0 && r.follow.fit.is_valid) {
+    fmt::print("follow-up            {:.2f} s later: angle {:.2f} deg, pile height {:.3f} m\n",
+               r.follow.time, r.follow.fit.angle_degrees, r.follow.fit.pile_height);
   }
 }
 

@@ -85,22 +85,55 @@ void randomise_orientations(Packing& packing, const LatticeOptions& lattice) {
   }
 }
 
-// Stage 2 ends when the pile is at rest by the energy criterion, or when its surface has stopped
-// changing: a few full particles rolling away over the floor at low friction can keep the energy
-// up for a long time without changing the pile. The surface counts as unchanged while every bin
-// above fit_lower x the pile height stays within surface_tolerance x d of where it was at the
-// start of the quiet window.
+// Running-median window of the slope fit: one particle diameter (2 R) in bins, odd, >= 3, so that
+// a single particle sitting high (often against a wall) is not taken for the crest.
+std::size_t smoothing_bins(const ReposeOptions& options, double bin_width) {
+  auto smoothing = static_cast<std::size_t>(std::ceil(2.0 * options.radius / bin_width));
+  return std::max<std::size_t>(3, smoothing | 1u);
+}
+
+double default_bin_width(const ReposeOptions& options) {
+  return options.bin_width > 0.0 ? options.bin_width : 0.5 * options.radius;
+}
+
+// Fastest centre of mass among the particles of the pile: centre above fit_lower x crest height
+// (particles rolling away over the floor are left out, as in the surface test).
+double pile_max_speed(const World& world, double floor_height) {
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < world.particle_count(); ++i) {
+    if (world.pose(i).position.z() <= floor_height) continue;
+    fastest = std::max(fastest, world.linear_velocity(i).norm());
+  }
+  return fastest;
+}
+
+// Stage 2 waits in two phases. (1) The pile is at rest by the energy criterion, or its surface has
+// stopped changing: a few full particles rolling away over the floor at low friction can keep the
+// energy up for a long time without changing the pile. The surface counts as unchanged while
+// every bin above fit_lower x the pile height stays within surface_tolerance x d of where it was at
+// the start of the quiet window. (2) Confirmation (options.confirm_window > 0): for the window
+// after (1) passed, angle, crest height and the pile's fastest particle stay within their
+// tolerances of the window's start; a violation restarts (1).
 bool wait_until_stable(World& world, const ReposeOptions& options, double bin_width,
-                       const SettleProgress& progress) {
+                       const SettleProgress& progress, ReposeResult::Confirmation& confirmation) {
   const RestCriterion& rest = options.rest;
-  const double threshold =
-      rest.kinetic_energy_ratio * world.total_mass() * 9.81 * world.median_size();
-  const double tolerance = options.surface_tolerance * world.median_size();
+  const double size = world.median_size();
+  const double g = std::max(1e-9, options.physics.gravity.norm());
+  const double threshold = rest.kinetic_energy_ratio * world.total_mass() * g * size;
+  const double tolerance = options.surface_tolerance * size;
+  const std::size_t smoothing = smoothing_bins(options, bin_width);
+  confirmation.window = options.confirm_window * std::sqrt(size / g);
+  confirmation.speed_limit = options.confirm_speed * std::sqrt(g * size);
+  const double height_tolerance = options.confirm_height_tolerance * size;
+  const bool is_confirmed = options.confirm_window > 0.0;
   const std::size_t steps = steps_per_check(world, rest);
   const double start = world.time();
   double energy_quiet_since = -1.0;
   SurfaceProfile reference;
   double reference_time = -1.0;
+  double confirm_since = -1.0;
+  SlopeFit confirm_reference;
+  ReposeResult::Confirmation window;  // the current window's largest changes
   while (world.time() - start < rest.max_time) {
     world.step(steps);
     const double now = world.time();
@@ -108,12 +141,14 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
     require_finite_state(world, energy, "repose stage 2");
     if (progress) progress(now, energy, threshold);
     if (now - start < rest.min_time) continue;
+    bool is_quiet = false;
     if (energy < threshold) {
       if (energy_quiet_since < 0.0) energy_quiet_since = now;
-      if (now - energy_quiet_since >= rest.quiet_time) return true;
+      if (now - energy_quiet_since >= rest.quiet_time) is_quiet = true;
     } else {
       energy_quiet_since = -1.0;
     }
+    if (is_quiet && !is_confirmed) return true;
     const SurfaceProfile profile =
         surface_profile(world.packing(), 0.0, options.trough_length, bin_width);
     bool is_same = reference_time >= 0.0;
@@ -131,6 +166,51 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
       reference = profile;
       reference_time = now;
     } else if (now - reference_time >= rest.quiet_time) {
+      is_quiet = true;
+    }
+    if (!is_confirmed) {
+      if (is_quiet) return true;
+      continue;
+    }
+    const SlopeFit fit = fit_slope(profile, options.fit_upper, options.fit_lower, smoothing);
+    if (confirm_since < 0.0) {
+      if (!is_quiet) continue;
+      confirm_since = now;
+      confirm_reference = fit;
+      window = confirmation;
+      window.angle_change = 0.0;
+      window.height_change = 0.0;
+      window.max_speed = 0.0;
+    }
+    const double speed = pile_max_speed(world, options.fit_lower * fit.pile_height);
+    window.max_speed = std::max(window.max_speed, speed);
+    window.height_change =
+        std::max(window.height_change, std::abs(fit.pile_height - confirm_reference.pile_height));
+    // A fit that becomes (in)valid counts as an unbounded change of the angle.
+    const double angle_change = fit.is_valid == confirm_reference.is_valid
+                                    ? std::abs(fit.angle_degrees - confirm_reference.angle_degrees)
+                                    : std::numeric_limits<double>::infinity();
+    window.angle_change = std::max(window.angle_change, angle_change);
+    const bool is_fast = speed > confirmation.speed_limit;
+    const bool is_sunk = window.height_change > height_tolerance;
+    const bool is_turned = window.angle_change > options.confirm_angle_tolerance;
+    if (is_fast || is_sunk || is_turned) {
+      ++confirmation.restarts;
+      confirmation.speed_restarts += is_fast ? 1 : 0;
+      confirmation.height_restarts += is_sunk ? 1 : 0;
+      confirmation.angle_restarts += is_turned ? 1 : 0;
+      confirm_since = -1.0;
+      energy_quiet_since = -1.0;
+      reference = profile;
+      reference_time = now;
+      continue;
+    }
+    if (now - confirm_since >= confirmation.window) {
+      window.restarts = confirmation.restarts;
+      window.angle_restarts = confirmation.angle_restarts;
+      window.height_restarts = confirmation.height_restarts;
+      window.speed_restarts = confirmation.speed_restarts;
+      confirmation = window;
       return true;
     }
   }
@@ -173,6 +253,14 @@ void validate(const ReposeOptions& options) {
   require_in_range("repose.fit_upper", options.fit_upper, 1e-6, 1.0);
   require_in_range("repose.fit_lower", options.fit_lower, 0.0, options.fit_upper - 1e-6);
   require_in_range("repose.surface_tolerance", options.surface_tolerance, 0.0, 10.0);
+  require_in_range("repose.confirm_window", options.confirm_window, 0.0, 1e4);
+  require_positive("repose.confirm_angle_tolerance", options.confirm_angle_tolerance);
+  require_in_range("repose.confirm_angle_tolerance", options.confirm_angle_tolerance, 0.0, 90.0);
+  require_positive("repose.confirm_height_tolerance", options.confirm_height_tolerance);
+  require_in_range("repose.confirm_height_tolerance", options.confirm_height_tolerance, 0.0, 10.0);
+  require_positive("repose.confirm_speed", options.confirm_speed);
+  require_in_range("repose.confirm_speed", options.confirm_speed, 0.0, 10.0);
+  require_in_range("repose.follow_time", options.follow_time, 0.0, 1e3);
   validate(options.physics);
   validate(options.rest);
   // What the fill would reject (too large a radius, too many vertices), before any simulation.
@@ -411,11 +499,13 @@ ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
     }
   }
   result.baffle_travel = world.wall_box(baffle).lower.x() - options.baffle_position;
-  const double bin_width = options.bin_width > 0.0 ? options.bin_width : 0.5 * options.radius;
+  const double bin_width = default_bin_width(options);
   result.is_stage2_at_rest = wait_until_stable(
-      world, options, bin_width, [&](double time, double energy, double threshold) {
+      world, options, bin_width,
+      [&](double time, double energy, double threshold) {
         if (progress) progress(2, time - stage2_begin, energy, threshold);
-      });
+      },
+      result.confirmation);
   result.stage2_time = world.time() - stage2_begin;
   result.final = world.packing();
   result.final.provenance.packer = packer + "+repose";
@@ -423,7 +513,6 @@ ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
   result.max_overlap_fraction = overlap.max_depth_fraction;
   result.max_contact_penetration_fraction =
       world.contact_statistics().max_contact_penetration / world.smallest_size();
-  result.stage2_seconds = seconds_since(stage2_start);
 
   for (std::size_t i = 0; i < result.final.particles.size(); ++i) {
     const Aabb box = result.final.placed(i).bounds();
@@ -435,13 +524,85 @@ ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
     }
   }
 
-  result.profile = surface_profile(result.final, 0.0, options.trough_length, bin_width);
-  // Smooth over one particle diameter so that a single particle sitting high (often against a
-  // wall) is not taken for the crest.
-  auto smoothing = static_cast<std::size_t>(std::ceil(2.0 * options.radius / bin_width));
-  smoothing = std::max<std::size_t>(3, smoothing | 1u);
-  result.fit = fit_slope(result.profile, options.fit_upper, options.fit_lower, smoothing);
+  ReposeMeasurement measured = measure_repose(result.final, options);
+  result.profile = std::move(measured.profile);
+  result.fit = measured.fit;
+  result.sensitivity = fit_sensitivity(result.final, options, result.fit);
+
+  // Diagnostic follow-up: the same world, follow_time longer.
+  if (options.follow_time > 0.0) {
+    const double rest_time = world.time();
+    const double total = std::round(options.follow_time / world.time_step());
+    if (!(total <= kMaxSimulationSteps)) {
+      throw LimitExceeded("rest.follow_time", format_value(options.follow_time) + " s",
+                          "at most 10^8 time steps of " + format_value(world.time_step()) + " s");
+    }
+    for (std::size_t done = 0; done < static_cast<std::size_t>(total);) {
+      const std::size_t count = std::min(check_steps, static_cast<std::size_t>(total) - done);
+      world.step(count);
+      done += count;
+      const double energy = world.kinetic_energy();
+      require_finite_state(world, energy, "repose follow-up");
+      if (progress) progress(2, world.time() - stage2_begin, energy, 0.0);
+    }
+    result.follow.time = world.time() - rest_time;
+    result.follow.fit = measure_repose(world.packing(), options).fit;
+  }
+  result.stage2_seconds = seconds_since(stage2_start);
   return result;
+}
+
+ReposeMeasurement measure_repose(const Packing& packing, const ReposeOptions& options,
+                                 double bin_width, double fit_upper, double fit_lower) {
+  if (!(bin_width > 0.0)) bin_width = default_bin_width(options);
+  ReposeMeasurement measured;
+  measured.profile = surface_profile(packing, 0.0, options.trough_length, bin_width);
+  measured.fit =
+      fit_slope(measured.profile, fit_upper, fit_lower, smoothing_bins(options, bin_width));
+  return measured;
+}
+
+ReposeMeasurement measure_repose(const Packing& packing, const ReposeOptions& options) {
+  return measure_repose(packing, options, default_bin_width(options), options.fit_upper,
+                        options.fit_lower);
+}
+
+namespace {
+// value + delta rounded to 1e-9, so that 0.2 - 0.05 reads 0.15; the value itself when delta = 0.
+double shifted(double value, double delta) {
+  return delta == 0.0 ? value : std::round((value + delta) * 1e9) / 1e9;
+}
+}  // namespace
+
+FitSensitivity fit_sensitivity(const Packing& packing, const ReposeOptions& options,
+                               const SlopeFit& reference) {
+  FitSensitivity sensitivity;
+  const double bin_width = default_bin_width(options);
+  for (const double factor : {0.5, 1.0, 2.0}) {
+    const SurfaceProfile profile =
+        surface_profile(packing, 0.0, options.trough_length, factor * bin_width);
+    const std::size_t smoothing = smoothing_bins(options, factor * bin_width);
+    for (const double dl : {-0.05, 0.0, 0.05}) {
+      for (const double du : {-0.05, 0.0, 0.05}) {
+        SensitivityEntry entry;
+        entry.bin_width = factor * bin_width;
+        entry.bin_factor = factor;
+        entry.fit_lower = std::clamp(shifted(options.fit_lower, dl), 0.0, 1.0);
+        entry.fit_upper = std::clamp(shifted(options.fit_upper, du), 1e-6, 1.0);
+        if (entry.fit_lower < entry.fit_upper - 1e-6) {
+          const SlopeFit fit = fit_slope(profile, entry.fit_upper, entry.fit_lower, smoothing);
+          entry.is_valid = fit.is_valid;
+          entry.angle_degrees = fit.angle_degrees;
+          if (fit.is_valid && reference.is_valid) {
+            sensitivity.max_deviation = std::max(
+                sensitivity.max_deviation, std::abs(fit.angle_degrees - reference.angle_degrees));
+          }
+        }
+        sensitivity.entries.push_back(entry);
+      }
+    }
+  }
+  return sensitivity;
 }
 
 }  // namespace aggpack

@@ -75,6 +75,10 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
       {"solver_iterations", options.physics.solver_iterations},
       {"margin_fraction", options.physics.margin_fraction},
       {"kinetic_energy_ratio", options.rest.kinetic_energy_ratio},
+      {"confirm_window_sqrt_d_over_g", options.confirm_window},
+      {"confirm_angle_tolerance_degrees", options.confirm_angle_tolerance},
+      {"confirm_height_tolerance_fraction_of_d", options.confirm_height_tolerance},
+      {"confirm_speed_fraction_of_sqrt_g_d", options.confirm_speed},
       {"bin_width_m", result.profile.bin_width},
       {"fit_upper", options.fit_upper},
       {"fit_lower", options.fit_lower},
@@ -96,6 +100,18 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
       {"baffle_travel_m", result.baffle_travel},
       {"baffle_removed", result.is_baffle_removed},
   };
+  const auto& confirmation = result.confirmation;
+  json["stage2"]["confirmation"] = {
+      {"window_s", confirmation.window},
+      {"restarts", confirmation.restarts},
+      {"restarts_by_angle", confirmation.angle_restarts},
+      {"restarts_by_crest_height", confirmation.height_restarts},
+      {"restarts_by_speed", confirmation.speed_restarts},
+      {"angle_change_degrees", confirmation.angle_change},
+      {"crest_height_change_m", confirmation.height_change},
+      {"max_pile_speed_m_per_s", confirmation.max_speed},
+      {"speed_limit_m_per_s", confirmation.speed_limit},
+  };
   json["final"] = {
       {"max_overlap_fraction_of_d_min", result.max_overlap_fraction},
       {"max_contact_penetration_fraction_of_d_min", result.max_contact_penetration_fraction},
@@ -116,6 +132,29 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
       {"x_end_m", fit.bin_count > 0 ? result.profile.centre(fit.last_bin) : 0.0},
       {"bins", fit.bin_count},
   };
+  nlohmann::ordered_json table = nlohmann::ordered_json::array();
+  for (const auto& entry : result.sensitivity.entries) {
+    table.push_back({{"fit_lower", entry.fit_lower},
+                     {"fit_upper", entry.fit_upper},
+                     {"bin_width_m", entry.bin_width},
+                     {"bin_factor", entry.bin_factor},
+                     {"valid", entry.is_valid},
+                     {"angle_degrees", entry.angle_degrees}});
+  }
+  json["sensitivity"] = {
+      {"max_deviation_degrees", result.sensitivity.max_deviation},
+      {"entries", std::move(table)},
+  };
+  if (options.follow_time > 0.0) {
+    json["follow_up"] = {
+        {"time_s", result.follow.time},
+        {"valid", result.follow.fit.is_valid},
+        {"angle_degrees", result.follow.fit.angle_degrees},
+        {"angle_change_degrees", result.follow.fit.angle_degrees - fit.angle_degrees},
+        {"pile_height_m", result.follow.fit.pile_height},
+        {"pile_height_change_m", result.follow.fit.pile_height - fit.pile_height},
+    };
+  }
   AtomicFile file(path, Overwrite::kAllow, std::ios::out);
   file.stream() << json.dump(2) << '\n';
   file.commit();

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -245,6 +246,9 @@ TEST(Repose, WritesJsonCsvAndPng) {
   const std::string json_text((std::istreambuf_iterator<char>(json_in)), {});
   EXPECT_NE(json_text.find("\"angle_degrees\""), std::string::npos);
   EXPECT_NE(json_text.find("\"count\": 60"), std::string::npos);
+  EXPECT_NE(json_text.find("\"max_deviation_degrees\""), std::string::npos);
+  EXPECT_NE(json_text.find("\"confirmation\""), std::string::npos);
+  EXPECT_EQ(json_text.find("\"follow_up\""), std::string::npos);  // follow_time 0: none
   std::ifstream csv_in(csv);
   std::string header;
   std::getline(csv_in, header);
@@ -257,6 +261,72 @@ TEST(Repose, WritesJsonCsvAndPng) {
   png_in.read(signature, 8);
   EXPECT_EQ(std::string(signature + 1, 3), "PNG");
   std::filesystem::remove_all(folder);
+}
+
+// The sensitivity table: 3 fit_lower x 3 fit_upper x 3 bin widths around the run's setting, the
+// run's own entry reproducing the reported angle exactly, the others close to it.
+TEST(Repose, ReportsTheAngleSensitivityToFitWindowAndBinWidth) {
+  ReposeOptions options = small_trough();
+  options.fill_height = 0.6;  // 90 particles
+  const ReposeResult result = run_repose(options, lattice_fill(options));
+  ASSERT_TRUE(result.fit.is_valid) << result.fit.message;
+  const FitSensitivity& table = result.sensitivity;
+  ASSERT_EQ(table.entries.size(), 27u);
+  std::size_t own = 0;
+  std::size_t valid = 0;
+  double largest = 0.0;
+  for (const auto& entry : table.entries) {
+    EXPECT_LT(entry.fit_lower, entry.fit_upper);
+    EXPECT_NEAR(entry.bin_width, entry.bin_factor * 0.5 * options.radius, 1e-15);
+    if (!entry.is_valid) continue;
+    ++valid;
+    EXPECT_GT(entry.angle_degrees, 5.0);
+    EXPECT_LT(entry.angle_degrees, 60.0);
+    largest = std::max(largest, std::abs(entry.angle_degrees - result.fit.angle_degrees));
+    if (entry.bin_factor == 1.0 && entry.fit_lower == options.fit_lower &&
+        entry.fit_upper == options.fit_upper) {
+      ++own;
+      EXPECT_EQ(entry.angle_degrees, result.fit.angle_degrees);
+    }
+  }
+  EXPECT_EQ(own, 1u);
+  EXPECT_GE(valid, 20u);
+  EXPECT_DOUBLE_EQ(table.max_deviation, largest);
+  // A small pile (3 particles high): a few degrees at most, not the < 0.5 deg of a paper-size one.
+  EXPECT_LT(table.max_deviation, 6.0);
+}
+
+// The rest criterion: once stage 2 stops, following the pile 2 s longer (about 20 particle fall
+// times sqrt(d/g)) moves neither its angle nor its crest.
+TEST(Repose, PileAtRestStaysAtRestWhenFollowedLonger) {
+  ReposeOptions options = small_trough();
+  options.follow_time = 2.0;
+  const ReposeResult result = run_repose(options, lattice_fill(options));
+  ASSERT_TRUE(result.fit.is_valid) << result.fit.message;
+  ASSERT_TRUE(result.follow.fit.is_valid) << result.follow.fit.message;
+  EXPECT_TRUE(result.is_stage2_at_rest);
+  const auto& c = result.confirmation;
+  // 30 sqrt(d / g) for the median equivalent diameter d of these particles (6-9 cm).
+  EXPECT_GT(c.window, 30.0 * std::sqrt(0.06 / 9.81));
+  EXPECT_LT(c.window, 30.0 * std::sqrt(0.09 / 9.81));
+  EXPECT_LE(c.angle_change, options.confirm_angle_tolerance);
+  EXPECT_LE(c.max_speed, c.speed_limit);
+  EXPECT_NEAR(result.follow.time, 2.0, result.time_step);
+  EXPECT_LT(std::abs(result.follow.fit.angle_degrees - result.fit.angle_degrees), 0.5);
+  EXPECT_LT(std::abs(result.follow.fit.pile_height - result.fit.pile_height),
+            0.05 * 2.0 * options.radius);
+}
+
+// A criterion that cannot be met (no particle may move at all) runs into max_time and says so.
+TEST(Repose, UnmetRestCriterionEndsAtMaxTimeNotAtRest) {
+  ReposeOptions options = small_trough();
+  options.fill_height = 0.4;
+  options.confirm_speed = 1e-12;
+  options.rest.max_time = 3.0;
+  const ReposeResult result = run_repose(options, lattice_fill(options));
+  EXPECT_FALSE(result.is_stage2_at_rest);
+  EXPECT_GT(result.confirmation.restarts, 0u);
+  EXPECT_GE(result.stage2_time, 3.0);
 }
 
 TEST(Repose, RejectsBadOptions) {
@@ -274,6 +344,15 @@ TEST(Repose, RejectsBadOptions) {
   EXPECT_THROW(run_repose(options, fill), InvalidInput);
   options = ReposeOptions{};
   options.fit_lower = 0.9;
+  EXPECT_THROW(run_repose(options, fill), InvalidInput);
+  for (auto field : {&ReposeOptions::confirm_angle_tolerance, &ReposeOptions::confirm_speed,
+                     &ReposeOptions::confirm_height_tolerance}) {
+    options = ReposeOptions{};
+    options.*field = 0.0;
+    EXPECT_THROW(run_repose(options, fill), InvalidInput);
+  }
+  options = ReposeOptions{};
+  options.confirm_window = -1.0;
   EXPECT_THROW(run_repose(options, fill), InvalidInput);
   SweepOptions sweep;
   sweep.alphas.clear();

@@ -61,6 +61,25 @@ struct ReposeOptions {
   /// moved less than this fraction of the median particle size for rest.quiet_time: a few
   /// particles rolling away over the floor do not keep the test running. [0, 10].
   double surface_tolerance = 0.05;
+  /// Confirmation of rest (stage 2). The tests above stop on a pile whose kinetic energy is low and
+  /// whose surface has not moved by surface_tolerance x d for rest.quiet_time; Bullet's iterative
+  /// solver lets such a pile creep (mm/s) and a late avalanche can still take degrees off the
+  /// angle. So once they pass, the pile is followed for confirm_window x sqrt(d / g) more (d the
+  /// median equivalent diameter: a Froude-scaled time, the same number of particle fall times at
+  /// any scale) and counts as at rest only if, over that whole window, the angle (fit as measured)
+  /// stays within confirm_angle_tolerance of its value at the window's start, the crest height
+  /// within confirm_height_tolerance x d, and no particle of the pile (centre above fit_lower x
+  /// crest) moves faster than confirm_speed x sqrt(g d). Any violation restarts the wait (the
+  /// energy/surface tests too). The window bounds the creep rate of the crest to
+  /// confirm_height_tolerance / confirm_window x sqrt(g d). rest.max_time still bounds stage 2;
+  /// a run that hits it reports is_stage2_at_rest = false. confirm_window = 0 turns it off.
+  double confirm_window = 30.0;           ///< in units of sqrt(d / g), [0, 1e4]
+  double confirm_angle_tolerance = 0.25;  ///< degrees, (0, 90]
+  double confirm_height_tolerance = 0.1;  ///< fraction of d, (0, 10]
+  double confirm_speed = 0.02;            ///< fraction of sqrt(g d), (0, 10]
+  /// Diagnostic: after rest, follow the pile this many more simulated seconds and measure the
+  /// angle again (ReposeResult::follow); the reported angle stays the one at rest. [0, 1e3].
+  double follow_time = 0.0;
 
   // Angle measurement.
   double bin_width = 0.0;  ///< m, profile bin width; 0 = radius / 2
@@ -122,6 +141,37 @@ struct SlopeFit {
 SlopeFit fit_slope(const SurfaceProfile& profile, double fit_upper = 0.8, double fit_lower = 0.2,
                    std::size_t smoothing_bins = 3);
 
+/// The slope fit of a packing as run_repose measures it: profile over [0, trough_length] with
+/// `bin_width` (0 = radius / 2), smoothing over one particle diameter (2 R), the options' fit
+/// window.
+struct ReposeMeasurement {
+  SurfaceProfile profile;
+  SlopeFit fit;
+};
+ReposeMeasurement measure_repose(const Packing& packing, const ReposeOptions& options,
+                                 double bin_width, double fit_upper, double fit_lower);
+/// The same with the options' own bin width and fit window.
+ReposeMeasurement measure_repose(const Packing& packing, const ReposeOptions& options);
+
+/// One re-measurement of the final pile with another fit window or bin width.
+struct SensitivityEntry {
+  double fit_lower = 0.0;
+  double fit_upper = 0.0;
+  double bin_width = 0.0;   ///< m
+  double bin_factor = 1.0;  ///< bin_width / the run's bin width
+  bool is_valid = false;
+  double angle_degrees = 0.0;
+};
+/// The angle re-measured for fit_lower - 0.05 / +0 / +0.05 x fit_upper - 0.05 / +0 / +0.05 (kept
+/// inside [0, 1] with lower < upper) x bin width 0.5 / 1 / 2 x the run's: 27 entries, the run's
+/// own setting among them. max_deviation: largest |angle - the run's angle| over valid entries.
+struct FitSensitivity {
+  std::vector<SensitivityEntry> entries;
+  double max_deviation = 0.0;  ///< degrees
+};
+FitSensitivity fit_sensitivity(const Packing& packing, const ReposeOptions& options,
+                               const SlopeFit& reference);
+
 /// Progress of a repose run: stage (1 or 2), simulated time of the stage (s), kinetic energy (J),
 /// rest threshold (J). Must not throw.
 using ReposeProgress =
@@ -151,6 +201,25 @@ struct ReposeResult {
   double max_overlap_fraction = 0.0;  ///< deepest exact overlap / d_min in the final pile
   double max_contact_penetration_fraction = 0.0;  ///< deepest Bullet contact / d_min, final
   std::size_t escaped_particles = 0;  ///< particles outside the trough (x, y) or below the floor
+  /// Rest confirmation (ReposeOptions::confirm_window) of stage 2.
+  struct Confirmation {
+    double window = 0.0;              ///< s, confirm_window x sqrt(d / g)
+    std::size_t restarts = 0;         ///< windows that ended in a violation, of which by:
+    std::size_t angle_restarts = 0;   ///< the angle
+    std::size_t height_restarts = 0;  ///< the crest height
+    std::size_t speed_restarts = 0;   ///< a fast pile particle
+    double angle_change = 0.0;        ///< degrees, largest |change| over the last (passed) window
+    double height_change = 0.0;       ///< m, largest |crest change| over the last window
+    double max_speed = 0.0;           ///< m/s, fastest pile particle over the last window
+    double speed_limit = 0.0;         ///< m/s, confirm_speed x sqrt(g d)
+  } confirmation;
+  /// The measurement follow_time after rest (when follow_time > 0).
+  struct FollowUp {
+    double time = 0.0;  ///< s simulated after rest
+    SlopeFit fit;
+  } follow;
+  /// Sensitivity of the angle to the fit window and bin width (fit_sensitivity of final).
+  FitSensitivity sensitivity;
 };
 
 /// Runs both stages on `fill` and measures the angle. Deterministic for given options and fill.
