@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -63,7 +64,9 @@ void register_mesomodel(CLI::App& app) {
       throw InvalidInput("--voxels", std::to_string(flags->resolution), "[2, 4096]");
     }
     flags->voxels.resolution = static_cast<std::uint32_t>(flags->resolution);
-    validate(flags->voxels);
+    if (!(flags->voxels.itz_thickness >= 0.0) || !std::isfinite(flags->voxels.itz_thickness)) {
+      throw InvalidInput("--itz", format_value(flags->voxels.itz_thickness), ">= 0 (m)");
+    }
     const bool is_vti = ends_with(flags->output, ".vti");
     if (!is_vti && !ends_with(flags->output, ".raw")) {
       throw InvalidInput("--output", flags->output, "a name ending in .vti or .raw");
@@ -80,6 +83,12 @@ void register_mesomodel(CLI::App& app) {
     }
     const auto start = std::chrono::steady_clock::now();
     const Packing packing = read_packing(flags->input);
+    const double half_side = 0.5 * packing.container.bounds().extent().minCoeff();
+    if (flags->voxels.itz_thickness >= half_side) {
+      throw InvalidInput(
+          "--itz", format_value(flags->voxels.itz_thickness),
+          "[0, " + format_value(half_side) + ") m: half the container's smallest side");
+    }
     const VoxelImage image = voxelize(packing, flags->voxels);
     if (is_vti) {
       write_vti(flags->output, image, overwrite);

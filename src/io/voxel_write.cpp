@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -100,9 +101,13 @@ void write_voxel_raw(const std::string& base, const VoxelImage& image, const Pac
   json["spacing_m"] = image.spacing;
   json["origin_m"] = {image.origin.x(), image.origin.y(), image.origin.z()};
   json["order"] = "x fastest, then y, then z (C order [z][y][x])";
-  json["files"] = {{"phase", {{"path", phase_path}, {"type", "uint8"}}},
+  // Names relative to the header's folder (where the three files are).
+  const auto name = [](const std::string& path) {
+    return std::filesystem::path(path).filename().string();
+  };
+  json["files"] = {{"phase", {{"path", name(phase_path)}, {"type", "uint8"}}},
                    {"particle",
-                    {{"path", particle_path},
+                    {{"path", name(particle_path)},
                      {"type", "uint32 little-endian"},
                      {"note", "1-based particle of aggregate and ITZ voxels, 0 = none"}}}};
   json["phases"] = {{"0", "mortar"}, {"1", "itz"}, {"2", "aggregate"}, {"3", "outside"}};
