@@ -20,10 +20,6 @@ if(AGGPACK_BUILD_SIM)
   if(NOT BULLET_FOUND)
     message(FATAL_ERROR "AGGPACK_BUILD_SIM=ON needs Bullet (apt-get install libbullet-dev)")
   endif()
-  find_path(STB_INCLUDE_DIR stb_image_write.h PATH_SUFFIXES stb)
-  if(NOT STB_INCLUDE_DIR)
-    message(FATAL_ERROR "AGGPACK_BUILD_SIM=ON needs stb_image_write.h (apt-get install libstb-dev)")
-  endif()
   find_package(nlohmann_json REQUIRED)
   message(STATUS "Bullet ${BULLET_VERSION} (double precision): building aggpack_sim")
 
@@ -32,7 +28,6 @@ if(AGGPACK_BUILD_SIM)
   add_library(aggpack::sim ALIAS aggpack_sim)
   target_link_libraries(aggpack_sim PUBLIC aggpack_core
                         PRIVATE PkgConfig::BULLET nlohmann_json::nlohmann_json)
-  target_include_directories(aggpack_sim SYSTEM PRIVATE ${STB_INCLUDE_DIR})
   target_compile_definitions(aggpack_sim PUBLIC AGGPACK_HAS_SIM=1)
 
   target_link_libraries(aggpack PRIVATE aggpack_sim)

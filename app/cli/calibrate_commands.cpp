@@ -26,6 +26,7 @@ struct CalibrateFlags {
   double sphericity = 0;
   double elongation = 0;
   double flatness = 0;
+  std::string sphere = "enclosing";  // which circumscribed sphere --volume(-ratio) refers to
   int samples = 200;
   int grid = 11;
   double seed = 1;  // read as a number, checked to be a whole number >= 0
@@ -48,13 +49,19 @@ void resolve_target(CalibrateFlags& flags, const CLI::App& command) {
   auto& o = flags.options;
   require_positive("--diameter", o.diameter);
   const double sphere = std::numbers::pi / 6.0 * o.diameter * o.diameter * o.diameter;
+  if (flags.sphere != "enclosing" && flags.sphere != "control") {
+    throw InvalidInput("--sphere", flags.sphere, "enclosing or control");
+  }
+  const CalibrationTarget volume_target = flags.sphere == "enclosing"
+                                              ? CalibrationTarget::kEnclosedVolumeRatio
+                                              : CalibrationTarget::kVolumeRatio;
   if (command.count("--volume-ratio") > 0) {
     require_in_range("--volume-ratio", flags.volume_ratio, 1e-9, 1.0);
-    o.target = CalibrationTarget::kVolumeRatio;
+    o.target = volume_target;
     o.value = flags.volume_ratio;
   } else if (command.count("--volume") > 0) {
     require_in_range("--volume", flags.volume, 1e-30, sphere);
-    o.target = CalibrationTarget::kVolumeRatio;
+    o.target = volume_target;
     o.value = flags.volume / sphere;
   } else if (command.count("--alpha") > 0) {
     require_in_range("--alpha", flags.alpha, 1e-9, 1.0);
@@ -122,7 +129,14 @@ void register_calibrate(CLI::App& app) {
                       "target mean elongation (intermediate / long), (0, 1]");
   command->add_option("--flatness", flags->flatness,
                       "target mean flatness (short / intermediate), (0, 1]");
-  command->add_option("--diameter", o.diameter, "circumscribed (control) diameter D = 2 R (m)")
+  command->add_option("--diameter", o.diameter, "circumscribed diameter D (m), see --sphere")
+      ->capture_default_str();
+  command
+      ->add_option("--sphere", flags->sphere,
+                   "the circumscribed sphere of --volume/--volume-ratio/--diameter: "
+                   "'enclosing' (each particle's smallest enclosing sphere, as measured on real "
+                   "particles; R is scaled so the mean enclosing diameter is D) or 'control' "
+                   "(the generator's sphere of radius R = D / 2)")
       ->capture_default_str();
   command->add_option("--edge-ratio", o.edge_ratio, "edge-length ratio L / R, [0.05, 1.5]")
       ->capture_default_str();
@@ -144,7 +158,6 @@ void register_calibrate(CLI::App& app) {
     const Overwrite overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!flags->table.empty()) check_writable(flags->table, overwrite);
     if (!flags->plot.empty()) {
-      check_plot_available("--plot");
       check_writable(flags->plot, overwrite);
     }
     const CalibrationOptions& options = flags->options;
@@ -162,6 +175,11 @@ void register_calibrate(CLI::App& app) {
     fmt::print("volume        {:.6g} +- {:.3g} mm^3 (sphere of diameter D: {:.6g} mm^3)\n",
                result.volume.mean * 1e9, result.volume.standard_deviation * 1e9,
                std::numbers::pi / 6.0 * std::pow(options.diameter, 3) * 1e9);
+    fmt::print(
+        "enclosing     diameter {:.6g} +- {:.3g} mm (smallest sphere around each particle; "
+        "control sphere 2R = {:.6g} mm)\n",
+        2e3 * result.enclosing_radius.mean, 2e3 * result.enclosing_radius.standard_deviation,
+        2e3 * result.radius);
     for (std::size_t t = 0; t < result.all_descriptors.size(); ++t) {
       if (kCalibrationTargets[t] == options.target) continue;
       fmt::print("also          {} = {:.6g} +- {:.3g}\n",

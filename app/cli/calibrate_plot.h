@@ -7,9 +7,6 @@
 
 namespace aggpack::cli {
 
-/// Throws InvalidInput naming `option` when this build cannot write PNG (no stb_image_write).
-void check_plot_available(const std::string& option);
-
 /// Mean +- sd of the target descriptor at every evaluated alpha, the target as a horizontal line
 /// and the alpha found as a vertical one.
 void write_calibration_plot(const std::string& path, const CalibrationOptions& options,

@@ -14,9 +14,10 @@ void register_shapes(CLI::App& app);
 void register_calibrate(CLI::App& app);  // calibrate_commands.cpp
 void register_pack(CLI::App& app);
 void register_info(CLI::App& app);
-void register_densify(CLI::App& app);  // densify_commands.cpp
-void register_render(CLI::App& app);   // render_commands.cpp, when built with AGGPACK_HAS_RENDER
-void register_export(CLI::App& app);   // export_commands.cpp
+void register_densify(CLI::App& app);    // densify_commands.cpp
+void register_render(CLI::App& app);     // render_commands.cpp, when built with AGGPACK_HAS_RENDER
+void register_export(CLI::App& app);     // export_commands.cpp
+void register_mesomodel(CLI::App& app);  // mesomodel_commands.cpp
 void register_config_keys(CLI::App& app);  // config_commands.cpp
 void register_sim(CLI::App& app);     // sim_commands.cpp (settle, repose, sweep), AGGPACK_HAS_SIM
 void register_settle(CLI::App& app);  // settle_commands.cpp, called by register_sim

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   aggpack::cli::register_render(app);
 #endif
   aggpack::cli::register_export(app);
+  aggpack::cli::register_mesomodel(app);
   aggpack::cli::register_config_keys(app);
 #ifdef AGGPACK_HAS_SIM
   aggpack::cli::register_sim(app);

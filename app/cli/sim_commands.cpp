@@ -6,8 +6,6 @@
 #ifdef AGGPACK_HAS_SIM
 
 #include <fmt/core.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdio>
@@ -24,15 +22,16 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
 #include "aggpack/pipeline/pipeline.h"
+#include "aggpack/sim/distributed.h"
 #include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/sweep.h"
 #include "commands.h"
+#include "mpi_world.h"
 #include "progress.h"
+#include "sim_summary.h"
 
 #include "aggpack/io/native.h"
-
-extern char** environ;
 
 namespace aggpack::cli {
 
@@ -51,6 +50,7 @@ class CreatedFolder {
     if (!is_created_ || is_kept_) return;
     std::error_code error;
     std::filesystem::remove(std::filesystem::path(folder_) / "cases", error);  // only if empty
+    std::filesystem::remove(std::filesystem::path(folder_) / "runs", error);   // only if empty
     std::filesystem::remove(folder_, error);                                   // only if empty
   }
   void keep() { is_kept_ = true; }
@@ -68,8 +68,10 @@ struct ReposeFlags {
   std::optional<double> friction;
   std::optional<double> alpha;
   std::optional<std::uint64_t> seed;
-  std::string seeds;  ///< repose only: an ensemble, "1-16" or "1,4,9"
+  std::string seeds;  ///< an ensemble, "1-16" or "1,4,9" (overrides ensemble.seeds)
   bool has_seeds = false;
+  std::optional<std::string> worker;  ///< --case K
+  std::optional<std::string> of;      ///< --of N
   int threads = 0;
   int image_width = 1600;
   std::string progress = "auto";
@@ -83,7 +85,11 @@ SweepOptions resolve(const ReposeFlags& flags) {
   SweepOptions options = load_sweep_config(flags.config_path, flags.overrides);
   if (flags.friction) options.base.physics.friction = *flags.friction;
   if (flags.alpha) options.base.alpha = *flags.alpha;
-  if (flags.seed) options.base.seed = *flags.seed;
+  if (flags.seed) {
+    options.base.seed = *flags.seed;
+    options.seeds.clear();  // --seed: one run at that seed, whatever ensemble.seeds says
+  }
+  if (flags.has_seeds) options.seeds = parse_seed_list(flags.seeds, "--seeds");
   return options;
 }
 
@@ -106,7 +112,14 @@ void add_config_options(CLI::App& command, ReposeFlags& flags) {
   command.add_flag("--print-config", flags.is_print_config,
                    "print the resolved configuration (every key, unit, default) and exit");
   command.add_flag("-f,--force", flags.is_forced, "replace existing output files");
+  command.add_option("--case", flags.worker,
+                     "with --of N: run only worker K's share (1-based, K in [1, N]; run i of the "
+                     "plan goes to worker (i mod N) + 1), write its run records, no summary; "
+                     "then `aggpack merge DIR`");
+  command.add_option("--of", flags.of, "number of workers for --case, [1, 100000]");
 }
+
+}  // namespace
 
 std::string prepare_folder(const std::string& folder, bool is_forced,
                            const std::vector<std::string>& names) {
@@ -125,6 +138,8 @@ std::string prepare_folder(const std::string& folder, bool is_forced,
 std::string in_folder(const std::string& folder, const std::string& name) {
   return (std::filesystem::path(folder) / name).string();
 }
+
+namespace {
 
 void print_result(const ReposeResult& r) {
   fmt::print("particles            {} (mean measured alpha {:.3f}), solid {:.4g} m^3\n",
@@ -172,28 +187,82 @@ PackResult repose_fill(const ReposeOptions& options) {
   return pack(PackerOptions{repose_fill_options(options)});
 }
 
-// `repose --seeds`: one run per seed in DIR/seed-<k>/, the angles and their statistics in
-// DIR/ensemble.json|csv|png. Seeds run in parallel, each single-threaded (as the sweep's cases).
-void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options) {
-  const std::vector<std::uint64_t> seeds = parse_seed_list(flags.seeds, "--seeds");
+// The plan of a distributed run: the resolved configuration (with the seed list) and its hash.
+RunRecord plan_record(RunKind kind, const SweepOptions& options, std::size_t run_count,
+                      int image_width) {
+  RunRecord record;
+  record.image_width = image_width;
+  record.kind = kind;
+  record.config = resolved_sweep_config(options);
+  record.hash = config_hash(record.config);
+  record.run_count = run_count;
+  return record;
+}
+
+// Workers share a folder: one whose runs/ holds records of another plan (configuration, seed
+// list or kind) is refused before anything runs, so that a folder never mixes plans.
+void check_same_plan(const std::string& folder, const RunRecord& plan) {
+  const std::filesystem::path runs = std::filesystem::path(folder) / "runs";
+  std::error_code error;
+  if (!std::filesystem::is_directory(runs, error)) return;
+  for (const auto& entry : std::filesystem::directory_iterator(runs, error)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.front() == '.' || entry.path().extension() != ".json") continue;
+    const RunRecord other = read_run_record(entry.path().string());
+    if (other.kind != plan.kind || other.hash != plan.hash) {
+      throw InvalidInput(
+          "-o " + folder,
+          "a folder holding " + entry.path().string() + " (configuration " + other.hash + ")",
+          "a new folder, or one of the same configuration and seed list (this "
+          "run's configuration is " +
+              plan.hash + ")");
+    }
+  }
+}
+
+void print_share(const RunShare& share, std::size_t owned, std::size_t total,
+                 const std::string& folder) {
+  fmt::print(
+      "worker {} of {}: {} of {} runs done, records in {}/runs/; when every worker is done: "
+      "aggpack merge {}\n",
+      share.worker, share.of, owned, total, folder, folder);
+}
+
+// `repose --seeds`: one run per seed in DIR/seed-<k>/ and its record in DIR/runs/seed-<k>.json,
+// the angles and their statistics in DIR/ensemble.json|csv|png. Seeds run in parallel, each
+// single-threaded (as the sweep's cases). With --case K --of N only worker K's seeds run and the
+// summary is left to `aggpack merge` (`is_merged_later`: also under mpirun).
+EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& options,
+                                 const RunShare& share, bool is_merged_later) {
+  const std::vector<std::uint64_t>& seeds = options.seeds;
   set_thread_count(flags.threads);
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   const std::vector<std::string> seed_files = {"repose.json", "profile.csv", "side.png",
                                                "final.h5"};
   CreatedFolder created(flags.output);
-  const std::string folder = prepare_folder(flags.output, flags.is_forced,
-                                            {"ensemble.json", "ensemble.csv", "ensemble.png"});
-  for (const auto seed : seeds) {
-    std::vector<std::string> names;
-    for (const auto& name : seed_files) names.push_back(fmt::format("seed-{}/{}", seed, name));
+  const std::string folder = prepare_folder(
+      flags.output, flags.is_forced,
+      is_merged_later ? std::vector<std::string>{}
+                      : std::vector<std::string>{"ensemble.json", "ensemble.csv", "ensemble.png"});
+  const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
+  std::map<std::uint64_t, std::size_t> run_index;
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    run_index[seeds[i]] = i;
+    if (!share.owns(i)) continue;
+    if (std::filesystem::exists(in_folder(folder, "runs"))) {
+      check_writable(in_folder(folder, fmt::format("runs/seed-{}.json", seeds[i])), overwrite);
+    }
     // A seed's folder is made when its run ends; an existing one must not hold its files.
-    if (!std::filesystem::exists(in_folder(folder, fmt::format("seed-{}", seed)))) continue;
-    for (const auto& name : names) {
-      check_writable(in_folder(folder, name),
-                     flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid);
+    if (!std::filesystem::exists(in_folder(folder, fmt::format("seed-{}", seeds[i])))) continue;
+    for (const auto& name : seed_files) {
+      check_writable(in_folder(folder, fmt::format("seed-{}/{}", seeds[i], name)), overwrite);
     }
   }
-  fmt::print("ensemble: {} seeds\n", seeds.size());
+  const RunRecord plan = plan_record(RunKind::kEnsemble, options, seeds.size(), flags.image_width);
+  check_same_plan(folder, plan);
+  std::filesystem::create_directories(in_folder(folder, "runs"));
+  fmt::print("ensemble: {} seeds{}\n", seeds.size(),
+             share.is_split() ? fmt::format(" (worker {} of {})", share.worker, share.of) : "");
   ProgressBar bar("ensemble", "seeds", style);
   EnsembleResult ensemble;
   with_sweep_key_names([&] {
@@ -201,9 +270,9 @@ void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options)
         options.base, seeds, repose_fill,
         [&](const EnsembleSeed& s, const ReposeResult* result, std::size_t done,
             std::size_t total) {
-          if (result != nullptr) {
-            const std::string sub = in_folder(folder, fmt::format("seed-{}", s.seed));
-            try {
+          try {
+            if (result != nullptr) {
+              const std::string sub = in_folder(folder, fmt::format("seed-{}", s.seed));
               std::filesystem::create_directories(sub);
               ReposeOptions repose = options.base;
               repose.seed = s.seed;
@@ -212,46 +281,49 @@ void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options)
               write_side_view_png(in_folder(sub, "side.png"), result->final, result->profile,
                                   result->fit, std::min(flags.image_width, 1200));
               write_packing(result->final, in_folder(sub, "final.h5"));
-            } catch (const std::exception& error) {
-              std::fprintf(stderr, "aggpack: warning: seed %llu: %s\n",
-                           static_cast<unsigned long long>(s.seed), error.what());
             }
+            RunRecord record = plan;
+            record.run_index = run_index.at(s.seed);
+            record.ensemble = s;
+            write_run_record(in_folder(folder, "runs/" + run_record_name(record)), record);
+          } catch (const std::exception& error) {
+            std::fprintf(stderr, "aggpack: warning: seed %llu: %s\n",
+                         static_cast<unsigned long long>(s.seed), error.what());
           }
           bar.update(static_cast<double>(done) / static_cast<double>(total), done, total,
                      s.is_valid ? fmt::format("seed {}: {:.2f} deg", s.seed, s.angle_degrees)
                                 : fmt::format("seed {}: failed", s.seed));
-        });
+        },
+        &share);
   });
   bar.finish();
   created.keep();
-  write_ensemble_json(in_folder(folder, "ensemble.json"), options.base, ensemble);
-  write_ensemble_csv(in_folder(folder, "ensemble.csv"), ensemble);
-  write_ensemble_png(in_folder(folder, "ensemble.png"), ensemble,
-                     std::min(flags.image_width, 1600));
-  fmt::print("{:>8} {:>9} {:>7} {:>6}\n", "seed", "angle", "R^2", "rest");
-  for (const auto& s : ensemble.seeds) {
-    if (s.is_valid) {
-      fmt::print("{:>8} {:9.2f} {:7.3f} {:>6}\n", s.seed, s.angle_degrees, s.r_squared,
-                 s.is_at_rest ? "yes" : "no");
-    } else {
-      fmt::print("{:>8} {:>9} {}\n", s.seed, "FAILED", s.error);
-    }
+  if (share.is_split()) print_share(share, ensemble.seeds.size(), seeds.size(), folder);
+  return ensemble;
+}
+
+// The ensemble in this process (`--case K --of N`: its share), or over the ranks of mpirun.
+void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options,
+                          const RunShare& given) {
+  if (given.is_split()) {
+    run_ensemble_part(flags, options, given, true);
+    return;
   }
-  const EnsembleStatistics& st = ensemble.statistics;
-  if (st.has_interval) {
-    fmt::print(
-        "angle of repose      {:.2f} deg mean, sd {:.2f}, 95% CI [{:.2f}, {:.2f}] "
-        "(+/- {:.2f}, t {:.3f}), {} of {} seeds\n",
-        st.mean, st.std_dev, st.lower(), st.upper(), st.half_width, st.t_quantile, st.count,
-        ensemble.seeds.size());
-  } else {
-    fmt::print("angle of repose      {} of {} seeds measured: no confidence interval (needs 2)\n",
-               st.count, ensemble.seeds.size());
-  }
-  fmt::print("wrote {}/ensemble.json, ensemble.csv, ensemble.png and seed-<k>/\n", folder);
-  if (st.count == 0) {
-    throw LimitExceeded("--seeds", flags.seeds, "at least one seed with a measured angle");
-  }
+  bool is_mpi = false;
+  EnsembleResult ensemble;
+  run_on_mpi_world(
+      [&](const MpiWorld& world) {
+        is_mpi = world.is_split();
+        const RunShare share = is_mpi ? RunShare{world.rank + 1, world.size} : RunShare{};
+        ensemble = run_ensemble_part(flags, options, share, false);
+      },
+      [&] {
+        if (is_mpi) {
+          merge_run_folder(flags.output, "", flags.image_width, false, flags.is_forced);
+        } else {
+          write_ensemble_summary(flags.output, options.base, ensemble, flags.image_width);
+        }
+      });
 }
 
 void run_repose_command(const ReposeFlags& flags) {
@@ -265,9 +337,14 @@ void run_repose_command(const ReposeFlags& flags) {
   if (flags.image_width < 64 || flags.image_width > 16384) {
     throw InvalidInput("--width", std::to_string(flags.image_width), "[64, 16384]");
   }
-  if (flags.has_seeds) {
-    run_ensemble_command(flags, options);
+  const RunShare share = parse_run_share(flags.worker, flags.of);
+  if (!options.seeds.empty()) {
+    run_ensemble_command(flags, options, share);
     return;
+  }
+  if (share.is_split()) {
+    throw InvalidInput("--case", *flags.worker,
+                       "only with a seed ensemble (--seeds or ensemble.seeds)");
   }
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   CreatedFolder created(flags.output);
@@ -306,118 +383,95 @@ void run_repose_command(const ReposeFlags& flags) {
   fmt::print("wrote {}/repose.json, profile.csv, side.png, final.h5\n", folder);
 }
 
-// The sweep plot: angle against mu_s, one line per alpha (gnuplot, run when it is installed).
-std::string gnuplot_script(const std::vector<double>& alphas, bool has_error_bars) {
-  std::string script =
-      "# angle of repose against sliding friction, one curve per alpha (aggpack sweep)\n"
-      "set terminal pngcairo size 1000,700 font ',12'\n"
-      "set output 'sweep.png'\n"
-      "set datafile separator ','\n"
-      "set key top left title 'alpha'\n"
-      "set xlabel 'sliding friction {/Symbol m}_s'\n"
-      "set ylabel 'angle of repose (deg)'\n"
-      "set grid\n"
-      "plot ";
-  for (std::size_t i = 0; i < alphas.size(); ++i) {
-    script += fmt::format(
-        "{}'sweep.csv' every ::1 using ($1 == {} && $6 == 1 ? $2 : 1/0):3{} with {} "
-        "lw 2 pt 7 title '{}'",
-        i > 0 ? ", \\\n     " : "", alphas[i], has_error_bars ? ":14:15" : "",
-        has_error_bars ? "yerrorlines" : "linespoints", alphas[i]);
-  }
-  return script + "\n";
-}
-
-bool run_gnuplot(const std::string& folder) {
-  const std::string command = "gnuplot";
-  const std::string script = "sweep.gp";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  // gnuplot resolves the script's file names relative to its working directory.
-  const std::string previous = std::filesystem::current_path().string();
-  std::filesystem::current_path(folder);
-  std::vector<char*> argv = {const_cast<char*>(command.c_str()), const_cast<char*>(script.c_str()),
-                             nullptr};
-  pid_t pid = 0;
-  const int status = posix_spawnp(&pid, command.c_str(), &actions, nullptr, argv.data(), environ);
-  std::filesystem::current_path(previous);
-  posix_spawn_file_actions_destroy(&actions);
-  if (status != 0) return false;
-  int exit_status = 0;
-  if (waitpid(pid, &exit_status, 0) < 0) return false;
-  return WIFEXITED(exit_status) && WEXITSTATUS(exit_status) == 0;
+// The runs of a sweep (`share`'s only when split), as run_ensemble_part.
+std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptions& options,
+                                      const RunShare& share, bool is_merged_later) {
+  const bool is_ensemble = !options.seeds.empty();
+  set_thread_count(flags.threads);
+  const ProgressStyle style = parse_progress_style("--progress", flags.progress);
+  CreatedFolder created(flags.output);
+  const std::string folder = prepare_folder(
+      flags.output, flags.is_forced,
+      is_merged_later ? std::vector<std::string>{}
+                      : std::vector<std::string>{"sweep.csv", "sweep.gp", "sweep.png"});
+  std::filesystem::create_directories(std::filesystem::path(folder) / "cases");
+  std::filesystem::create_directories(std::filesystem::path(folder) / "runs");
+  const std::size_t seed_count = is_ensemble ? options.seeds.size() : 1;
+  const std::size_t total = options.alphas.size() * options.frictions.size();
+  fmt::print("sweep: {} alpha x {} mu_s = {} cases", options.alphas.size(),
+             options.frictions.size(), total);
+  fmt::print("{}{}\n", is_ensemble ? fmt::format(" x {} seeds", options.seeds.size()) : "",
+             share.is_split() ? fmt::format(" (worker {} of {})", share.worker, share.of) : "");
+  const RunRecord plan =
+      plan_record(RunKind::kSweep, options, total * seed_count, flags.image_width);
+  check_same_plan(folder, plan);
+  std::map<std::uint64_t, std::size_t> seed_index;
+  for (std::size_t k = 0; k < options.seeds.size(); ++k) seed_index[options.seeds[k]] = k;
+  ProgressBar bar("sweep", "cases", style);
+  std::vector<SweepCase> runs;
+  with_sweep_key_names([&] {
+    runs = run_sweep_runs(
+        options, repose_fill,
+        [&](const SweepCase& c, const ReposeResult& result, std::size_t done, std::size_t count) {
+          const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction) +
+                                   (is_ensemble ? fmt::format("_seed{}", c.seed) : std::string());
+          try {
+            ReposeOptions repose = options.base;
+            repose.seed = c.seed;
+            repose.alpha = c.alpha;
+            repose.physics.friction = c.friction;
+            if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
+            write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
+            write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final,
+                                result.profile, result.fit, std::min(flags.image_width, 1200));
+            RunRecord record = plan;
+            record.run_index = c.index * seed_count + (is_ensemble ? seed_index.at(c.seed) : 0);
+            record.sweep = c;
+            write_run_record(in_folder(folder, "runs/" + stem + ".json"), record);
+          } catch (const Error& error) {
+            std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
+          }
+          bar.update(static_cast<double>(done) / static_cast<double>(count), done, count,
+                     fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction,
+                                 c.angle_degrees));
+        },
+        &share);
+  });
+  bar.finish();
+  created.keep();
+  if (share.is_split()) print_share(share, runs.size(), total * seed_count, folder);
+  return runs;
 }
 
 void run_sweep_command(const ReposeFlags& flags) {
-  SweepOptions options = resolve(flags);
+  const SweepOptions options = resolve(flags);
   with_sweep_key_names([&] { validate(options); });
-  if (flags.has_seeds) options.seeds = parse_seed_list(flags.seeds, "--seeds");
-  const bool is_ensemble = !options.seeds.empty();
+  const RunShare given = parse_run_share(flags.worker, flags.of);
   if (flags.is_print_config) {
     fmt::print("{}", resolved_sweep_config(options));
     return;
   }
-  set_thread_count(flags.threads);
-  const ProgressStyle style = parse_progress_style("--progress", flags.progress);
-  CreatedFolder created(flags.output);
-  const std::string folder =
-      prepare_folder(flags.output, flags.is_forced, {"sweep.csv", "sweep.gp", "sweep.png"});
-  std::filesystem::create_directories(std::filesystem::path(folder) / "cases");
-  const std::size_t total = options.alphas.size() * options.frictions.size();
-  fmt::print("sweep: {} alpha x {} mu_s = {} cases", options.alphas.size(),
-             options.frictions.size(), total);
-  fmt::print("{}\n", is_ensemble ? fmt::format(" x {} seeds", options.seeds.size()) : "");
-  ProgressBar bar("sweep", "cases", style);
-  const auto cases = run_sweep(
-      options, repose_fill,
-      [&](const SweepCase& c, const ReposeResult& result, std::size_t done, std::size_t count) {
-        const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction) +
-                                 (is_ensemble ? fmt::format("_seed{}", c.seed) : std::string());
-        try {
-          ReposeOptions repose = options.base;
-          repose.seed = c.seed;
-          repose.alpha = c.alpha;
-          repose.physics.friction = c.friction;
-          if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
-          write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
-          write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final,
-                              result.profile, result.fit, std::min(flags.image_width, 1200));
-        } catch (const Error& error) {
-          std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
+  if (given.is_split()) {
+    run_sweep_part(flags, options, given, true);
+    return;
+  }
+  bool is_mpi = false;
+  std::vector<SweepCase> runs;
+  run_on_mpi_world(
+      [&](const MpiWorld& world) {
+        is_mpi = world.is_split();
+        const RunShare share = is_mpi ? RunShare{world.rank + 1, world.size} : RunShare{};
+        runs = run_sweep_part(flags, options, share, false);
+      },
+      [&] {
+        if (is_mpi) {
+          merge_run_folder(flags.output, "", flags.image_width, flags.is_without_plot,
+                           flags.is_forced);
+        } else {
+          write_sweep_summary(flags.output, options, summarize_sweep(options, std::move(runs)),
+                              flags.is_without_plot);
         }
-        bar.update(static_cast<double>(done) / static_cast<double>(count), done, count,
-                   fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction,
-                               c.angle_degrees));
       });
-  bar.finish();
-  created.keep();
-  write_sweep_csv(in_folder(folder, "sweep.csv"), cases);
-  fmt::print("{:>6} {:>6} {:>9} {:>7} {:>6}{}\n", "alpha", "mu_s", "angle", "R^2", "rest",
-             is_ensemble ? "  95% CI        seeds" : "");
-  for (const auto& c : cases) {
-    fmt::print("{:6.2f} {:6.2f} {:>9} {:7.3f} {:>6}", c.alpha, c.friction,
-               c.is_valid ? fmt::format("{:.2f}", c.angle_degrees) : std::string("-"), c.r_squared,
-               c.is_at_rest ? "yes" : "no");
-    if (is_ensemble) {
-      fmt::print("  {:<14} {}/{}",
-                 c.statistics.has_interval
-                     ? fmt::format("[{:.2f}, {:.2f}]", c.statistics.lower(), c.statistics.upper())
-                     : std::string("-"),
-                 c.seeds_used, c.seed_count);
-    }
-    fmt::print("\n");
-  }
-  {
-    AtomicFile script(in_folder(folder, "sweep.gp"), Overwrite::kAllow, std::ios::out);
-    script.stream() << gnuplot_script(options.alphas, is_ensemble);
-    script.commit();
-  }
-  if (!flags.is_without_plot && run_gnuplot(folder)) {
-    fmt::print("wrote {}/sweep.csv, sweep.gp, sweep.png and cases/\n", folder);
-  } else {
-    fmt::print("wrote {}/sweep.csv, sweep.gp and cases/ (plot: cd {} && gnuplot sweep.gp)\n",
-               folder, folder);
-  }
 }
 
 }  // namespace
@@ -470,6 +524,7 @@ void register_sim(CLI::App& app) {
       run_sweep_command(*flags);
     });
   }
+  register_merge(app);
 }
 
 }  // namespace aggpack::cli

@@ -6,6 +6,7 @@
 
 #include "aggpack/config/repose_config.h"
 
+#include "aggpack/sim/distributed.h"
 #include "binding.h"
 
 namespace aggpack {
@@ -191,12 +192,40 @@ std::vector<SweepKey> keys() {
 
 }  // namespace
 
+namespace {
+
+// [ensemble] (issue 15 items 2 and 6): the seed list, so that an ensemble is reproducible from
+// the config file alone (`--seeds` overrides it).
+std::vector<SweepKey> ensemble_keys() {
+  return {
+      {.name = "ensemble.seeds",
+       .type = ValueType::kPath,
+       .unit = "-",
+       .note = "a non-empty seed list: 1-16, 1,4,9 or 1-4,9 (at most 10000 seeds)",
+       .written = {.text = "given",
+                   .applies = [](const SweepOptions& o) { return !o.seeds.empty(); }},
+       .doc = "seed ensemble: `repose` runs once per seed (ensemble.json), `sweep` once per "
+              "case and seed; unset = one run at particles.seed",
+       .binding = {.get = [](const SweepOptions& o) -> Value { return format_seed_list(o.seeds); },
+                   .set =
+                       [](SweepOptions& o, const Value& value) {
+                         // Empty: the default, no ensemble (a given value is non-empty).
+                         const auto& text = std::get<std::string>(value);
+                         o.seeds = text.empty() ? std::vector<std::uint64_t>{}
+                                                : parse_seed_list(text, "ensemble.seeds");
+                       }},
+       .default_text = "(unset)"}};
+}
+
+}  // namespace
+
 const Schema<SweepOptions>& sweep_schema() {
   static const Schema<SweepOptions> schema = [] {
     Schema<SweepOptions> s;
-    s.tables = {{.name = "trough"}, {.name = "particles"}, {.name = "physics"},
-                {.name = "rest"},   {.name = "measure"},   {.name = "sweep"}};
+    s.tables = {{.name = "trough"},  {.name = "particles"}, {.name = "physics"}, {.name = "rest"},
+                {.name = "measure"}, {.name = "sweep"},     {.name = "ensemble"}};
     s.keys = keys();
+    for (auto& key : ensemble_keys()) s.keys.push_back(std::move(key));
     s.aliases = {{"min_time", "fall time from particles.fill_height"}};
     config_detail::fill_defaults(s, SweepOptions{});
     return s;

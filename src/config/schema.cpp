@@ -64,6 +64,7 @@ std::string allowed_text(const KeyView& key) {
       text = "true | false";
       break;
     case ValueType::kPath:
+      if (!key.note->empty()) return *key.note;  // a string that is not a path says what it is
       text = "a non-empty path";
       break;
     default:

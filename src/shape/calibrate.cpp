@@ -45,6 +45,8 @@ const char* calibration_target_name(CalibrationTarget target) {
   switch (target) {
     case CalibrationTarget::kVolumeRatio:
       return "volume_ratio";
+    case CalibrationTarget::kEnclosedVolumeRatio:
+      return "enclosed_volume_ratio";
     case CalibrationTarget::kMeasuredAlpha:
       return "measured_alpha";
     case CalibrationTarget::kSphericity:
@@ -63,6 +65,10 @@ double calibration_value(CalibrationTarget target, const ShapeDescriptors& descr
     case CalibrationTarget::kVolumeRatio:
       return descriptors.volume /
              (4.0 / 3.0 * std::numbers::pi * control_radius * control_radius * control_radius);
+    case CalibrationTarget::kEnclosedVolumeRatio: {
+      const double r = descriptors.enclosing_radius;
+      return descriptors.volume / (4.0 / 3.0 * std::numbers::pi * r * r * r);
+    }
     case CalibrationTarget::kMeasuredAlpha:
       return descriptors.measured_alpha;
     case CalibrationTarget::kSphericity:
@@ -96,11 +102,13 @@ void validate(const CalibrationOptions& options) {
 
 SummaryStatistics evaluate_calibration(const CalibrationOptions& options, double alpha,
                                        SummaryStatistics* volume,
-                                       std::vector<SummaryStatistics>* all) {
+                                       std::vector<SummaryStatistics>* all,
+                                       SummaryStatistics* enclosing) {
   const GeneratorOptions generator = generator_options(options, alpha);
   constexpr std::size_t kTargets = std::size(kCalibrationTargets);
   std::vector<double> values(options.samples * kTargets);  // [target][sample]
   std::vector<double> volumes(options.samples);
+  std::vector<double> enclosing_radii(options.samples);
   parallel_for_index(0, options.samples, [&](std::size_t i) {
     const GeneratedParticle particle = generate_particle(generator, i);
     const ShapeDescriptors d = describe(particle.body);
@@ -109,8 +117,10 @@ SummaryStatistics evaluate_calibration(const CalibrationOptions& options, double
           calibration_value(kCalibrationTargets[t], d, particle.control_radius);
     }
     volumes[i] = d.volume;
+    enclosing_radii[i] = d.enclosing_radius;
   });
   if (volume != nullptr) *volume = summarize(volumes);
+  if (enclosing != nullptr) *enclosing = summarize(enclosing_radii);
   SummaryStatistics target;
   if (all != nullptr) all->clear();
   for (std::size_t t = 0; t < kTargets; ++t) {
@@ -143,7 +153,8 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
   const double value = options.value;
   const std::string name = calibration_target_name(options.target);
   if (value < result.reachable_minimum || value > result.reachable_maximum) {
-    const bool is_volume = options.target == CalibrationTarget::kVolumeRatio;
+    const bool is_volume = options.target == CalibrationTarget::kVolumeRatio ||
+                           options.target == CalibrationTarget::kEnclosedVolumeRatio;
     throw InvalidInput(name, format_value(value),
                        "[" + short_number(result.reachable_minimum) + ", " +
                            short_number(result.reachable_maximum) +
@@ -186,8 +197,18 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
   std::sort(evaluated.begin(), evaluated.end(),
             [](const auto& a, const auto& b) { return a.alpha < b.alpha; });
   result.alpha = best.alpha;
-  result.achieved =
-      evaluate_calibration(options, best.alpha, &result.volume, &result.all_descriptors);
+  CalibrationOptions sized = options;
+  if (options.target == CalibrationTarget::kEnclosedVolumeRatio) {
+    // Ratios do not depend on the scale (L / r is fixed): size the control sphere so that the
+    // mean enclosing diameter is D, and measure the particles at that size.
+    SummaryStatistics enclosing;
+    evaluate_calibration(options, best.alpha, nullptr, nullptr, &enclosing);
+    sized.diameter = options.diameter * (0.5 * options.diameter) / enclosing.mean;
+    result.radius = 0.5 * sized.diameter;
+    result.edge_length = options.edge_ratio * result.radius;
+  }
+  result.achieved = evaluate_calibration(sized, best.alpha, &result.volume, &result.all_descriptors,
+                                         &result.enclosing_radius);
   result.within_tolerance = relative_miss(result.achieved.mean, value) <= options.tolerance;
   return result;
 }

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "aggpack/core/error.h"
+#include "aggpack/geom/enclosing_sphere.h"
 
 namespace aggpack {
 
@@ -58,6 +59,7 @@ ShapeDescriptors describe(const ConvexPolyhedron& body) {
   for (const auto& v : body.vertices()) {
     result.circumscribed_radius = std::max(result.circumscribed_radius, (v - mass.centroid).norm());
   }
+  result.enclosing_radius = minimal_enclosing_sphere(body.vertices()).radius;
   result.equivalent_diameter = equivalent_diameter(mass.volume);
   result.longest_edge = body.longest_edge();
   return result;
@@ -120,6 +122,7 @@ const std::vector<DescriptorColumn>& descriptor_columns() {
       {"flatness", "-", [](const ShapeDescriptors& d) { return d.flatness; }},
       {"circumscribed_radius", "m",
        [](const ShapeDescriptors& d) { return d.circumscribed_radius; }},
+      {"enclosing_radius", "m", [](const ShapeDescriptors& d) { return d.enclosing_radius; }},
       {"equivalent_diameter", "m", [](const ShapeDescriptors& d) { return d.equivalent_diameter; }},
       {"longest_edge", "m", [](const ShapeDescriptors& d) { return d.longest_edge; }},
   };

@@ -16,6 +16,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
+#include "aggpack/sim/distributed.h"
 
 namespace aggpack {
 
@@ -166,21 +167,25 @@ EnsembleStatistics ensemble_statistics(const std::vector<double>& values, double
 }
 
 EnsembleResult run_ensemble(const ReposeOptions& base, const std::vector<std::uint64_t>& seeds,
-                            const ReposeFill& fill, const EnsembleSeedCallback& on_seed) {
+                            const ReposeFill& fill, const EnsembleSeedCallback& on_seed,
+                            const RunShare* share) {
   if (seeds.empty()) throw InvalidInput("--seeds", "[]", "at least one seed");
   if (!fill) throw InvalidInput("ensemble fill", "none", "a function making each seed's fill");
   validate(base);
-  EnsembleResult ensemble;
-  ensemble.seeds.resize(seeds.size());
+  std::vector<std::uint64_t> owned;
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    if (share == nullptr || share->owns(i)) owned.push_back(seeds[i]);
+  }
+  std::vector<EnsembleSeed> runs(owned.size());
   std::mutex mutex;
   std::size_t done = 0;
   // One seed per worker, each single-threaded inside (Bullet's world), as the sweep's cases:
   // each slot depends only on its seed, so the ensemble is the same at any thread count.
-  parallel_for_index(0, seeds.size(), [&](std::size_t index) {
-    EnsembleSeed& summary = ensemble.seeds[index];
-    summary.seed = seeds[index];
+  parallel_for_index(0, owned.size(), [&](std::size_t index) {
+    EnsembleSeed& summary = runs[index];
+    summary.seed = owned[index];
     ReposeOptions options = base;
-    options.seed = seeds[index];
+    options.seed = owned[index];
     ReposeResult result;
     bool has_result = false;
     try {
@@ -197,8 +202,14 @@ EnsembleResult run_ensemble(const ReposeOptions& base, const std::vector<std::ui
     }
     const std::lock_guard lock(mutex);
     ++done;
-    if (on_seed) on_seed(summary, has_result ? &result : nullptr, done, seeds.size());
+    if (on_seed) on_seed(summary, has_result ? &result : nullptr, done, owned.size());
   });
+  return summarize_ensemble(std::move(runs));
+}
+
+EnsembleResult summarize_ensemble(std::vector<EnsembleSeed> seeds) {
+  EnsembleResult ensemble;
+  ensemble.seeds = std::move(seeds);
   std::vector<double> angles;
   for (const auto& s : ensemble.seeds) {
     if (s.is_valid) angles.push_back(s.angle_degrees);

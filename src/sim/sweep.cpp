@@ -8,6 +8,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
+#include "aggpack/sim/distributed.h"
 
 namespace aggpack {
 
@@ -23,6 +24,11 @@ void validate(const SweepOptions& options) {
 
 std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& fill,
                                  const SweepCaseCallback& on_case) {
+  return summarize_sweep(options, run_sweep_runs(options, fill, on_case));
+}
+
+std::vector<SweepCase> run_sweep_runs(const SweepOptions& options, const ReposeFill& fill,
+                                      const SweepCaseCallback& on_case, const RunShare* share) {
   validate(options);
   if (!fill) throw InvalidInput("sweep fill", "none", "a function making each case's fill");
   if (options.seeds.size() > kMaxEnsembleSeeds) {
@@ -32,11 +38,16 @@ std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& 
   const std::size_t case_count = options.alphas.size() * options.frictions.size();
   const bool is_ensemble = !options.seeds.empty();
   const std::size_t seed_count = is_ensemble ? options.seeds.size() : 1;
-  const std::size_t total = case_count * seed_count;
+  std::vector<std::size_t> owned;
+  for (std::size_t i = 0; i < case_count * seed_count; ++i) {
+    if (share == nullptr || share->owns(i)) owned.push_back(i);
+  }
+  const std::size_t total = owned.size();
   std::vector<SweepCase> runs(total);
   std::mutex mutex;
   std::size_t done = 0;
-  auto run_case = [&](std::size_t index) {
+  auto run_case = [&](std::size_t slot) {
+    const std::size_t index = owned[slot];
     const std::size_t case_index = index / seed_count;
     const double alpha = options.alphas[case_index / options.frictions.size()];
     const double friction = options.frictions[case_index % options.frictions.size()];
@@ -46,7 +57,7 @@ std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& 
     if (options.is_wall_friction_coupled) repose.physics.wall_friction = friction;
     if (is_ensemble) repose.seed = options.seeds[index % seed_count];
     const ReposeResult result = run_repose(repose, fill(repose));
-    SweepCase& summary = runs[index];
+    SweepCase& summary = runs[slot];
     summary.index = case_index;
     summary.alpha = alpha;
     summary.friction = friction;
@@ -61,6 +72,7 @@ std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& 
     summary.simulated_time = result.stage1_time + result.stage2_time;
     summary.wall_seconds = result.stage1_seconds + result.stage2_seconds;
     summary.seeds_used = summary.is_valid ? 1 : 0;
+    summary.seed_count = seed_count;  // per run: tells record names apart (cases/ stems)
     const std::lock_guard lock(mutex);
     ++done;
     if (on_case) on_case(summary, result, done, total);
@@ -68,6 +80,17 @@ std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& 
   // Runs take about the same time, and each is single-threaded inside (Bullet's world), so the
   // cores are used by running cases (and seeds) side by side.
   parallel_for_index(0, total, run_case);
+  return runs;
+}
+
+std::vector<SweepCase> summarize_sweep(const SweepOptions& options, std::vector<SweepCase> runs) {
+  const std::size_t case_count = options.alphas.size() * options.frictions.size();
+  const bool is_ensemble = !options.seeds.empty();
+  const std::size_t seed_count = is_ensemble ? options.seeds.size() : 1;
+  if (runs.size() != case_count * seed_count) {
+    throw InvalidInput("sweep runs", std::to_string(runs.size()),
+                       std::to_string(case_count * seed_count) + " (cases x seeds)");
+  }
   if (!is_ensemble) return runs;
   // One row per case: means over the seeds' valid runs, in seed order.
   std::vector<SweepCase> cases(case_count);

@@ -103,6 +103,40 @@ TEST(Calibrate, ElongationTargetIsMetAndOtherDescriptorsAreReported) {
   EXPECT_EQ(result.all_descriptors[3].mean, result.achieved.mean);  // elongation
 }
 
+TEST(Calibrate, EnclosedVolumeRatioSizesTheParticlesToTheMeasuredDiameter) {
+  // Particle 2 measured as a real particle: V = 467.2 mm^3, smallest enclosing sphere 12.5 mm.
+  const double ratio = 467.2 / (std::numbers::pi / 6.0 * 12.5 * 12.5 * 12.5);
+  auto options = small_options(CalibrationTarget::kEnclosedVolumeRatio, ratio);
+  options.diameter = 0.0125;
+  const CalibrationResult result = calibrate(options);
+  EXPECT_TRUE(result.within_tolerance);
+  EXPECT_NEAR(result.achieved.mean, ratio, 0.02 * ratio);
+  // Regenerated here at the control radius found: the mean enclosing diameter is D, the mean
+  // volume is the measured one (the ratio times the sphere of diameter D, to the ratio's miss).
+  const GeneratorOptions generator{.alpha = result.alpha,
+                                   .radius_min = result.radius,
+                                   .radius_max = result.radius,
+                                   .edge_length = result.edge_length,
+                                   .seed = options.seed};
+  double diameter = 0.0;
+  double ratio_sum = 0.0;
+  for (std::size_t i = 0; i < options.samples; ++i) {
+    const auto d = describe(generate_particle(generator, i).body);
+    diameter += 2.0 * d.enclosing_radius;
+    ratio_sum += d.volume / (4.0 / 3.0 * std::numbers::pi * std::pow(d.enclosing_radius, 3));
+    EXPECT_LE(d.enclosing_radius, result.radius * (1.0 + 1e-12));  // inside the control sphere
+  }
+  const auto n = static_cast<double>(options.samples);
+  EXPECT_NEAR(diameter / n, 0.0125, 1e-9 * 0.0125);
+  EXPECT_NEAR(ratio_sum / n, result.achieved.mean, 1e-9);
+  EXPECT_NEAR(2.0 * result.enclosing_radius.mean, 0.0125, 1e-9 * 0.0125);
+  EXPECT_NEAR(result.volume.mean * 1e9, 467.2, 0.02 * 467.2);
+  // The enclosing sphere is never larger than the control sphere, so this ratio is at least the
+  // control one and the control radius found is at least D / 2.
+  EXPECT_GE(result.radius, 0.5 * options.diameter);
+  EXPECT_EQ(result.all_descriptors.back().mean, result.achieved.mean);
+}
+
 TEST(Calibrate, SameSeedSameResultAtAnyThreadCount) {
   const auto options = small_options(CalibrationTarget::kVolumeRatio, 0.3);
   const auto first = calibrate(options);

@@ -197,6 +197,7 @@ TEST(DescriptorColumns, NamedUniquelyWithUnitsAndReadTheRightField) {
       {"elongation", 0.5},
       {"flatness", 0.5},
       {"circumscribed_radius", std::sqrt(5.25)},
+      {"enclosing_radius", std::sqrt(5.25)},  // a box: the centred sphere is the smallest
       {"equivalent_diameter", std::cbrt(48.0 / kPi)},
       {"longest_edge", std::sqrt(20.0)},
   };

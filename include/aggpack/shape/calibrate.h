@@ -20,7 +20,10 @@ namespace aggpack {
 
 /// The descriptor a calibration matches.
 enum class CalibrationTarget {
-  kVolumeRatio,    ///< V / (pi/6 D^3), D = 2 r the control (circumscribed) diameter: Table 1
+  kVolumeRatio,  ///< V / (pi/6 D^3), D = 2 r the control sphere's diameter
+  /// V / volume of the particle's smallest enclosing sphere: Table 1's V / V_circumscribed as a
+  /// measurement of a real particle gives it (its circumscribed diameter is the enclosing one).
+  kEnclosedVolumeRatio,
   kMeasuredAlpha,  ///< Eq. 2 alpha = SI^(3/2)
   kSphericity,     ///< Eq. 1 SI
   kElongation,     ///< intermediate / long principal dimension
@@ -29,9 +32,11 @@ enum class CalibrationTarget {
 
 constexpr CalibrationTarget kCalibrationTargets[] = {
     CalibrationTarget::kVolumeRatio, CalibrationTarget::kMeasuredAlpha,
-    CalibrationTarget::kSphericity, CalibrationTarget::kElongation, CalibrationTarget::kFlatness};
+    CalibrationTarget::kSphericity,  CalibrationTarget::kElongation,
+    CalibrationTarget::kFlatness,    CalibrationTarget::kEnclosedVolumeRatio};
 
-/// "volume_ratio", "measured_alpha", "sphericity", "elongation", "flatness".
+/// "volume_ratio", "measured_alpha", "sphericity", "elongation", "flatness",
+/// "enclosed_volume_ratio".
 const char* calibration_target_name(CalibrationTarget target);
 
 /// The target descriptor of a particle grown with control radius `control_radius` (m).
@@ -40,8 +45,11 @@ double calibration_value(CalibrationTarget target, const ShapeDescriptors& descr
 
 struct CalibrationOptions {
   CalibrationTarget target = CalibrationTarget::kVolumeRatio;
-  double value = 0.5;                  ///< target mean, in (0, 1]
-  double diameter = 0.01;              ///< circumscribed (control) diameter D = 2 r (m), > 0
+  double value = 0.5;  ///< target mean, in (0, 1]
+  /// Circumscribed diameter D (m), > 0: of the control sphere (D = 2 r), or, for
+  /// kEnclosedVolumeRatio, the mean diameter of the particles' smallest enclosing spheres (the
+  /// control radius is then scaled to give it).
+  double diameter = 0.01;
   double edge_ratio = 1.0;             ///< L / r, in [0.05, 1.5] (fixed, not searched)
   std::size_t samples = 200;           ///< particles per evaluation, [2, 100000]
   std::uint64_t seed = 1;              ///< particle i of every evaluation uses stream (seed, i)
@@ -64,7 +72,9 @@ struct CalibrationResult {
   double radius = 0;           ///< control radius r = D / 2 (m)
   double edge_length = 0;      ///< L = edge_ratio * r (m)
   SummaryStatistics achieved;  ///< target descriptor at `alpha`
-  SummaryStatistics volume;    ///< particle volume at `alpha` (m^3)
+  SummaryStatistics volume;    ///< particle volume at `alpha` and `radius` (m^3)
+  /// Radius of each particle's smallest enclosing sphere at `alpha` and `radius` (m).
+  SummaryStatistics enclosing_radius;
   /// Every target descriptor at `alpha`, in kCalibrationTargets order (the other measures of
   /// the particles found: e.g. the Eq. 2 alpha of a volume-ratio match).
   std::vector<SummaryStatistics> all_descriptors;
@@ -75,11 +85,13 @@ struct CalibrationResult {
 };
 
 /// Mean and spread of the target descriptor over `options.samples` particles grown with Eq. 3
-/// input `alpha`; when given, `volume` gets the volume's and `all` every target descriptor's (in
+/// input `alpha` and control radius diameter / 2; when given, `volume` gets the volume's,
+/// `enclosing` the smallest enclosing sphere radius' and `all` every target descriptor's (in
 /// kCalibrationTargets order). Deterministic at any thread count.
 SummaryStatistics evaluate_calibration(const CalibrationOptions& options, double alpha,
                                        SummaryStatistics* volume = nullptr,
-                                       std::vector<SummaryStatistics>* all = nullptr);
+                                       std::vector<SummaryStatistics>* all = nullptr,
+                                       SummaryStatistics* enclosing = nullptr);
 
 /// Finds the alpha whose particles' mean descriptor is `options.value`.
 /// \throw InvalidInput naming the descriptor, the value and the reachable range when the target

@@ -30,6 +30,9 @@ struct ShapeDescriptors {
   /// Largest distance from the centroid to a vertex (radius of the centroid-centred sphere that
   /// encloses the particle).
   double circumscribed_radius = 0;
+  /// Radius of the smallest sphere enclosing the particle (geom/enclosing_sphere.h): half the
+  /// circumscribed diameter a measurement of a real particle gives. <= circumscribed_radius.
+  double enclosing_radius = 0;
   double equivalent_diameter = 0;  ///< diameter of the sphere of equal volume
   double longest_edge = 0;
 };

@@ -67,11 +67,19 @@ struct EnsembleResult {
 using EnsembleSeedCallback = std::function<void(
     const EnsembleSeed& summary, const ReposeResult* result, std::size_t done, std::size_t total)>;
 
+struct RunShare;  // aggpack/sim/distributed.h
+
 /// Runs `base` once per seed (base.seed replaced) on the fill `fill` makes (called concurrently),
 /// in parallel over seeds. A seed whose run throws an aggpack Error is recorded as failed with
-/// the message; the others go on. \throw InvalidInput for no seeds or invalid options.
+/// the message; the others go on. With `share` (worker K of N, distributed.h) only the seeds
+/// that worker owns run, and the result holds only them. \throw InvalidInput for no seeds or
+/// invalid options.
 EnsembleResult run_ensemble(const ReposeOptions& base, const std::vector<std::uint64_t>& seeds,
-                            const ReposeFill& fill, const EnsembleSeedCallback& on_seed = {});
+                            const ReposeFill& fill, const EnsembleSeedCallback& on_seed = {},
+                            const RunShare* share = nullptr);
+
+/// The ensemble of finished seeds (in plan order): the statistics over the valid ones.
+EnsembleResult summarize_ensemble(std::vector<EnsembleSeed> seeds);
 
 /// JSON: options of the base case, seeds (angle, valid, error...), statistics. \throw IoError.
 void write_ensemble_json(const std::string& path, const ReposeOptions& base,

@@ -64,6 +64,19 @@ using SweepCaseCallback = std::function<void(const SweepCase& summary, const Rep
 std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& fill,
                                  const SweepCaseCallback& on_case = {});
 
+struct RunShare;  // aggpack/sim/distributed.h
+
+/// The runs of a sweep, in plan order (run i = case i / seeds, seed i % seeds; one run per case
+/// without seeds), or only those `share` owns: one summary per run, no aggregation.
+std::vector<SweepCase> run_sweep_runs(const SweepOptions& options, const ReposeFill& fill,
+                                      const SweepCaseCallback& on_case = {},
+                                      const RunShare* share = nullptr);
+
+/// The sweep's table from all its runs in plan order (what run_sweep returns): without seeds the
+/// runs themselves, else one row per case with the seeds' means and statistics.
+/// \throw InvalidInput when `runs` is not the plan's size.
+std::vector<SweepCase> summarize_sweep(const SweepOptions& options, std::vector<SweepCase> runs);
+
 /// Writes the table as CSV (one row per case, columns named in the header; no wall-clock times,
 /// so the same sweep always gives the same bytes). \throw IoError.
 void write_sweep_csv(const std::string& path, const std::vector<SweepCase>& cases);

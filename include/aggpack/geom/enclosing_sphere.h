@@ -1,0 +1,25 @@
+#pragma once
+// The smallest sphere enclosing a set of points (Welzl's algorithm, iterative move-to-front form
+// for 3D, points taken in a fixed pseudo-random order: expected linear time, same answer on
+// every run). The circumscribed sphere of a real particle, as a caliper or a photograph measures
+// it, is this sphere of its vertices; the generator's control sphere (radius R) only bounds it.
+//
+// Own code, not a library's: CGAL's Min_sphere_d would do it but is a large dependency for ~100
+// lines, and no other Debian package the project uses has it.
+
+#include <span>
+
+#include "aggpack/geom/vec.h"
+
+namespace aggpack {
+
+struct Sphere {
+  Vec3 centre = Vec3::Zero();
+  double radius = 0;
+};
+
+/// The smallest sphere containing every point (to a relative tolerance of 1e-12 of its radius).
+/// Empty input gives radius 0 at the origin.
+Sphere minimal_enclosing_sphere(std::span<const Vec3> points);
+
+}  // namespace aggpack

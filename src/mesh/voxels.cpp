@@ -1,0 +1,225 @@
+// The mesomodel's phase image (mesh/voxels.h).
+
+#include "aggpack/mesh/voxels.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
+#include "aggpack/geom/mass_properties.h"
+#include "aggpack/pack/container.h"
+
+namespace aggpack {
+
+namespace {
+
+// Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection, 5.1.5).
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a;
+  const Vec3 ac = c - a;
+  const Vec3 ap = p - a;
+  const double d1 = ab.dot(ap);
+  const double d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp);
+  const double d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + d1 / (d1 - d3) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp);
+  const double d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  }
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+// A placed particle: its face planes (unit normal n, offset d: n.x <= d inside), centre and reach.
+struct Body {
+  ConvexPolyhedron shape;
+  std::vector<Vec3> normals;
+  std::vector<double> offsets;
+  Vec3 centre = Vec3::Zero();
+  double radius = 0.0;  // vertices lie within this distance of centre
+  Aabb bounds;
+
+  // Largest signed distance of p to a face plane: <= 0 inside, a lower bound of the distance.
+  [[nodiscard]] double plane_distance(const Vec3& p) const {
+    double s = -std::numeric_limits<double>::infinity();
+    for (std::size_t f = 0; f < normals.size(); ++f)
+      s = std::max(s, normals[f].dot(p) - offsets[f]);
+    return s;
+  }
+};
+
+Body make_body(ConvexPolyhedron shape, const Vec3& centre) {
+  Body body;
+  body.centre = centre;
+  for (const Vec3& v : shape.vertices()) body.radius = std::max(body.radius, (v - centre).norm());
+  body.normals.reserve(shape.triangle_count());
+  body.offsets.reserve(shape.triangle_count());
+  for (std::size_t f = 0; f < shape.triangle_count(); ++f) {
+    const Vec3 n = shape.face_normal(f);
+    if (!n.allFinite()) continue;  // a zero-area triangle bounds nothing
+    body.normals.push_back(n);
+    body.offsets.push_back(n.dot(shape.vertices()[shape.triangles()[f][0]]));
+  }
+  body.bounds = shape.bounds();
+  body.shape = std::move(shape);
+  return body;
+}
+
+}  // namespace
+
+double distance_to_body(const ConvexPolyhedron& body, const Vec3& point) {
+  const auto& v = body.vertices();
+  bool is_inside = true;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t f = 0; f < body.triangle_count(); ++f) {
+    const Triangle& t = body.triangles()[f];
+    const Vec3 n = body.face_normal_scaled(f);
+    if (n.dot(point - v[t[0]]) > 0.0) is_inside = false;
+    best = std::min(best, (point - closest_on_triangle(point, v[t[0]], v[t[1]], v[t[2]])).norm());
+  }
+  return is_inside ? 0.0 : best;
+}
+
+double offset_shell_volume(const ConvexPolyhedron& body, double thickness) {
+  const double t = thickness;
+  double mean_width_integral = 0.0;  // 1/2 sum of edge length x exterior dihedral angle
+  for (const Edge& edge : body.edges()) {
+    const Vec3 a = body.face_normal(edge.faces[0]);
+    const Vec3 b = body.face_normal(edge.faces[1]);
+    const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
+    const double length =
+        (body.vertices()[edge.vertices[0]] - body.vertices()[edge.vertices[1]]).norm();
+    mean_width_integral += 0.5 * length * angle;
+  }
+  const double area = mass_properties(body).surface_area;
+  return area * t + mean_width_integral * t * t + 4.0 / 3.0 * std::numbers::pi * t * t * t;
+}
+
+void validate(const VoxelOptions& options) {
+  if (options.resolution < 2 || options.resolution > 4096) {
+    throw InvalidInput("voxels", std::to_string(options.resolution), "[2, 4096]");
+  }
+  if (!std::isfinite(options.itz_thickness) || options.itz_thickness < 0.0) {
+    throw InvalidInput("itz_thickness", format_value(options.itz_thickness), ">= 0 (m)");
+  }
+}
+
+std::array<std::uint64_t, 4> VoxelImage::phase_counts() const {
+  std::array<std::uint64_t, 4> counts{};
+  for (const std::uint8_t p : phase) ++counts[std::min<std::size_t>(p, 3)];
+  return counts;
+}
+
+VoxelImage voxelize(const Packing& packing, const VoxelOptions& options) {
+  validate(options);
+  const Aabb box = packing.container.bounds();
+  const Vec3 extent = box.extent();
+  const double longest = extent.maxCoeff();
+  if (options.itz_thickness >= 0.5 * extent.minCoeff()) {
+    throw InvalidInput("itz_thickness", format_value(options.itz_thickness),
+                       "[0, " + format_value(0.5 * extent.minCoeff()) +
+                           ") m: half the container's "
+                           "smallest side");
+  }
+  VoxelImage image;
+  image.spacing = longest / options.resolution;
+  image.origin = box.lower;
+  std::uint64_t total = 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    image.dims[axis] =
+        static_cast<std::uint32_t>(std::max(1.0, std::round(extent[axis] / image.spacing)));
+    total *= image.dims[axis];
+  }
+  if (total > options.max_voxels) {
+    throw LimitExceeded("voxels",
+                        std::to_string(options.resolution) + " (" + std::to_string(total) +
+                            " voxels, 5 bytes each)",
+                        "at most " + std::to_string(options.max_voxels) + " voxels");
+  }
+  // An extent that is not a multiple of the spacing is covered to the nearest whole voxel; centres
+  // that fall outside the container are labelled outside.
+  const double t = options.itz_thickness;
+  std::vector<Body> bodies;
+  bodies.reserve(packing.particles.size());
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    bodies.push_back(make_body(packing.placed(i), packing.particles[i].pose.position));
+  }
+  // Particles binned by the z range of their bounds (+ t) over the voxel layers: each layer
+  // looks only at the particles that reach it.
+  const std::uint32_t nz = image.dims[2];
+  std::vector<std::vector<std::uint32_t>> layer_bodies(nz);
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    const double lo = (bodies[i].bounds.lower.z() - t - box.lower.z()) / image.spacing - 0.5;
+    const double hi = (bodies[i].bounds.upper.z() + t - box.lower.z()) / image.spacing - 0.5;
+    const auto first = static_cast<std::int64_t>(std::max(0.0, std::ceil(lo)));
+    const auto last = static_cast<std::int64_t>(std::min<double>(nz - 1, std::floor(hi)));
+    for (std::int64_t k = first; k <= last; ++k) layer_bodies[k].push_back(i);
+  }
+  image.phase.assign(total, static_cast<std::uint8_t>(VoxelPhase::kMortar));
+  image.particle.assign(total, 0);
+  const std::uint32_t nx = image.dims[0];
+  const std::uint32_t ny = image.dims[1];
+  parallel_for_index(0, nz, [&](std::size_t k) {
+    const double z = box.lower.z() + (static_cast<double>(k) + 0.5) * image.spacing;
+    // The layer's particles, with their x-y bounds, for a quick reject per voxel.
+    const auto& candidates = layer_bodies[k];
+    for (std::uint32_t j = 0; j < ny; ++j) {
+      const double y = box.lower.y() + (j + 0.5) * image.spacing;
+      for (std::uint32_t i = 0; i < nx; ++i) {
+        const double x = box.lower.x() + (i + 0.5) * image.spacing;
+        const Vec3 p(x, y, z);
+        const std::size_t index = (static_cast<std::size_t>(k) * ny + j) * nx + i;
+        if (wall_clearance(packing.container, p) < 0.0) {
+          image.phase[index] = static_cast<std::uint8_t>(VoxelPhase::kOutside);
+          continue;
+        }
+        double nearest = std::numeric_limits<double>::infinity();
+        std::uint32_t nearest_body = 0;
+        bool is_aggregate = false;
+        for (const std::uint32_t b : candidates) {
+          const Body& body = bodies[b];
+          const Aabb& bb = body.bounds;
+          if (x < bb.lower.x() - t || x > bb.upper.x() + t || y < bb.lower.y() - t ||
+              y > bb.upper.y() + t) {
+            continue;
+          }
+          const double s = body.plane_distance(p);
+          if (s <= 0.0) {
+            image.phase[index] = static_cast<std::uint8_t>(VoxelPhase::kAggregate);
+            image.particle[index] = b + 1;
+            is_aggregate = true;
+            break;
+          }
+          if (s > t || s >= nearest) continue;
+          const double d = distance_to_body(body.shape, p);
+          if (d <= t && d < nearest) {
+            nearest = d;
+            nearest_body = b + 1;
+          }
+        }
+        if (!is_aggregate && nearest_body != 0) {
+          image.phase[index] = static_cast<std::uint8_t>(VoxelPhase::kItz);
+          image.particle[index] = nearest_body;
+        }
+      }
+    }
+  });
+  return image;
+}
+
+}  // namespace aggpack
