@@ -229,7 +229,7 @@ void write_ensemble_json(const std::string& path, const ReposeOptions& base,
       {"friction", base.physics.friction},
       {"wall_friction", base.physics.wall_friction.value_or(base.physics.friction)},
       {"trough_length_m", base.trough_length},
-      {"trough_width_m", base.trough_width},
+      {"trough_width_m", base.width()},
       {"note", "each seed's full options and result are in seed-<k>/repose.json"},
   };
   auto seeds = nlohmann::ordered_json::array();
