@@ -7,7 +7,8 @@
 #
 #   bench/run_acrylic.sh [AGGPACK] [OUT_DIR] [SEEDS] [SWEEP_SEEDS] [THREADS]
 #
-# Defaults: build/aggpack, bench-acrylic/, seeds 1-24, sweep seeds 1-4, all cores. Outputs:
+# Defaults: build/aggpack, bench-acrylic/, seeds 1-24, sweep seeds 1-4 ("none": no sweep), all
+# cores. Outputs:
 # OUT/p1/ and OUT/p2/ (ensemble.json|csv|png and seed-<k>/), OUT/sweep/ (sweep.csv|png),
 # OUT/summary.txt (machine, load, times, both means with 95 % intervals, the difference test).
 set -euo pipefail
@@ -74,7 +75,7 @@ print(f"difference p1 - p2: {m1 - m2:.2f} deg, 95% CI [{m1 - m2 - q * se:.2f}, {
       f"Welch t {t:.2f} on {df:.1f} df: {'significant' if abs(t) > q else 'not significant'} at 5%")
 PY
 
-run sweep "$aggpack" sweep "$here/examples/sweep-acrylic-trends.toml" --seeds "$sweep_seeds" \
+[ "$sweep_seeds" = none ] || run sweep "$aggpack" sweep "$here/examples/sweep-acrylic-trends.toml" --seeds "$sweep_seeds" \
   -j "$threads" -o "$out/sweep" -f --progress none
 echo "# done $(date -u +%FT%TZ); $(uptime)" >>"$log"
 cat "$log"
