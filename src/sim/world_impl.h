@@ -50,7 +50,8 @@ struct ShapeData {
 // With block_contacts > 0 (PhysicsOptions::solver = kBlocked) the velocity sweeps are cache-blocked
 // (world_solver.cpp): the contacts, in that canonical order, are cut into blocks of block_contacts
 // and each pass sweeps one block block_sweeps times (normal rows, then its friction rows) before
-// the next; passes repeat until every row has had solver_iterations sweeps. A block's rows and
+// the next; passes repeat until every row has had solver_iterations sweeps. The split-impulse
+// (position) sweeps are blocked alike. A block's rows and
 // bodies stay in cache across its sweeps, where a full sweep over a 10,000-particle pile's ~30 MB
 // of rows streams them from memory. With a single block this is exactly Bullet's Gauss-Seidel.
 class OrderedSolver final : public btSequentialImpulseConstraintSolver {
@@ -92,6 +93,8 @@ class OrderedSolver final : public btSequentialImpulseConstraintSolver {
                                              btIDebugDraw* debug) override;
 
  private:
+  // Split-impulse (position) rows of contacts [begin, end); false if none changed.
+  bool split_block(int begin, int end);
   // Velocity rows of contacts [begin, end): normal rows, their friction rows, their rolling rows.
   void sweep_block(int begin, int end);
 

@@ -14,15 +14,26 @@
 // between blocks only once per pass: a block converges its local forces against the current
 // state of its neighbours, and the global passes (warm started from the previous step's impulses)
 // carry the forces through the pile. With one block it is Bullet's Gauss-Seidel, bit for bit.
-// The split-impulse (position) sweeps are Bullet's: they touch only the normal rows and fit in
-// cache. Bullet's residual early exit is not used (its threshold is 0: it only stops on sweeps that
-// change nothing, after which further sweeps change nothing either).
+// The split-impulse (position) sweeps over the normal rows are blocked the same way. Bullet stops
+// sweeping when a sweep changes nothing (its residual threshold is 0); here a pass over all blocks
+// that changes nothing stops the sweeps, which changes nothing either.
 
 #include <algorithm>
 
 #include "world_impl.h"
 
 namespace aggpack::detail {
+
+bool OrderedSolver::split_block(int begin, int end) {
+  bool is_changed = false;
+  for (int c = begin; c < end; ++c) {
+    const btSolverConstraint& row = m_tmpSolverContactConstraintPool[m_orderTmpConstraintPool[c]];
+    const btScalar residual = resolveSplitPenetrationImpulse(
+        m_tmpSolverBodyPool[row.m_solverBodyIdA], m_tmpSolverBodyPool[row.m_solverBodyIdB], row);
+    is_changed = is_changed || residual != btScalar(0);
+  }
+  return is_changed;
+}
 
 void OrderedSolver::sweep_block(int begin, int end) {
   btConstraintArray& normal = m_tmpSolverContactConstraintPool;
@@ -75,8 +86,19 @@ btScalar OrderedSolver::solveGroupCacheFriendlyIterations(
     return btSequentialImpulseConstraintSolver::solveGroupCacheFriendlyIterations(
         bodies, body_count, manifolds, manifold_count, constraints, constraint_count, info, debug);
   }
-  solveGroupCacheFriendlySplitImpulseIterations(bodies, body_count, manifolds, manifold_count,
-                                                constraints, constraint_count, info, debug);
+  const int iterations = info.m_numIterations;
+  if (info.m_splitImpulse != 0) {
+    bool is_changed = true;
+    for (int done = 0; done < iterations && is_changed;) {
+      const int sweeps = std::min(block_sweeps_, iterations - done);
+      is_changed = false;
+      for (int begin = 0; begin < contacts; begin += block_contacts_) {
+        const int end = std::min(contacts, begin + block_contacts_);
+        for (int s = 0; s < sweeps; ++s) is_changed = split_block(begin, end) || is_changed;
+      }
+      done += sweeps;
+    }
+  }
 
   // Rolling-friction rows are appended contact by contact: rolling_begin_[c] is the first row of
   // contact c (and of every later contact), rolling_begin_[contacts] the pool's end.
@@ -87,7 +109,6 @@ btScalar OrderedSolver::solveGroupCacheFriendlyIterations(
     rolling_begin_[c] = std::min(rolling_begin_[c], rolling_begin_[c + 1]);
   }
 
-  const int iterations = info.m_numIterations;
   for (int done = 0; done < iterations;) {
     const int sweeps = std::min(block_sweeps_, iterations - done);
     for (int begin = 0; begin < contacts; begin += block_contacts_) {
