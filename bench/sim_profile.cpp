@@ -13,12 +13,13 @@
 // The lattice and settings are sim_bench's (World defaults); an optional last argument SWEEPS > 0
 // runs `run` with the cache-blocked solver (PhysicsOptions::solver = kBlocked, SWEEPS per block).
 //
-//   build/bench/sim_profile check NX NY SWEEPS TIME CREEP
+//   build/bench/sim_profile check NX NY SWEEPS TIME CREEP [ITERATIONS]
 //
 // validates a solver on a large pile: the lattice settles TIME s from rest (SWEEPS 0 =
 // Gauss-Seidel), then prints the state (contacts, deepest contact and exact overlap relative to
 // d_min, mean height, kinetic energy) and how far the particles move during CREEP more seconds
 // (mean and largest displacement, sinking of the mean height): a pile at rest should not creep.
+// ITERATIONS sets PhysicsOptions::solver_iterations (default 100).
 
 #include <valgrind/callgrind.h>
 
@@ -79,8 +80,10 @@ double mean_height(const World& world) {
   return world.potential_energy() / (world.total_mass() * 9.81);
 }
 
-int check(int nx, int ny, int block_sweeps, double time, double creep) {
-  World world(lattice(nx, ny), solver_options(block_sweeps));
+int check(int nx, int ny, int block_sweeps, double time, double creep, int iterations) {
+  PhysicsOptions options = solver_options(block_sweeps);
+  options.solver_iterations = iterations;
+  World world(lattice(nx, ny), options);
   const double d = world.smallest_size();
   const std::clock_t cpu_start = std::clock();
   world.step(static_cast<std::size_t>(time / world.time_step() + 0.5));
@@ -89,11 +92,13 @@ int check(int nx, int ny, int block_sweeps, double time, double creep) {
   const auto overlaps = world.overlap_statistics();
   const double particles = static_cast<double>(world.particle_count());
   std::printf(
-      "%s, %zu particles, %.2f s settled (%zu steps, %.1f s CPU): contacts per particle %.3f, "
+      "%s, %d iterations, %zu particles, %.2f s settled (%zu steps, %.1f s CPU): contacts per "
+      "particle %.3f, "
       "deepest contact %.3f%% of d_min, deepest exact overlap %.3f%% of d_min, mean height %.5f m, "
       "kinetic energy %.4g J, max speed %.3g m/s\n",
-      block_sweeps > 0 ? "blocked" : "gauss-seidel", world.particle_count(), world.time(),
-      world.step_count(), cpu, static_cast<double>(contacts.contact_count) / particles,
+      block_sweeps > 0 ? "blocked" : "gauss-seidel", iterations, world.particle_count(),
+      world.time(), world.step_count(), cpu,
+      static_cast<double>(contacts.contact_count) / particles,
       100.0 * contacts.max_contact_penetration / d, 100.0 * overlaps.max_depth_fraction,
       mean_height(world), world.kinetic_energy(), world.max_speed());
   std::vector<Vec3> before(world.particle_count());
@@ -168,12 +173,12 @@ int main(int argc, char** argv) {
     return run(std::atoi(argv[2]), std::atoi(argv[3]), argv[4], std::atoi(argv[5]),
                std::atoi(argv[6]), argc == 8 ? std::atoi(argv[7]) : 0);
   }
-  if (mode == "check" && argc == 7) {
+  if (mode == "check" && (argc == 7 || argc == 8)) {
     return check(std::atoi(argv[2]), std::atoi(argv[3]), std::atoi(argv[4]), std::atof(argv[5]),
-                 std::atof(argv[6]));
+                 std::atof(argv[6]), argc == 8 ? std::atoi(argv[7]) : 100);
   }
   std::fprintf(stderr,
                "usage: sim_profile prepare NX NY STATE TIME | run NX NY STATE SETTLE MEASURE "
-               "[SWEEPS] | check NX NY SWEEPS TIME CREEP\n");
+               "[SWEEPS] | check NX NY SWEEPS TIME CREEP [ITERATIONS]\n");
   return 2;
 }
