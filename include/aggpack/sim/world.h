@@ -33,9 +33,9 @@ enum class SolverKind {
   /// each block is swept solver_block_sweeps times before the next, and passes over all blocks
   /// repeat until every row has had solver_iterations sweeps. Faster on large piles (the rows
   /// stay in cache: -26% to -40% CPU per step at 4,000-10,000 particles); forces cross block
-  /// borders
-  /// once per pass instead of once per sweep, so a pile converges less: it packs lower and creeps
-  /// about twice as fast as with kGaussSeidel (bench/RESULTS.md, "Cache-blocked solver").
+  /// borders once per pass instead of once per sweep, so a pile converges less: it packs lower
+  /// and creeps about twice as fast as with kGaussSeidel (bench/RESULTS.md, "Cache-blocked
+  /// solver").
   kBlocked
 };
 
