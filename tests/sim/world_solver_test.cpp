@@ -76,6 +76,15 @@ TEST(BlockedSolver, OneBlockIsBulletsGaussSeidelBitForBit) {
   small_blocks.step(300);
   EXPECT_TRUE(same_poses(plain, one_block));
   EXPECT_FALSE(same_poses(plain, small_blocks));  // the blocks do change the rounding
+  // With rolling friction (its own rows, found per contact).
+  World rolling_plain(packing, {.rolling_friction = 0.1});
+  PhysicsOptions options = blocked(1000000);
+  options.rolling_friction = 0.1;
+  World rolling_one_block(packing, options);
+  rolling_plain.step(300);
+  rolling_one_block.step(300);
+  EXPECT_TRUE(same_poses(rolling_plain, rolling_one_block));
+  EXPECT_FALSE(same_poses(plain, rolling_plain));
   EXPECT_EQ(to_string(SolverKind::kBlocked), std::string("blocked"));
   EXPECT_EQ(solver_kind_from_string("gauss-seidel"), SolverKind::kGaussSeidel);
   EXPECT_THROW((void)solver_kind_from_string("jacobi"), InvalidInput);
