@@ -10,7 +10,11 @@
 // is the state that dominates a settle or repose run. Counters: steps per second (wall clock, and
 // per CPU second of this process: the machine is often shared, and a loaded machine stretches the
 // wall time but hardly the CPU time), particle-steps per second, and contacts per particle at the
-// end. Instruction counts per step: bench/sim_profile.cpp.
+// end. Instruction counts per step: bench/sim_profile.cpp. The third argument selects the velocity
+// solver: 0 = Bullet's Gauss-Seidel (the default), k > 0 = the cache-blocked solver with k sweeps
+// per block (PhysicsOptions::solver = kBlocked, 1,000 contacts per block):
+//
+//   build/bench/sim_bench --benchmark_filter=SettlingPile/50/20/4
 
 #include <benchmark/benchmark.h>
 
@@ -41,10 +45,16 @@ Packing lattice(int nx, int ny) {
 void BM_SettlingPile(benchmark::State& state) {
   const int nx = static_cast<int>(state.range(0));
   const int ny = static_cast<int>(state.range(1));
+  const int block_sweeps = static_cast<int>(state.range(2));
   const Packing packing = lattice(nx, ny);
+  PhysicsOptions options;
+  if (block_sweeps > 0) {
+    options.solver = SolverKind::kBlocked;
+    options.solver_block_sweeps = block_sweeps;
+  }
   for (auto _ : state) {
     state.PauseTiming();
-    World world(packing, {});
+    World world(packing, options);
     world.step(static_cast<std::size_t>(kWarmUp / world.time_step() + 0.5));
     state.ResumeTiming();
     const auto start = std::chrono::steady_clock::now();
@@ -72,10 +82,12 @@ void BM_SettlingPile(benchmark::State& state) {
     state.ResumeTiming();
   }
 }
-// 10 x 10 x 10 = 1,000 and 50 x 20 x 10 = 10,000 particles.
+// 10 x 10 x 10 = 1,000 and 50 x 20 x 10 = 10,000 particles; Gauss-Seidel, then blocked.
 BENCHMARK(BM_SettlingPile)
-    ->Args({10, 10})
-    ->Args({50, 20})
+    ->Args({10, 10, 0})
+    ->Args({50, 20, 0})
+    ->Args({10, 10, 4})
+    ->Args({50, 20, 4})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->Iterations(1);

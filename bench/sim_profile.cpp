@@ -10,10 +10,20 @@
 //
 // `run` steps SETTLE times uninstrumented, then MEASURE times with callgrind collecting (the
 // counts are per MEASURE steps), and prints wall and CPU seconds per step when run natively.
-// The lattice and settings are sim_bench's (World defaults).
+// The lattice and settings are sim_bench's (World defaults); an optional last argument SWEEPS > 0
+// runs `run` with the cache-blocked solver (PhysicsOptions::solver = kBlocked, SWEEPS per block).
+//
+//   build/bench/sim_profile check NX NY SWEEPS TIME CREEP [ITERATIONS]
+//
+// validates a solver on a large pile: the lattice settles TIME s from rest (SWEEPS 0 =
+// Gauss-Seidel), then prints the state (contacts, deepest contact and exact overlap relative to
+// d_min, mean height, kinetic energy) and how far the particles move during CREEP more seconds
+// (mean and largest displacement, sinking of the mean height): a pile at rest should not creep.
+// ITERATIONS sets PhysicsOptions::solver_iterations (default 100).
 
 #include <valgrind/callgrind.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -57,7 +67,61 @@ int prepare(int nx, int ny, const char* path, double time) {
   return out ? 0 : 1;
 }
 
-int run(int nx, int ny, const char* path, int settle, int measure) {
+PhysicsOptions solver_options(int block_sweeps) {
+  PhysicsOptions options;
+  if (block_sweeps > 0) {
+    options.solver = SolverKind::kBlocked;
+    options.solver_block_sweeps = block_sweeps;
+  }
+  return options;
+}
+
+double mean_height(const World& world) {
+  return world.potential_energy() / (world.total_mass() * 9.81);
+}
+
+int check(int nx, int ny, int block_sweeps, double time, double creep, int iterations) {
+  PhysicsOptions options = solver_options(block_sweeps);
+  options.solver_iterations = iterations;
+  World world(lattice(nx, ny), options);
+  const double d = world.smallest_size();
+  const std::clock_t cpu_start = std::clock();
+  world.step(static_cast<std::size_t>(time / world.time_step() + 0.5));
+  const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  const auto contacts = world.contact_statistics();
+  const auto overlaps = world.overlap_statistics();
+  const double particles = static_cast<double>(world.particle_count());
+  std::printf(
+      "%s, %d iterations, %zu particles, %.2f s settled (%zu steps, %.1f s CPU): contacts per "
+      "particle %.3f, "
+      "deepest contact %.3f%% of d_min, deepest exact overlap %.3f%% of d_min, mean height %.5f m, "
+      "kinetic energy %.4g J, max speed %.3g m/s\n",
+      block_sweeps > 0 ? "blocked" : "gauss-seidel", iterations, world.particle_count(),
+      world.time(), world.step_count(), cpu,
+      static_cast<double>(contacts.contact_count) / particles,
+      100.0 * contacts.max_contact_penetration / d, 100.0 * overlaps.max_depth_fraction,
+      mean_height(world), world.kinetic_energy(), world.max_speed());
+  std::vector<Vec3> before(world.particle_count());
+  for (std::size_t i = 0; i < before.size(); ++i) before[i] = world.pose(i).position;
+  const double height = mean_height(world);
+  world.step(static_cast<std::size_t>(creep / world.time_step() + 0.5));
+  double sum = 0.0;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    const double moved = (world.pose(i).position - before[i]).norm();
+    sum += moved;
+    largest = std::max(largest, moved);
+  }
+  std::printf(
+      "  creep over %.2f s: mean displacement %.4f%% of d_min, largest %.3f%% of d_min, mean "
+      "height %+.4f%% of d_min; then kinetic energy %.4g J, deepest contact %.3f%% of d_min\n",
+      creep, 100.0 * sum / particles / d, 100.0 * largest / d,
+      100.0 * (mean_height(world) - height) / d, world.kinetic_energy(),
+      100.0 * world.contact_statistics().max_contact_penetration / d);
+  return 0;
+}
+
+int run(int nx, int ny, const char* path, int settle, int measure, int block_sweeps) {
   Packing packing = lattice(nx, ny);
   std::ifstream in(path, std::ios::binary);
   std::vector<State> states(packing.particles.size());
@@ -71,7 +135,7 @@ int run(int nx, int ny, const char* path, int settle, int measure) {
     packing.particles[i].pose.position = Vec3(s[0], s[1], s[2]);
     packing.particles[i].pose.rotation = Quat(s[3], s[4], s[5], s[6]).normalized();
   }
-  World world(packing, {});
+  World world(packing, solver_options(block_sweeps));
   for (std::size_t i = 0; i < states.size(); ++i) {
     const State& s = states[i];
     world.set_velocity(i, Vec3(s[7], s[8], s[9]), Vec3(s[10], s[11], s[12]));
@@ -105,11 +169,16 @@ int main(int argc, char** argv) {
   if (mode == "prepare" && argc == 6) {
     return prepare(std::atoi(argv[2]), std::atoi(argv[3]), argv[4], std::atof(argv[5]));
   }
-  if (mode == "run" && argc == 7) {
+  if (mode == "run" && (argc == 7 || argc == 8)) {
     return run(std::atoi(argv[2]), std::atoi(argv[3]), argv[4], std::atoi(argv[5]),
-               std::atoi(argv[6]));
+               std::atoi(argv[6]), argc == 8 ? std::atoi(argv[7]) : 0);
+  }
+  if (mode == "check" && (argc == 7 || argc == 8)) {
+    return check(std::atoi(argv[2]), std::atoi(argv[3]), std::atoi(argv[4]), std::atof(argv[5]),
+                 std::atof(argv[6]), argc == 8 ? std::atoi(argv[7]) : 100);
   }
   std::fprintf(stderr,
-               "usage: sim_profile prepare NX NY STATE TIME | run NX NY STATE SETTLE MEASURE\n");
+               "usage: sim_profile prepare NX NY STATE TIME | run NX NY STATE SETTLE MEASURE "
+               "[SWEEPS] | check NX NY SWEEPS TIME CREEP [ITERATIONS]\n");
   return 2;
 }

@@ -125,6 +125,37 @@ std::vector<SweepKey> keys() {
        .fields = {"solver_iterations"}},
       number("physics.margin_fraction", "-", closed(1e-4, 0.1), "collision margin / d_min",
              [](auto& o) -> auto& { return o.base.physics.margin_fraction; }, {"margin_fraction"}),
+      {.name = "physics.solver",
+       .type = ValueType::kWord,
+       .words = {"gauss-seidel", "blocked"},
+       .doc = "velocity solver: gauss-seidel = Bullet's sweeps over all contacts; blocked = the "
+              "same sweeps in cache-sized blocks of contacts (faster on large piles, other "
+              "trajectories)",
+       .binding = {.get = [](const SweepOptions& o) -> Value {
+                     return std::string(to_string(o.base.physics.solver));
+                   },
+                   .set =
+                       [](SweepOptions& o, const Value& value) {
+                         o.base.physics.solver =
+                             solver_kind_from_string(std::get<std::string>(value));
+                       }},
+       .fields = {"solver"}},
+      {.name = "physics.solver_block_contacts",
+       .type = ValueType::kInteger,
+       .unit = "-",
+       .range = closed(1, 1000000),
+       .doc = "blocked solver: contact points per block",
+       .binding = members<SweepOptions>(
+           [](auto& o) -> auto& { return o.base.physics.solver_block_contacts; }),
+       .fields = {"solver_block_contacts"}},
+      {.name = "physics.solver_block_sweeps",
+       .type = ValueType::kInteger,
+       .unit = "-",
+       .range = closed(1, 1000),
+       .doc = "blocked solver: sweeps of a block before the next",
+       .binding = members<SweepOptions>(
+           [](auto& o) -> auto& { return o.base.physics.solver_block_sweeps; }),
+       .fields = {"solver_block_sweeps"}},
       number("rest.kinetic_energy_ratio", "-", closed(1e-12, 1),
              "at rest when kinetic energy < ratio * M g d",
              [](auto& o) -> auto& { return o.base.rest.kinetic_energy_ratio; },

@@ -79,6 +79,24 @@ void validate(const PhysicsOptions& options) {
     throw InvalidInput("solver_iterations", std::to_string(options.solver_iterations), "[1, 1000]");
   }
   require_in_range("margin_fraction", options.margin_fraction, 1e-4, 0.1);
+  if (options.solver_block_contacts < 1 || options.solver_block_contacts > 1000000) {
+    throw InvalidInput("solver_block_contacts", std::to_string(options.solver_block_contacts),
+                       "[1, 1000000]");
+  }
+  if (options.solver_block_sweeps < 1 || options.solver_block_sweeps > 1000) {
+    throw InvalidInput("solver_block_sweeps", std::to_string(options.solver_block_sweeps),
+                       "[1, 1000]");
+  }
+}
+
+const char* to_string(SolverKind kind) {
+  return kind == SolverKind::kBlocked ? "blocked" : "gauss-seidel";
+}
+
+SolverKind solver_kind_from_string(const std::string& word, const std::string& key) {
+  if (word == "gauss-seidel") return SolverKind::kGaussSeidel;
+  if (word == "blocked") return SolverKind::kBlocked;
+  throw InvalidInput(key, word, "gauss-seidel or blocked");
 }
 
 World::Impl::~Impl() {
@@ -105,7 +123,9 @@ void World::Impl::build_world() {
   dispatcher->setNearCallback(&Impl::near_callback);
 
   broadphase = std::make_unique<btDbvtBroadphase>();
-  solver = std::make_unique<detail::OrderedSolver>();
+  const bool is_blocked = options.solver == SolverKind::kBlocked;
+  solver = std::make_unique<detail::OrderedSolver>(is_blocked ? options.solver_block_contacts : 0,
+                                                   options.solver_block_sweeps);
   world = std::make_unique<btDiscreteDynamicsWorld>(dispatcher.get(), broadphase.get(),
                                                     solver.get(), configuration.get());
   world->setGravity(to_bt(scale * options.gravity));

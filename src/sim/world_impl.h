@@ -41,12 +41,24 @@ struct ShapeData {
 };
 
 // Bullet's sequential-impulse solver, fed in a canonical order. Bullet hands the solver an
-
+// island's bodies and manifolds in the order of its pair cache, which depends on the history of the
 // narrow phase; the Gauss-Seidel sweeps, and so the rounding, follow that order. Here the bodies
 // are taken in particle order and the manifolds sorted by the two particles they join (walls have
 // negative indices), a pure function of the contacts: skipping the narrow phase of a pair that
 // cannot touch (near_callback) then changes nothing, and runs stay bit-identical.
+//
+// With block_contacts > 0 (PhysicsOptions::solver = kBlocked) the velocity sweeps are cache-blocked
+// (world_solver.cpp): the contacts, in that canonical order, are cut into blocks of block_contacts
+// and each pass sweeps one block block_sweeps times (normal rows, then its friction rows) before
+// the next; passes repeat until every row has had solver_iterations sweeps. The split-impulse
+// (position) sweeps are blocked alike. A block's rows and
+// bodies stay in cache across its sweeps, where a full sweep over a 10,000-particle pile's ~30 MB
+// of rows streams them from memory. With a single block this is exactly Bullet's Gauss-Seidel.
 class OrderedSolver final : public btSequentialImpulseConstraintSolver {
+ public:
+  OrderedSolver(int block_contacts, int block_sweeps)
+      : block_contacts_(block_contacts), block_sweeps_(block_sweeps) {}
+
  protected:
   void convertBodies(btCollisionObject** bodies, int count,
                      const btContactSolverInfo& info) override {
@@ -74,9 +86,23 @@ class OrderedSolver final : public btSequentialImpulseConstraintSolver {
     btSequentialImpulseConstraintSolver::convertContacts(sorted_manifolds_.data(), count, info);
   }
 
+  btScalar solveGroupCacheFriendlyIterations(btCollisionObject** bodies, int body_count,
+                                             btPersistentManifold** manifolds, int manifold_count,
+                                             btTypedConstraint** constraints, int constraint_count,
+                                             const btContactSolverInfo& info,
+                                             btIDebugDraw* debug) override;
+
  private:
+  // Split-impulse (position) rows of contacts [begin, end); false if none changed.
+  bool split_block(int begin, int end);
+  // Velocity rows of contacts [begin, end): normal rows, their friction rows, their rolling rows.
+  void sweep_block(int begin, int end);
+
+  int block_contacts_ = 0;  // 0 = Bullet's sweeps over all contacts
+  int block_sweeps_ = 1;
   std::vector<btCollisionObject*> sorted_bodies_;
   std::vector<btPersistentManifold*> sorted_manifolds_;
+  std::vector<int> rolling_begin_;  // per contact + 1: first rolling-friction row of the contact
 };
 
 struct Wall {

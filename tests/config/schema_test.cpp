@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -185,6 +186,27 @@ TEST(ConfigDocs, RegenerateReplacesOnlyTheBlocks) {
 }
 
 #ifdef AGGPACK_HAS_SIM
+// examples/repose-*.toml and sweep-*.toml: each parses, validates, and its resolved text parses
+// back to the same resolved text (the pack examples are checked in config_test.cpp).
+TEST(ConfigSchema, EveryReposeAndSweepExampleParsesToAFixedPoint) {
+  int count = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(AGGPACK_SOURCE_DIR) + "/examples")) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".toml" ||
+        (name.rfind("repose", 0) != 0 && name.rfind("sweep", 0) != 0)) {
+      continue;
+    }
+    ++count;
+    SCOPED_TRACE(name);
+    const SweepOptions options = load_sweep_config(entry.path().string());
+    with_sweep_key_names([&] { validate(options); });
+    const std::string resolved = resolved_sweep_config(options);
+    EXPECT_EQ(resolved_sweep_config(parse_sweep_config(resolved, "resolved")), resolved);
+  }
+  EXPECT_GE(count, 3);
+}
+
 TEST(ConfigSchema, SweepDefaultsAreTheOptionsStructDefaults) {
   const SweepOptions resolved = parse_sweep_config("");
   expect_defaults_from_struct(sweep_schema(), SweepOptions{},
