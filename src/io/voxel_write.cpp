@@ -8,16 +8,18 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/geom/mass_properties.h"
+#include "aggpack/io/text_number.h"
 #include "aggpack/io/voxel_image.h"
 
 namespace aggpack {
 
 namespace {
 
+// Shortest text that reads back to exactly `value`.
 std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
+  std::string text;
+  append_number_fitting(text, value, 32);
+  return text;
 }
 
 template <class T>

@@ -13,6 +13,7 @@
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/shape/generator.h"
 #include "aggpack/sim/world.h"
+#include "support/packings.h"
 
 namespace aggpack {
 namespace {
@@ -27,13 +28,7 @@ PhysicsOptions blocked(int block_contacts, int block_sweeps = 4) {
   return options;
 }
 
-Packing box_container(double length, double width, double depth) {
-  Packing packing;
-  packing.container.get_if<BoxContainer>()->length = length;
-  packing.container.get_if<BoxContainer>()->width = width;
-  packing.container.get_if<BoxContainer>()->depth = depth;
-  return packing;
-}
+using test::box_container;
 
 // per_axis^3 aggregates on a lattice in a unit box, randomly turned.
 Packing gas(std::uint64_t seed, int per_axis, double depth) {

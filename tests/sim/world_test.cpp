@@ -10,19 +10,14 @@
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/shape/generator.h"
 #include "aggpack/sim/world.h"
+#include "support/packings.h"
 
 namespace aggpack {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
 
-Packing box_container(double length, double width, double depth) {
-  Packing packing;
-  packing.container.get_if<BoxContainer>()->length = length;
-  packing.container.get_if<BoxContainer>()->width = width;
-  packing.container.get_if<BoxContainer>()->depth = depth;
-  return packing;
-}
+using test::box_container;
 
 // A shape stored with its centroid at the origin (the Packing convention).
 ConvexPolyhedron centred(const ConvexPolyhedron& body) {
