@@ -29,11 +29,6 @@ struct MesomodelFlags {
   bool is_forced = false;
 };
 
-bool ends_with(const std::string& text, const std::string& suffix) {
-  return text.size() >= suffix.size() &&
-         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 }  // namespace
 
 void register_mesomodel(CLI::App& app) {
@@ -67,8 +62,8 @@ void register_mesomodel(CLI::App& app) {
     if (!(flags->voxels.itz_thickness >= 0.0) || !std::isfinite(flags->voxels.itz_thickness)) {
       throw InvalidInput("--itz", format_value(flags->voxels.itz_thickness), ">= 0 (m)");
     }
-    const bool is_vti = ends_with(flags->output, ".vti");
-    if (!is_vti && !ends_with(flags->output, ".raw")) {
+    const bool is_vti = flags->output.ends_with(".vti");
+    if (!is_vti && !flags->output.ends_with(".raw")) {
       throw InvalidInput("--output", flags->output, "a name ending in .vti or .raw");
     }
     const Overwrite overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;

@@ -13,6 +13,7 @@
 #include "aggpack/core/parallel.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/shape/generator.h"
+#include "support/packings.h"
 
 namespace aggpack {
 namespace {
@@ -20,8 +21,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 Packing box_with(double side, std::vector<ConvexPolyhedron> shapes, std::vector<Vec3> at) {
-  Packing packing;
-  packing.container.shape = BoxContainer{.length = side, .width = side, .depth = side};
+  Packing packing = test::box_container(side, side, side);
   packing.shapes = std::move(shapes);
   for (std::size_t i = 0; i < at.size(); ++i) {
     Particle particle;

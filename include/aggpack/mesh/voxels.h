@@ -25,7 +25,7 @@ enum class VoxelPhase : std::uint8_t { kMortar = 0, kItz = 1, kAggregate = 2, kO
 struct VoxelOptions {
   /// Voxels along the container's longest side, [2, 4096]; the voxels are cubes of that side / n.
   std::uint32_t resolution = 128;
-  double itz_thickness = 0.0;  ///< m, [0, smallest particle's inner radius]; 0 = no ITZ
+  double itz_thickness = 0.0;  ///< m, [0, half the container's smallest side); 0 = no ITZ
   /// Largest voxel count accepted (memory: 5 bytes per voxel), checked before allocating.
   std::uint64_t max_voxels = std::uint64_t{1} << 31;
 };
