@@ -11,6 +11,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
+#include "aggpack/geom/halfspace.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/shape/generator.h"
 #include "support/packings.h"
