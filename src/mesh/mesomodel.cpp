@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -378,6 +379,10 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
 
   std::string switches = "pYzQAq" + number(options.radius_edge_ratio, 6);
   if (options.aggregate_size > 0.0 || options.mortar_size > 0.0) switches += 'a';
+  // For experiments and bug reports only: TetGen's switches as given (docs/mesomodel.md).
+  if (const char* own = std::getenv("AGGPACK_TETGEN_SWITCHES"); own != nullptr && *own != 0) {
+    switches = own;
+  }
   const auto start = std::chrono::steady_clock::now();
   detail::PlcMesh raw = detail::tetrahedralize_plc(plc, switches, options.time_limit);
   const double seconds =

@@ -3,6 +3,7 @@
 // cost the command, never the process that asked (the GUI, the Python module).
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <set>
 #include <string>
@@ -74,6 +75,12 @@ std::string mesh_here(const Plc& plc, const std::string& switches) {
   tetgenio in;
   tetgenio out;
   fill_input(plc, in);
+  // For bug reports: AGGPACK_TETGEN_DUMP=BASE writes BASE.node and BASE.poly (TetGen's files).
+  if (const char* dump = std::getenv("AGGPACK_TETGEN_DUMP"); dump != nullptr && *dump != 0) {
+    std::string base = dump;
+    in.save_nodes(base.data());
+    in.save_poly(base.data());
+  }
   std::string letters = switches;
   try {
     tetrahedralize(letters.data(), &in, &out);
