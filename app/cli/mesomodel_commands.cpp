@@ -111,8 +111,12 @@ void print_report(const MesoMesh& mesh, const MesoReport& report) {
              mesh.is_cylinder
                  ? fmt::format("prism of {} sides about the cylinder", mesh.cylinder_segments)
                  : std::string("box"));
-  fmt::print("mesh          {} nodes, {} tetrahedra; TetGen -{} in {:.2f} s\n", mesh.nodes.size(),
-             mesh.tetrahedra.size(), report.tetgen_switches, report.mesh_seconds);
+  fmt::print("mesh          {} nodes, {} tetrahedra; TetGen -{} in {:.2f} s{}\n", mesh.nodes.size(),
+             mesh.tetrahedra.size(), report.tetgen_switches, report.mesh_seconds,
+             report.relabelled_tetrahedra == 0
+                 ? std::string()
+                 : fmt::format("; {} tetrahedra relabelled by the geometric phase check",
+                               report.relabelled_tetrahedra));
   fmt::print("{:<10} {:>11} {:>10} {:>14} {:>14} {:>10} {:>9} {:>9} {:>10} {:>9}\n", "phase",
              "tetrahedra", "nodes", "volume m^3", "exact m^3", "rel.err", "fraction", "min dih.",
              "max aspect", "< 10 deg");
@@ -188,7 +192,8 @@ void register_mesomodel(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--radius-edge", flags->mesh.radius_edge_ratio,
-                   "TetGen's radius-edge quality bound, [1.2, 10]")
+                   "TetGen's radius-edge quality bound: 0 = none, else [1.2, 10] (may not finish "
+                   "with an ITZ)")
       ->capture_default_str();
   command
       ->add_option("--min-dihedral", flags->mesh.min_dihedral_degrees,

@@ -37,27 +37,6 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   return (std::uint64_t{std::min(a, b)} << 32U) | std::max(a, b);
 }
 
-// Orders the cap's points counter-clockwise seen from outside (along `normal`).
-std::vector<std::uint32_t> ordered_cap(const std::vector<Vec3>& vertices,
-                                       std::vector<std::uint32_t> points, const Vec3& normal) {
-  Vec3 centre = Vec3::Zero();
-  for (const std::uint32_t p : points) centre += vertices[p];
-  centre /= static_cast<double>(points.size());
-  const Vec3 u = normal.unitOrthogonal();
-  const Vec3 v = normal.cross(u);
-  std::vector<std::pair<double, std::uint32_t>> by_angle;
-  by_angle.reserve(points.size());
-  for (const std::uint32_t p : points) {
-    const Vec3 d = vertices[p] - centre;
-    by_angle.emplace_back(std::atan2(d.dot(v), d.dot(u)), p);
-  }
-  std::sort(by_angle.begin(), by_angle.end());
-  std::vector<std::uint32_t> loop;
-  loop.reserve(by_angle.size());
-  for (const auto& [angle, p] : by_angle) loop.push_back(p);
-  return loop;
-}
-
 // Cuts `mesh` by one half-space; false when nothing is left.
 bool clip_once(PolygonMesh& mesh, const HalfSpace& h, double tolerance) {
   std::vector<Side> side(mesh.vertices.size());
@@ -104,32 +83,63 @@ bool clip_once(PolygonMesh& mesh, const HalfSpace& h, double tolerance) {
     // A face lying in the cutting plane is replaced by the cap.
     if (kept.size() >= 3 && !is_all_on) faces.push_back(std::move(kept));
   }
-  // The cap: every kept vertex on the plane lies on the section's boundary (convexity).
-  std::vector<std::uint8_t> is_used(mesh.vertices.size(), 0);
-  for (const auto& face : faces) {
-    for (const std::uint32_t v : face) is_used[v] = 1;
+  // The cap closes the hole the cut left: its edges are the kept faces' edges that have no twin
+  // (the reverse edge in another kept face), reversed and chained into loops. Built from the
+  // topology rather than by sorting points around the plane, so the result is a closed manifold
+  // even where the tolerance leaves a vertex a little off the plane.
+  std::unordered_map<std::uint32_t, std::uint32_t> cap_next;
+  {
+    std::unordered_map<std::uint64_t, int> directed;  // (from << 32 | to) -> uses
+    for (const auto& face : faces) {
+      for (std::size_t k = 0; k < face.size(); ++k) {
+        ++directed[(std::uint64_t{face[k]} << 32U) | face[(k + 1) % face.size()]];
+      }
+    }
+    for (const auto& [key, uses] : directed) {
+      const auto from = static_cast<std::uint32_t>(key >> 32U);
+      const auto to = static_cast<std::uint32_t>(key & 0xFFFFFFFFU);
+      if (!directed.contains((std::uint64_t{to} << 32U) | from)) cap_next.emplace(to, from);
+    }
   }
-  std::vector<std::uint32_t> cap;
-  for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) {
-    if (is_used[v] != 0 && side[v] == Side::kOn) cap.push_back(v);
+  std::vector<std::uint32_t> starts;
+  for (const auto& [from, to] : cap_next) starts.push_back(from);
+  std::sort(starts.begin(), starts.end());  // loops in a fixed order, whatever the hashing
+  for (const std::uint32_t start : starts) {
+    if (!cap_next.contains(start)) continue;
+    std::vector<std::uint32_t> loop;
+    std::uint32_t at = start;
+    while (cap_next.contains(at)) {
+      loop.push_back(at);
+      const std::uint32_t next = cap_next[at];
+      cap_next.erase(at);
+      at = next;
+    }
+    if (loop.size() >= 3) faces.push_back(std::move(loop));
   }
-  if (cap.size() >= 3) faces.push_back(ordered_cap(mesh.vertices, std::move(cap), h.normal));
   mesh.faces = std::move(faces);
   return mesh.faces.size() >= 4;
 }
 
-// True when some corner of the loop is straight (its neighbours and it on one line, relative to
-// the loop's size): a fan from a corner would then make a zero-area triangle.
+// True unless every corner of the loop turns strictly left about the loop's normal (Newell's):
+// a fan from a corner is then safe. A straight corner (a cut through a coplanar pair of
+// triangles leaves one on the cap's edge) or a slightly reflex one (a vertex within the clipping
+// tolerance of a plane counts as on it, so a cap can be a little non-convex) is not.
 bool has_straight_corner(const std::vector<Vec3>& vertices,
                          const std::vector<std::uint32_t>& loop) {
+  Vec3 normal = Vec3::Zero();
   double size = 0.0;
-  for (const std::uint32_t v : loop)
-    size = std::max(size, (vertices[v] - vertices[loop[0]]).norm());
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const Vec3& a = vertices[loop[k]];
+    const Vec3& b = vertices[loop[(k + 1) % loop.size()]];
+    normal += a.cross(b);
+    size = std::max(size, (a - vertices[loop[0]]).norm());
+  }
+  normal.normalize();
   for (std::size_t k = 0; k < loop.size(); ++k) {
     const Vec3& a = vertices[loop[(k + loop.size() - 1) % loop.size()]];
     const Vec3& b = vertices[loop[k]];
     const Vec3& c = vertices[loop[(k + 1) % loop.size()]];
-    if ((b - a).cross(c - b).norm() <= 1e-9 * size * size) return true;
+    if ((b - a).cross(c - b).dot(normal) <= 1e-9 * size * size) return true;
   }
   return false;
 }

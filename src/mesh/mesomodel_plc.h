@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/geom/halfspace.h"
+#include "aggpack/mesh/mesomodel.h"
 #include "aggpack/mesh/tetrahedra.h"
 
 namespace aggpack::detail {
@@ -40,5 +42,21 @@ struct PlcMesh {
 /// \throw LimitExceeded naming what TetGen reported and, for intersecting facets, their markers
 ///        (TetGen's -d run, also in a worker); IoError when no worker could start.
 PlcMesh tetrahedralize_plc(const Plc& plc, const std::string& switches, double time_limit);
+
+/// One particle's two nested convex regions, as face planes.
+struct PhaseBody {
+  std::vector<HalfSpace> aggregate;
+  std::vector<HalfSpace> shell;  ///< empty without an ITZ
+  Aabb bounds;                   ///< of the outer one
+};
+
+/// Checks every tetrahedron's phase and particle against the geometry: its centroid clearly
+/// (`margin`, m) inside aggregate k, inside shell k but outside aggregate k, or outside every
+/// shell. TetGen's regions are the phases only if its flood from each seed reached every
+/// tetrahedron of the region; once (1 of 331 shells) it left a corner pocket of a shell unreached
+/// and so labelled mortar. A tetrahedron whose centroid is too close to an interface to decide
+/// keeps TetGen's label. Returns the number of tetrahedra relabelled.
+std::size_t relabel_by_geometry(const std::vector<PhaseBody>& bodies, double margin,
+                                MesoMesh& mesh);
 
 }  // namespace aggpack::detail

@@ -42,8 +42,7 @@ ConvexPolyhedron mitred_offset(const ConvexPolyhedron& body, double thickness,
 /// Largest distance from a vertex of `offset` to `body`, divided by `thickness`: 1 for a smooth
 /// offset, > 1 at the mitred corners. Two bodies whose offsets of thickness t must not meet need
 /// a gap of at least t x (factor_a + factor_b) (a sufficient bound).
-double mitre_factor(const ConvexPolyhedron& body, const ConvexPolyhedron& offset,
-                    double thickness);
+double mitre_factor(const ConvexPolyhedron& body, const ConvexPolyhedron& offset, double thickness);
 
 /// Distance from `point` to the convex body (0 inside): the closest point of any surface
 /// triangle. O(triangles).

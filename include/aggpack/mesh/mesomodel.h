@@ -11,6 +11,8 @@
 //    `cylinder_segments` sides) minus the aggregates and their ITZ shells.
 // TetGen (run in a worker process, core/isolated.h) tetrahedralises that piecewise linear complex
 // keeping every input triangle (switch Y), so phase volumes are sums over the exact polyhedra.
+// Each tetrahedron's phase comes from TetGen's regions (a seed point per aggregate, shell and the
+// mortar) and is then checked against the geometry (its centroid's place among the polyhedra).
 
 #include <array>
 #include <cstdint>
@@ -38,9 +40,11 @@ struct MesoOptions {
   /// tetrahedron of that edge, h^3 / (6 sqrt 2).
   double aggregate_size = 0.0;
   double mortar_size = 0.0;
-  /// TetGen's radius-edge bound (-q), in [1.2, 10]. The ITZ is as thin as t, so its tetrahedra
-  /// are flat whatever this bound (they are reported).
-  double radius_edge_ratio = 2.0;
+  /// TetGen's radius-edge bound (-q): 0 = none (the default), else in [1.2, 10]. Measured: with
+  /// thin ITZ shells and the input triangles kept, Debian's TetGen 1.5 then often loops until the
+  /// time limit or aborts (docs/mesomodel.md); without a shell it works. Without -q TetGen adds
+  /// only the points it needs, and the quality is reported.
+  double radius_edge_ratio = 0.0;
   /// Sides of the prism that stands in for a cylinder container (circumscribed), [8, 4096].
   int cylinder_segments = 96;
   /// Quality bounds the user may set: the mesh is refused (LimitExceeded) when its smallest
@@ -83,6 +87,9 @@ struct MesoReport {
   std::array<MesoPhaseReport, 3> phases;  ///< index = MesoPhase code
   double container_volume = 0.0;          ///< m^3, the meshed container (prism for a cylinder)
   double mesh_seconds = 0.0;              ///< wall time in TetGen
+  /// Tetrahedra whose phase TetGen's region flood got wrong and the geometric check mended
+  /// (see build_mesomodel); 0 in nearly every mesh.
+  std::uint64_t relabelled_tetrahedra = 0;
   std::string tetgen_switches;
 };
 
