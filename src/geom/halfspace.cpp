@@ -16,11 +16,7 @@ namespace aggpack {
 
 namespace {
 
-// A convex polyhedron as face loops (outward, counter-clockwise) over one vertex array.
-struct PolygonMesh {
-  std::vector<Vec3> vertices;
-  std::vector<std::vector<std::uint32_t>> faces;
-};
+using PolygonMesh = PolygonBody;
 
 PolygonMesh from_triangles(const ConvexPolyhedron& body) {
   PolygonMesh mesh;
@@ -144,10 +140,12 @@ bool has_straight_corner(const std::vector<Vec3>& vertices,
   return false;
 }
 
+}  // namespace
+
 // Fan triangulation of every face loop; a loop with a straight corner (a cut through a coplanar
 // pair of triangles leaves one on the cap's edge) is fanned from its centroid instead, a new
 // vertex on the face.
-ConvexPolyhedron triangulate(const PolygonMesh& mesh) {
+ConvexPolyhedron triangulate(const PolygonBody& mesh) {
   std::vector<std::uint32_t> index(mesh.vertices.size(), UINT32_MAX);
   std::vector<Vec3> vertices;
   std::vector<Triangle> triangles;
@@ -175,6 +173,8 @@ ConvexPolyhedron triangulate(const PolygonMesh& mesh) {
   }
   return {std::move(vertices), std::move(triangles)};
 }
+
+namespace {
 
 // An axis-aligned box as six quadrilaterals (no diagonals to cut through).
 PolygonMesh box_mesh(const Vec3& lower, const Vec3& upper) {
@@ -257,8 +257,8 @@ std::vector<HalfSpace> face_half_spaces(const ConvexPolyhedron& body) {
   return planes;
 }
 
-ConvexPolyhedron mitred_offset(const ConvexPolyhedron& body, double thickness,
-                               std::span<const HalfSpace> bounds, double tolerance) {
+PolygonBody mitred_offset_faces(const ConvexPolyhedron& body, double thickness,
+                                std::span<const HalfSpace> bounds, double tolerance) {
   if (!(thickness > 0.0) || !std::isfinite(thickness)) {
     throw InvalidInput("offset thickness", std::to_string(thickness), "> 0 (m)");
   }
@@ -276,15 +276,34 @@ ConvexPolyhedron mitred_offset(const ConvexPolyhedron& body, double thickness,
   for (const HalfSpace& h : bounds) {
     if (!clip_once(mesh, h, tolerance)) return {};
   }
-  ConvexPolyhedron offset = triangulate(mesh);
+  // Keep only the vertices the faces use, numbered in order of first use.
+  std::vector<std::uint32_t> index(mesh.vertices.size(), UINT32_MAX);
+  PolygonBody result;
+  for (auto& face : mesh.faces) {
+    for (std::uint32_t& v : face) {
+      if (index[v] == UINT32_MAX) {
+        index[v] = static_cast<std::uint32_t>(result.vertices.size());
+        result.vertices.push_back(mesh.vertices[v]);
+      }
+      v = index[v];
+    }
+  }
+  result.faces = std::move(mesh.faces);
   const double reach = margin - thickness;
-  for (const Vec3& v : offset.vertices()) {
+  for (const Vec3& v : result.vertices) {
     if ((v - box.lower).minCoeff() < -reach || (v - box.upper).maxCoeff() > reach) {
       throw LimitExceeded("mitred offset", "a corner reaches beyond 4 x the body's size",
                           "a body without needle-sharp corners");
     }
   }
-  return offset;
+  return result;
+}
+
+ConvexPolyhedron mitred_offset(const ConvexPolyhedron& body, double thickness,
+                               std::span<const HalfSpace> bounds, double tolerance) {
+  const PolygonBody faces = mitred_offset_faces(body, thickness, bounds, tolerance);
+  if (faces.faces.empty()) return {};
+  return triangulate(faces);
 }
 
 double mitre_factor(const ConvexPolyhedron& body, const ConvexPolyhedron& offset,

@@ -85,7 +85,8 @@ constexpr double kShellTolerance = 1e-6;
 // What the mesher is told about one particle.
 struct Inclusion {
   ConvexPolyhedron aggregate;
-  ConvexPolyhedron shell;  // the mitred offset clipped by the walls (empty without an ITZ)
+  PolygonBody shell_faces;  // the mitred offset clipped by the walls (empty without an ITZ)
+  ConvexPolyhedron shell;   // the same, triangulated
   double aggregate_volume = 0.0;
   double shell_volume = 0.0;  // of the whole offset polyhedron
   double mitre = 1.0;
@@ -219,7 +220,9 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
       }
     }
     if (t > 0.0 && inclusion.wall_clearance > min_gap) {
-      inclusion.shell = mitred_offset(inclusion.aggregate, t, prism.planes, kShellTolerance * t);
+      inclusion.shell_faces =
+          mitred_offset_faces(inclusion.aggregate, t, prism.planes, kShellTolerance * t);
+      inclusion.shell = triangulate(inclusion.shell_faces);
       inclusion.shell_volume = mass_properties(inclusion.shell).volume;
       const ConvexPolyhedron unclipped =
           mitred_offset(inclusion.aggregate, t, {}, kShellTolerance * t);
@@ -258,7 +261,7 @@ bool find_mortar_seed(const std::vector<Inclusion>& inclusions, const Prism& pri
       for (int j = 0; j < n; ++j) {
         for (int i = 0; i < n; ++i) {
           const Vec3 p =
-              box.lower + (Vec3(i + 0.5, j + 0.5, k + 0.5) / n).cwiseProduct(box.extent());
+              box.lower + (Vec3(i + 0.4142, j + 0.5317, k + 0.4729) / n).cwiseProduct(box.extent());
           bool is_free = true;
           for (const HalfSpace& wall : prism.planes)
             is_free &= wall.normal.dot(p) < wall.offset - margin;
@@ -281,6 +284,13 @@ bool find_mortar_seed(const std::vector<Inclusion>& inclusions, const Prism& pri
   return false;
 }
 
+// Region seeds avoid symmetric places (centroids, grid centres): Debian's TetGen 1.5 fails an
+// assertion in locate() when a seed lies exactly on a face of its working mesh, which a cube's
+// centroid or a face's centroid often does.
+Vec3 generic_point(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return 0.2913 * a + 0.3307 * b + 0.378 * c;
+}
+
 // A point inside the ITZ shell of `inclusion`: off the middle of the aggregate face whose normal
 // has the most room before a wall, half way through the shell.
 Vec3 itz_seed(const Inclusion& inclusion, const Prism& prism, double t) {
@@ -291,8 +301,9 @@ Vec3 itz_seed(const Inclusion& inclusion, const Prism& prism, double t) {
     const Vec3 n = body.face_normal(f);
     if (!n.allFinite()) continue;
     const Triangle& tri = body.triangles()[f];
+    // An off-centre point of the face (see generic_point).
     const Vec3 centre =
-        (body.vertices()[tri[0]] + body.vertices()[tri[1]] + body.vertices()[tri[2]]) / 3.0;
+        generic_point(body.vertices()[tri[0]], body.vertices()[tri[1]], body.vertices()[tri[2]]);
     double room = t;
     for (const HalfSpace& wall : prism.planes) {
       const double towards = wall.normal.dot(n);
@@ -340,42 +351,46 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
     for (const Triangle& tri : inclusion.aggregate.triangles()) {
       plc.facets.push_back({{{base + tri[0], base + tri[1], base + tri[2]}}, 2 * id});
     }
-    plc.regions.push_back({mass_properties(inclusion.aggregate).centroid, id,
+    const Vec3 centroid = mass_properties(inclusion.aggregate).centroid;
+    const Triangle& first = inclusion.aggregate.triangles()[0];
+    const Vec3 off_centre = generic_point(inclusion.aggregate.vertices()[first[0]],
+                                          inclusion.aggregate.vertices()[first[1]],
+                                          inclusion.aggregate.vertices()[first[2]]);
+    plc.regions.push_back({centroid + 0.1372 * (off_centre - centroid), id,
                            regular_tetra_volume(options.aggregate_size)});
     if (!has_itz) continue;
     base = static_cast<std::uint32_t>(plc.points.size());
-    std::vector<int> wall_of(inclusion.shell.vertex_count(), -1);
-    for (std::size_t v = 0; v < inclusion.shell.vertex_count(); ++v) {
-      Vec3 p = inclusion.shell.vertices()[v];
-      for (std::size_t w = 0; w < wall_count; ++w) {
-        const HalfSpace& wall = prism.planes[w];
+    // The shell's faces go to TetGen as polygons (it triangulates each face itself); a vertex on
+    // a wall is put exactly on it.
+    for (Vec3 p : inclusion.shell_faces.vertices) {
+      for (const HalfSpace& wall : prism.planes) {
         const double s = wall.normal.dot(p) - wall.offset;
-        if (std::abs(s) <= wall_tolerance) {
-          p -= s * wall.normal;  // exactly on an axis-aligned wall
-          for (int axis = 0; axis < 3; ++axis) {
-            if (std::abs(wall.normal[axis]) == 1.0) p[axis] = wall.offset * wall.normal[axis];
-          }
-          wall_of[v] = static_cast<int>(w);  // (a corner on two walls keeps the last)
+        if (std::abs(s) > wall_tolerance) continue;
+        p -= s * wall.normal;
+        for (int axis = 0; axis < 3; ++axis) {
+          if (std::abs(wall.normal[axis]) == 1.0) p[axis] = wall.offset * wall.normal[axis];
         }
       }
       plc.points.push_back(p);
     }
-    for (const Triangle& tri : inclusion.shell.triangles()) {
-      // A triangle on a wall is the shell's footprint there: part of the wall's facet.
+    for (const auto& face : inclusion.shell_faces.faces) {
+      // A face on a wall is the shell's footprint there: a polygon inside the wall's facet.
       int on_wall = -1;
       for (std::size_t w = 0; w < wall_count && on_wall < 0; ++w) {
+        const HalfSpace& wall = prism.planes[w];
         bool is_on = true;
-        for (const std::uint32_t v : tri) {
-          const HalfSpace& wall = prism.planes[w];
+        for (const std::uint32_t v : face) {
           is_on &= std::abs(wall.normal.dot(plc.points[base + v]) - wall.offset) <= wall_tolerance;
         }
         if (is_on) on_wall = static_cast<int>(w);
       }
-      const std::vector<std::uint32_t> loop{base + tri[0], base + tri[1], base + tri[2]};
+      std::vector<std::uint32_t> loop;
+      loop.reserve(face.size());
+      for (const std::uint32_t v : face) loop.push_back(base + v);
       if (on_wall >= 0) {
-        plc.facets[static_cast<std::size_t>(on_wall)].polygons.push_back(loop);
+        plc.facets[static_cast<std::size_t>(on_wall)].polygons.push_back(std::move(loop));
       } else {
-        plc.facets.push_back({{loop}, 2 * id + 1});
+        plc.facets.push_back({{std::move(loop)}, 2 * id + 1});
       }
     }
     plc.regions.push_back({itz_seed(inclusion, prism, t), count + id, 0.0});
