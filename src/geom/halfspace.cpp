@@ -306,6 +306,53 @@ ConvexPolyhedron mitred_offset(const ConvexPolyhedron& body, double thickness,
   return triangulate(faces);
 }
 
+std::vector<bool> merge_short_edges(PolygonBody& body, double length) {
+  std::vector<std::uint32_t> parent(body.vertices.size());
+  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
+  const auto root = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& face : body.faces) {
+    for (std::size_t k = 0; k < face.size(); ++k) {
+      const std::uint32_t a = face[k];
+      const std::uint32_t b = face[(k + 1) % face.size()];
+      if ((body.vertices[a] - body.vertices[b]).norm() >= length) continue;
+      const std::uint32_t ra = root(a);
+      const std::uint32_t rb = root(b);
+      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  }
+  std::vector<bool> is_changed;
+  std::vector<std::vector<std::uint32_t>> faces;
+  for (const auto& face : body.faces) {
+    std::vector<std::uint32_t> loop;
+    for (const std::uint32_t v : face) {
+      const std::uint32_t r = root(v);
+      if (loop.empty() || loop.back() != r) loop.push_back(r);
+    }
+    while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
+    if (loop.size() < 3) continue;
+    is_changed.push_back(loop.size() != face.size() ||
+                         !std::equal(loop.begin(), loop.end(), face.begin()));
+    faces.push_back(std::move(loop));
+  }
+  std::vector<std::uint32_t> index(body.vertices.size(), UINT32_MAX);
+  std::vector<Vec3> vertices;
+  for (auto& face : faces) {
+    for (std::uint32_t& v : face) {
+      if (index[v] == UINT32_MAX) {
+        index[v] = static_cast<std::uint32_t>(vertices.size());
+        vertices.push_back(body.vertices[v]);
+      }
+      v = index[v];
+    }
+  }
+  body.vertices = std::move(vertices);
+  body.faces = std::move(faces);
+  return is_changed;
+}
+
 double mitre_factor(const ConvexPolyhedron& body, const ConvexPolyhedron& offset,
                     double thickness) {
   double reach = 0.0;

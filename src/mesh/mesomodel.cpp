@@ -81,12 +81,30 @@ Prism make_prism(const Container& container, int segments) {
 // face plane counts as on it. (Larger values, to drop the micrometre edges where planes nearly
 // meet, left caps a little non-convex and TetGen then found the shells self-intersecting.)
 constexpr double kShellTolerance = 1e-6;
+// Shell edges shorter than this (relative to the thickness) are collapsed (merge_short_edges):
+// TetGen merges points closer than 1e-8 of the domain by itself and then fails an assertion.
+constexpr double kShortEdge = 1e-3;
+
+// Volume enclosed by the faces fanned from their first corner: exactly what TetGen meshes, also
+// for the faces a collapsed edge left a little non-planar.
+double fan_volume(const PolygonBody& body) {
+  const Vec3 origin = body.vertices.front();
+  double six = 0.0;
+  for (const auto& face : body.faces) {
+    const Vec3 a = body.vertices[face[0]] - origin;
+    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+      six += a.cross(body.vertices[face[k]] - origin).dot(body.vertices[face[k + 1]] - origin);
+    }
+  }
+  return six / 6.0;
+}
 
 // What the mesher is told about one particle.
 struct Inclusion {
   ConvexPolyhedron aggregate;
-  PolygonBody shell_faces;  // the mitred offset clipped by the walls (empty without an ITZ)
-  ConvexPolyhedron shell;   // the same, triangulated
+  PolygonBody shell_faces;      // the mitred offset clipped by the walls (empty without an ITZ)
+  std::vector<bool> is_fanned;  // per shell face: TetGen gets its corner fan, not the polygon
+  ConvexPolyhedron shell;       // the same, triangulated
   double aggregate_volume = 0.0;
   double shell_volume = 0.0;  // of the whole offset polyhedron
   double mitre = 1.0;
@@ -222,8 +240,9 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
     if (t > 0.0 && inclusion.wall_clearance > min_gap) {
       inclusion.shell_faces =
           mitred_offset_faces(inclusion.aggregate, t, prism.planes, kShellTolerance * t);
+      inclusion.is_fanned = merge_short_edges(inclusion.shell_faces, kShortEdge * t);
       inclusion.shell = triangulate(inclusion.shell_faces);
-      inclusion.shell_volume = mass_properties(inclusion.shell).volume;
+      inclusion.shell_volume = fan_volume(inclusion.shell_faces);
       const ConvexPolyhedron unclipped =
           mitred_offset(inclusion.aggregate, t, {}, kShellTolerance * t);
       inclusion.mitre = mitre_factor(inclusion.aggregate, unclipped, t);
@@ -373,7 +392,8 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
       }
       plc.points.push_back(p);
     }
-    for (const auto& face : inclusion.shell_faces.faces) {
+    for (std::size_t f = 0; f < inclusion.shell_faces.faces.size(); ++f) {
+      const auto& face = inclusion.shell_faces.faces[f];
       // A face on a wall is the shell's footprint there: a polygon inside the wall's facet.
       int on_wall = -1;
       for (std::size_t w = 0; w < wall_count && on_wall < 0; ++w) {
@@ -384,13 +404,21 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
         }
         if (is_on) on_wall = static_cast<int>(w);
       }
-      std::vector<std::uint32_t> loop;
-      loop.reserve(face.size());
-      for (const std::uint32_t v : face) loop.push_back(base + v);
-      if (on_wall >= 0) {
-        plc.facets[static_cast<std::size_t>(on_wall)].polygons.push_back(std::move(loop));
+      std::vector<std::vector<std::uint32_t>> loops;
+      if (inclusion.is_fanned[f] && on_wall < 0) {
+        for (std::size_t k = 1; k + 1 < face.size(); ++k) {
+          loops.push_back({base + face[0], base + face[k], base + face[k + 1]});
+        }
       } else {
-        plc.facets.push_back({{std::move(loop)}, 2 * id + 1});
+        loops.emplace_back();
+        for (const std::uint32_t v : face) loops.back().push_back(base + v);
+      }
+      for (auto& loop : loops) {
+        if (on_wall >= 0) {
+          plc.facets[static_cast<std::size_t>(on_wall)].polygons.push_back(std::move(loop));
+        } else {
+          plc.facets.push_back({{std::move(loop)}, 2 * id + 1});
+        }
       }
     }
     plc.regions.push_back({itz_seed(inclusion, prism, t), count + id, 0.0});
@@ -442,7 +470,9 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
     if (has_itz) bodies[i].shell = face_half_spaces(inclusions[i].shell);
     bodies[i].bounds = inclusions[i].bounds;
   });
-  const std::size_t relabelled = detail::relabel_by_geometry(bodies, 1e-10 * size, mesh);
+  // Within the collapse length of a shell face the plane test cannot decide; leave TetGen's.
+  const double margin = std::max(1e-10 * size, 2.0 * kShortEdge * t);
+  const std::size_t relabelled = detail::relabel_by_geometry(bodies, margin, mesh);
 
   MesoReport measured = measure_mesomodel(mesh);
   measured.relabelled_tetrahedra = relabelled;

@@ -50,6 +50,14 @@ struct PolygonBody {
 PolygonBody mitred_offset_faces(const ConvexPolyhedron& body, double thickness,
                                 std::span<const HalfSpace> bounds, double tolerance);
 
+/// Collapses every edge shorter than `length` (m): its end vertices become one (the lower
+/// numbered keeps its place, so a vertex on a wall stays there), repeated vertices leave their
+/// loops and loops with fewer than 3 left disappear; unused vertices are dropped. Faces that lost a
+/// vertex may be non-planar by up to `length`: their entries in the returned flags are true
+/// (a mesher should take them as triangles). Near-coincident face planes leave edges of a
+/// nanometre that TetGen merges on its own, failing an assertion afterwards.
+std::vector<bool> merge_short_edges(PolygonBody& body, double length);
+
 /// The polygons fanned into triangles (from a corner; from the face's centroid, a new vertex,
 /// where a corner is straight or reflex), as a ConvexPolyhedron. \throw InvalidInput as its
 /// constructor (fewer than 4 faces).
