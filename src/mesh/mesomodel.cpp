@@ -77,28 +77,6 @@ Prism make_prism(const Container& container, int segments) {
   return prism;
 }
 
-// Clipping tolerance of the ITZ shells, relative to the thickness: a vertex this close to a moved
-// face plane counts as on it. (Larger values, to drop the micrometre edges where planes nearly
-// meet, left caps a little non-convex and TetGen then found the shells self-intersecting.)
-constexpr double kShellTolerance = 1e-6;
-// Shell edges shorter than this (relative to the thickness) are collapsed (merge_short_edges):
-// TetGen merges points closer than 1e-8 of the domain by itself and then fails an assertion.
-constexpr double kShortEdge = 1e-3;
-
-// Volume enclosed by the faces fanned from their first corner: exactly what TetGen meshes, also
-// for the faces a collapsed edge left a little non-planar.
-double fan_volume(const PolygonBody& body) {
-  const Vec3 origin = body.vertices.front();
-  double six = 0.0;
-  for (const auto& face : body.faces) {
-    const Vec3 a = body.vertices[face[0]] - origin;
-    for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-      six += a.cross(body.vertices[face[k]] - origin).dot(body.vertices[face[k + 1]] - origin);
-    }
-  }
-  return six / 6.0;
-}
-
 // What the mesher is told about one particle.
 struct Inclusion {
   ConvexPolyhedron aggregate;
@@ -106,8 +84,8 @@ struct Inclusion {
   std::vector<bool> is_fanned;  // per shell face: TetGen gets its corner fan, not the polygon
   ConvexPolyhedron shell;       // the same, triangulated
   double aggregate_volume = 0.0;
-  double shell_volume = 0.0;  // of the whole offset polyhedron
-  double mitre = 1.0;
+  double shell_volume = 0.0;  // enclosed by the outer surface
+  double mitre = 1.0;         // largest vertex displacement / thickness
   double wall_clearance = 0.0;
   Aabb bounds;  // of the outer body (shell, or aggregate without ITZ)
 };
@@ -238,14 +216,10 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
       }
     }
     if (t > 0.0 && inclusion.wall_clearance > min_gap) {
-      inclusion.shell_faces =
-          mitred_offset_faces(inclusion.aggregate, t, prism.planes, kShellTolerance * t);
-      inclusion.is_fanned = merge_short_edges(inclusion.shell_faces, kShortEdge * t);
-      inclusion.shell = triangulate(inclusion.shell_faces);
-      inclusion.shell_volume = fan_volume(inclusion.shell_faces);
-      const ConvexPolyhedron unclipped =
-          mitred_offset(inclusion.aggregate, t, {}, kShellTolerance * t);
-      inclusion.mitre = mitre_factor(inclusion.aggregate, unclipped, t);
+      const detail::ItzLayer layer = detail::itz_layer(inclusion.aggregate, t, prism.planes);
+      inclusion.shell = ConvexPolyhedron(layer.outer, inclusion.aggregate.triangles());
+      inclusion.shell_volume = mass_properties(inclusion.shell).volume;
+      inclusion.mitre = layer.max_offset / t;
       inclusion.bounds = inclusion.shell.bounds();
     } else {
       inclusion.bounds = inclusion.aggregate.bounds();
@@ -310,30 +284,74 @@ Vec3 generic_point(const Vec3& a, const Vec3& b, const Vec3& c) {
   return 0.2913 * a + 0.3307 * b + 0.378 * c;
 }
 
-// A point inside the ITZ shell of `inclusion`: off the middle of the aggregate face whose normal
-// has the most room before a wall, half way through the shell.
-Vec3 itz_seed(const Inclusion& inclusion, const Prism& prism, double t) {
-  const ConvexPolyhedron& body = inclusion.aggregate;
-  double best_room = -1.0;
+// A point inside the ITZ layer of `inclusion`: in the middle section of its thickest prism
+// (largest area x smallest corner displacement), off the section's centre.
+Vec3 itz_seed(const Inclusion& inclusion) {
+  const ConvexPolyhedron& inner = inclusion.aggregate;
+  const ConvexPolyhedron& outer = inclusion.shell;
+  double best_score = -1.0;
   Vec3 best = Vec3::Zero();
-  for (std::size_t f = 0; f < body.triangle_count(); ++f) {
-    const Vec3 n = body.face_normal(f);
-    if (!n.allFinite()) continue;
-    const Triangle& tri = body.triangles()[f];
-    // An off-centre point of the face (see generic_point).
-    const Vec3 centre =
-        generic_point(body.vertices()[tri[0]], body.vertices()[tri[1]], body.vertices()[tri[2]]);
-    double room = t;
-    for (const HalfSpace& wall : prism.planes) {
-      const double towards = wall.normal.dot(n);
-      if (towards > 0.0) room = std::min(room, (wall.offset - wall.normal.dot(centre)) / towards);
+  for (std::size_t f = 0; f < inner.triangle_count(); ++f) {
+    const Triangle& tri = inner.triangles()[f];
+    double thinnest = std::numeric_limits<double>::infinity();
+    std::array<Vec3, 3> middle;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& a = inner.vertices()[tri[k]];
+      const Vec3& b = outer.vertices()[tri[k]];
+      thinnest = std::min(thinnest, (b - a).norm());
+      middle[k] = 0.5 * (a + b);
     }
-    if (room > best_room) {
-      best_room = room;
-      best = centre + 0.5 * room * n;
+    const double score = inner.face_normal_scaled(f).norm() * thinnest;
+    if (score > best_score) {
+      best_score = score;
+      best = generic_point(middle[0], middle[1], middle[2]);
     }
   }
   return best;
+}
+
+// Fills each ITZ layer with its prisms' tetrahedra (3 per aggregate triangle). The layer's outer
+// vertices follow the aggregate's in the PLC, so TetGen (which keeps the input points first and
+// in order, checked here) numbered them aggregate_base + vertices + k. \throw LimitExceeded when
+// a layer folds (its tetrahedra would overlap: an ITZ too thick for a particle's sharp corners).
+void add_itz_layers(const std::vector<Inclusion>& inclusions,
+                    const std::vector<std::uint32_t>& aggregate_base, int count, MesoMesh& mesh) {
+  for (int i = 0; i < count; ++i) {
+    const Inclusion& inclusion = inclusions[static_cast<std::size_t>(i)];
+    const std::uint32_t inner = aggregate_base[static_cast<std::size_t>(i)];
+    const auto outer = static_cast<std::uint32_t>(inner + inclusion.aggregate.vertex_count());
+    for (std::size_t v = 0; v < inclusion.shell.vertex_count(); ++v) {
+      if (mesh.nodes[outer + v] != inclusion.shell.vertices()[v] ||
+          mesh.nodes[inner + v] != inclusion.aggregate.vertices()[v]) {
+        throw LimitExceeded("mesomodel mesh",
+                            "TetGen moved an input point of particle " + std::to_string(i + 1),
+                            "a complex TetGen keeps");
+      }
+    }
+    std::vector<Tetrahedron> layer;
+    detail::append_prism_tetrahedra(inclusion.aggregate.triangles(), inner, outer, layer);
+    double volume = 0.0;
+    for (Tetrahedron& tet : layer) {
+      double v = tetra_volume(mesh.nodes[tet[0]], mesh.nodes[tet[1]], mesh.nodes[tet[2]],
+                              mesh.nodes[tet[3]]);
+      if (v < 0.0) {
+        std::swap(tet[0], tet[1]);
+        v = -v;
+      }
+      volume += v;
+      mesh.tetrahedra.push_back(tet);
+      mesh.phase.push_back(MesoPhase::kItz);
+      mesh.particle.push_back(static_cast<std::uint32_t>(i + 1));
+    }
+    const double expected = inclusion.shell_volume - inclusion.aggregate_volume;
+    if (!(std::abs(volume - expected) <= 1e-9 * expected)) {
+      throw LimitExceeded("itz_thickness",
+                          "an ITZ layer that folds at particle " + std::to_string(i + 1) +
+                              " (its prisms overlap by " +
+                              number((volume - expected) / expected, 3) + " of its volume)",
+                          "a thinner ITZ for this packing's sharpest corners");
+    }
+  }
 }
 
 }  // namespace
@@ -360,11 +378,12 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
     plc.facets.push_back({{prism.faces[w]}, -static_cast<int>(w) - 1});
   }
   const auto count = static_cast<int>(inclusions.size());
-  const double wall_tolerance = 1e-9 * size;
+  std::vector<std::uint32_t> aggregate_base;  // PLC number of each aggregate's first vertex
   for (int i = 0; i < count; ++i) {
     const Inclusion& inclusion = inclusions[static_cast<std::size_t>(i)];
     const int id = i + 1;
     auto base = static_cast<std::uint32_t>(plc.points.size());
+    aggregate_base.push_back(base);
     plc.points.insert(plc.points.end(), inclusion.aggregate.vertices().begin(),
                       inclusion.aggregate.vertices().end());
     for (const Triangle& tri : inclusion.aggregate.triangles()) {
@@ -379,49 +398,14 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
                            regular_tetra_volume(options.aggregate_size)});
     if (!has_itz) continue;
     base = static_cast<std::uint32_t>(plc.points.size());
-    // The shell's faces go to TetGen as polygons (it triangulates each face itself); a vertex on
-    // a wall is put exactly on it.
-    for (Vec3 p : inclusion.shell_faces.vertices) {
-      for (const HalfSpace& wall : prism.planes) {
-        const double s = wall.normal.dot(p) - wall.offset;
-        if (std::abs(s) > wall_tolerance) continue;
-        p -= s * wall.normal;
-        for (int axis = 0; axis < 3; ++axis) {
-          if (std::abs(wall.normal[axis]) == 1.0) p[axis] = wall.offset * wall.normal[axis];
-        }
-      }
-      plc.points.push_back(p);
+    // The layer's outer surface bounds a hole in TetGen's domain; aggpack fills the layer with
+    // prisms after TetGen (append_prism_tetrahedra).
+    plc.points.insert(plc.points.end(), inclusion.shell.vertices().begin(),
+                      inclusion.shell.vertices().end());
+    for (const Triangle& tri : inclusion.shell.triangles()) {
+      plc.facets.push_back({{{base + tri[0], base + tri[1], base + tri[2]}}, 2 * id + 1});
     }
-    for (std::size_t f = 0; f < inclusion.shell_faces.faces.size(); ++f) {
-      const auto& face = inclusion.shell_faces.faces[f];
-      // A face on a wall is the shell's footprint there: a polygon inside the wall's facet.
-      int on_wall = -1;
-      for (std::size_t w = 0; w < wall_count && on_wall < 0; ++w) {
-        const HalfSpace& wall = prism.planes[w];
-        bool is_on = true;
-        for (const std::uint32_t v : face) {
-          is_on &= std::abs(wall.normal.dot(plc.points[base + v]) - wall.offset) <= wall_tolerance;
-        }
-        if (is_on) on_wall = static_cast<int>(w);
-      }
-      std::vector<std::vector<std::uint32_t>> loops;
-      if (inclusion.is_fanned[f] && on_wall < 0) {
-        for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-          loops.push_back({base + face[0], base + face[k], base + face[k + 1]});
-        }
-      } else {
-        loops.emplace_back();
-        for (const std::uint32_t v : face) loops.back().push_back(base + v);
-      }
-      for (auto& loop : loops) {
-        if (on_wall >= 0) {
-          plc.facets[static_cast<std::size_t>(on_wall)].polygons.push_back(std::move(loop));
-        } else {
-          plc.facets.push_back({{std::move(loop)}, 2 * id + 1});
-        }
-      }
-    }
-    plc.regions.push_back({itz_seed(inclusion, prism, t), count + id, 0.0});
+    plc.holes.push_back(itz_seed(inclusion));
   }
   Vec3 mortar_seed;
   if (find_mortar_seed(inclusions, prism, has_itz, min_gap, mortar_seed)) {
@@ -467,12 +451,10 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
   std::vector<detail::PhaseBody> bodies(inclusions.size());
   parallel_for_index(0, bodies.size(), [&](std::size_t i) {
     bodies[i].aggregate = face_half_spaces(inclusions[i].aggregate);
-    if (has_itz) bodies[i].shell = face_half_spaces(inclusions[i].shell);
-    bodies[i].bounds = inclusions[i].bounds;
+    bodies[i].bounds = inclusions[i].aggregate.bounds();
   });
-  // Within the collapse length of a shell face the plane test cannot decide; leave TetGen's.
-  const double margin = std::max(1e-10 * size, 2.0 * kShortEdge * t);
-  const std::size_t relabelled = detail::relabel_by_geometry(bodies, margin, mesh);
+  const std::size_t relabelled = detail::relabel_by_geometry(bodies, 1e-10 * size, mesh);
+  if (has_itz) add_itz_layers(inclusions, aggregate_base, count, mesh);
 
   MesoReport measured = measure_mesomodel(mesh);
   measured.relabelled_tetrahedra = relabelled;

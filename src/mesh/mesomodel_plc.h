@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct Plc {
   std::vector<Vec3> points;
   std::vector<PlcFacet> facets;
   std::vector<PlcRegion> regions;
+  std::vector<Vec3> holes;  ///< a point in each region TetGen leaves empty (the ITZ layers)
 };
 
 struct PlcMesh {
@@ -42,6 +44,23 @@ struct PlcMesh {
 /// \throw LimitExceeded naming what TetGen reported and, for intersecting facets, their markers
 ///        (TetGen's -d run, also in a worker); IoError when no worker could start.
 PlcMesh tetrahedralize_plc(const Plc& plc, const std::string& switches, double time_limit);
+
+/// An aggregate's ITZ layer: the outer surface is the aggregate's triangle mesh with vertex i
+/// moved to outer[i], by the displacement that moves each face plane at the vertex out by the
+/// thickness in the least-squares sense (exactly for a vertex of three faces). Near a wall the
+/// displacement shrinks so that half the aggregate's clearance stays outside the layer.
+struct ItzLayer {
+  std::vector<Vec3> outer;
+  double max_offset = 0.0;  ///< m, the largest vertex displacement
+};
+ItzLayer itz_layer(const ConvexPolyhedron& aggregate, double thickness,
+                   std::span<const HalfSpace> walls);
+
+/// Three tetrahedra per prism between inner triangle (a, b, c) (node inner_base + a, ...) and
+/// outer triangle (outer_base + a, ...), cut consistently between neighbouring prisms. Node
+/// order as found; the caller orients them.
+void append_prism_tetrahedra(std::span<const Triangle> triangles, std::uint32_t inner_base,
+                             std::uint32_t outer_base, std::vector<Tetrahedron>& out);
 
 /// One particle's two nested convex regions, as face planes.
 struct PhaseBody {

@@ -55,6 +55,11 @@ void fill_input(const Plc& plc, tetgenio& in) {
       }
     }
   }
+  in.numberofholes = static_cast<int>(plc.holes.size());
+  in.holelist = new double[3 * plc.holes.size() + 1];
+  for (std::size_t h = 0; h < plc.holes.size(); ++h) {
+    for (int axis = 0; axis < 3; ++axis) in.holelist[3 * h + axis] = plc.holes[h][axis];
+  }
   in.numberofregions = static_cast<int>(plc.regions.size());
   in.regionlist = new double[5 * plc.regions.size()];
   for (std::size_t r = 0; r < plc.regions.size(); ++r) {
