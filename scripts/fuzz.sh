@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzing (issue 12): builds the libFuzzer targets of tests/fuzz with clang + ASan + UBSan into
-# build-fuzz/ and runs each for SECONDS (default 90; the long run: scripts/fuzz.sh 3600).
+# build-fuzz/ and runs each for SECONDS (default 90; the long run: scripts/fuzz.sh 3600), the
+# targets side by side, one core each (AGGPACK_FUZZ_JOBS=1: one after the other).
 #   scripts/fuzz.sh [SECONDS] [extra cmake arguments...]
 #   AGGPACK_FUZZ_TARGETS="native_reader"  run only some targets (default: all)
 #   AGGPACK_FUZZ_IGNORE="timeout"  report these kinds of finding without failing (default: none)
@@ -32,6 +33,12 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/fuzz/lsan-suppressions.txt}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 status=0
+# The targets fuzz at the same time, one job each (AGGPACK_FUZZ_JOBS, default: the number of cores;
+# 1 runs them one after the other): each gets its SECONDS on a core of its own, so on 2 cores the
+# two targets take SECONDS of wall time instead of twice that.
+parallel=${AGGPACK_FUZZ_JOBS:-$(nproc)}
+running=0
+trap 'kill $(jobs -p) 2>/dev/null || true' EXIT
 for target in $targets; do
   corpus=$build/corpus/$target
   artifacts=$build/artifacts/$target
@@ -42,7 +49,17 @@ for target in $targets; do
   "$build/tests/fuzz/fuzz_$target" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
     -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=256 -max_len="${max_len[$target]}" \
     -artifact_prefix="$artifacts/" -print_final_stats=1 \
-    "$corpus" ${seeds[$target]} >"$log" 2>&1 || true
+    "$corpus" ${seeds[$target]} >"$log" 2>&1 &
+  running=$((running + 1))
+  if [ "$running" -ge "$parallel" ]; then
+    wait || true
+    running=0
+  fi
+done
+wait || true
+for target in $targets; do
+  artifacts=$build/artifacts/$target
+  log=$build/fuzz_$target.log
   runs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
   found=$(find "$artifacts" -type f | wc -l)
   echo "fuzz: $target: ${runs:-0} executions, $found finding(s) in $artifacts"

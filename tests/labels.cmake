@@ -1,0 +1,23 @@
+# CTest labels for single discovered tests, read by ctest after the test lists that
+# gtest_discover_tests writes (tests/CMakeLists.txt appends this file last).
+#
+# external-solver: the test's time goes into a full run of an external solver (ccx, yade) on a
+# file our code wrote. The Release phase of CI runs them; the sanitized phase (scripts/test.sh
+# --sanitize) leaves them out (ctest -LE external-solver): the solver is not instrumented, and the
+# writing of each file stays under ASan + UBSan in the test named after it.
+#   CalculixDeck.CcxRunsTheTroughTestOnASmallPile: the CalculiX deck writer runs in
+#     GoldenCli/Case.Matches/export_decks (byte-compared deck).
+#   YadeDeck.YadeRunsTheExportedScript: the YADE writer, also in GoldenCli/.../export_decks.
+#   PaperPackingInCalculix.*: `aggpack pack` of the paper's case (PackCliTest.PapersCaseEndToEnd
+#     ThenInfo) and `export --format inp` with the fan (AbaqusExport.*, C3D4 and C3D10) and TetGen
+#     at the paper's scale (ExportTetGenCliTest.PaperPackingExportsAndReportsTheFallbacks).
+# A name that matches no test is ignored by ctest (the test then simply runs in both phases).
+set_tests_properties(
+  CalculixDeck.CcxRunsTheTroughTestOnASmallPile
+  YadeDeck.YadeRunsTheExportedScript
+  PaperPackingInCalculix.FanC3D4
+  PaperPackingInCalculix.FanC3D10
+  PaperPackingInCalculix.TetGenC3D4
+  PaperPackingInCalculix.TetGenC3D4Seed4
+  PaperPackingInCalculix.TetGenC3D10Seed4
+  PROPERTIES LABELS external-solver)
