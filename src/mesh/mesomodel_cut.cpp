@@ -195,9 +195,14 @@ Rgb mesomodel_cut_colour(MesoPhase phase, std::uint32_t particle, bool is_tinted
   }
   const Rgb stone{128, 128, 136};
   if (!is_tinted) return stone;
-  // A fixed hash of the id (Knuth's multiplicative), to -24..24 levels.
-  const std::uint32_t hash = particle * 2654435761U;
-  return shifted(stone, static_cast<int>(hash >> 24U) % 49 - 24);
+  // A fixed hash of the id (the "lowbias32" integer mixer), so consecutive ids differ.
+  std::uint32_t hash = particle;
+  hash ^= hash >> 16U;
+  hash *= 0x7feb352dU;
+  hash ^= hash >> 15U;
+  hash *= 0x846ca68bU;
+  hash ^= hash >> 16U;
+  return shifted(stone, static_cast<int>(hash % 49U) - 24);
 }
 
 Raster draw_mesomodel_cut(const std::vector<CutPolygon>& polygons, int axis, double value,
