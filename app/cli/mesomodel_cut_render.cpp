@@ -5,8 +5,10 @@
 #include <fmt/core.h>
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "aggpack/core/atomic_file.h"
@@ -22,6 +24,15 @@ namespace aggpack::cli {
 
 void render_mesomodel_cut(const MesomodelCutRequest& request) {
   const CutPlane plane = parse_cut_plane(request.plane, "--mesomodel-cut");
+  const std::array<std::pair<const char*, double>, 3> lengths = {
+      {{"--itz", request.meso.itz_thickness},
+       {"--aggregate-size", request.meso.aggregate_size},
+       {"--mortar-size", request.meso.mortar_size}}};
+  for (const auto& [flag, value] : lengths) {
+    if (!(value >= 0.0) || !std::isfinite(value)) {
+      throw InvalidInput(flag, format_value(value), ">= 0 (m)");
+    }
+  }
   validate(request.meso);
   if (request.width < 200) {
     throw InvalidInput("--size", request.size_text,

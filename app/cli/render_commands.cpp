@@ -95,7 +95,9 @@ void run_render(const RenderFlags& flags) {
 void register_render(CLI::App& app) {
   auto flags = std::make_shared<RenderFlags>();
   CLI::App* command = app.add_subcommand(
-      "render", "Render a saved packing to a PNG picture, headless (EGL, no display needed)");
+      "render",
+      "Render a saved packing to a PNG picture, headless (EGL, no display needed); --mesomodel-cut "
+      "z=V draws a section of its concrete mesomodel instead (phases coloured, software)");
   command->add_option("packing", flags->input, "native packing file (.h5) from `aggpack pack`")
       ->required();
   command->add_option("-o,--output", flags->output,
