@@ -383,6 +383,7 @@ void GuiApp::draw_file_section() {
     if (ImGui::Button(std::string(info.title).c_str())) start_export(std::string(info.name));
   }
   if (!can_export) ImGui::EndDisabled();
+  draw_mesomodel_export(can_export);
 }
 
 void GuiApp::draw_view_section() {

@@ -78,6 +78,9 @@ class GuiApp {
   void start_pack();
   void start_open(const std::string& path);
   void start_export(const std::string& format);
+  // mesomodel_export.cpp: the concrete mesomodel (.inp, .msh, .vtu) of the shown packing.
+  void draw_mesomodel_export(bool can_export);
+  void start_mesomodel_export(const std::string& extension);
   void poll_job();
   void show_packing(std::shared_ptr<const Packing> packing);
   void render_scene_if_needed(int width, int height);
@@ -121,6 +124,8 @@ class GuiApp {
   bool is_status_error_ = false;
   std::string open_path_ = "run.h5";
   std::string export_base_;
+  double mesomodel_itz_mm_ = 0.0;          // ITZ thickness of the mesomodel export (mm)
+  double mesomodel_mortar_size_mm_ = 0.0;  // target mortar element edge (mm), 0 = no bound
 
   // Mouse state.
   int dragging_button_ = -1;
