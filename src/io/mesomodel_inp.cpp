@@ -1,0 +1,263 @@
+// The mesomodel as an Abaqus / CalculiX input file (io/mesomodel_files.h): a flat model (no parts)
+// that ccx and Abaqus/Standard both read. Elements are written group by group (MesoLayout), so
+// every element set is one GENERATE range.
+
+#include <algorithm>
+#include <cstdio>
+
+#include "export_detail.h"
+#include "mesomodel_detail.h"
+
+namespace aggpack {
+
+namespace {
+
+using detail::append_number;
+
+constexpr int kSetEntriesPerLine = 16;  // Abaqus reads at most 16 entries a line
+constexpr std::size_t kChunk = 512;     // nodes or elements formatted per parallel item
+
+void append_real(std::string& out, double value) {
+  append_number_fitting(out, value, kFeNumberWidth);
+}
+
+void append_generated_set(const std::string& name, std::uint64_t first, std::uint64_t last,
+                          std::string& out) {
+  out += "*ELSET, ELSET=" + name + ", GENERATE\n";
+  append_number(out, first);
+  out += ", ";
+  append_number(out, last);
+  out += ", 1\n";
+}
+
+void append_node_set(const std::string& name, const std::vector<std::uint32_t>& nodes,
+                     std::string& out) {
+  out += "*NSET, NSET=" + name + "\n";
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    append_number(out, static_cast<std::uint64_t>(nodes[i]) + 1);
+    out += (i + 1) % kSetEntriesPerLine == 0 || i + 1 == nodes.size() ? ",\n" : ", ";
+  }
+}
+
+// Edges of the mesh's boundary triangles (faces of exactly one tetrahedron), sorted pairs.
+std::vector<std::array<std::uint32_t, 2>> boundary_edges(const std::vector<Tetrahedron>& tets) {
+  std::vector<std::array<std::uint32_t, 3>> faces;
+  faces.reserve(4 * tets.size());
+  for (const Tetrahedron& t : tets) {
+    for (const auto& f : kTetraFaces) {
+      std::array<std::uint32_t, 3> face = {t[f[0]], t[f[1]], t[f[2]]};
+      std::sort(face.begin(), face.end());
+      faces.push_back(face);
+    }
+  }
+  std::sort(faces.begin(), faces.end());
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j] == faces[i]) ++j;
+    if (j - i == 1) {
+      const auto& f = faces[i];
+      edges.push_back({f[0], f[1]});
+      edges.push_back({f[0], f[2]});
+      edges.push_back({f[1], f[2]});
+    }
+    i = j;
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+// The face's nodes with, for C3D10, the mid-side node of every boundary edge whose two corners
+// are on the face (such an edge lies in the face: a specimen face is planar).
+std::vector<std::uint32_t> face_node_set(const MesoMesh& mesh, SpecimenFace face,
+                                         const QuadraticTopology& quadratic,
+                                         const std::vector<std::array<std::uint32_t, 2>>& edges) {
+  std::vector<std::uint32_t> nodes = face_nodes(mesh, face);
+  if (quadratic.midside_edges.empty()) return nodes;
+  const auto corner_count = static_cast<std::uint32_t>(mesh.nodes.size());
+  const std::size_t corners_on_face = nodes.size();
+  auto on_face = [&](std::uint32_t node) {
+    return std::binary_search(nodes.begin(), nodes.begin() + static_cast<long>(corners_on_face),
+                              node);
+  };
+  for (std::size_t e = 0; e < quadratic.midside_edges.size(); ++e) {
+    std::array<std::uint32_t, 2> edge = quadratic.midside_edges[e];
+    if (!on_face(edge[0]) || !on_face(edge[1])) continue;
+    if (edge[0] > edge[1]) std::swap(edge[0], edge[1]);
+    if (!std::binary_search(edges.begin(), edges.end(), edge)) continue;
+    nodes.push_back(corner_count + static_cast<std::uint32_t>(e));
+  }
+  return nodes;  // still sorted: mid-side numbers follow the corners in edge order
+}
+
+void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const char* type,
+                    std::uint64_t nodes, std::string& out) {
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "*HEADING\naggpack %s concrete mesomodel: %u aggregates, %zu %s elements, %llu "
+                "nodes\n",
+                AGGPACK_VERSION, mesh.particle_count, mesh.tetrahedra.size(), type,
+                static_cast<unsigned long long>(nodes));
+  out += line;
+  out += "** Written by aggpack (docs/mesomodel.md). Units: m, Pa, kg/m^3, N. ITZ thickness ";
+  append_real(out, mesh.itz_thickness);
+  out +=
+      " m.\n"
+      "** Element sets: AGGREGATE, ITZ (when the mesh has an ITZ), MORTAR";
+  if (options.has_particle_sets) out += "; per particle k (from 1) AGG<k> and ITZ<k>";
+  out +=
+      ".\n"
+      "** Elements are numbered aggregates first (particle by particle), then the ITZ shells,\n"
+      "** then the mortar. Node sets: ALLNODES, BOTTOM (z min), TOP (z max), SIDES.\n"
+      "** One material and solid section per phase (MAT_AGGREGATE, MAT_ITZ, MAT_MORTAR).\n";
+  if (options.step.strain > 0.0) {
+    out +=
+        "** Step: uniaxial compression, BOTTOM held in z, TOP moved by -strain x height in z,\n"
+        "** sides free; effective E = (sum of RF3 over TOP / top area) / strain.\n";
+  }
+}
+
+void append_materials(const MesoMaterials& materials, const detail::MesoLayout& layout,
+                      std::string& out) {
+  for (const MesoPhase phase : {MesoPhase::kAggregate, MesoPhase::kItz, MesoPhase::kMortar}) {
+    if (layout.phase_begin(phase) == layout.phase_end(phase)) continue;  // no such elements
+    const std::string name = phase_set_name(phase);
+    const PhaseMaterial& material = materials.of(phase);
+    out += "*MATERIAL, NAME=MAT_" + name + "\n*ELASTIC\n";
+    append_real(out, material.youngs_modulus);
+    out += ", ";
+    append_real(out, material.poisson_ratio);
+    out += "\n*DENSITY\n";
+    append_real(out, material.density);
+    out += ",\n*SOLID SECTION, ELSET=" + name + ", MATERIAL=MAT_" + name + "\n";
+  }
+}
+
+// Bottom nodes A and B that, held in x and y (A) and in y (B), remove the rigid motions in x, y
+// and about z and nothing else (three scalar constraints on three rigid modes): A is the bottom
+// node with the smallest (y, x), B the one farthest from A in x (then closest in y).
+std::array<std::uint32_t, 2> anchor_nodes(const MesoMesh& mesh,
+                                          const std::vector<std::uint32_t>& bottom) {
+  if (bottom.size() < 2) {
+    throw InvalidInput("mesh bottom face", std::to_string(bottom.size()) + " nodes",
+                       "at least 2 nodes (for the compression step)");
+  }
+  auto key = [&](std::uint32_t n) { return std::pair(mesh.nodes[n].y(), mesh.nodes[n].x()); };
+  const std::uint32_t a =
+      *std::min_element(bottom.begin(), bottom.end(),
+                        [&](std::uint32_t p, std::uint32_t q) { return key(p) < key(q); });
+  const Vec3& pa = mesh.nodes[a];
+  auto score = [&](std::uint32_t n) {
+    return std::pair(std::abs(mesh.nodes[n].x() - pa.x()), -std::abs(mesh.nodes[n].y() - pa.y()));
+  };
+  const std::uint32_t b =
+      *std::max_element(bottom.begin(), bottom.end(),
+                        [&](std::uint32_t p, std::uint32_t q) { return score(p) < score(q); });
+  if (!(std::abs(mesh.nodes[b].x() - pa.x()) > 0.0)) {
+    throw InvalidInput("mesh bottom face", "all nodes at x = " + format_value(pa.x()),
+                       "nodes spread in x (for the compression step)");
+  }
+  return {a, b};
+}
+
+void append_step(const MesoMesh& mesh, const CompressionStep& step,
+                 const std::vector<std::uint32_t>& bottom, std::string& out) {
+  const auto [a, b] = anchor_nodes(mesh, bottom);
+  const double height = mesh.bounds.upper.z() - mesh.bounds.lower.z();
+  out += "*BOUNDARY\nBOTTOM, 3, 3, 0.\n";
+  append_number(out, static_cast<std::uint64_t>(a) + 1);
+  out += ", 1, 2, 0.\n";
+  append_number(out, static_cast<std::uint64_t>(b) + 1);
+  out += ", 2, 2, 0.\n*STEP\n*STATIC\n*BOUNDARY\nTOP, 3, 3, ";
+  append_real(out, -step.strain * height);
+  out += "\n*NODE PRINT, NSET=TOP, TOTALS=YES\nRF\n*NODE FILE\nU, RF\n*EL FILE\nS, E\n*END STEP\n";
+}
+
+}  // namespace
+
+MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mesh,
+                                    const MesoFileOptions& options) {
+  validate(options);
+  validate(mesh);
+  check_writable(path, options.overwrite);
+  const detail::MesoLayout layout = detail::make_layout(mesh);
+  std::vector<Tetrahedron> tets(mesh.tetrahedra.size());
+  for (std::size_t i = 0; i < tets.size(); ++i) tets[i] = mesh.tetrahedra[layout.order[i]];
+  QuadraticTopology quadratic;
+  std::vector<Vec3> nodes = mesh.nodes;
+  std::vector<std::array<std::uint32_t, 2>> edges;
+  if (options.is_quadratic) {
+    quadratic = quadratic_topology(tets, static_cast<std::uint32_t>(mesh.nodes.size()));
+    append_midside_nodes(quadratic, nodes);
+    edges = boundary_edges(tets);
+  }
+  const char* type = options.is_quadratic ? "C3D10" : "C3D4";
+  const std::vector<std::uint32_t> bottom =
+      face_node_set(mesh, SpecimenFace::kBottom, quadratic, edges);
+  std::string tail;  // everything after the elements; built first so that bad input writes nothing
+  auto element_set_name = [&](std::size_t g) {
+    const MesoPhase phase = layout.group_phase(g);
+    if (phase == MesoPhase::kMortar || !options.has_particle_sets) {
+      return std::string(phase_set_name(phase));
+    }
+    return std::string(phase == MesoPhase::kAggregate ? "AGG" : "ITZ") +
+           std::to_string(layout.group_particle(g));
+  };
+  for (const MesoPhase phase : {MesoPhase::kAggregate, MesoPhase::kItz}) {
+    const std::uint64_t begin = layout.phase_begin(phase);
+    const std::uint64_t end = layout.phase_end(phase);
+    if (begin == end || !options.has_particle_sets) continue;  // none, or named on *ELEMENT
+    append_generated_set(phase_set_name(phase), begin + 1, end, tail);
+  }
+  append_node_set("BOTTOM", bottom, tail);
+  append_node_set("TOP", face_node_set(mesh, SpecimenFace::kTop, quadratic, edges), tail);
+  append_node_set("SIDES", face_node_set(mesh, SpecimenFace::kSide, quadratic, edges), tail);
+  append_materials(options.materials, layout, tail);
+  if (options.step.strain > 0.0) append_step(mesh, options.step, bottom, tail);
+
+  detail::write_atomically(path, options.overwrite, [&](std::ostream& out) {
+    std::string head;
+    append_heading(mesh, options, type, nodes.size(), head);
+    head += "*NODE, NSET=ALLNODES\n";
+    out << head;
+    const std::size_t node_chunks = (nodes.size() + kChunk - 1) / kChunk;
+    detail::stream_items(node_chunks, out, [&](std::size_t c, std::string& buffer) {
+      const std::size_t first = c * kChunk;
+      const std::size_t last = std::min(nodes.size(), first + kChunk);
+      const std::vector<Vec3> chunk(nodes.begin() + static_cast<long>(first),
+                                    nodes.begin() + static_cast<long>(last));
+      detail::append_node_lines(buffer, "", ", ", first + 1, chunk, kFeNumberWidth);
+    });
+    for (std::size_t g = 0; g < layout.group_count(); ++g) {
+      const std::uint64_t begin = layout.group_offsets[g];
+      const std::uint64_t end = layout.group_offsets[g + 1];
+      if (begin == end) continue;
+      out << "*ELEMENT, TYPE=" << type << ", ELSET=" << element_set_name(g) << '\n';
+      const std::size_t chunks = (end - begin + kChunk - 1) / kChunk;
+      detail::stream_items(chunks, out, [&](std::size_t c, std::string& buffer) {
+        const std::uint64_t first = begin + c * kChunk;
+        const std::uint64_t last = std::min<std::uint64_t>(end, first + kChunk);
+        for (std::uint64_t e = first; e < last; ++e) {
+          append_number(buffer, e + 1);
+          auto append_nodes = [&](const auto& element) {
+            for (const std::uint32_t node : element) {
+              buffer += ", ";
+              append_number(buffer, static_cast<std::uint64_t>(node) + 1);
+            }
+          };
+          if (options.is_quadratic) {
+            append_nodes(quadratic.tetrahedra[e]);
+          } else {
+            append_nodes(tets[e]);
+          }
+          buffer += '\n';
+        }
+      });
+    }
+    out << tail;
+  });
+  return {.format = MesoFileFormat::kInp, .nodes = nodes.size(), .elements = tets.size()};
+}
+
+}  // namespace aggpack
