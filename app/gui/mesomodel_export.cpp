@@ -18,7 +18,7 @@
 namespace aggpack::gui {
 
 void GuiApp::draw_mesomodel_export(bool can_export) {
-  ImGui::TextDisabled("Concrete mesomodel: aggregate + ITZ + mortar, one conforming mesh");
+  ImGui::TextDisabled("Concrete mesomodel (aggregate, ITZ, mortar)");
   ImGui::PushItemWidth(120.0f);
   ImGui::InputDouble("ITZ thickness (mm)", &mesomodel_itz_mm_, 0.01, 0.1, "%.3f");
   ImGui::InputDouble("mortar element (mm)", &mesomodel_mortar_size_mm_, 0.5, 5.0, "%.2f");
@@ -26,10 +26,13 @@ void GuiApp::draw_mesomodel_export(bool can_export) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("target element edge in the mortar, 0 = no bound");
   if (!can_export) ImGui::BeginDisabled();
   if (ImGui::Button("Mesomodel (.inp)")) start_mesomodel_export(".inp");
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("mesh the packing (TetGen) and write NAME-mesomodel.inp, .msh or .vtu");
+  }
   ImGui::SameLine();
-  if (ImGui::Button("Mesomodel (.msh)")) start_mesomodel_export(".msh");
+  if (ImGui::Button("(.msh)")) start_mesomodel_export(".msh");
   ImGui::SameLine();
-  if (ImGui::Button("Mesomodel (.vtu)")) start_mesomodel_export(".vtu");
+  if (ImGui::Button("(.vtu)")) start_mesomodel_export(".vtu");
   if (!can_export) ImGui::EndDisabled();
 }
 
