@@ -32,6 +32,10 @@ struct GuiOptions {
   ViewPreset view = ViewPreset::kIso;
   RenderStyle style;
   std::string export_base = "aggpack_out";  ///< export file name without extension
+  /// Scripted runs: once the first pack/open is done, export the mesomodel with this extension
+  /// (".inp", ".msh", ".vtu"), as the Mesomodel buttons do, before the screenshot / quit.
+  std::optional<std::string> mesomodel_export;
+  double mesomodel_itz_mm = 0.0;  ///< the ITZ thickness field's start value (mm)
 };
 
 class GuiApp {
@@ -135,6 +139,7 @@ class GuiApp {
 
   // Scripted runs (--pack/--open, --screenshot, --benchmark-frames, --quit).
   bool is_waiting_for_first_job_ = false;
+  bool is_mesomodel_script_started_ = false;  // --mesomodel-export's job was started
   int frames_since_job_ = -1;
   // --benchmark-frames: first the camera turns as if dragged (light frames, adaptive detail),
   // then a few full-detail frames (the scene as it is drawn once the view rests).
