@@ -64,8 +64,11 @@ void render_mesomodel_cut(const MesomodelCutRequest& request) {
       .width = request.width,
       .is_tinted = request.is_tinted,
       .has_edges = true,
-      .subtitle = fmt::format("{} aggregates, ITZ {:g} mm, {} tetrahedra", mesh.particle_count,
-                              mesh.itz_thickness * 1e3, mesh.tetrahedra.size())};
+      .subtitle = fmt::format("{} aggregates, {}, {} tetrahedra", mesh.particle_count,
+                              mesh.itz_thickness > 0.0
+                                  ? fmt::format("ITZ {:g} mm", mesh.itz_thickness * 1e3)
+                                  : "no ITZ",
+                              mesh.tetrahedra.size())};
   const Raster raster = draw_mesomodel_cut(polygons, plane.axis, plane.value, options);
   write_png(output, raster);
   const std::array<double, 3> areas = cut_phase_areas(polygons);
