@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "aggpack/mesh/mesomodel.h"
 #include "aggpack/mesh/quality.h"
 
 namespace aggpack::cli {
@@ -28,6 +29,21 @@ std::string describe_quality(const TetQuality& quality);
 /// The same as a JSON object: {"tetrahedra", "min_dihedral_deg", "max_aspect_ratio",
 /// "below_10_deg"}.
 std::string quality_json(const TetQuality& quality);
+
+/// `aggpack render --mesomodel-cut`: what to mesh and cut, and where to write the picture.
+struct MesomodelCutRequest {
+  std::string input;      ///< native packing (.h5)
+  std::string output;     ///< PNG ("" = the input's name with .png)
+  std::string plane;      ///< "z=0.05" (parse_cut_plane)
+  MesoOptions meso;       ///< build_mesomodel options
+  int width = 1600;       ///< pixels, >= 200
+  std::string size_text;  ///< the --size text, for the error message
+  bool is_tinted = true;
+  bool is_forced = false;
+};
+/// Meshes the packing (build_mesomodel), cuts it and writes the PNG (mesomodel_cut_render.cpp,
+/// software drawing: no OpenGL). \throw InvalidInput naming the flag, as build_mesomodel.
+void render_mesomodel_cut(const MesomodelCutRequest& request);
 
 /// Limits the worker threads for the rest of the process (0 = all cores).
 void set_thread_count(int threads);

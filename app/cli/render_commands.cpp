@@ -1,5 +1,7 @@
 // `aggpack render`: a saved packing to a PNG picture with no display (issue 5). Compiles to
 // nothing when aggpack is built without rendering (AGGPACK_BUILD_RENDER=OFF or no OpenGL/EGL).
+// `--mesomodel-cut z=V` draws a section of the concrete mesomodel instead (issue 16): software
+// drawing on core/raster.h (mesomodel_cut_render.cpp), no OpenGL context is made.
 
 #ifdef AGGPACK_HAS_RENDER
 
@@ -12,6 +14,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/io/native.h"
+#include "aggpack/mesh/mesomodel.h"
 #include "aggpack/render/headless.h"
 #include "commands.h"
 
@@ -31,6 +34,9 @@ struct RenderFlags {
   int samples = 4;
   double coarse_below_pixels = 0.0;
   bool is_forced = false;
+  std::string mesomodel_cut;  ///< "z=0.05": draw the mesomodel's section instead ("" = no)
+  MesoOptions meso;
+  bool is_untinted = false;
 };
 
 // "WxH" -> (W, H), each in [16, 8192].
@@ -52,6 +58,17 @@ void parse_size(const std::string& text, RenderImageOptions& options) {
 void run_render(const RenderFlags& flags) {
   RenderImageOptions options;
   parse_size(flags.size, options);
+  if (!flags.mesomodel_cut.empty()) {
+    render_mesomodel_cut({.input = flags.input,
+                          .output = flags.output,
+                          .plane = flags.mesomodel_cut,
+                          .meso = flags.meso,
+                          .width = options.width,
+                          .size_text = flags.size,
+                          .is_tinted = !flags.is_untinted,
+                          .is_forced = flags.is_forced});
+    return;
+  }
   options.view = parse_view_preset(flags.view, "--view");
   options.style.color = parse_color_mode(flags.color, "--color");
   options.style.is_wireframe = flags.is_wireframe;
@@ -78,7 +95,9 @@ void run_render(const RenderFlags& flags) {
 void register_render(CLI::App& app) {
   auto flags = std::make_shared<RenderFlags>();
   CLI::App* command = app.add_subcommand(
-      "render", "Render a saved packing to a PNG picture, headless (EGL, no display needed)");
+      "render",
+      "Render a saved packing to a PNG picture, headless (EGL, no display needed); --mesomodel-cut "
+      "z=V draws a section of its concrete mesomodel instead (phases coloured, software)");
   command->add_option("packing", flags->input, "native packing file (.h5) from `aggpack pack`")
       ->required();
   command->add_option("-o,--output", flags->output,
@@ -108,6 +127,26 @@ void register_render(CLI::App& app) {
                    "draw particles smaller than this many pixels with a 24-triangle coarse "
                    "shape (0 = full detail always)")
       ->capture_default_str();
+  command->add_option(
+      "--mesomodel-cut", flags->mesomodel_cut,
+      "instead of the 3D view: mesh the concrete mesomodel (as `aggpack mesomodel`) "
+      "and draw its section by the plane AXIS=VALUE (m), e.g. z=0.05: phases coloured, "
+      "element edges, legend, scale bar. Software drawing, no OpenGL; --size gives "
+      "the width (>= 200), the height follows the section");
+  command
+      ->add_option("--itz", flags->meso.itz_thickness,
+                   "with --mesomodel-cut: ITZ thickness (m), >= 0; 0 = no ITZ")
+      ->capture_default_str();
+  command
+      ->add_option("--aggregate-size", flags->meso.aggregate_size,
+                   "with --mesomodel-cut: target element edge in the aggregates (m), 0 = no bound")
+      ->capture_default_str();
+  command
+      ->add_option("--mortar-size", flags->meso.mortar_size,
+                   "with --mesomodel-cut: target element edge in the mortar (m), 0 = no bound")
+      ->capture_default_str();
+  command->add_flag("--no-tint", flags->is_untinted,
+                    "with --mesomodel-cut: one grey for every aggregate");
   command->add_flag("-f,--force", flags->is_forced, "replace an existing output file");
   command->callback([flags] { run_render(*flags); });
 }

@@ -59,6 +59,7 @@ GuiApp::GuiApp(GLFWwindow* window, GuiOptions options)
   style_ = options_.style;
   view_ = options_.view;
   export_base_ = options_.export_base;
+  mesomodel_itz_mm_ = options_.mesomodel_itz_mm;
   renderer_ = std::make_unique<PackingRenderer>();
   // Show the empty container until there is a packing.
   Packing empty;
@@ -223,6 +224,13 @@ void GuiApp::poll_job() {
   }
   set_status(message, !result.is_ok);
   if (result.packing) show_packing(result.packing);
+  if (is_waiting_for_first_job_ && result.is_ok && options_.mesomodel_export &&
+      !is_mesomodel_script_started_) {  // scripted: the mesomodel export follows, wait for it
+    is_mesomodel_script_started_ = true;
+    start_mesomodel_export(*options_.mesomodel_export);
+    if (job_.is_running()) return;
+    exit_code_ = 2;  // refused before it started (the status line says why)
+  }
   if (is_waiting_for_first_job_) {
     is_waiting_for_first_job_ = false;
     frames_since_job_ = 0;
@@ -383,6 +391,7 @@ void GuiApp::draw_file_section() {
     if (ImGui::Button(std::string(info.title).c_str())) start_export(std::string(info.name));
   }
   if (!can_export) ImGui::EndDisabled();
+  draw_mesomodel_export(can_export);
 }
 
 void GuiApp::draw_view_section() {

@@ -32,6 +32,10 @@ struct GuiOptions {
   ViewPreset view = ViewPreset::kIso;
   RenderStyle style;
   std::string export_base = "aggpack_out";  ///< export file name without extension
+  /// Scripted runs: once the first pack/open is done, export the mesomodel with this extension
+  /// (".inp", ".msh", ".vtu"), as the Mesomodel buttons do, before the screenshot / quit.
+  std::optional<std::string> mesomodel_export;
+  double mesomodel_itz_mm = 0.0;  ///< the ITZ thickness field's start value (mm)
 };
 
 class GuiApp {
@@ -78,6 +82,9 @@ class GuiApp {
   void start_pack();
   void start_open(const std::string& path);
   void start_export(const std::string& format);
+  // mesomodel_export.cpp: the concrete mesomodel (.inp, .msh, .vtu) of the shown packing.
+  void draw_mesomodel_export(bool can_export);
+  void start_mesomodel_export(const std::string& extension);
   void poll_job();
   void show_packing(std::shared_ptr<const Packing> packing);
   void render_scene_if_needed(int width, int height);
@@ -121,6 +128,8 @@ class GuiApp {
   bool is_status_error_ = false;
   std::string open_path_ = "run.h5";
   std::string export_base_;
+  double mesomodel_itz_mm_ = 0.0;          // ITZ thickness of the mesomodel export (mm)
+  double mesomodel_mortar_size_mm_ = 0.0;  // target mortar element edge (mm), 0 = no bound
 
   // Mouse state.
   int dragging_button_ = -1;
@@ -130,6 +139,7 @@ class GuiApp {
 
   // Scripted runs (--pack/--open, --screenshot, --benchmark-frames, --quit).
   bool is_waiting_for_first_job_ = false;
+  bool is_mesomodel_script_started_ = false;  // --mesomodel-export's job was started
   int frames_since_job_ = -1;
   // --benchmark-frames: first the camera turns as if dragged (light frames, adaptive detail),
   // then a few full-detail frames (the scene as it is drawn once the view rests).

@@ -80,6 +80,13 @@ int main(int argc, char** argv) {
   cli.add_option("--export-name", options.export_base,
                  "file name (without extension) the Export buttons write")
       ->capture_default_str();
+  std::string mesomodel_export;
+  cli.add_option("--mesomodel-export", mesomodel_export,
+                 "after the first pack/open, export the concrete mesomodel as NAME-mesomodel.EXT "
+                 "(EXT inp, msh or vtu), as the Mesomodel buttons do");
+  cli.add_option("--mesomodel-itz", options.mesomodel_itz_mm,
+                 "start value of the mesomodel's ITZ thickness field (mm)")
+      ->capture_default_str();
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -90,6 +97,12 @@ int main(int argc, char** argv) {
   try {
     if (!config_path.empty()) options.config_path = config_path;
     if (!open_path.empty()) options.open_path = open_path;
+    if (!mesomodel_export.empty()) {
+      if (mesomodel_export != "inp" && mesomodel_export != "msh" && mesomodel_export != "vtu") {
+        throw aggpack::InvalidInput("--mesomodel-export", mesomodel_export, "inp, msh or vtu");
+      }
+      options.mesomodel_export = "." + mesomodel_export;
+    }
     if (!screenshot_path.empty()) {
       aggpack::check_writable(screenshot_path, aggpack::Overwrite::kAllow);
       options.screenshot_path = screenshot_path;

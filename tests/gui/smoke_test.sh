@@ -78,6 +78,34 @@ if [ -n "$cli" ]; then
     { echo "the packing panel line lacks the sieve table"; exit 1; }
 fi
 
+# Concrete mesomodel export (issue 16), the Mesomodel buttons' path run by script: open a packing,
+# mesh it on the background job and write NAME-mesomodel.inp; an ITZ too thick for the packing's
+# gaps is refused with the mesher's message, exit 2 and no file.
+if [ -n "$cli" ]; then
+  rm -f "$out/meso.h5" "$out/meso-mesomodel.inp" "$out/meso.txt" "$out/meso-bad.txt"
+  "$cli" pack --progress none -o "$out/meso.h5" --set packer.kind=random \
+    --set container.length=0.3 --set container.width=0.25 --set container.depth=0.2 \
+    --set particle.radius_min=0.03 --set particle.radius_max=0.05 \
+    --set packer.target_fraction=0.15 --set packer.gap=0.004 --seed 7 > /dev/null
+  xvfb-run -a -s "-screen 0 1280x800x24" "$gui" --open "$out/meso.h5" --quit --size 800x600 \
+    --export-name "$out/meso" --mesomodel-export inp --mesomodel-itz 0.5 > "$out/meso.txt" 2>&1 ||
+    { cat "$out/meso.txt"; exit 1; }
+  cat "$out/meso.txt"
+  grep -q "status: Wrote .*meso-mesomodel.inp: mesomodel of [0-9]* aggregates, ITZ 0.5 mm" \
+    "$out/meso.txt"
+  grep -q "^\*ELSET, ELSET=ITZ" "$out/meso-mesomodel.inp" ||
+    { echo "the mesomodel .inp has no ITZ element set"; exit 1; }
+  rm -f "$out/meso-mesomodel.inp"
+  status=0
+  xvfb-run -a -s "-screen 0 1280x800x24" "$gui" --open "$out/meso.h5" --quit --size 800x600 \
+    --export-name "$out/meso" --mesomodel-export inp --mesomodel-itz 50 > "$out/meso-bad.txt" \
+    2>&1 || status=$?
+  cat "$out/meso-bad.txt"
+  [ "$status" -eq 2 ] || { echo "a refused mesomodel export exited $status, not 2"; exit 1; }
+  grep -q "status: invalid particles .* ITZ shells" "$out/meso-bad.txt"
+  [ ! -e "$out/meso-mesomodel.inp" ] || { echo "a refused export left a file"; exit 1; }
+fi
+
 # The dense kind (examples/dense-box.toml, a budget it cannot finish for minutes): Pack at start,
 # click Cancel (the job section is at the top of the panel: Pack at x 8-128, Cancel right of it,
 # y ~37 below the title bar); the run ends cancelled with the last verified state shown.
