@@ -39,8 +39,8 @@ void append_node_set(const std::string& name, const std::vector<std::uint32_t>& 
   }
 }
 
-// Edges of the mesh's boundary triangles (faces of exactly one tetrahedron), sorted pairs.
-std::vector<std::array<std::uint32_t, 2>> boundary_edges(const std::vector<Tetrahedron>& tets) {
+// Boundary triangles of the mesh: faces of exactly one tetrahedron (sorted node triples).
+std::vector<std::array<std::uint32_t, 3>> boundary_triangles(const std::vector<Tetrahedron>& tets) {
   std::vector<std::array<std::uint32_t, 3>> faces;
   faces.reserve(4 * tets.size());
   for (const Tetrahedron& t : tets) {
@@ -51,44 +51,56 @@ std::vector<std::array<std::uint32_t, 2>> boundary_edges(const std::vector<Tetra
     }
   }
   std::sort(faces.begin(), faces.end());
-  std::vector<std::array<std::uint32_t, 2>> edges;
+  std::vector<std::array<std::uint32_t, 3>> boundary;
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;
     while (j < faces.size() && faces[j] == faces[i]) ++j;
-    if (j - i == 1) {
-      const auto& f = faces[i];
-      edges.push_back({f[0], f[1]});
-      edges.push_back({f[0], f[2]});
-      edges.push_back({f[1], f[2]});
-    }
+    if (j - i == 1) boundary.push_back(faces[i]);
     i = j;
   }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
+  return boundary;
 }
 
-// The face's nodes with, for C3D10, the mid-side node of every boundary edge whose two corners
-// are on the face (such an edge lies in the face: a specimen face is planar).
-std::vector<std::uint32_t> face_node_set(const MesoMesh& mesh, SpecimenFace face,
-                                         const QuadraticTopology& quadratic,
-                                         const std::vector<std::array<std::uint32_t, 2>>& edges) {
-  std::vector<std::uint32_t> nodes = face_nodes(mesh, face);
-  if (quadratic.midside_edges.empty()) return nodes;
-  const auto corner_count = static_cast<std::uint32_t>(mesh.nodes.size());
-  const std::size_t corners_on_face = nodes.size();
-  auto on_face = [&](std::uint32_t node) {
-    return std::binary_search(nodes.begin(), nodes.begin() + static_cast<long>(corners_on_face),
-                              node);
-  };
-  for (std::size_t e = 0; e < quadratic.midside_edges.size(); ++e) {
-    std::array<std::uint32_t, 2> edge = quadratic.midside_edges[e];
-    if (!on_face(edge[0]) || !on_face(edge[1])) continue;
-    if (edge[0] > edge[1]) std::swap(edge[0], edge[1]);
-    if (!std::binary_search(edges.begin(), edges.end(), edge)) continue;
-    nodes.push_back(corner_count + static_cast<std::uint32_t>(e));
+// Node sets BOTTOM, TOP and SIDES (index = SpecimenFace code): face_nodes(), and for C3D10 the
+// mid-side node of every edge of a boundary triangle on that face. A boundary triangle lies on
+// the bottom when its three corners do, on the top likewise, else on a side facet (a triangle
+// with its corners on two side facets - across a corner of the bottom, say - is not on a side).
+std::array<std::vector<std::uint32_t>, 3> face_node_sets(const MesoMesh& mesh,
+                                                         const std::vector<Tetrahedron>& tets,
+                                                         const QuadraticTopology& quadratic) {
+  std::array<std::vector<std::uint32_t>, 3> sets;
+  for (const SpecimenFace face : {SpecimenFace::kBottom, SpecimenFace::kTop, SpecimenFace::kSide}) {
+    sets[static_cast<int>(face)] = face_nodes(mesh, face);
   }
-  return nodes;  // still sorted: mid-side numbers follow the corners in edge order
+  if (quadratic.midside_edges.empty()) return sets;
+  auto is_in = [](const std::vector<std::uint32_t>& set, std::uint32_t node) {
+    return std::binary_search(set.begin(), set.end(), node);
+  };
+  std::array<std::vector<std::array<std::uint32_t, 2>>, 3> face_edges;
+  for (const auto& t : boundary_triangles(tets)) {
+    int face = static_cast<int>(SpecimenFace::kSide);
+    for (const SpecimenFace flat : {SpecimenFace::kBottom, SpecimenFace::kTop}) {
+      const auto& set = sets[static_cast<int>(flat)];
+      if (is_in(set, t[0]) && is_in(set, t[1]) && is_in(set, t[2])) face = static_cast<int>(flat);
+    }
+    face_edges[face].push_back({t[0], t[1]});
+    face_edges[face].push_back({t[0], t[2]});
+    face_edges[face].push_back({t[1], t[2]});
+  }
+  const auto corner_count = static_cast<std::uint32_t>(mesh.nodes.size());
+  for (int face = 0; face < 3; ++face) {
+    auto& edges = face_edges[face];
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    for (std::size_t e = 0; e < quadratic.midside_edges.size(); ++e) {
+      std::array<std::uint32_t, 2> edge = quadratic.midside_edges[e];
+      if (edge[0] > edge[1]) std::swap(edge[0], edge[1]);
+      if (std::binary_search(edges.begin(), edges.end(), edge)) {
+        sets[face].push_back(corner_count + static_cast<std::uint32_t>(e));
+      }
+    }
+  }
+  return sets;  // still sorted: mid-side nodes follow the corners, in edge order
 }
 
 void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const char* type,
@@ -186,15 +198,13 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
   for (std::size_t i = 0; i < tets.size(); ++i) tets[i] = mesh.tetrahedra[layout.order[i]];
   QuadraticTopology quadratic;
   std::vector<Vec3> nodes = mesh.nodes;
-  std::vector<std::array<std::uint32_t, 2>> edges;
   if (options.is_quadratic) {
     quadratic = quadratic_topology(tets, static_cast<std::uint32_t>(mesh.nodes.size()));
     append_midside_nodes(quadratic, nodes);
-    edges = boundary_edges(tets);
   }
   const char* type = options.is_quadratic ? "C3D10" : "C3D4";
-  const std::vector<std::uint32_t> bottom =
-      face_node_set(mesh, SpecimenFace::kBottom, quadratic, edges);
+  const auto face_sets = face_node_sets(mesh, tets, quadratic);
+  const std::vector<std::uint32_t>& bottom = face_sets[static_cast<int>(SpecimenFace::kBottom)];
   std::string tail;  // everything after the elements; built first so that bad input writes nothing
   auto element_set_name = [&](std::size_t g) {
     const MesoPhase phase = layout.group_phase(g);
@@ -211,8 +221,8 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
     append_generated_set(phase_set_name(phase), begin + 1, end, tail);
   }
   append_node_set("BOTTOM", bottom, tail);
-  append_node_set("TOP", face_node_set(mesh, SpecimenFace::kTop, quadratic, edges), tail);
-  append_node_set("SIDES", face_node_set(mesh, SpecimenFace::kSide, quadratic, edges), tail);
+  append_node_set("TOP", face_sets[static_cast<int>(SpecimenFace::kTop)], tail);
+  append_node_set("SIDES", face_sets[static_cast<int>(SpecimenFace::kSide)], tail);
   append_materials(options.materials, layout, tail);
   if (options.step.strain > 0.0) append_step(mesh, options.step, bottom, tail);
 

@@ -9,6 +9,7 @@
 #include <charconv>
 #include <map>
 #include <regex>
+#include <set>
 
 #include "aggpack/core/error.h"
 #include "ccx_fixture.h"
@@ -153,6 +154,66 @@ TEST(MesomodelFiles, InpWithoutParticleSetsOrStep) {
   const std::string without = test::read_text(folder.file("no_itz.inp"));
   EXPECT_EQ(without.find("ELSET=ITZ"), std::string::npos);
   EXPECT_EQ(without.find("NAME=MAT_ITZ"), std::string::npos);
+}
+
+TEST(MesomodelFiles, QuadraticInpFaceSetsHoldExactlyTheNodesOnEachFace) {
+  ScratchFolder folder;
+  const std::string path = folder.file("q.inp");
+  MesoFileOptions options;
+  options.is_quadratic = true;
+  const MesoFileSummary summary = write_mesomodel(path, specimen(0.3), options);
+  EXPECT_GT(summary.nodes, 64U);  // the corners and a node on every edge
+  const std::string text = test::read_text(path);
+  EXPECT_NE(text.find("*ELEMENT, TYPE=C3D10, ELSET=AGG1\n"), std::string::npos);
+  std::map<std::uint64_t, Vec3> nodes;
+  std::map<std::string, std::set<std::uint64_t>> sets;
+  std::istringstream in(text);
+  std::string line;
+  std::string block;
+  std::string name;
+  while (std::getline(in, line)) {
+    if (line.rfind("**", 0) == 0) continue;
+    if (line.rfind('*', 0) == 0) {
+      block = test::trim(test::split(line, ',')[0]);
+      std::smatch found;
+      name = std::regex_search(line, found, std::regex("NSET=([A-Z]+)")) ? found[1].str() : "";
+      continue;
+    }
+    const auto fields = test::split(line, ',');
+    if (block == "*NODE") {
+      nodes[std::stoull(fields[0])] =
+          Vec3(std::stod(fields[1]), std::stod(fields[2]), std::stod(fields[3]));
+    } else if (block == "*NSET") {
+      for (const auto& field : fields) {
+        if (!test::trim(field).empty()) sets[name].insert(std::stoull(field));
+      }
+    }
+  }
+  EXPECT_EQ(nodes.size(), summary.nodes);
+  std::map<std::string, std::set<std::uint64_t>> expected;
+  for (const auto& [id, p] : nodes) {
+    if (std::abs(p.z()) < 1e-12) expected["BOTTOM"].insert(id);
+    if (std::abs(p.z() - 0.3) < 1e-12) expected["TOP"].insert(id);
+    for (int axis = 0; axis < 2; ++axis) {
+      if (std::abs(p[axis]) < 1e-12 || std::abs(p[axis] - 0.3) < 1e-12) {
+        expected["SIDES"].insert(id);
+      }
+    }
+  }
+  for (const char* face : {"BOTTOM", "TOP", "SIDES"}) {
+    std::string difference;
+    for (const auto id : sets[face]) {
+      if (expected[face].count(id) == 0) difference += " +" + std::to_string(id);
+    }
+    for (const auto id : expected[face]) {
+      if (sets[face].count(id) == 0) {
+        difference += " -" + std::to_string(id) + "(" + std::to_string(nodes[id].x()) + "," +
+                      std::to_string(nodes[id].y()) + "," + std::to_string(nodes[id].z()) + ")";
+      }
+    }
+    EXPECT_EQ(difference, "") << face << " in the set (+) or on the face (-) only";
+    EXPECT_GT(sets[face].size(), 16U) << face;  // mid-side nodes included
+  }
 }
 
 constexpr const char* kMeshioScript = R"(
