@@ -1,18 +1,21 @@
-// `aggpack mesomodel`: the concrete mesomodel of a packing (issue 16). So far the phase image:
-// `--voxels N` labels aggregate / ITZ / mortar voxels (mesh/voxels.h) and writes .vti, or raw +
-// JSON header for FFT solvers. The conforming tetrahedral mesh is not built yet.
+// `aggpack mesomodel`: the concrete mesomodel of a packing (issue 16): the conforming tetrahedral
+// mesh of aggregate, ITZ and mortar (mesh/mesomodel.h) written as .inp, .msh or .vtu, or with
+// `--voxels N` the phase image (mesh/voxels.h) as .vti, or raw + JSON header for FFT solvers.
 
 #include <fmt/core.h>
 
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
+#include "aggpack/io/mesomodel_files.h"
 #include "aggpack/io/native.h"
 #include "aggpack/io/voxel_image.h"
+#include "aggpack/mesh/mesomodel.h"
 #include "aggpack/mesh/voxels.h"
 #include "commands.h"
 
@@ -23,11 +26,137 @@ namespace {
 struct MesomodelFlags {
   std::string input;
   std::string output;
-  VoxelOptions voxels;
+  double itz = 0.0;
   int resolution = 0;
+  MesoOptions mesh;
+  MesoFileOptions file;
+  std::vector<std::string> materials;
+  bool has_no_particle_sets = false;
   int threads = 0;
   bool is_forced = false;
 };
+
+// --material NAME=E,NU,RHO (Pa, -, kg/m^3) for aggregate, itz or mortar.
+void apply_material(const std::string& text, MesoMaterials& materials) {
+  const auto equals = text.find('=');
+  const std::string name = text.substr(0, equals);
+  PhaseMaterial* material = name == "aggregate" ? &materials.aggregate
+                            : name == "itz"     ? &materials.itz
+                            : name == "mortar"  ? &materials.mortar
+                                                : nullptr;
+  std::istringstream values(equals == std::string::npos ? "" : text.substr(equals + 1));
+  double e = 0;
+  double nu = 0;
+  double rho = 0;
+  char comma1 = 0;
+  char comma2 = 0;
+  if (material == nullptr || !(values >> e >> comma1 >> nu >> comma2 >> rho) || comma1 != ',' ||
+      comma2 != ',' || !values.eof()) {
+    throw InvalidInput("--material", text,
+                       "NAME=E,NU,RHO with NAME aggregate, itz or mortar (Pa, -, kg/m^3), e.g. "
+                       "itz=15e9,0.2,2000");
+  }
+  *material = {.youngs_modulus = e, .poisson_ratio = nu, .density = rho};
+}
+
+void run_voxels(const MesomodelFlags& flags, const Overwrite overwrite) {
+  if (flags.resolution < 2 || flags.resolution > 4096) {
+    throw InvalidInput("--voxels", std::to_string(flags.resolution), "[2, 4096]");
+  }
+  VoxelOptions options;
+  options.resolution = static_cast<std::uint32_t>(flags.resolution);
+  options.itz_thickness = flags.itz;
+  const bool is_vti = flags.output.ends_with(".vti");
+  if (!is_vti && !flags.output.ends_with(".raw")) {
+    throw InvalidInput("--output", flags.output, "a name ending in .vti or .raw with --voxels");
+  }
+  const std::string base = is_vti ? flags.output : flags.output.substr(0, flags.output.size() - 4);
+  if (is_vti) {
+    check_writable(flags.output, overwrite);
+  } else {
+    for (const char* suffix : {".phase.raw", ".particle.raw", ".json"}) {
+      check_writable(base + suffix, overwrite);
+    }
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const Packing packing = read_packing(flags.input);
+  const double half_side = 0.5 * packing.container.bounds().extent().minCoeff();
+  if (flags.itz >= half_side) {
+    throw InvalidInput(
+        "--itz", format_value(flags.itz),
+        "[0, " + format_value(half_side) + ") m: half the container's smallest side");
+  }
+  const VoxelImage image = voxelize(packing, options);
+  if (is_vti) {
+    write_vti(flags.output, image, overwrite);
+  } else {
+    write_voxel_raw(base, image, packing, flags.itz, overwrite);
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto counts = image.phase_counts();
+  const auto inside = static_cast<double>(counts[0] + counts[1] + counts[2]);
+  fmt::print("voxels        {} x {} x {} = {}, side {:.6g} m\n", image.dims[0], image.dims[1],
+             image.dims[2], image.count(), image.spacing);
+  fmt::print("fractions     aggregate {:.4f}, itz {:.4f}, mortar {:.4f} (of {} voxels inside)\n",
+             counts[2] / inside, counts[1] / inside, counts[0] / inside,
+             counts[0] + counts[1] + counts[2]);
+  fmt::print("wrote {} in {:.2f} s\n",
+             is_vti ? flags.output : base + ".phase.raw, .particle.raw, .json", seconds);
+}
+
+void print_report(const MesoMesh& mesh, const MesoReport& report) {
+  fmt::print("mesomodel     {} aggregates, ITZ {:.6g} m, container {:.6g} m^3 ({})\n",
+             mesh.particle_count, mesh.itz_thickness, report.container_volume,
+             mesh.is_cylinder
+                 ? fmt::format("prism of {} sides about the cylinder", mesh.cylinder_segments)
+                 : std::string("box"));
+  fmt::print("mesh          {} nodes, {} tetrahedra; TetGen -{} in {:.2f} s\n", mesh.nodes.size(),
+             mesh.tetrahedra.size(), report.tetgen_switches, report.mesh_seconds);
+  fmt::print("{:<10} {:>11} {:>10} {:>14} {:>14} {:>10} {:>9} {:>9} {:>10} {:>9}\n", "phase",
+             "tetrahedra", "nodes", "volume m^3", "exact m^3", "rel.err", "fraction", "min dih.",
+             "max aspect", "< 10 deg");
+  for (const MesoPhase phase : {MesoPhase::kAggregate, MesoPhase::kItz, MesoPhase::kMortar}) {
+    const MesoPhaseReport& p = report.phases[static_cast<int>(phase)];
+    const double error = p.expected_volume > 0.0
+                             ? (p.meshed_volume - p.expected_volume) / p.expected_volume
+                             : p.meshed_volume;
+    fmt::print(
+        "{:<10} {:>11} {:>10} {:>14.8g} {:>14.8g} {:>10.2e} {:>9.5f} {:>9.3f} {:>10.4g} {:>9}\n",
+        phase_set_name(phase), p.quality.tetrahedra, p.nodes, p.meshed_volume, p.expected_volume,
+        error, p.meshed_volume / report.container_volume,
+        p.quality.tetrahedra > 0 ? p.quality.min_dihedral_degrees : 0.0, p.quality.max_aspect_ratio,
+        p.quality.below_10_degrees);
+  }
+}
+
+void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
+  flags.mesh.itz_thickness = flags.itz;
+  validate(flags.mesh);
+  for (const std::string& text : flags.materials) apply_material(text, flags.file.materials);
+  flags.file.has_particle_sets = !flags.has_no_particle_sets;
+  flags.file.overwrite = overwrite;
+  validate(flags.file);
+  (void)mesomodel_format(flags.output);  // refuse a wrong extension before the work
+  check_writable(flags.output, overwrite);
+  const auto start = std::chrono::steady_clock::now();
+  const Packing packing = read_packing(flags.input);
+  MesoReport report;
+  const MesoMesh mesh = build_mesomodel(packing, flags.mesh, &report);
+  print_report(mesh, report);
+  const MesoModulusBounds bounds = voigt_reuss_bounds(mesh, flags.file.materials);
+  fmt::print("modulus       Voigt {:.5g} Pa, Reuss {:.5g} Pa (bounds of the effective E)\n",
+             bounds.voigt, bounds.reuss);
+  const MesoFileSummary summary = write_mesomodel(flags.output, mesh, flags.file);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  fmt::print("wrote {} ({} nodes, {} elements{}) in {:.2f} s\n", flags.output, summary.nodes,
+             summary.elements,
+             flags.file.step.strain > 0.0
+                 ? fmt::format(", compression step to strain {:.6g}", flags.file.step.strain)
+                 : std::string(),
+             seconds);
+}
 
 }  // namespace
 
@@ -35,72 +164,71 @@ void register_mesomodel(CLI::App& app) {
   auto flags = std::make_shared<MesomodelFlags>();
   auto* command = app.add_subcommand(
       "mesomodel",
-      "Concrete mesomodel of a packing: aggregate, ITZ and mortar phases. So far the phase image "
-      "(--voxels N): .vti (VTK image data) or .raw (BASE.phase.raw, BASE.particle.raw, BASE.json "
-      "for FFT solvers). The conforming tetrahedral mesh is not built yet.");
+      "Concrete mesomodel of a packing: the container meshed into aggregate, ITZ and mortar "
+      "tetrahedra sharing nodes on every interface (.inp for Abaqus/CalculiX with sets, materials "
+      "and an optional compression step; .msh; .vtu), or with --voxels N the phase image (.vti, "
+      "or .raw + .json for FFT solvers). Aggregates must not touch each other or the walls.");
   command->add_option("input", flags->input, "native packing file (.h5)")->required();
-  command->add_option("-o,--output", flags->output, "OUT.vti or OUT.raw")->required();
-  command->add_option("--voxels", flags->resolution,
-                      "voxels along the container's longest side, [2, 4096] (cubic voxels)");
   command
-      ->add_option("--itz", flags->voxels.itz_thickness,
-                   "ITZ thickness (m), >= 0; 0 = no ITZ (typical 20-50 um)")
+      ->add_option("-o,--output", flags->output,
+                   "OUT.inp, OUT.msh, OUT.vtu; OUT.vti or OUT.raw with --voxels")
+      ->required();
+  command
+      ->add_option("--itz", flags->itz,
+                   "ITZ thickness (m), >= 0; 0 = no ITZ (typical 20-50 um). Meshed as the mitred "
+                   "offset of each aggregate, clipped by the walls")
       ->capture_default_str();
+  command
+      ->add_option("--aggregate-size", flags->mesh.aggregate_size,
+                   "target tetrahedron edge in the aggregates (m), 0 = no bound")
+      ->capture_default_str();
+  command
+      ->add_option("--mortar-size", flags->mesh.mortar_size,
+                   "target tetrahedron edge in the mortar (m), 0 = no bound")
+      ->capture_default_str();
+  command
+      ->add_option("--radius-edge", flags->mesh.radius_edge_ratio,
+                   "TetGen's radius-edge quality bound, [1.2, 10]")
+      ->capture_default_str();
+  command
+      ->add_option("--min-dihedral", flags->mesh.min_dihedral_degrees,
+                   "refuse a mesh whose smallest dihedral angle is below this (degrees)")
+      ->capture_default_str();
+  command->add_option("--max-aspect", flags->mesh.max_aspect_ratio,
+                      "refuse a mesh whose largest aspect ratio is above this");
+  command
+      ->add_option("--cylinder-segments", flags->mesh.cylinder_segments,
+                   "sides of the prism circumscribing a cylinder container, [8, 4096]")
+      ->capture_default_str();
+  command->add_option("--time-limit", flags->mesh.time_limit, "seconds TetGen may take")
+      ->capture_default_str();
+  command
+      ->add_option("--strain", flags->file.step.strain,
+                   ".inp: add a uniaxial compression step to this nominal strain, [0, 0.1] "
+                   "(0 = none)")
+      ->capture_default_str();
+  command->add_option("--material", flags->materials,
+                      ".inp: NAME=E,NU,RHO for aggregate, itz or mortar (Pa, -, kg/m^3); defaults "
+                      "60e9,0.2,2700 / 15e9,0.2,2000 / 25e9,0.2,2200");
+  command->add_flag("--quadratic", flags->file.is_quadratic, ".inp: 10-node tetrahedra (C3D10)");
+  command->add_flag("--no-particle-sets", flags->has_no_particle_sets,
+                    ".inp: leave out the per-particle element sets AGG<k>, ITZ<k>");
+  command->add_option("--voxels", flags->resolution,
+                      "write the phase image instead: voxels along the longest side, [2, 4096]");
   command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
       ->capture_default_str();
   command->add_flag("-f,--force", flags->is_forced, "replace existing output files");
   command->callback([flags]() {
     set_thread_count(flags->threads);
-    if (flags->resolution == 0) {
-      throw InvalidInput("--voxels", "missing",
-                         "a voxel count in [2, 4096] (the tetrahedral mesomodel is not built yet)");
-    }
-    if (flags->resolution < 2 || flags->resolution > 4096) {
-      throw InvalidInput("--voxels", std::to_string(flags->resolution), "[2, 4096]");
-    }
-    flags->voxels.resolution = static_cast<std::uint32_t>(flags->resolution);
-    if (!(flags->voxels.itz_thickness >= 0.0) || !std::isfinite(flags->voxels.itz_thickness)) {
-      throw InvalidInput("--itz", format_value(flags->voxels.itz_thickness), ">= 0 (m)");
-    }
-    const bool is_vti = flags->output.ends_with(".vti");
-    if (!is_vti && !flags->output.ends_with(".raw")) {
-      throw InvalidInput("--output", flags->output, "a name ending in .vti or .raw");
+    if (!(flags->itz >= 0.0) || !std::isfinite(flags->itz)) {
+      throw InvalidInput("--itz", format_value(flags->itz), ">= 0 (m)");
     }
     const Overwrite overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
-    const std::string base =
-        is_vti ? flags->output : flags->output.substr(0, flags->output.size() - 4);
-    if (is_vti) {
-      check_writable(flags->output, overwrite);
+    if (flags->resolution != 0) {
+      run_voxels(*flags, overwrite);
     } else {
-      for (const char* suffix : {".phase.raw", ".particle.raw", ".json"}) {
-        check_writable(base + suffix, overwrite);
-      }
+      run_mesh(*flags, overwrite);
     }
-    const auto start = std::chrono::steady_clock::now();
-    const Packing packing = read_packing(flags->input);
-    const double half_side = 0.5 * packing.container.bounds().extent().minCoeff();
-    if (flags->voxels.itz_thickness >= half_side) {
-      throw InvalidInput(
-          "--itz", format_value(flags->voxels.itz_thickness),
-          "[0, " + format_value(half_side) + ") m: half the container's smallest side");
-    }
-    const VoxelImage image = voxelize(packing, flags->voxels);
-    if (is_vti) {
-      write_vti(flags->output, image, overwrite);
-    } else {
-      write_voxel_raw(base, image, packing, flags->voxels.itz_thickness, overwrite);
-    }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const auto counts = image.phase_counts();
-    const auto inside = static_cast<double>(counts[0] + counts[1] + counts[2]);
-    fmt::print("voxels        {} x {} x {} = {}, side {:.6g} m\n", image.dims[0], image.dims[1],
-               image.dims[2], image.count(), image.spacing);
-    fmt::print("fractions     aggregate {:.4f}, itz {:.4f}, mortar {:.4f} (of {} voxels inside)\n",
-               counts[2] / inside, counts[1] / inside, counts[0] / inside,
-               counts[0] + counts[1] + counts[2]);
-    fmt::print("wrote {} in {:.2f} s\n",
-               is_vti ? flags->output : base + ".phase.raw, .particle.raw, .json", seconds);
   });
 }
 

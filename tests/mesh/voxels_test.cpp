@@ -11,6 +11,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
+#include "aggpack/geom/halfspace.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/shape/generator.h"
 #include "support/packings.h"
@@ -20,17 +21,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-Packing box_with(double side, std::vector<ConvexPolyhedron> shapes, std::vector<Vec3> at) {
-  Packing packing = test::box_container(side, side, side);
-  packing.shapes = std::move(shapes);
-  for (std::size_t i = 0; i < at.size(); ++i) {
-    Particle particle;
-    particle.shape = static_cast<std::uint32_t>(i);
-    particle.pose.position = at[i];
-    packing.particles.push_back(particle);
-  }
-  return packing;
-}
+using test::box_with;
 
 TEST(OffsetShell, SteinerFormulaOfACubeAndATetrahedron) {
   const double a = 0.5;

@@ -60,13 +60,14 @@ void validate(const MesoOptions& options);
 struct MesoMesh {
   std::vector<Vec3> nodes;
   std::vector<Tetrahedron> tetrahedra;
-  std::vector<MesoPhase> phase;        ///< per tetrahedron
+  std::vector<MesoPhase> phase;         ///< per tetrahedron
   std::vector<std::uint32_t> particle;  ///< per tetrahedron: 1-based particle (aggregate, ITZ), 0
   std::uint32_t particle_count = 0;     ///< particles of the packing (ids 1..particle_count)
   Aabb bounds;                          ///< the container's bounding box (for face node sets)
   bool is_cylinder = false;             ///< the container is a cylinder (prism), axis z
   Vec3 axis_point = Vec3::Zero();       ///< cylinder: a point on its axis (x, y used)
   double cylinder_radius = 0.0;         ///< cylinder: radius of the circle the prism circumscribes
+  int cylinder_segments = 0;            ///< cylinder: sides of the prism (the first at angle 0)
   double itz_thickness = 0.0;           ///< m, as meshed
 };
 

@@ -52,7 +52,4 @@ VoxelImage voxelize(const Packing& packing, const VoxelOptions& options);
 /// Volume of the shell of thickness t around a convex body (Steiner's formula; m^3).
 double offset_shell_volume(const ConvexPolyhedron& body, double thickness);
 
-/// Distance from `point` to the convex body (0 inside).
-double distance_to_body(const ConvexPolyhedron& body, const Vec3& point);
-
 }  // namespace aggpack

@@ -1,0 +1,492 @@
+// The concrete mesomodel (mesh/mesomodel.h): container, aggregates and their mitred ITZ shells as
+// one piecewise linear complex, meshed by TetGen (mesomodel_tetgen.cpp), phases from regions.
+
+#include "aggpack/mesh/mesomodel.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+
+#include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
+#include "aggpack/geom/halfspace.h"
+#include "aggpack/geom/mass_properties.h"
+#include "aggpack/geom/overlap.h"
+#include "aggpack/pack/container.h"
+#include "mesomodel_plc.h"
+
+namespace aggpack {
+
+namespace {
+
+// The meshed container: a convex prism (a box, or the prism circumscribed about a cylinder).
+struct Prism {
+  std::vector<Vec3> points;
+  std::vector<std::vector<std::uint32_t>> faces;  // outward, counter-clockwise
+  std::vector<HalfSpace> planes;                  // one per face
+  double volume = 0.0;
+};
+
+Prism make_prism(const Container& container, int segments) {
+  Prism prism;
+  std::vector<Vec3> ring;  // the floor polygon, counter-clockwise seen from above
+  double height = 0.0;
+  if (const auto* box = container.get_if<BoxContainer>()) {
+    ring = {Vec3(0, 0, 0), Vec3(box->length, 0, 0), Vec3(box->length, box->width, 0),
+            Vec3(0, box->width, 0)};
+    height = box->depth;
+  } else if (const auto* cylinder = container.get_if<CylinderContainer>()) {
+    const double corner = cylinder->radius / std::cos(std::numbers::pi / segments);
+    for (int k = 0; k < segments; ++k) {
+      // Side k is tangent to the circle at angle 2 pi k / n; corners halfway between.
+      const double angle = std::numbers::pi * (2.0 * k + 1.0) / segments;
+      ring.emplace_back(corner * std::cos(angle), corner * std::sin(angle), 0.0);
+    }
+    height = cylinder->height;
+  }
+  const auto n = static_cast<std::uint32_t>(ring.size());
+  for (const Vec3& p : ring) prism.points.push_back(p);
+  for (const Vec3& p : ring) prism.points.emplace_back(p.x(), p.y(), height);
+  std::vector<std::uint32_t> floor;
+  std::vector<std::uint32_t> roof;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    floor.push_back(n - 1 - k);
+    roof.push_back(n + k);
+  }
+  prism.faces.push_back(floor);
+  prism.faces.push_back(roof);
+  double area = 0.0;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const std::uint32_t next = (k + 1) % n;
+    prism.faces.push_back({k, next, n + next, n + k});
+    area += 0.5 * ring[k].cross(ring[next]).z();
+  }
+  prism.volume = area * height;
+  prism.planes.push_back({-Vec3::UnitZ(), 0.0});
+  prism.planes.push_back({Vec3::UnitZ(), height});
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const Vec3 edge = ring[(k + 1) % n] - ring[k];
+    const Vec3 normal = Vec3(edge.y(), -edge.x(), 0.0).normalized();
+    prism.planes.push_back({normal, normal.dot(ring[k])});
+  }
+  return prism;
+}
+
+// What the mesher is told about one particle.
+struct Inclusion {
+  ConvexPolyhedron aggregate;
+  ConvexPolyhedron shell;  // the mitred offset clipped by the walls (empty without an ITZ)
+  double aggregate_volume = 0.0;
+  double shell_volume = 0.0;  // of the whole offset polyhedron
+  double mitre = 1.0;
+  double wall_clearance = 0.0;
+  Aabb bounds;  // of the outer body (shell, or aggregate without ITZ)
+};
+
+double regular_tetra_volume(double edge) { return edge * edge * edge / (6.0 * std::sqrt(2.0)); }
+
+// A number with `digits` significant digits (%g).
+std::string number(double value, int digits = 4) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  return text;
+}
+
+std::string metres(double value) { return number(value) + " m"; }
+
+// Refuses a packing whose outer bodies (ITZ shells, or aggregates without ITZ) meet.
+void check_gaps(const std::vector<Inclusion>& inclusions, const MesoOptions& options,
+                double min_gap) {
+  const bool has_itz = options.itz_thickness > 0.0;
+  std::vector<std::uint32_t> order(inclusions.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return inclusions[a].bounds.lower.x() < inclusions[b].bounds.lower.x();
+  });
+  const Pose identity{};
+  double worst = std::numeric_limits<double>::infinity();
+  std::uint32_t worst_a = 0;
+  std::uint32_t worst_b = 0;
+  std::size_t violations = 0;
+  for (std::size_t u = 0; u < order.size(); ++u) {
+    const Inclusion& a = inclusions[order[u]];
+    for (std::size_t w = u + 1; w < order.size(); ++w) {
+      const Inclusion& b = inclusions[order[w]];
+      if (b.bounds.lower.x() > a.bounds.upper.x() + min_gap) break;
+      if ((b.bounds.lower.array() > a.bounds.upper.array() + min_gap).any() ||
+          (a.bounds.lower.array() > b.bounds.upper.array() + min_gap).any()) {
+        continue;
+      }
+      const ConvexPolyhedron& body_a = has_itz ? a.shell : a.aggregate;
+      const ConvexPolyhedron& body_b = has_itz ? b.shell : b.aggregate;
+      const double d = gjk_distance(body_a, identity, body_b, identity).distance;
+      if (d > min_gap) continue;
+      ++violations;
+      const auto [i, j] = std::minmax(order[u], order[w]);
+      if (d < worst || (d == worst && std::make_pair(i, j) < std::make_pair(worst_a, worst_b))) {
+        worst = d;
+        worst_a = i;
+        worst_b = j;
+      }
+    }
+  }
+  if (violations == 0) return;
+  const double gap =
+      gjk_distance(inclusions[worst_a].aggregate, identity, inclusions[worst_b].aggregate, identity)
+          .distance;
+  double mitre = 1.0;
+  for (const Inclusion& inclusion : inclusions) mitre = std::max(mitre, inclusion.mitre);
+  const double needed =
+      has_itz ? 2.0 * mitre * options.itz_thickness + 2.0 * min_gap : 2.0 * min_gap;
+  const std::string itz =
+      has_itz ? ", their ITZ shells (" + metres(options.itz_thickness) + " thick) meet"
+              : " (aggregates must not touch)";
+  const std::string why = has_itz ? " (2 x ITZ thickness x the sharpest corner's mitre factor " +
+                                        number(mitre, 3) + ", plus the mesher's margin)"
+                                  : " (the mesher's margin)";
+  throw InvalidInput(
+      "particles " + std::to_string(worst_a + 1) + " and " + std::to_string(worst_b + 1),
+      metres(gap) + " apart" + itz + " (" + std::to_string(violations) + " such pairs)",
+      "pack with packer.gap >= " + metres(needed) + why);
+}
+
+}  // namespace
+
+const char* phase_set_name(MesoPhase phase) {
+  switch (phase) {
+    case MesoPhase::kMortar:
+      return "MORTAR";
+    case MesoPhase::kItz:
+      return "ITZ";
+    case MesoPhase::kAggregate:
+      return "AGGREGATE";
+  }
+  return "?";
+}
+
+void validate(const MesoOptions& options) {
+  const auto check = [](const char* field, double value, bool is_ok, const char* allowed) {
+    if (!is_ok || !std::isfinite(value)) throw InvalidInput(field, format_value(value), allowed);
+  };
+  check("itz_thickness", options.itz_thickness, options.itz_thickness >= 0.0, ">= 0 (m)");
+  check("aggregate_size", options.aggregate_size, options.aggregate_size >= 0.0,
+        ">= 0 (m), 0 = none");
+  check("mortar_size", options.mortar_size, options.mortar_size >= 0.0, ">= 0 (m), 0 = none");
+  check("radius_edge_ratio", options.radius_edge_ratio,
+        options.radius_edge_ratio >= 1.2 && options.radius_edge_ratio <= 10.0, "[1.2, 10]");
+  if (options.cylinder_segments < 8 || options.cylinder_segments > 4096) {
+    throw InvalidInput("cylinder_segments", std::to_string(options.cylinder_segments), "[8, 4096]");
+  }
+  check("min_dihedral", options.min_dihedral_degrees,
+        options.min_dihedral_degrees >= 0.0 && options.min_dihedral_degrees < 70.0,
+        "[0, 70) degrees");
+  if (!(options.max_aspect_ratio >= 1.0)) {
+    throw InvalidInput("max_aspect_ratio", format_value(options.max_aspect_ratio), ">= 1");
+  }
+  check("time_limit", options.time_limit,
+        options.time_limit >= 0.001 && options.time_limit <= 604800.0, "[0.001, 604800] s");
+}
+
+namespace {
+
+// Each particle's aggregate, shell, volumes and wall clearance; refuses a particle crossing or
+// touching a wall.
+std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& prism,
+                                       const MesoOptions& options, double min_gap) {
+  const double t = options.itz_thickness;
+  std::vector<Inclusion> inclusions(packing.particles.size());
+  parallel_for_index(0, inclusions.size(), [&](std::size_t i) {
+    Inclusion& inclusion = inclusions[i];
+    inclusion.aggregate = packing.placed(i);
+    inclusion.aggregate_volume = mass_properties(inclusion.aggregate).volume;
+    inclusion.wall_clearance = std::numeric_limits<double>::infinity();
+    for (const HalfSpace& wall : prism.planes) {
+      for (const Vec3& v : inclusion.aggregate.vertices()) {
+        inclusion.wall_clearance =
+            std::min(inclusion.wall_clearance, wall.offset - wall.normal.dot(v));
+      }
+    }
+    if (t > 0.0 && inclusion.wall_clearance > min_gap) {
+      inclusion.shell = mitred_offset(inclusion.aggregate, t, prism.planes, 1e-6 * t);
+      inclusion.shell_volume = mass_properties(inclusion.shell).volume;
+      const ConvexPolyhedron unclipped = mitred_offset(inclusion.aggregate, t, {}, 1e-6 * t);
+      inclusion.mitre = mitre_factor(inclusion.aggregate, unclipped, t);
+      inclusion.bounds = inclusion.shell.bounds();
+    } else {
+      inclusion.bounds = inclusion.aggregate.bounds();
+    }
+  });
+  for (std::size_t i = 0; i < inclusions.size(); ++i) {
+    if (inclusions[i].wall_clearance <= min_gap) {
+      throw InvalidInput("particle " + std::to_string(i + 1),
+                         metres(inclusions[i].wall_clearance) + " from a wall",
+                         "> " + metres(min_gap) +
+                             " (pack with container.wall_gap > 0, e.g. 1e-4 m: the mesomodel's "
+                             "aggregates must not touch the walls)");
+    }
+  }
+  return inclusions;
+}
+
+bool is_inside(const ConvexPolyhedron& body, const Vec3& point, double margin) {
+  for (const HalfSpace& plane : face_half_spaces(body)) {
+    if (plane.normal.dot(point) > plane.offset + margin) return false;
+  }
+  return true;
+}
+
+// A point of the mortar (outside every outer body by `margin`), searched on ever finer grids.
+bool find_mortar_seed(const std::vector<Inclusion>& inclusions, const Prism& prism, bool has_itz,
+                      double margin, Vec3& seed) {
+  Aabb box;
+  for (const Vec3& p : prism.points) box.expand(p);
+  for (int n = 2; n <= 32; n *= 2) {
+    for (int k = 0; k < n; ++k) {
+      for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n; ++i) {
+          const Vec3 p =
+              box.lower + (Vec3(i + 0.5, j + 0.5, k + 0.5) / n).cwiseProduct(box.extent());
+          bool is_free = true;
+          for (const HalfSpace& wall : prism.planes)
+            is_free &= wall.normal.dot(p) < wall.offset - margin;
+          for (std::size_t b = 0; is_free && b < inclusions.size(); ++b) {
+            const Inclusion& inclusion = inclusions[b];
+            if ((p.array() < inclusion.bounds.lower.array() - margin).any() ||
+                (p.array() > inclusion.bounds.upper.array() + margin).any()) {
+              continue;
+            }
+            is_free = !is_inside(has_itz ? inclusion.shell : inclusion.aggregate, p, margin);
+          }
+          if (is_free) {
+            seed = p;
+            return true;
+          }
+        }
+      }
+    }
+  }
+  return false;
+}
+
+// A point inside the ITZ shell of `inclusion`: off the middle of the aggregate face whose normal
+// has the most room before a wall, half way through the shell.
+Vec3 itz_seed(const Inclusion& inclusion, const Prism& prism, double t) {
+  const ConvexPolyhedron& body = inclusion.aggregate;
+  double best_room = -1.0;
+  Vec3 best = Vec3::Zero();
+  for (std::size_t f = 0; f < body.triangle_count(); ++f) {
+    const Vec3 n = body.face_normal(f);
+    if (!n.allFinite()) continue;
+    const Triangle& tri = body.triangles()[f];
+    const Vec3 centre =
+        (body.vertices()[tri[0]] + body.vertices()[tri[1]] + body.vertices()[tri[2]]) / 3.0;
+    double room = t;
+    for (const HalfSpace& wall : prism.planes) {
+      const double towards = wall.normal.dot(n);
+      if (towards > 0.0) room = std::min(room, (wall.offset - wall.normal.dot(centre)) / towards);
+    }
+    if (room > best_room) {
+      best_room = room;
+      best = centre + 0.5 * room * n;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, MesoReport* report) {
+  validate(options);
+  validate(packing.container);
+  const Prism prism = make_prism(packing.container, options.cylinder_segments);
+  Aabb box;
+  for (const Vec3& p : prism.points) box.expand(p);
+  const double size = box.extent().maxCoeff();
+  // Bodies closer than this count as touching (TetGen's own coplanarity tolerance is 1e-8 of the
+  // domain's size; stay well clear of it).
+  const double min_gap = 1e-7 * size;
+  const double t = options.itz_thickness;
+  const bool has_itz = t > 0.0;
+  const std::vector<Inclusion> inclusions = make_inclusions(packing, prism, options, min_gap);
+  check_gaps(inclusions, options, min_gap);
+
+  detail::Plc plc;
+  plc.points = prism.points;
+  const std::size_t wall_count = prism.faces.size();
+  for (std::size_t w = 0; w < wall_count; ++w) {
+    plc.facets.push_back({{prism.faces[w]}, -static_cast<int>(w) - 1});
+  }
+  const auto count = static_cast<int>(inclusions.size());
+  const double wall_tolerance = 1e-9 * size;
+  for (int i = 0; i < count; ++i) {
+    const Inclusion& inclusion = inclusions[static_cast<std::size_t>(i)];
+    const int id = i + 1;
+    auto base = static_cast<std::uint32_t>(plc.points.size());
+    plc.points.insert(plc.points.end(), inclusion.aggregate.vertices().begin(),
+                      inclusion.aggregate.vertices().end());
+    for (const Triangle& tri : inclusion.aggregate.triangles()) {
+      plc.facets.push_back({{{base + tri[0], base + tri[1], base + tri[2]}}, 2 * id});
+    }
+    plc.regions.push_back({mass_properties(inclusion.aggregate).centroid, id,
+                           regular_tetra_volume(options.aggregate_size)});
+    if (!has_itz) continue;
+    base = static_cast<std::uint32_t>(plc.points.size());
+    std::vector<int> wall_of(inclusion.shell.vertex_count(), -1);
+    for (std::size_t v = 0; v < inclusion.shell.vertex_count(); ++v) {
+      Vec3 p = inclusion.shell.vertices()[v];
+      for (std::size_t w = 0; w < wall_count; ++w) {
+        const HalfSpace& wall = prism.planes[w];
+        const double s = wall.normal.dot(p) - wall.offset;
+        if (std::abs(s) <= wall_tolerance) {
+          p -= s * wall.normal;  // exactly on an axis-aligned wall
+          for (int axis = 0; axis < 3; ++axis) {
+            if (std::abs(wall.normal[axis]) == 1.0) p[axis] = wall.offset * wall.normal[axis];
+          }
+          wall_of[v] = static_cast<int>(w);  // (a corner on two walls keeps the last)
+        }
+      }
+      plc.points.push_back(p);
+    }
+    for (const Triangle& tri : inclusion.shell.triangles()) {
+      // A triangle on a wall is the shell's footprint there: part of the wall's facet.
+      int on_wall = -1;
+      for (std::size_t w = 0; w < wall_count && on_wall < 0; ++w) {
+        bool is_on = true;
+        for (const std::uint32_t v : tri) {
+          const HalfSpace& wall = prism.planes[w];
+          is_on &= std::abs(wall.normal.dot(plc.points[base + v]) - wall.offset) <= wall_tolerance;
+        }
+        if (is_on) on_wall = static_cast<int>(w);
+      }
+      const std::vector<std::uint32_t> loop{base + tri[0], base + tri[1], base + tri[2]};
+      if (on_wall >= 0) {
+        plc.facets[static_cast<std::size_t>(on_wall)].polygons.push_back(loop);
+      } else {
+        plc.facets.push_back({{loop}, 2 * id + 1});
+      }
+    }
+    plc.regions.push_back({itz_seed(inclusion, prism, t), count + id, 0.0});
+  }
+  Vec3 mortar_seed;
+  if (find_mortar_seed(inclusions, prism, has_itz, min_gap, mortar_seed)) {
+    plc.regions.push_back({mortar_seed, 0, regular_tetra_volume(options.mortar_size)});
+  }
+
+  std::string switches = "pYzQAq" + number(options.radius_edge_ratio, 6);
+  if (options.aggregate_size > 0.0 || options.mortar_size > 0.0) switches += 'a';
+  const auto start = std::chrono::steady_clock::now();
+  detail::PlcMesh raw = detail::tetrahedralize_plc(plc, switches, options.time_limit);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  MesoMesh mesh;
+  mesh.nodes = std::move(raw.nodes);
+  mesh.tetrahedra = std::move(raw.tetrahedra);
+  mesh.phase.resize(mesh.tetrahedra.size(), MesoPhase::kMortar);
+  mesh.particle.resize(mesh.tetrahedra.size(), 0);
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    const int a = raw.attributes[e];
+    if (a >= 1 && a <= count) {
+      mesh.phase[e] = MesoPhase::kAggregate;
+      mesh.particle[e] = static_cast<std::uint32_t>(a);
+    } else if (a > count && a <= 2 * count) {
+      mesh.phase[e] = MesoPhase::kItz;
+      mesh.particle[e] = static_cast<std::uint32_t>(a - count);
+    }
+  }
+  mesh.particle_count = static_cast<std::uint32_t>(count);
+  mesh.bounds = box;
+  mesh.itz_thickness = t;
+  if (const auto* cylinder = packing.container.get_if<CylinderContainer>()) {
+    mesh.is_cylinder = true;
+    mesh.cylinder_radius = cylinder->radius;
+    mesh.cylinder_segments = options.cylinder_segments;
+  }
+
+  MesoReport measured = measure_mesomodel(mesh);
+  measured.container_volume = prism.volume;
+  measured.mesh_seconds = seconds;
+  measured.tetgen_switches = switches;
+  double aggregates = 0.0;
+  double shells = 0.0;
+  for (const Inclusion& inclusion : inclusions) {
+    aggregates += inclusion.aggregate_volume;
+    shells += has_itz ? inclusion.shell_volume : inclusion.aggregate_volume;
+  }
+  measured.phases[static_cast<int>(MesoPhase::kAggregate)].expected_volume = aggregates;
+  measured.phases[static_cast<int>(MesoPhase::kItz)].expected_volume = shells - aggregates;
+  measured.phases[static_cast<int>(MesoPhase::kMortar)].expected_volume = prism.volume - shells;
+  double min_dihedral = 180.0;
+  double max_aspect = 1.0;
+  for (const MesoPhaseReport& phase : measured.phases) {
+    if (phase.quality.tetrahedra == 0) continue;
+    min_dihedral = std::min(min_dihedral, phase.quality.min_dihedral_degrees);
+    max_aspect = std::max(max_aspect, phase.quality.max_aspect_ratio);
+  }
+  if (report != nullptr) *report = measured;
+  if (min_dihedral < options.min_dihedral_degrees) {
+    throw LimitExceeded("min_dihedral", number(min_dihedral, 3) + " degrees in the mesh",
+                        ">= " + number(options.min_dihedral_degrees) +
+                            " degrees (lower the bound, or raise the ITZ thickness or the gap: "
+                            "thin shells make flat tetrahedra)");
+  }
+  if (max_aspect > options.max_aspect_ratio) {
+    throw LimitExceeded("max_aspect_ratio", number(max_aspect) + " in the mesh",
+                        "<= " + number(options.max_aspect_ratio));
+  }
+  return mesh;
+}
+
+MesoReport measure_mesomodel(const MesoMesh& mesh) {
+  MesoReport report;
+  std::array<std::vector<Tetrahedron>, 3> by_phase;
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    by_phase[static_cast<int>(mesh.phase[e])].push_back(mesh.tetrahedra[e]);
+  }
+  for (int p = 0; p < 3; ++p) {
+    MesoPhaseReport& phase = report.phases[p];
+    std::vector<std::uint8_t> is_used(mesh.nodes.size(), 0);
+    for (const Tetrahedron& tet : by_phase[p]) {
+      phase.meshed_volume += tetra_volume(mesh.nodes[tet[0]], mesh.nodes[tet[1]],
+                                          mesh.nodes[tet[2]], mesh.nodes[tet[3]]);
+      for (const std::uint32_t node : tet) is_used[node] = 1;
+    }
+    phase.nodes = static_cast<std::uint64_t>(std::count(is_used.begin(), is_used.end(), 1));
+    phase.quality = measure_quality(mesh.nodes, by_phase[p]);
+  }
+  return report;
+}
+
+std::vector<std::uint32_t> face_nodes(const MesoMesh& mesh, SpecimenFace face) {
+  const double tolerance = 1e-9 * mesh.bounds.extent().maxCoeff();
+  std::vector<std::uint32_t> nodes;
+  for (std::uint32_t i = 0; i < mesh.nodes.size(); ++i) {
+    const Vec3& p = mesh.nodes[i];
+    const bool is_bottom = p.z() <= mesh.bounds.lower.z() + tolerance;
+    const bool is_top = p.z() >= mesh.bounds.upper.z() - tolerance;
+    bool is_side = false;
+    if (mesh.is_cylinder) {
+      const int n = mesh.cylinder_segments;
+      for (int k = 0; k < n && !is_side; ++k) {
+        const double angle = 2.0 * std::numbers::pi * k / n;
+        const double reach = std::cos(angle) * (p.x() - mesh.axis_point.x()) +
+                             std::sin(angle) * (p.y() - mesh.axis_point.y());
+        is_side = reach >= mesh.cylinder_radius - tolerance;
+      }
+    } else {
+      is_side = (p.head<2>().array() <= mesh.bounds.lower.head<2>().array() + tolerance).any() ||
+                (p.head<2>().array() >= mesh.bounds.upper.head<2>().array() - tolerance).any();
+    }
+    const bool is_wanted = face == SpecimenFace::kBottom ? is_bottom
+                           : face == SpecimenFace::kTop  ? is_top
+                                                         : is_side;
+    if (is_wanted) nodes.push_back(i);
+  }
+  return nodes;
+}
+
+}  // namespace aggpack

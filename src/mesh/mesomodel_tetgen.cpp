@@ -1,0 +1,209 @@
+// TetGen on a mesomodel's piecewise linear complex (mesomodel_plc.h), always in a worker process
+// (core/isolated.h): Debian's TetGen 1.5 can abort or loop on some inputs, and a failure must
+// cost the command, never the process that asked (the GUI, the Python module).
+
+#include <algorithm>
+#include <cstring>
+#include <set>
+#include <string>
+
+#include "aggpack/core/error.h"
+#include "aggpack/core/isolated.h"
+#include "mesomodel_plc.h"
+
+#ifdef AGGPACK_HAS_TETGEN
+#define TETLIBRARY
+#include <tetgen.h>
+#undef REAL
+#endif
+
+namespace aggpack::detail {
+
+#ifdef AGGPACK_HAS_TETGEN
+
+namespace {
+
+struct Failure {
+  std::string what;
+};
+
+void fill_input(const Plc& plc, tetgenio& in) {
+  in.firstnumber = 0;
+  in.numberofpoints = static_cast<int>(plc.points.size());
+  in.pointlist = new double[3 * plc.points.size()];
+  for (std::size_t i = 0; i < plc.points.size(); ++i) {
+    for (int axis = 0; axis < 3; ++axis) in.pointlist[3 * i + axis] = plc.points[i][axis];
+  }
+  in.numberoffacets = static_cast<int>(plc.facets.size());
+  in.facetlist = new tetgenio::facet[plc.facets.size()];
+  in.facetmarkerlist = new int[plc.facets.size()];
+  for (std::size_t f = 0; f < plc.facets.size(); ++f) {
+    const PlcFacet& source = plc.facets[f];
+    tetgenio::facet& facet = in.facetlist[f];
+    in.facetmarkerlist[f] = source.marker;
+    facet.numberofpolygons = static_cast<int>(source.polygons.size());
+    facet.polygonlist = new tetgenio::polygon[source.polygons.size()];
+    facet.numberofholes = 0;
+    facet.holelist = nullptr;
+    for (std::size_t p = 0; p < source.polygons.size(); ++p) {
+      const auto& loop = source.polygons[p];
+      facet.polygonlist[p].numberofvertices = static_cast<int>(loop.size());
+      facet.polygonlist[p].vertexlist = new int[loop.size()];
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        facet.polygonlist[p].vertexlist[k] = static_cast<int>(loop[k]);
+      }
+    }
+  }
+  in.numberofregions = static_cast<int>(plc.regions.size());
+  in.regionlist = new double[5 * plc.regions.size()];
+  for (std::size_t r = 0; r < plc.regions.size(); ++r) {
+    const PlcRegion& region = plc.regions[r];
+    for (int axis = 0; axis < 3; ++axis) in.regionlist[5 * r + axis] = region.seed[axis];
+    in.regionlist[5 * r + 3] = region.attribute;
+    in.regionlist[5 * r + 4] = region.max_volume > 0.0 ? region.max_volume : -1.0;
+  }
+}
+
+template <class T>
+void append_array(std::string& out, const std::vector<T>& values) {
+  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+// The mesh as the worker sends it: counts, then the arrays as they are in memory.
+std::string mesh_here(const Plc& plc, const std::string& switches) {
+  tetgenio in;
+  tetgenio out;
+  fill_input(plc, in);
+  std::string letters = switches;
+  try {
+    tetrahedralize(letters.data(), &in, &out);
+  } catch (int code) {
+    throw Failure{"TetGen error code " + std::to_string(code) +
+                  (code == 3   ? " (facets intersect)"
+                   : code == 1 ? " (out of memory)"
+                               : "")};
+  }
+  if (out.numberofcorners != 4 || out.numberoftetrahedra <= 0 ||
+      out.numberofpoints < in.numberofpoints || out.numberoftetrahedronattributes < 1) {
+    throw Failure{"TetGen made no tetrahedra"};
+  }
+  const std::uint64_t counts[2] = {static_cast<std::uint64_t>(out.numberofpoints),
+                                   static_cast<std::uint64_t>(out.numberoftetrahedra)};
+  std::string bytes(reinterpret_cast<const char*>(counts), sizeof counts);
+  bytes.append(reinterpret_cast<const char*>(out.pointlist), counts[0] * 3 * sizeof(double));
+  std::vector<std::uint32_t> corners(4 * counts[1]);
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    corners[i] = static_cast<std::uint32_t>(out.tetrahedronlist[i]);
+  }
+  append_array(bytes, corners);
+  std::vector<int> attributes(counts[1]);
+  const int stride = out.numberoftetrahedronattributes;
+  for (std::size_t e = 0; e < counts[1]; ++e) {
+    attributes[e] = static_cast<int>(out.tetrahedronattributelist[e * stride]);
+  }
+  append_array(bytes, attributes);
+  return bytes;
+}
+
+// Markers of the facets TetGen's -d finds intersecting, as text ("7 12 ..."), capped.
+std::string intersecting_markers_here(const Plc& plc) {
+  tetgenio in;
+  tetgenio out;
+  fill_input(plc, in);
+  std::string letters = "pdzQ";
+  try {
+    tetrahedralize(letters.data(), &in, &out);
+  } catch (int) {
+    return {};
+  }
+  std::set<int> markers;
+  if (out.trifacemarkerlist != nullptr) {
+    for (int f = 0; f < out.numberoftrifaces && markers.size() < 64; ++f) {
+      markers.insert(out.trifacemarkerlist[f]);
+    }
+  }
+  std::string text;
+  for (const int marker : markers) text += std::to_string(marker) + ' ';
+  return text;
+}
+
+PlcMesh deserialize(const std::string& bytes) {
+  std::uint64_t counts[2] = {0, 0};
+  if (bytes.size() < sizeof counts) throw Failure{"malformed result from the worker process"};
+  std::memcpy(counts, bytes.data(), sizeof counts);
+  const std::uint64_t expected =
+      sizeof counts + counts[0] * 3 * sizeof(double) + counts[1] * (4 * 4 + sizeof(int));
+  if (bytes.size() != expected) throw Failure{"malformed result from the worker process"};
+  const char* at = bytes.data() + sizeof counts;
+  PlcMesh mesh;
+  mesh.nodes.resize(counts[0]);
+  for (auto& node : mesh.nodes) {
+    std::memcpy(node.data(), at, 3 * sizeof(double));
+    at += 3 * sizeof(double);
+  }
+  mesh.tetrahedra.resize(counts[1]);
+  std::memcpy(mesh.tetrahedra.data(), at, counts[1] * sizeof(Tetrahedron));
+  at += counts[1] * sizeof(Tetrahedron);
+  mesh.attributes.resize(counts[1]);
+  std::memcpy(mesh.attributes.data(), at, counts[1] * sizeof(int));
+  for (Tetrahedron& tet : mesh.tetrahedra) {
+    for (const std::uint32_t node : tet) {
+      if (node >= mesh.nodes.size()) throw Failure{"malformed result from the worker process"};
+    }
+    // TetGen's orientation convention is the opposite of ours; fix by sign, not by belief.
+    if (tetra_volume(mesh.nodes[tet[0]], mesh.nodes[tet[1]], mesh.nodes[tet[2]],
+                     mesh.nodes[tet[3]]) < 0.0) {
+      std::swap(tet[0], tet[1]);
+    }
+  }
+  return mesh;
+}
+
+}  // namespace
+
+PlcMesh tetrahedralize_plc(const Plc& plc, const std::string& switches, double time_limit) {
+  const auto work = [&](std::size_t) {
+    try {
+      return 'M' + mesh_here(plc, switches);
+    } catch (const Failure& failure) {
+      return 'F' + failure.what;
+    }
+  };
+  const IsolatedOutcome outcome =
+      run_isolated(1, work, {.workers = 1, .time_limit = time_limit}).front();
+  std::string failure;
+  if (!outcome.is_done) {
+    failure = "TetGen " + outcome.failure;
+  } else if (!outcome.bytes.empty() && outcome.bytes[0] == 'F') {
+    failure = outcome.bytes.substr(1);
+  } else {
+    try {
+      return deserialize(outcome.bytes.substr(1));
+    } catch (const Failure& malformed) {
+      failure = malformed.what;
+    }
+  }
+  // Ask TetGen which facets meet, so the message can name the particles.
+  const IsolatedOutcome detected =
+      run_isolated(1, [&](std::size_t) { return intersecting_markers_here(plc); },
+                   {.workers = 1, .time_limit = time_limit})
+          .front();
+  if (detected.is_done && !detected.bytes.empty()) {
+    failure += "; intersecting facets (markers): " + detected.bytes;
+  }
+  throw LimitExceeded("mesomodel mesh", failure,
+                      "a complex TetGen can mesh (markers: 2k aggregate k, 2k+1 its ITZ, < 0 "
+                      "walls)");
+}
+
+#else
+
+PlcMesh tetrahedralize_plc(const Plc& /*plc*/, const std::string& /*switches*/,
+                           double /*time_limit*/) {
+  throw InvalidInput("mesomodel", "tetrahedral mesh",
+                     "--voxels (this build has no TetGen: install libtet1.5-dev)");
+}
+
+#endif
+
+}  // namespace aggpack::detail

@@ -1,0 +1,232 @@
+// The conforming mesomodel (mesh/mesomodel.h): phase volumes against the exact polyhedra, every
+// interface face shared by exactly one tetrahedron on each side, clipping at the walls, the
+// cylinder's prism, and the refusals.
+
+#include "aggpack/mesh/mesomodel.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "aggpack/core/error.h"
+#include "aggpack/geom/halfspace.h"
+#include "aggpack/geom/mass_properties.h"
+#include "aggpack/shape/generator.h"
+#include "support/packings.h"
+
+namespace aggpack {
+namespace {
+
+using test::box_with;
+
+double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-300); }
+
+// Every face of every tetrahedron: used once (on the container's boundary) or twice (inside),
+// and a face between two phases or two particles has one tetrahedron on each side.
+void expect_conforming(const MesoMesh& mesh) {
+  std::map<std::array<std::uint32_t, 3>, std::vector<std::size_t>> faces;
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    const Tetrahedron& tet = mesh.tetrahedra[e];
+    ASSERT_GT(tetra_volume(mesh.nodes[tet[0]], mesh.nodes[tet[1]], mesh.nodes[tet[2]],
+                           mesh.nodes[tet[3]]),
+              0.0)
+        << "tetrahedron " << e << " inverted or flat";
+    for (const auto& local : kTetraFaces) {
+      std::array<std::uint32_t, 3> key{tet[local[0]], tet[local[1]], tet[local[2]]};
+      std::sort(key.begin(), key.end());
+      faces[key].push_back(e);
+    }
+  }
+  const double tolerance = 1e-9 * mesh.bounds.extent().maxCoeff();
+  std::size_t interfaces = 0;
+  for (const auto& [key, users] : faces) {
+    ASSERT_LE(users.size(), 2U);
+    if (users.size() == 1) {
+      // A boundary face lies on the container's surface: on a wall plane of the box.
+      const Vec3 centre = (mesh.nodes[key[0]] + mesh.nodes[key[1]] + mesh.nodes[key[2]]) / 3.0;
+      if (!mesh.is_cylinder) {
+        const bool is_on_wall = ((centre - mesh.bounds.lower).cwiseAbs().minCoeff() <= tolerance) ||
+                                ((centre - mesh.bounds.upper).cwiseAbs().minCoeff() <= tolerance);
+        EXPECT_TRUE(is_on_wall) << "a face inside the container has one tetrahedron";
+      }
+      continue;
+    }
+    const std::size_t a = users[0];
+    const std::size_t b = users[1];
+    if (mesh.phase[a] != mesh.phase[b] || mesh.particle[a] != mesh.particle[b]) ++interfaces;
+  }
+  EXPECT_GT(interfaces, 0U);
+}
+
+void expect_exact_volumes(const MesoReport& report, double tolerance = 1e-9) {
+  for (const MesoPhaseReport& phase : report.phases) {
+    if (phase.expected_volume == 0.0) {
+      EXPECT_EQ(phase.meshed_volume, 0.0);
+      continue;
+    }
+    EXPECT_LT(relative(phase.meshed_volume, phase.expected_volume), tolerance)
+        << phase.meshed_volume << " vs " << phase.expected_volume;
+  }
+}
+
+TEST(Mesomodel, CubeInABoxHasExactPhaseVolumes) {
+  const ConvexPolyhedron cube = make_box(Vec3::Constant(-0.2), Vec3::Constant(0.2));
+  const Packing packing = box_with(1.0, {cube}, {Vec3(0.5, 0.5, 0.5)});
+  MesoOptions options;
+  options.itz_thickness = 0.05;
+  MesoReport report;
+  const MesoMesh mesh = build_mesomodel(packing, options, &report);
+  // Aggregate 0.4^3; the mitred offset of a cube is the cube 0.5^3; mortar the rest.
+  EXPECT_NEAR(report.phases[2].expected_volume, 0.064, 1e-15);
+  EXPECT_NEAR(report.phases[1].expected_volume, 0.125 - 0.064, 1e-15);
+  EXPECT_NEAR(report.phases[0].expected_volume, 1.0 - 0.125, 1e-15);
+  expect_exact_volumes(report);
+  expect_conforming(mesh);
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    EXPECT_EQ(mesh.particle[e] != 0, mesh.phase[e] != MesoPhase::kMortar);
+  }
+  // Face node sets: the box's 8 corners are on the bottom and top sets; every bottom node at z 0.
+  const auto bottom = face_nodes(mesh, SpecimenFace::kBottom);
+  const auto top = face_nodes(mesh, SpecimenFace::kTop);
+  EXPECT_GE(bottom.size(), 4U);
+  EXPECT_GE(top.size(), 4U);
+  for (const std::uint32_t n : bottom) EXPECT_EQ(mesh.nodes[n].z(), 0.0);
+  for (const std::uint32_t n : top) EXPECT_EQ(mesh.nodes[n].z(), 1.0);
+}
+
+TEST(Mesomodel, WithoutItzAggregatesMeetMortarDirectly) {
+  const ConvexPolyhedron cube = make_box(Vec3::Constant(-0.2), Vec3::Constant(0.2));
+  const Packing packing = box_with(1.0, {cube}, {Vec3(0.5, 0.5, 0.5)});
+  MesoReport report;
+  const MesoMesh mesh = build_mesomodel(packing, {}, &report);
+  EXPECT_EQ(report.phases[1].quality.tetrahedra, 0U);
+  EXPECT_NEAR(report.phases[0].expected_volume, 1.0 - 0.064, 1e-15);
+  expect_exact_volumes(report);
+  expect_conforming(mesh);
+}
+
+// Generated particles, one near a wall so that its ITZ shell is clipped by it.
+Packing generated_packing(std::size_t count, double side, double radius, std::uint64_t seed) {
+  std::vector<ConvexPolyhedron> shapes;
+  std::vector<Vec3> at;
+  const GeneratorOptions generator{.alpha = 0.5,
+                                   .radius_min = radius,
+                                   .radius_max = radius,
+                                   .edge_length = radius,
+                                   .seed = seed};
+  const int per_side = static_cast<int>(std::ceil(std::cbrt(static_cast<double>(count))));
+  const double pitch = side / per_side;
+  for (std::size_t i = 0; i < count; ++i) {
+    shapes.push_back(generate_particle(generator, i).body);
+    const int x = static_cast<int>(i) % per_side;
+    const int y = static_cast<int>(i) / per_side % per_side;
+    const int z = static_cast<int>(i) / per_side / per_side;
+    at.emplace_back((x + 0.5) * pitch, (y + 0.5) * pitch, (z + 0.5) * pitch);
+  }
+  return box_with(side, std::move(shapes), std::move(at));
+}
+
+TEST(Mesomodel, GeneratedParticlesWithAShellClippedByAWall) {
+  Packing packing = generated_packing(8, 0.04, 0.008, 3);
+  // Push particle 1 to 0.1 mm off the floor: its 0.3 mm shell is clipped there.
+  const double lowest = packing.placed(0).bounds().lower.z();
+  packing.particles[0].pose.position.z() -= lowest - 1e-4;
+  MesoOptions options;
+  options.itz_thickness = 3e-4;
+  MesoReport report;
+  const MesoMesh mesh = build_mesomodel(packing, options, &report);
+  expect_exact_volumes(report);
+  expect_conforming(mesh);
+  // The clipped shell is smaller than the whole offset polyhedron.
+  const ConvexPolyhedron aggregate = packing.placed(0);
+  const double whole = mass_properties(mitred_offset(aggregate, 3e-4, {}, 3e-10)).volume;
+  double shell = 0.0;
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    if (mesh.particle[e] != 1 || mesh.phase[e] != MesoPhase::kItz) continue;
+    const Tetrahedron& t = mesh.tetrahedra[e];
+    shell += tetra_volume(mesh.nodes[t[0]], mesh.nodes[t[1]], mesh.nodes[t[2]], mesh.nodes[t[3]]);
+  }
+  EXPECT_GT(shell, 0.0);
+  EXPECT_LT(shell, whole - mass_properties(aggregate).volume);
+  for (const MesoPhaseReport& phase : report.phases) EXPECT_GT(phase.quality.tetrahedra, 0U);
+}
+
+TEST(Mesomodel, CylinderIsItsCircumscribedPrism) {
+  Packing packing = generated_packing(1, 0.04, 0.008, 5);
+  Container cylinder;
+  cylinder.shape = CylinderContainer{.radius = 0.02, .height = 0.04};
+  packing.container = cylinder;
+  packing.particles[0].pose.position = Vec3(0.0, 0.0, 0.02);
+  MesoOptions options;
+  options.itz_thickness = 2e-4;
+  options.cylinder_segments = 32;
+  MesoReport report;
+  const MesoMesh mesh = build_mesomodel(packing, options, &report);
+  const double n = 32;
+  EXPECT_NEAR(report.container_volume, n * 0.02 * 0.02 * std::tan(std::numbers::pi / n) * 0.04,
+              1e-15);
+  expect_exact_volumes(report);
+  expect_conforming(mesh);
+  // Side nodes lie on the prism: their distance from the axis is between R and R / cos(pi/n).
+  const auto side = face_nodes(mesh, SpecimenFace::kSide);
+  ASSERT_GE(side.size(), 64U);
+  for (const std::uint32_t node : side) {
+    const double r = mesh.nodes[node].head<2>().norm();
+    EXPECT_GE(r, 0.02 * (1 - 1e-9));
+    EXPECT_LE(r, 0.02 / std::cos(std::numbers::pi / n) * (1 + 1e-9));
+  }
+}
+
+TEST(Mesomodel, RefusesShellsThatMeetAndNamesTheGap) {
+  const ConvexPolyhedron cube = make_box(Vec3::Constant(-0.1), Vec3::Constant(0.1));
+  // Two cubes 0.05 apart: a 0.03 ITZ makes their shells overlap (0.06 > 0.05).
+  const Packing packing = box_with(1.0, {cube, cube}, {Vec3(0.3, 0.5, 0.5), Vec3(0.55, 0.5, 0.5)});
+  MesoOptions options;
+  options.itz_thickness = 0.03;
+  try {
+    (void)build_mesomodel(packing, options);
+    FAIL() << "overlapping shells accepted";
+  } catch (const InvalidInput& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("particles 1 and 2"), std::string::npos) << message;
+    EXPECT_NE(message.find("0.05 m apart"), std::string::npos) << message;
+    EXPECT_NE(message.find("packer.gap >= 0.1039"), std::string::npos) << message;  // 2 sqrt3 t
+  }
+  options.itz_thickness = 0.02;  // the shells (cubes again) stay 0.01 apart
+  EXPECT_NO_THROW((void)build_mesomodel(packing, options));
+}
+
+TEST(Mesomodel, RefusesAParticleTouchingAWallAndBadOptions) {
+  const ConvexPolyhedron cube = make_box(Vec3::Constant(-0.1), Vec3::Constant(0.1));
+  const Packing packing = box_with(1.0, {cube}, {Vec3(0.1, 0.5, 0.5)});
+  try {
+    (void)build_mesomodel(packing, {});
+    FAIL() << "a particle on the wall accepted";
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("container.wall_gap"), std::string::npos);
+  }
+  MesoOptions options;
+  options.itz_thickness = -1;
+  EXPECT_THROW(validate(options), InvalidInput);
+  options = {};
+  options.radius_edge_ratio = 1.0;
+  EXPECT_THROW(validate(options), InvalidInput);
+  options = {};
+  options.cylinder_segments = 4;
+  EXPECT_THROW(validate(options), InvalidInput);
+}
+
+TEST(Mesomodel, QualityBoundsRefuseAPoorMesh) {
+  const ConvexPolyhedron cube = make_box(Vec3::Constant(-0.2), Vec3::Constant(0.2));
+  const Packing packing = box_with(1.0, {cube}, {Vec3(0.5, 0.5, 0.5)});
+  MesoOptions options;
+  options.itz_thickness = 0.001;  // a thin shell: flat tetrahedra
+  options.min_dihedral_degrees = 30.0;
+  EXPECT_THROW((void)build_mesomodel(packing, options), LimitExceeded);
+}
+
+}  // namespace
+}  // namespace aggpack
