@@ -150,7 +150,12 @@ void append_materials(const MesoMaterials& materials, const detail::MesoLayout& 
 // and about z and nothing else (three scalar constraints on three rigid modes): A is the bottom
 // node with the smallest (y, x), B the one farthest from A in x (then closest in y).
 std::array<std::uint32_t, 2> anchor_nodes(const MesoMesh& mesh,
-                                          const std::vector<std::uint32_t>& bottom) {
+                                          const std::vector<std::uint32_t>& bottom_nodes) {
+  // Corner nodes only (the mid-side nodes of C3D10, numbered after them, are not in mesh.nodes).
+  const auto corners = static_cast<long>(
+      std::lower_bound(bottom_nodes.begin(), bottom_nodes.end(), mesh.nodes.size()) -
+      bottom_nodes.begin());
+  const std::vector<std::uint32_t> bottom(bottom_nodes.begin(), bottom_nodes.begin() + corners);
   if (bottom.size() < 2) {
     throw InvalidInput("mesh bottom face", std::to_string(bottom.size()) + " nodes",
                        "at least 2 nodes (for the compression step)");

@@ -161,6 +161,7 @@ TEST(MesomodelFiles, QuadraticInpFaceSetsHoldExactlyTheNodesOnEachFace) {
   const std::string path = folder.file("q.inp");
   MesoFileOptions options;
   options.is_quadratic = true;
+  options.step.strain = 1e-3;
   const MesoFileSummary summary = write_mesomodel(path, specimen(0.3), options);
   EXPECT_GT(summary.nodes, 64U);  // the corners and a node on every edge
   const std::string text = test::read_text(path);
@@ -200,6 +201,12 @@ TEST(MesomodelFiles, QuadraticInpFaceSetsHoldExactlyTheNodesOnEachFace) {
       }
     }
   }
+  // The step's anchors: A at the bottom's smallest (y, x), B farthest from it in x.
+  std::smatch anchors;
+  ASSERT_TRUE(
+      std::regex_search(text, anchors, std::regex("\n(\\d+), 1, 2, 0\\.\n(\\d+), 2, 2, 0\\.\n")));
+  EXPECT_EQ(nodes[std::stoull(anchors[1])], Vec3(0, 0, 0));
+  EXPECT_EQ(nodes[std::stoull(anchors[2])], Vec3(0.3, 0, 0));
   for (const char* face : {"BOTTOM", "TOP", "SIDES"}) {
     std::string difference;
     for (const auto id : sets[face]) {
