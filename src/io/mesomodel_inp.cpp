@@ -112,11 +112,13 @@ void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const 
                 AGGPACK_VERSION, mesh.particle_count, mesh.tetrahedra.size(), type,
                 static_cast<unsigned long long>(nodes));
   out += line;
-  out += "** Written by aggpack (docs/mesomodel.md). Units: m, Pa, kg/m^3, N. ITZ thickness ";
-  append_real(out, mesh.itz_thickness);
-  out +=
-      " m.\n"
-      "** Element sets: AGGREGATE, ITZ (when the mesh has an ITZ), MORTAR";
+  const bool is_mm = options.units == MesoUnits::kMillimetre;
+  out += is_mm
+             ? "** Written by aggpack (docs/mesomodel.md). Units: mm, N, t, s, MPa. ITZ thickness "
+             : "** Written by aggpack (docs/mesomodel.md). Units: m, N, kg, s, Pa. ITZ thickness ";
+  append_real(out, mesh.itz_thickness * length_scale(options.units));
+  out += is_mm ? " mm.\n" : " m.\n";
+  out += "** Element sets: AGGREGATE, ITZ (when the mesh has an ITZ), MORTAR";
   if (options.has_particle_sets) out += "; per particle k (from 1) AGG<k> and ITZ<k>";
   out +=
       ".\n"
@@ -130,18 +132,20 @@ void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const 
   }
 }
 
-void append_materials(const MesoMaterials& materials, const detail::MesoLayout& layout,
-                      std::string& out) {
+// Materials in the file's units: E / s^2 (N per length unit squared), rho / s^4 (the mass unit
+// that keeps F = m a in N: kg x s), s being the length scale.
+void append_materials(const MesoMaterials& materials, double scale,
+                      const detail::MesoLayout& layout, std::string& out) {
   for (const MesoPhase phase : {MesoPhase::kAggregate, MesoPhase::kItz, MesoPhase::kMortar}) {
     if (layout.phase_begin(phase) == layout.phase_end(phase)) continue;  // no such elements
     const std::string name = phase_set_name(phase);
     const PhaseMaterial& material = materials.of(phase);
     out += "*MATERIAL, NAME=MAT_" + name + "\n*ELASTIC\n";
-    append_real(out, material.youngs_modulus);
+    append_real(out, material.youngs_modulus / (scale * scale));
     out += ", ";
     append_real(out, material.poisson_ratio);
     out += "\n*DENSITY\n";
-    append_real(out, material.density);
+    append_real(out, material.density / (scale * scale * scale * scale));
     out += ",\n*SOLID SECTION, ELSET=" + name + ", MATERIAL=MAT_" + name + "\n";
   }
 }
@@ -178,10 +182,10 @@ std::array<std::uint32_t, 2> anchor_nodes(const MesoMesh& mesh,
   return {a, b};
 }
 
-void append_step(const MesoMesh& mesh, const CompressionStep& step,
+void append_step(const MesoMesh& mesh, const CompressionStep& step, double scale,
                  const std::vector<std::uint32_t>& bottom, std::string& out) {
   const auto [a, b] = anchor_nodes(mesh, bottom);
-  const double height = mesh.bounds.upper.z() - mesh.bounds.lower.z();
+  const double height = (mesh.bounds.upper.z() - mesh.bounds.lower.z()) * scale;
   out += "*BOUNDARY\nBOTTOM, 3, 3, 0.\n";
   append_number(out, static_cast<std::uint64_t>(a) + 1);
   out += ", 1, 2, 0.\n";
@@ -207,6 +211,9 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
     quadratic = quadratic_topology(tets, static_cast<std::uint32_t>(mesh.nodes.size()));
     append_midside_nodes(quadratic, nodes);
   }
+  if (options.units != MesoUnits::kMetre) {
+    for (Vec3& node : nodes) node *= length_scale(options.units);
+  }
   const char* type = options.is_quadratic ? "C3D10" : "C3D4";
   const auto face_sets = face_node_sets(mesh, tets, quadratic);
   const std::vector<std::uint32_t>& bottom = face_sets[static_cast<int>(SpecimenFace::kBottom)];
@@ -228,8 +235,9 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
   append_node_set("BOTTOM", bottom, tail);
   append_node_set("TOP", face_sets[static_cast<int>(SpecimenFace::kTop)], tail);
   append_node_set("SIDES", face_sets[static_cast<int>(SpecimenFace::kSide)], tail);
-  append_materials(options.materials, layout, tail);
-  if (options.step.strain > 0.0) append_step(mesh, options.step, bottom, tail);
+  const double scale = length_scale(options.units);
+  append_materials(options.materials, scale, layout, tail);
+  if (options.step.strain > 0.0) append_step(mesh, options.step, scale, bottom, tail);
 
   detail::write_atomically(path, options.overwrite, [&](std::ostream& out) {
     std::string head;

@@ -36,12 +36,11 @@ constexpr double kSize = 0.1;      // m
 constexpr double kStrain = 1e-3;   // nominal compressive strain of the step
 constexpr double kPrinted = 1e-5;  // relative: ccx prints forces with 7 significant digits
 
-// Runs `name`.inp through ccx and returns E = (sum of RF_z over TOP / area) / strain.
+// Runs `name`.inp through ccx and returns E = (sum of RF_z over TOP / area) / strain, in the
+// file's units (Pa, or MPa with MesoUnits::kMillimetre).
 double effective_modulus(const ScratchFolder& folder, const MesoMesh& mesh, const std::string& name,
-                         bool is_quadratic = false) {
-  MesoFileOptions options;
+                         MesoFileOptions options = {}) {
   options.step.strain = kStrain;
-  options.is_quadratic = is_quadratic;
   write_mesomodel(folder.file(name + ".inp"), mesh, options);
   const auto run =
       test::run_command("cd " + folder.path().string() + " && OMP_NUM_THREADS=1 ccx -i " + name);
@@ -61,7 +60,7 @@ double effective_modulus(const ScratchFolder& folder, const MesoMesh& mesh, cons
     double fy = 0;
     double fz = 0;
     if (is_total && (std::istringstream(line) >> fx >> fy >> fz)) {
-      const Vec3 extent = mesh.bounds.extent();
+      const Vec3 extent = mesh.bounds.extent() * length_scale(options.units);
       EXPECT_LT(std::abs(fx), 1e-6 * std::abs(fz)) << line;  // no net shear on the top
       EXPECT_LT(std::abs(fy), 1e-6 * std::abs(fz)) << line;
       return -fz / (extent.x() * extent.y()) / kStrain;
@@ -73,8 +72,8 @@ double effective_modulus(const ScratchFolder& folder, const MesoMesh& mesh, cons
 
 // Four layers of cells along `axis`: aggregate (particle 1), ITZ (particle 1), mortar, aggregate
 // (particle 2): fractions 1/2, 1/4, 1/4.
-MesoMesh laminate(int axis) {
-  return test::cube_mesomodel(4, kSize, 2, [axis](int i, int j, int k) {
+MesoMesh laminate(int axis, double size = kSize) {
+  return test::cube_mesomodel(4, size, 2, [axis](int i, int j, int k) {
     const int layer = axis == 0 ? i : (axis == 1 ? j : k);
     switch (layer) {
       case 0:
@@ -99,10 +98,34 @@ TEST(MesomodelCcx, LayersAlongTheLoadGiveTheVoigtModulus) {
   const double modulus = effective_modulus(folder, mesh, "voigt");
   EXPECT_NEAR(modulus / bounds.voigt, 1.0, kPrinted) << modulus;
   // C3D10: the mid-side nodes of TOP and BOTTOM must be in their sets, or the answer is off.
-  const double quadratic = effective_modulus(folder, mesh, "voigt10", /*is_quadratic=*/true);
+  MesoFileOptions quadratic_options;
+  quadratic_options.is_quadratic = true;
+  const double quadratic = effective_modulus(folder, mesh, "voigt10", quadratic_options);
   EXPECT_NEAR(quadratic / bounds.voigt, 1.0, kPrinted) << quadratic;
   std::printf("Voigt laminate: E = %.7g Pa (C3D4), %.7g Pa (C3D10), Voigt %.7g\n", modulus,
               quadratic, bounds.voigt);
+}
+
+// ccx refuses a tetrahedron whose Jacobian determinant (6 x volume) is below 1e-20 in the file's
+// units. A 0.5 um cube of 4^3 cells has 6 V = (0.125 um)^3 = 1.95e-21 m^3: refused in metres,
+// fine in millimetres (1.95e-12 mm^3), where the Voigt laminate gives E_Voigt in MPa.
+TEST(MesomodelCcx, MillimetresRunWhereMetresHitCcxsJacobianFloor) {
+  AGGPACK_REQUIRE_READER("ccx");
+  ScratchFolder folder;
+  const MesoMesh mesh = laminate(0, 5e-7);
+  MesoFileOptions metres;
+  metres.step.strain = kStrain;
+  write_mesomodel(folder.file("tiny_m.inp"), mesh, metres);
+  const auto run =
+      test::run_command("cd " + folder.path().string() + " && OMP_NUM_THREADS=1 ccx -i tiny_m");
+  EXPECT_NE(run.output.find("nonpositive jacobian"), std::string::npos) << run.output;
+  MesoFileOptions millimetres;
+  millimetres.units = MesoUnits::kMillimetre;
+  const double modulus = effective_modulus(folder, mesh, "tiny_mm", millimetres);
+  EXPECT_NEAR(modulus / (voigt_reuss_bounds(mesh, {}).voigt * 1e-6), 1.0, kPrinted) << modulus;
+  const std::string text = test::read_text(folder.file("tiny_mm.inp"));
+  EXPECT_NE(text.find("*ELASTIC\n60000, 0.2\n*DENSITY\n2.7e-09,\n"), std::string::npos);
+  EXPECT_NE(text.find("Units: mm, N, t, s, MPa"), std::string::npos);
 }
 
 TEST(MesomodelCcx, LayersAcrossTheLoadGiveTheReussModulus) {

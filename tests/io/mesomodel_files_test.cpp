@@ -265,14 +265,7 @@ TEST(MesomodelFiles, GmshAndMeshioReadTheMshWithPhaseGroups) {
   EXPECT_EQ(test::trim(theirs.output), expected);
 }
 
-TEST(MesomodelFiles, VtkReadsTheVtuWithPhaseAndParticle) {
-  AGGPACK_REQUIRE_READER("vtk");
-  ScratchFolder folder;
-  const MesoMesh mesh = specimen(0.1);
-  const std::string path = folder.file("s.vtu");
-  const MesoFileSummary summary = write_mesomodel(path, mesh, {});
-  EXPECT_EQ(summary.format, MesoFileFormat::kVtu);
-  const auto result = test::run_python(folder, R"(
+constexpr const char* kVtkScript = R"(
 import sys
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter
@@ -293,8 +286,16 @@ print(grid.GetNumberOfPoints(), grid.GetNumberOfCells(), *sorted(types),
       data.GetArray("phase").GetDataTypeAsString(), data.GetArray("particle").GetDataTypeAsString(),
       "%.12g" % volume.sum(), int((volume > 0).all()))
 print(*["%d:%d" % (p, q) for p, q in zip(phase, particle)])
-)",
-                                       path);
+)";
+
+TEST(MesomodelFiles, VtkReadsTheVtuWithPhaseAndParticle) {
+  AGGPACK_REQUIRE_READER("vtk");
+  ScratchFolder folder;
+  const MesoMesh mesh = specimen(0.1);
+  const std::string path = folder.file("s.vtu");
+  const MesoFileSummary summary = write_mesomodel(path, mesh, {});
+  EXPECT_EQ(summary.format, MesoFileFormat::kVtu);
+  const auto result = test::run_python(folder, kVtkScript, path);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const auto lines = test::split(result.output, '\n');
   ASSERT_GE(lines.size(), 2U) << result.output;
@@ -302,6 +303,14 @@ print(*["%d:%d" % (p, q) for p, q in zip(phase, particle)])
   std::string order;
   for (const auto& cell : expected_order(mesh)) order += (order.empty() ? "" : " ") + cell;
   EXPECT_EQ(test::trim(lines[1]), order);
+  // In millimetres: the same cells, the volume 1e9 times larger.
+  MesoFileOptions millimetres;
+  millimetres.units = MesoUnits::kMillimetre;
+  write_mesomodel(folder.file("mm.vtu"), mesh, millimetres);
+  const auto scaled = test::run_python(folder, kVtkScript, folder.file("mm.vtu"));
+  ASSERT_EQ(scaled.exit_code, 0) << scaled.output;
+  EXPECT_EQ(test::trim(test::split(scaled.output, '\n')[0]),
+            "64 162 10 unsigned char unsigned int 1000000 1");
 }
 
 // ---- bad input -------------------------------------------------------------------------------
