@@ -41,6 +41,8 @@ const PhaseMaterial& MesoMaterials::of(MesoPhase phase) const {
   return mortar;
 }
 
+double length_scale(MesoUnits units) { return units == MesoUnits::kMillimetre ? 1000.0 : 1.0; }
+
 void validate(const MesoMaterials& materials) {
   validate_phase("aggregate", materials.aggregate);
   validate_phase("itz", materials.itz);
@@ -49,6 +51,9 @@ void validate(const MesoMaterials& materials) {
 
 void validate(const MesoFileOptions& options) {
   validate(options.materials);
+  if (options.units != MesoUnits::kMetre && options.units != MesoUnits::kMillimetre) {
+    throw InvalidInput("units", std::to_string(static_cast<int>(options.units)), "m or mm");
+  }
   if (!(options.step.strain >= 0.0 && options.step.strain <= 0.1)) {
     throw InvalidInput("step.strain", format_value(options.step.strain), "[0, 0.1]; 0 = no step");
   }

@@ -39,8 +39,8 @@ void append_node_set(const std::string& name, const std::vector<std::uint32_t>& 
   }
 }
 
-// Edges of the mesh's boundary triangles (faces of exactly one tetrahedron), sorted pairs.
-std::vector<std::array<std::uint32_t, 2>> boundary_edges(const std::vector<Tetrahedron>& tets) {
+// Boundary triangles of the mesh: faces of exactly one tetrahedron (sorted node triples).
+std::vector<std::array<std::uint32_t, 3>> boundary_triangles(const std::vector<Tetrahedron>& tets) {
   std::vector<std::array<std::uint32_t, 3>> faces;
   faces.reserve(4 * tets.size());
   for (const Tetrahedron& t : tets) {
@@ -51,44 +51,56 @@ std::vector<std::array<std::uint32_t, 2>> boundary_edges(const std::vector<Tetra
     }
   }
   std::sort(faces.begin(), faces.end());
-  std::vector<std::array<std::uint32_t, 2>> edges;
+  std::vector<std::array<std::uint32_t, 3>> boundary;
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;
     while (j < faces.size() && faces[j] == faces[i]) ++j;
-    if (j - i == 1) {
-      const auto& f = faces[i];
-      edges.push_back({f[0], f[1]});
-      edges.push_back({f[0], f[2]});
-      edges.push_back({f[1], f[2]});
-    }
+    if (j - i == 1) boundary.push_back(faces[i]);
     i = j;
   }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
+  return boundary;
 }
 
-// The face's nodes with, for C3D10, the mid-side node of every boundary edge whose two corners
-// are on the face (such an edge lies in the face: a specimen face is planar).
-std::vector<std::uint32_t> face_node_set(const MesoMesh& mesh, SpecimenFace face,
-                                         const QuadraticTopology& quadratic,
-                                         const std::vector<std::array<std::uint32_t, 2>>& edges) {
-  std::vector<std::uint32_t> nodes = face_nodes(mesh, face);
-  if (quadratic.midside_edges.empty()) return nodes;
-  const auto corner_count = static_cast<std::uint32_t>(mesh.nodes.size());
-  const std::size_t corners_on_face = nodes.size();
-  auto on_face = [&](std::uint32_t node) {
-    return std::binary_search(nodes.begin(), nodes.begin() + static_cast<long>(corners_on_face),
-                              node);
-  };
-  for (std::size_t e = 0; e < quadratic.midside_edges.size(); ++e) {
-    std::array<std::uint32_t, 2> edge = quadratic.midside_edges[e];
-    if (!on_face(edge[0]) || !on_face(edge[1])) continue;
-    if (edge[0] > edge[1]) std::swap(edge[0], edge[1]);
-    if (!std::binary_search(edges.begin(), edges.end(), edge)) continue;
-    nodes.push_back(corner_count + static_cast<std::uint32_t>(e));
+// Node sets BOTTOM, TOP and SIDES (index = SpecimenFace code): face_nodes(), and for C3D10 the
+// mid-side node of every edge of a boundary triangle on that face. A boundary triangle lies on
+// the bottom when its three corners do, on the top likewise, else on a side facet (a triangle
+// with its corners on two side facets - across a corner of the bottom, say - is not on a side).
+std::array<std::vector<std::uint32_t>, 3> face_node_sets(const MesoMesh& mesh,
+                                                         const std::vector<Tetrahedron>& tets,
+                                                         const QuadraticTopology& quadratic) {
+  std::array<std::vector<std::uint32_t>, 3> sets;
+  for (const SpecimenFace face : {SpecimenFace::kBottom, SpecimenFace::kTop, SpecimenFace::kSide}) {
+    sets[static_cast<int>(face)] = face_nodes(mesh, face);
   }
-  return nodes;  // still sorted: mid-side numbers follow the corners in edge order
+  if (quadratic.midside_edges.empty()) return sets;
+  auto is_in = [](const std::vector<std::uint32_t>& set, std::uint32_t node) {
+    return std::binary_search(set.begin(), set.end(), node);
+  };
+  std::array<std::vector<std::array<std::uint32_t, 2>>, 3> face_edges;
+  for (const auto& t : boundary_triangles(tets)) {
+    int face = static_cast<int>(SpecimenFace::kSide);
+    for (const SpecimenFace flat : {SpecimenFace::kBottom, SpecimenFace::kTop}) {
+      const auto& set = sets[static_cast<int>(flat)];
+      if (is_in(set, t[0]) && is_in(set, t[1]) && is_in(set, t[2])) face = static_cast<int>(flat);
+    }
+    face_edges[face].push_back({t[0], t[1]});
+    face_edges[face].push_back({t[0], t[2]});
+    face_edges[face].push_back({t[1], t[2]});
+  }
+  const auto corner_count = static_cast<std::uint32_t>(mesh.nodes.size());
+  for (int face = 0; face < 3; ++face) {
+    auto& edges = face_edges[face];
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    for (std::size_t e = 0; e < quadratic.midside_edges.size(); ++e) {
+      std::array<std::uint32_t, 2> edge = quadratic.midside_edges[e];
+      if (edge[0] > edge[1]) std::swap(edge[0], edge[1]);
+      if (std::binary_search(edges.begin(), edges.end(), edge)) {
+        sets[face].push_back(corner_count + static_cast<std::uint32_t>(e));
+      }
+    }
+  }
+  return sets;  // still sorted: mid-side nodes follow the corners, in edge order
 }
 
 void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const char* type,
@@ -100,11 +112,13 @@ void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const 
                 AGGPACK_VERSION, mesh.particle_count, mesh.tetrahedra.size(), type,
                 static_cast<unsigned long long>(nodes));
   out += line;
-  out += "** Written by aggpack (docs/mesomodel.md). Units: m, Pa, kg/m^3, N. ITZ thickness ";
-  append_real(out, mesh.itz_thickness);
-  out +=
-      " m.\n"
-      "** Element sets: AGGREGATE, ITZ (when the mesh has an ITZ), MORTAR";
+  const bool is_mm = options.units == MesoUnits::kMillimetre;
+  out += is_mm
+             ? "** Written by aggpack (docs/mesomodel.md). Units: mm, N, t, s, MPa. ITZ thickness "
+             : "** Written by aggpack (docs/mesomodel.md). Units: m, N, kg, s, Pa. ITZ thickness ";
+  append_real(out, mesh.itz_thickness * length_scale(options.units));
+  out += is_mm ? " mm.\n" : " m.\n";
+  out += "** Element sets: AGGREGATE, ITZ (when the mesh has an ITZ), MORTAR";
   if (options.has_particle_sets) out += "; per particle k (from 1) AGG<k> and ITZ<k>";
   out +=
       ".\n"
@@ -118,18 +132,20 @@ void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const 
   }
 }
 
-void append_materials(const MesoMaterials& materials, const detail::MesoLayout& layout,
-                      std::string& out) {
+// Materials in the file's units: E / s^2 (N per length unit squared), rho / s^4 (the mass unit
+// that keeps F = m a in N: kg x s), s being the length scale.
+void append_materials(const MesoMaterials& materials, double scale,
+                      const detail::MesoLayout& layout, std::string& out) {
   for (const MesoPhase phase : {MesoPhase::kAggregate, MesoPhase::kItz, MesoPhase::kMortar}) {
     if (layout.phase_begin(phase) == layout.phase_end(phase)) continue;  // no such elements
     const std::string name = phase_set_name(phase);
     const PhaseMaterial& material = materials.of(phase);
     out += "*MATERIAL, NAME=MAT_" + name + "\n*ELASTIC\n";
-    append_real(out, material.youngs_modulus);
+    append_real(out, material.youngs_modulus / (scale * scale));
     out += ", ";
     append_real(out, material.poisson_ratio);
     out += "\n*DENSITY\n";
-    append_real(out, material.density);
+    append_real(out, material.density / (scale * scale * scale * scale));
     out += ",\n*SOLID SECTION, ELSET=" + name + ", MATERIAL=MAT_" + name + "\n";
   }
 }
@@ -138,7 +154,12 @@ void append_materials(const MesoMaterials& materials, const detail::MesoLayout& 
 // and about z and nothing else (three scalar constraints on three rigid modes): A is the bottom
 // node with the smallest (y, x), B the one farthest from A in x (then closest in y).
 std::array<std::uint32_t, 2> anchor_nodes(const MesoMesh& mesh,
-                                          const std::vector<std::uint32_t>& bottom) {
+                                          const std::vector<std::uint32_t>& bottom_nodes) {
+  // Corner nodes only (the mid-side nodes of C3D10, numbered after them, are not in mesh.nodes).
+  const auto corners = static_cast<long>(
+      std::lower_bound(bottom_nodes.begin(), bottom_nodes.end(), mesh.nodes.size()) -
+      bottom_nodes.begin());
+  const std::vector<std::uint32_t> bottom(bottom_nodes.begin(), bottom_nodes.begin() + corners);
   if (bottom.size() < 2) {
     throw InvalidInput("mesh bottom face", std::to_string(bottom.size()) + " nodes",
                        "at least 2 nodes (for the compression step)");
@@ -161,10 +182,10 @@ std::array<std::uint32_t, 2> anchor_nodes(const MesoMesh& mesh,
   return {a, b};
 }
 
-void append_step(const MesoMesh& mesh, const CompressionStep& step,
+void append_step(const MesoMesh& mesh, const CompressionStep& step, double scale,
                  const std::vector<std::uint32_t>& bottom, std::string& out) {
   const auto [a, b] = anchor_nodes(mesh, bottom);
-  const double height = mesh.bounds.upper.z() - mesh.bounds.lower.z();
+  const double height = (mesh.bounds.upper.z() - mesh.bounds.lower.z()) * scale;
   out += "*BOUNDARY\nBOTTOM, 3, 3, 0.\n";
   append_number(out, static_cast<std::uint64_t>(a) + 1);
   out += ", 1, 2, 0.\n";
@@ -186,15 +207,16 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
   for (std::size_t i = 0; i < tets.size(); ++i) tets[i] = mesh.tetrahedra[layout.order[i]];
   QuadraticTopology quadratic;
   std::vector<Vec3> nodes = mesh.nodes;
-  std::vector<std::array<std::uint32_t, 2>> edges;
   if (options.is_quadratic) {
     quadratic = quadratic_topology(tets, static_cast<std::uint32_t>(mesh.nodes.size()));
     append_midside_nodes(quadratic, nodes);
-    edges = boundary_edges(tets);
+  }
+  if (options.units != MesoUnits::kMetre) {
+    for (Vec3& node : nodes) node *= length_scale(options.units);
   }
   const char* type = options.is_quadratic ? "C3D10" : "C3D4";
-  const std::vector<std::uint32_t> bottom =
-      face_node_set(mesh, SpecimenFace::kBottom, quadratic, edges);
+  const auto face_sets = face_node_sets(mesh, tets, quadratic);
+  const std::vector<std::uint32_t>& bottom = face_sets[static_cast<int>(SpecimenFace::kBottom)];
   std::string tail;  // everything after the elements; built first so that bad input writes nothing
   auto element_set_name = [&](std::size_t g) {
     const MesoPhase phase = layout.group_phase(g);
@@ -211,10 +233,11 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
     append_generated_set(phase_set_name(phase), begin + 1, end, tail);
   }
   append_node_set("BOTTOM", bottom, tail);
-  append_node_set("TOP", face_node_set(mesh, SpecimenFace::kTop, quadratic, edges), tail);
-  append_node_set("SIDES", face_node_set(mesh, SpecimenFace::kSide, quadratic, edges), tail);
-  append_materials(options.materials, layout, tail);
-  if (options.step.strain > 0.0) append_step(mesh, options.step, bottom, tail);
+  append_node_set("TOP", face_sets[static_cast<int>(SpecimenFace::kTop)], tail);
+  append_node_set("SIDES", face_sets[static_cast<int>(SpecimenFace::kSide)], tail);
+  const double scale = length_scale(options.units);
+  append_materials(options.materials, scale, layout, tail);
+  if (options.step.strain > 0.0) append_step(mesh, options.step, scale, bottom, tail);
 
   detail::write_atomically(path, options.overwrite, [&](std::ostream& out) {
     std::string head;

@@ -18,10 +18,10 @@ using detail::append_number;
 constexpr int kGmshTetrahedron = 4;
 constexpr std::uint32_t kUnassigned = std::numeric_limits<std::uint32_t>::max();
 
-void append_point(std::string& out, const Vec3& point) {
+void append_point(std::string& out, const Vec3& point, double scale) {
   for (int axis = 0; axis < 3; ++axis) {
     if (axis > 0) out += ' ';
-    append_number(out, point[axis]);
+    append_number(out, point[axis] * scale);  // exact when scale is 1
   }
 }
 
@@ -34,6 +34,7 @@ MesoFileSummary write_mesomodel_msh(const std::string& path, const MesoMesh& mes
   validate(mesh);
   check_writable(path, options.overwrite);
   const detail::MesoLayout layout = detail::make_layout(mesh);
+  const double scale = length_scale(options.units);
   const std::size_t groups = layout.group_count();
   // Each node's entity (group), its blocks, and each group's bounding box.
   std::vector<std::uint32_t> node_group(mesh.nodes.size(), kUnassigned);
@@ -84,9 +85,9 @@ MesoFileSummary write_mesomodel_msh(const std::string& path, const MesoMesh& mes
       if (layout.group_size(g) == 0) continue;
       append_number(text, static_cast<std::uint64_t>(g + 1));
       text += ' ';
-      append_point(text, boxes[g].lower);
+      append_point(text, boxes[g].lower, scale);
       text += ' ';
-      append_point(text, boxes[g].upper);
+      append_point(text, boxes[g].upper, scale);
       text += " 1 " + std::to_string(static_cast<int>(layout.group_phase(g)) + 1) + " 0\n";
     }
     text += "$EndEntities\n$Nodes\n" + std::to_string(node_blocks) + ' ' +
@@ -104,7 +105,7 @@ MesoFileSummary write_mesomodel_msh(const std::string& path, const MesoMesh& mes
         buffer += '\n';
       });
       detail::stream_items(end - begin, out, [&](std::size_t i, std::string& buffer) {
-        append_point(buffer, mesh.nodes[node_order[begin + i]]);
+        append_point(buffer, mesh.nodes[node_order[begin + i]], scale);
         buffer += '\n';
       });
     }

@@ -30,6 +30,7 @@ MesoFileSummary write_mesomodel_vtu(const std::string& path, const MesoMesh& mes
   validate(mesh);
   check_writable(path, options.overwrite);
   const detail::MesoLayout layout = detail::make_layout(mesh);
+  const double scale = length_scale(options.units);
   const std::uint64_t points = mesh.nodes.size();
   const std::uint64_t cells = mesh.tetrahedra.size();
   const ArraySpec arrays[] = {
@@ -89,7 +90,9 @@ MesoFileSummary write_mesomodel_vtu(const std::string& path, const MesoMesh& mes
     };
     begin_array();
     chunked(points, [&](std::uint64_t i, std::string& buffer) {
-      for (int axis = 0; axis < 3; ++axis) detail::append_bytes(buffer, mesh.nodes[i][axis]);
+      for (int axis = 0; axis < 3; ++axis) {
+        detail::append_bytes(buffer, mesh.nodes[i][axis] * scale);  // exact when scale is 1
+      }
     });
     begin_array();
     chunked(cells, [&](std::uint64_t i, std::string& buffer) {

@@ -21,8 +21,10 @@
 #include <random>
 
 #include "aggpack/io/mesomodel_files.h"
+#include "aggpack/shape/generator.h"
 #include "ccx_fixture.h"
 #include "mesomodel_fixture.h"
+#include "support/packings.h"
 #include "support/readers.h"
 
 namespace aggpack {
@@ -34,12 +36,11 @@ constexpr double kSize = 0.1;      // m
 constexpr double kStrain = 1e-3;   // nominal compressive strain of the step
 constexpr double kPrinted = 1e-5;  // relative: ccx prints forces with 7 significant digits
 
-// Runs `name`.inp through ccx and returns E = (sum of RF_z over TOP / area) / strain.
+// Runs `name`.inp through ccx and returns E = (sum of RF_z over TOP / area) / strain, in the
+// file's units (Pa, or MPa with MesoUnits::kMillimetre).
 double effective_modulus(const ScratchFolder& folder, const MesoMesh& mesh, const std::string& name,
-                         bool is_quadratic = false) {
-  MesoFileOptions options;
+                         MesoFileOptions options = {}) {
   options.step.strain = kStrain;
-  options.is_quadratic = is_quadratic;
   write_mesomodel(folder.file(name + ".inp"), mesh, options);
   const auto run =
       test::run_command("cd " + folder.path().string() + " && OMP_NUM_THREADS=1 ccx -i " + name);
@@ -59,7 +60,7 @@ double effective_modulus(const ScratchFolder& folder, const MesoMesh& mesh, cons
     double fy = 0;
     double fz = 0;
     if (is_total && (std::istringstream(line) >> fx >> fy >> fz)) {
-      const Vec3 extent = mesh.bounds.extent();
+      const Vec3 extent = mesh.bounds.extent() * length_scale(options.units);
       EXPECT_LT(std::abs(fx), 1e-6 * std::abs(fz)) << line;  // no net shear on the top
       EXPECT_LT(std::abs(fy), 1e-6 * std::abs(fz)) << line;
       return -fz / (extent.x() * extent.y()) / kStrain;
@@ -71,8 +72,8 @@ double effective_modulus(const ScratchFolder& folder, const MesoMesh& mesh, cons
 
 // Four layers of cells along `axis`: aggregate (particle 1), ITZ (particle 1), mortar, aggregate
 // (particle 2): fractions 1/2, 1/4, 1/4.
-MesoMesh laminate(int axis) {
-  return test::cube_mesomodel(4, kSize, 2, [axis](int i, int j, int k) {
+MesoMesh laminate(int axis, double size = kSize) {
+  return test::cube_mesomodel(4, size, 2, [axis](int i, int j, int k) {
     const int layer = axis == 0 ? i : (axis == 1 ? j : k);
     switch (layer) {
       case 0:
@@ -97,10 +98,34 @@ TEST(MesomodelCcx, LayersAlongTheLoadGiveTheVoigtModulus) {
   const double modulus = effective_modulus(folder, mesh, "voigt");
   EXPECT_NEAR(modulus / bounds.voigt, 1.0, kPrinted) << modulus;
   // C3D10: the mid-side nodes of TOP and BOTTOM must be in their sets, or the answer is off.
-  const double quadratic = effective_modulus(folder, mesh, "voigt10", /*is_quadratic=*/true);
+  MesoFileOptions quadratic_options;
+  quadratic_options.is_quadratic = true;
+  const double quadratic = effective_modulus(folder, mesh, "voigt10", quadratic_options);
   EXPECT_NEAR(quadratic / bounds.voigt, 1.0, kPrinted) << quadratic;
   std::printf("Voigt laminate: E = %.7g Pa (C3D4), %.7g Pa (C3D10), Voigt %.7g\n", modulus,
               quadratic, bounds.voigt);
+}
+
+// ccx refuses a tetrahedron whose Jacobian determinant (6 x volume) is below 1e-20 in the file's
+// units. A 0.5 um cube of 4^3 cells has 6 V = (0.125 um)^3 = 1.95e-21 m^3: refused in metres,
+// fine in millimetres (1.95e-12 mm^3), where the Voigt laminate gives E_Voigt in MPa.
+TEST(MesomodelCcx, MillimetresRunWhereMetresHitCcxsJacobianFloor) {
+  AGGPACK_REQUIRE_READER("ccx");
+  ScratchFolder folder;
+  const MesoMesh mesh = laminate(0, 5e-7);
+  MesoFileOptions metres;
+  metres.step.strain = kStrain;
+  write_mesomodel(folder.file("tiny_m.inp"), mesh, metres);
+  const auto run =
+      test::run_command("cd " + folder.path().string() + " && OMP_NUM_THREADS=1 ccx -i tiny_m");
+  EXPECT_NE(run.output.find("nonpositive jacobian"), std::string::npos) << run.output;
+  MesoFileOptions millimetres;
+  millimetres.units = MesoUnits::kMillimetre;
+  const double modulus = effective_modulus(folder, mesh, "tiny_mm", millimetres);
+  EXPECT_NEAR(modulus / (voigt_reuss_bounds(mesh, {}).voigt * 1e-6), 1.0, kPrinted) << modulus;
+  const std::string text = test::read_text(folder.file("tiny_mm.inp"));
+  EXPECT_NE(text.find("*ELASTIC\n60000, 0.2\n*DENSITY\n2.7e-09,\n"), std::string::npos);
+  EXPECT_NE(text.find("Units: mm, N, t, s, MPa"), std::string::npos);
 }
 
 TEST(MesomodelCcx, LayersAcrossTheLoadGiveTheReussModulus) {
@@ -141,6 +166,38 @@ TEST(MesomodelCcx, RandomMixLiesStrictlyBetweenReussAndVoigt) {
   EXPECT_LT(modulus, bounds.voigt * 0.99) << modulus << " voigt " << bounds.voigt;
   std::printf("random mix: E = %.6g Pa, Reuss %.6g, Voigt %.6g\n", modulus, bounds.reuss,
               bounds.voigt);
+}
+
+// Issue 16, item 4: a packed specimen meshed by build_mesomodel - 20 generated aggregates with a
+// 0.3 mm ITZ in a 40 mm cube - runs through the compression step; its modulus lies strictly
+// between the Reuss and Voigt moduli of its phases.
+TEST(MesomodelCcx, PackedSpecimenLiesBetweenReussAndVoigt) {
+  AGGPACK_REQUIRE_READER("ccx");
+  const double side = 0.04;
+  const GeneratorOptions generator{
+      .alpha = 0.5, .radius_min = 0.005, .radius_max = 0.005, .edge_length = 0.005, .seed = 16};
+  std::vector<ConvexPolyhedron> shapes;
+  std::vector<Vec3> at;
+  const double pitch = side / 3;
+  for (int i = 0; i < 20; ++i) {
+    shapes.push_back(generate_particle(generator, static_cast<std::uint64_t>(i)).body);
+    at.emplace_back((i % 3 + 0.5) * pitch, (i / 3 % 3 + 0.5) * pitch, (i / 9 + 0.5) * pitch);
+  }
+  MesoOptions meso;
+  meso.itz_thickness = 3e-4;
+  const MesoMesh mesh = build_mesomodel(test::box_with(side, shapes, at), meso);
+  ASSERT_EQ(mesh.particle_count, 20U);
+  const MesoModulusBounds bounds = voigt_reuss_bounds(mesh, {});
+  for (const double fraction : bounds.fractions) EXPECT_GT(fraction, 0.0);
+  ScratchFolder folder;
+  const double modulus = effective_modulus(folder, mesh, "packed");
+  EXPECT_GT(modulus, bounds.reuss * 1.01) << modulus << " reuss " << bounds.reuss;
+  EXPECT_LT(modulus, bounds.voigt * 0.99) << modulus << " voigt " << bounds.voigt;
+  std::printf(
+      "packed: %zu tetrahedra, fractions %.4f %.4f %.4f, E = %.6g Pa, Reuss %.6g, "
+      "Voigt %.6g\n",
+      mesh.tetrahedra.size(), bounds.fractions[0], bounds.fractions[1], bounds.fractions[2],
+      modulus, bounds.reuss, bounds.voigt);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <charconv>
 #include <map>
 #include <regex>
+#include <set>
 
 #include "aggpack/core/error.h"
 #include "ccx_fixture.h"
@@ -155,6 +156,73 @@ TEST(MesomodelFiles, InpWithoutParticleSetsOrStep) {
   EXPECT_EQ(without.find("NAME=MAT_ITZ"), std::string::npos);
 }
 
+TEST(MesomodelFiles, QuadraticInpFaceSetsHoldExactlyTheNodesOnEachFace) {
+  ScratchFolder folder;
+  const std::string path = folder.file("q.inp");
+  MesoFileOptions options;
+  options.is_quadratic = true;
+  options.step.strain = 1e-3;
+  const MesoFileSummary summary = write_mesomodel(path, specimen(0.3), options);
+  EXPECT_GT(summary.nodes, 64U);  // the corners and a node on every edge
+  const std::string text = test::read_text(path);
+  EXPECT_NE(text.find("*ELEMENT, TYPE=C3D10, ELSET=AGG1\n"), std::string::npos);
+  std::map<std::uint64_t, Vec3> nodes;
+  std::map<std::string, std::set<std::uint64_t>> sets;
+  std::istringstream in(text);
+  std::string line;
+  std::string block;
+  std::string name;
+  while (std::getline(in, line)) {
+    if (line.rfind("**", 0) == 0) continue;
+    if (line.rfind('*', 0) == 0) {
+      block = test::trim(test::split(line, ',')[0]);
+      std::smatch found;
+      name = std::regex_search(line, found, std::regex("NSET=([A-Z]+)")) ? found[1].str() : "";
+      continue;
+    }
+    const auto fields = test::split(line, ',');
+    if (block == "*NODE") {
+      nodes[std::stoull(fields[0])] =
+          Vec3(std::stod(fields[1]), std::stod(fields[2]), std::stod(fields[3]));
+    } else if (block == "*NSET") {
+      for (const auto& field : fields) {
+        if (!test::trim(field).empty()) sets[name].insert(std::stoull(field));
+      }
+    }
+  }
+  EXPECT_EQ(nodes.size(), summary.nodes);
+  std::map<std::string, std::set<std::uint64_t>> expected;
+  for (const auto& [id, p] : nodes) {
+    if (std::abs(p.z()) < 1e-12) expected["BOTTOM"].insert(id);
+    if (std::abs(p.z() - 0.3) < 1e-12) expected["TOP"].insert(id);
+    for (int axis = 0; axis < 2; ++axis) {
+      if (std::abs(p[axis]) < 1e-12 || std::abs(p[axis] - 0.3) < 1e-12) {
+        expected["SIDES"].insert(id);
+      }
+    }
+  }
+  // The step's anchors: A at the bottom's smallest (y, x), B farthest from it in x.
+  std::smatch anchors;
+  ASSERT_TRUE(
+      std::regex_search(text, anchors, std::regex("\n(\\d+), 1, 2, 0\\.\n(\\d+), 2, 2, 0\\.\n")));
+  EXPECT_EQ(nodes[std::stoull(anchors[1])], Vec3(0, 0, 0));
+  EXPECT_EQ(nodes[std::stoull(anchors[2])], Vec3(0.3, 0, 0));
+  for (const char* face : {"BOTTOM", "TOP", "SIDES"}) {
+    std::string difference;
+    for (const auto id : sets[face]) {
+      if (expected[face].count(id) == 0) difference += " +" + std::to_string(id);
+    }
+    for (const auto id : expected[face]) {
+      if (sets[face].count(id) == 0) {
+        difference += " -" + std::to_string(id) + "(" + std::to_string(nodes[id].x()) + "," +
+                      std::to_string(nodes[id].y()) + "," + std::to_string(nodes[id].z()) + ")";
+      }
+    }
+    EXPECT_EQ(difference, "") << face << " in the set (+) or on the face (-) only";
+    EXPECT_GT(sets[face].size(), 16U) << face;  // mid-side nodes included
+  }
+}
+
 constexpr const char* kMeshioScript = R"(
 import sys, meshio, collections
 mesh = meshio.read(sys.argv[1], file_format="gmsh")
@@ -197,14 +265,7 @@ TEST(MesomodelFiles, GmshAndMeshioReadTheMshWithPhaseGroups) {
   EXPECT_EQ(test::trim(theirs.output), expected);
 }
 
-TEST(MesomodelFiles, VtkReadsTheVtuWithPhaseAndParticle) {
-  AGGPACK_REQUIRE_READER("vtk");
-  ScratchFolder folder;
-  const MesoMesh mesh = specimen(0.1);
-  const std::string path = folder.file("s.vtu");
-  const MesoFileSummary summary = write_mesomodel(path, mesh, {});
-  EXPECT_EQ(summary.format, MesoFileFormat::kVtu);
-  const auto result = test::run_python(folder, R"(
+constexpr const char* kVtkScript = R"(
 import sys
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter
@@ -225,8 +286,16 @@ print(grid.GetNumberOfPoints(), grid.GetNumberOfCells(), *sorted(types),
       data.GetArray("phase").GetDataTypeAsString(), data.GetArray("particle").GetDataTypeAsString(),
       "%.12g" % volume.sum(), int((volume > 0).all()))
 print(*["%d:%d" % (p, q) for p, q in zip(phase, particle)])
-)",
-                                       path);
+)";
+
+TEST(MesomodelFiles, VtkReadsTheVtuWithPhaseAndParticle) {
+  AGGPACK_REQUIRE_READER("vtk");
+  ScratchFolder folder;
+  const MesoMesh mesh = specimen(0.1);
+  const std::string path = folder.file("s.vtu");
+  const MesoFileSummary summary = write_mesomodel(path, mesh, {});
+  EXPECT_EQ(summary.format, MesoFileFormat::kVtu);
+  const auto result = test::run_python(folder, kVtkScript, path);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const auto lines = test::split(result.output, '\n');
   ASSERT_GE(lines.size(), 2U) << result.output;
@@ -234,6 +303,14 @@ print(*["%d:%d" % (p, q) for p, q in zip(phase, particle)])
   std::string order;
   for (const auto& cell : expected_order(mesh)) order += (order.empty() ? "" : " ") + cell;
   EXPECT_EQ(test::trim(lines[1]), order);
+  // In millimetres: the same cells, the volume 1e9 times larger.
+  MesoFileOptions millimetres;
+  millimetres.units = MesoUnits::kMillimetre;
+  write_mesomodel(folder.file("mm.vtu"), mesh, millimetres);
+  const auto scaled = test::run_python(folder, kVtkScript, folder.file("mm.vtu"));
+  ASSERT_EQ(scaled.exit_code, 0) << scaled.output;
+  EXPECT_EQ(test::trim(test::split(scaled.output, '\n')[0]),
+            "64 162 10 unsigned char unsigned int 1000000 1");
 }
 
 // ---- bad input -------------------------------------------------------------------------------

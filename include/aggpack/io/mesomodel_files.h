@@ -11,7 +11,7 @@
 // Every format writes the elements in the same order, so element i (1-based) is the same
 // tetrahedron in all three: the aggregates particle by particle, then the ITZ shells particle by
 // particle, then the mortar, each group in the mesh's order (docs/mesomodel.md, "Files").
-// Units are SI (m, Pa, kg/m^3) throughout.
+// Units are SI (m, Pa, kg/m^3) unless MesoFileOptions::units asks for mm (mm, N, t, s, MPa).
 
 #include <cstdint>
 #include <string>
@@ -52,10 +52,23 @@ struct CompressionStep {
   double strain = 0.0;
 };
 
+/// Units of the written file. The mesh and the materials are always given in SI; kMillimetre
+/// writes the consistent mm, N, t (tonne), s, MPa system that Abaqus and CalculiX users often
+/// prefer: coordinates x 1000, Young's moduli in MPa (x 1e-6), densities in t/mm^3 (x 1e-12).
+/// CalculiX refuses an element whose Jacobian determinant (6 x volume for a tetrahedron) is below
+/// 1e-20 in the file's units ("nonpositive jacobian"), i.e. a tetrahedron under 1.7e-21 m^3 in
+/// metres - the ITZ's slivers can be that small - but under 1.7e-30 m^3 in millimetres.
+enum class MesoUnits : std::uint8_t { kMetre, kMillimetre };
+
+/// Length of one metre in the file's units (1 or 1000).
+double length_scale(MesoUnits units);
+
 /// How to write a mesomodel file.
 struct MesoFileOptions {
   MesoMaterials materials;
   CompressionStep step;
+  /// Units of coordinates (all formats) and of materials and the step (.inp).
+  MesoUnits units = MesoUnits::kMetre;
   /// .inp only: 10-node tetrahedra (C3D10, straight-sided: a node at the middle of every edge).
   bool is_quadratic = false;
   /// .inp only: element sets AGG<k> and ITZ<k> for every particle k (1-based) that has elements.
