@@ -31,6 +31,7 @@ struct MesomodelFlags {
   MesoOptions mesh;
   MesoFileOptions file;
   std::vector<std::string> materials;
+  std::string units = "mm";
   bool has_no_particle_sets = false;
   int threads = 0;
   bool is_forced = false;
@@ -139,6 +140,7 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   validate(flags.mesh);
   for (const std::string& text : flags.materials) apply_material(text, flags.file.materials);
   flags.file.has_particle_sets = !flags.has_no_particle_sets;
+  flags.file.units = flags.units == "m" ? MesoUnits::kMetre : MesoUnits::kMillimetre;
   flags.file.overwrite = overwrite;
   validate(flags.file);
   (void)mesomodel_format(flags.output);  // refuse a wrong extension before the work
@@ -215,6 +217,12 @@ void register_mesomodel(CLI::App& app) {
   command->add_option("--material", flags->materials,
                       ".inp: NAME=E,NU,RHO for aggregate, itz or mortar (Pa, -, kg/m^3); defaults "
                       "60e9,0.2,2700 / 15e9,0.2,2000 / 25e9,0.2,2200");
+  command
+      ->add_option("--units", flags->units,
+                   "length unit of the files: mm (N, MPa, t/mm^3; CalculiX accepts the ITZ's "
+                   "thin tetrahedra) or m (SI)")
+      ->check(CLI::IsMember({"mm", "m"}))
+      ->capture_default_str();
   command->add_flag("--quadratic", flags->file.is_quadratic, ".inp: 10-node tetrahedra (C3D10)");
   command->add_flag("--no-particle-sets", flags->has_no_particle_sets,
                     ".inp: leave out the per-particle element sets AGG<k>, ITZ<k>");

@@ -1,5 +1,7 @@
-// The concrete mesomodel (mesh/mesomodel.h): container, aggregates and their mitred ITZ shells as
-// one piecewise linear complex, meshed by TetGen (mesomodel_tetgen.cpp), phases from regions.
+// The concrete mesomodel (mesh/mesomodel.h): container, aggregates and the outer surfaces of their
+// ITZ layers as one piecewise linear complex meshed by TetGen (mesomodel_tetgen.cpp; the layers
+// are holes there), phases from TetGen's regions checked against the geometry, then the layers
+// filled with prisms (mesomodel_itz.cpp).
 
 #include "aggpack/mesh/mesomodel.h"
 

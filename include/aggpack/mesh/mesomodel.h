@@ -4,15 +4,19 @@
 //
 // Geometry, exact by construction:
 //  - aggregate k is the packing's convex polyhedron k, its surface triangles kept as they are;
-//  - its ITZ is the shell between that polyhedron and its mitred offset (every face plane moved
-//    out by the ITZ thickness t; geom/halfspace.h), clipped by the container: a polyhedron, so
-//    its volume is exact (it exceeds Steiner's rounded shell by the corner wedges);
+//  - its ITZ is a layer over those triangles: every aggregate vertex is moved out by the
+//    displacement that moves each of its face planes out by the ITZ thickness t (exactly for a
+//    vertex of three faces, in the least-squares sense for more), and each aggregate triangle
+//    with its moved copy bounds a prism of three tetrahedra (so the layer is t thick everywhere
+//    up to the least-squares residual, and its tetrahedra are as flat as t / the triangle size,
+//    never slivers). Near a wall the displacement shrinks so half the aggregate's clearance
+//    stays mortar;
 //  - the mortar is the container (a box, or a cylinder as the prism circumscribed about it with
-//    `cylinder_segments` sides) minus the aggregates and their ITZ shells.
-// TetGen (run in a worker process, core/isolated.h) tetrahedralises that piecewise linear complex
-// keeping every input triangle (switch Y), so phase volumes are sums over the exact polyhedra.
-// Each tetrahedron's phase comes from TetGen's regions (a seed point per aggregate, shell and the
-// mortar) and is then checked against the geometry (its centroid's place among the polyhedra).
+//    `cylinder_segments` sides) minus the aggregates and their layers.
+// TetGen (run in a worker process, core/isolated.h) tetrahedralises aggregates and mortar with
+// the layers as holes, keeping every input triangle (switch Y), so the layers' prisms share its
+// nodes and every phase volume is a sum over exact polyhedra (checked, 1e-9). Each TetGen
+// tetrahedron's phase comes from its region seed and is checked against the geometry.
 
 #include <array>
 #include <cstdint>
@@ -33,17 +37,16 @@ const char* phase_set_name(MesoPhase phase);
 
 struct MesoOptions {
   /// ITZ thickness t (m), >= 0; 0 = no ITZ (aggregates bonded directly to mortar). Typical
-  /// 20-50 um; the mitred offsets of two particles must not meet (checked, see build_mesomodel).
+  /// 20-50 um; the layers of two particles must not meet (checked, see build_mesomodel).
   double itz_thickness = 0.0;
   /// Target element edge length in the aggregates and in the mortar (m); 0 = no size bound
   /// (TetGen's quality bound alone). The bound passed to TetGen is the volume of the regular
   /// tetrahedron of that edge, h^3 / (6 sqrt 2).
   double aggregate_size = 0.0;
   double mortar_size = 0.0;
-  /// TetGen's radius-edge bound (-q): 0 = none (the default), else in [1.2, 10]. Measured: with
-  /// thin ITZ shells and the input triangles kept, Debian's TetGen 1.5 then often loops until the
-  /// time limit or aborts (docs/mesomodel.md); without a shell it works. Without -q TetGen adds
-  /// only the points it needs, and the quality is reported.
+  /// TetGen's radius-edge bound (-q) for aggregates and mortar: 0 = none (the default), else in
+  /// [1.2, 10]. It improves the aggregates' tetrahedra; the mortar's worst ones sit in the thin
+  /// gaps between the kept surfaces, which -q cannot split (docs/mesomodel.md).
   double radius_edge_ratio = 0.0;
   /// Sides of the prism that stands in for a cylinder container (circumscribed), [8, 4096].
   int cylinder_segments = 96;
