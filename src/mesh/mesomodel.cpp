@@ -79,6 +79,43 @@ Prism make_prism(const Container& container, int segments) {
   return prism;
 }
 
+// Points on a square grid of `spacing` inside wall `w` of the prism, at least a quarter spacing
+// from its edges.
+std::vector<Vec3> wall_grid(const Prism& prism, std::size_t w, double spacing) {
+  const auto& face = prism.faces[w];
+  const Vec3 normal = prism.planes[w].normal;
+  const Vec3 origin = prism.points[face[0]];
+  const Vec3 u = (prism.points[face[1]] - origin).normalized();
+  const Vec3 v = normal.cross(u);
+  double u_lo = 0, u_hi = 0, v_lo = 0, v_hi = 0;
+  for (const std::uint32_t k : face) {
+    const Vec3 d = prism.points[k] - origin;
+    u_lo = std::min(u_lo, d.dot(u));
+    u_hi = std::max(u_hi, d.dot(u));
+    v_lo = std::min(v_lo, d.dot(v));
+    v_hi = std::max(v_hi, d.dot(v));
+  }
+  std::vector<Vec3> points;
+  const auto nu = static_cast<int>(std::ceil((u_hi - u_lo) / spacing));
+  const auto nv = static_cast<int>(std::ceil((v_hi - v_lo) / spacing));
+  if (nu < 2 || nv < 2) return points;
+  for (int j = 1; j < nv; ++j) {
+    for (int i = 1; i < nu; ++i) {
+      const Vec3 p =
+          origin + (u_lo + (u_hi - u_lo) * i / nu) * u + (v_lo + (v_hi - v_lo) * j / nv) * v;
+      bool is_inside = true;  // at least a quarter spacing inside every edge (convex face)
+      for (std::size_t k = 0; k < face.size() && is_inside; ++k) {
+        const Vec3& a = prism.points[face[k]];
+        const Vec3& b = prism.points[face[(k + 1) % face.size()]];
+        const Vec3 inward = normal.cross(b - a).normalized();
+        is_inside = inward.dot(p - a) >= 0.25 * spacing;
+      }
+      if (is_inside) points.push_back(p);
+    }
+  }
+  return points;
+}
+
 // What the mesher is told about one particle.
 struct Inclusion {
   ConvexPolyhedron aggregate;
@@ -375,9 +412,17 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
 
   detail::Plc plc;
   plc.points = prism.points;
-  const std::size_t wall_count = prism.faces.size();
-  for (std::size_t w = 0; w < wall_count; ++w) {
-    plc.facets.push_back({{prism.faces[w]}, -static_cast<int>(w) - 1});
+  // Walls: each a facet with points on a grid inside it (one-vertex polygons), so that the mortar
+  // at the walls, and the node sets a load acts on, are not a handful of long triangles (-Y keeps
+  // every input facet as TetGen triangulates it, adding no point of its own).
+  const double wall_spacing = options.mortar_size > 0.0 ? options.mortar_size : size / 50.0;
+  for (std::size_t w = 0; w < prism.faces.size(); ++w) {
+    detail::PlcFacet facet{{prism.faces[w]}, -static_cast<int>(w) - 1};
+    for (const Vec3& p : wall_grid(prism, w, wall_spacing)) {
+      facet.polygons.push_back({static_cast<std::uint32_t>(plc.points.size())});
+      plc.points.push_back(p);
+    }
+    plc.facets.push_back(std::move(facet));
   }
   const auto count = static_cast<int>(inclusions.size());
   std::vector<std::uint32_t> aggregate_base;  // PLC number of each aggregate's first vertex
