@@ -16,7 +16,11 @@ namespace aggpack {
 
 namespace {
 
-using PolygonMesh = PolygonBody;
+// A convex polyhedron as face loops (outward, counter-clockwise) over one vertex array.
+struct PolygonMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::vector<std::uint32_t>> faces;
+};
 
 PolygonMesh from_triangles(const ConvexPolyhedron& body) {
   PolygonMesh mesh;
@@ -140,12 +144,10 @@ bool has_straight_corner(const std::vector<Vec3>& vertices,
   return false;
 }
 
-}  // namespace
-
 // Fan triangulation of every face loop; a loop with a straight corner (a cut through a coplanar
 // pair of triangles leaves one on the cap's edge) is fanned from its centroid instead, a new
 // vertex on the face.
-ConvexPolyhedron triangulate(const PolygonBody& mesh) {
+ConvexPolyhedron triangulate(const PolygonMesh& mesh) {
   std::vector<std::uint32_t> index(mesh.vertices.size(), UINT32_MAX);
   std::vector<Vec3> vertices;
   std::vector<Triangle> triangles;
@@ -173,8 +175,6 @@ ConvexPolyhedron triangulate(const PolygonBody& mesh) {
   }
   return {std::move(vertices), std::move(triangles)};
 }
-
-namespace {
 
 // An axis-aligned box as six quadrilaterals (no diagonals to cut through).
 PolygonMesh box_mesh(const Vec3& lower, const Vec3& upper) {
@@ -257,7 +257,9 @@ std::vector<HalfSpace> face_half_spaces(const ConvexPolyhedron& body) {
   return planes;
 }
 
-PolygonBody mitred_offset_faces(const ConvexPolyhedron& body, double thickness,
+namespace {
+
+PolygonMesh mitred_offset_faces(const ConvexPolyhedron& body, double thickness,
                                 std::span<const HalfSpace> bounds, double tolerance) {
   if (!(thickness > 0.0) || !std::isfinite(thickness)) {
     throw InvalidInput("offset thickness", std::to_string(thickness), "> 0 (m)");
@@ -278,7 +280,7 @@ PolygonBody mitred_offset_faces(const ConvexPolyhedron& body, double thickness,
   }
   // Keep only the vertices the faces use, numbered in order of first use.
   std::vector<std::uint32_t> index(mesh.vertices.size(), UINT32_MAX);
-  PolygonBody result;
+  PolygonMesh result;
   for (auto& face : mesh.faces) {
     for (std::uint32_t& v : face) {
       if (index[v] == UINT32_MAX) {
@@ -299,58 +301,13 @@ PolygonBody mitred_offset_faces(const ConvexPolyhedron& body, double thickness,
   return result;
 }
 
+}  // namespace
+
 ConvexPolyhedron mitred_offset(const ConvexPolyhedron& body, double thickness,
                                std::span<const HalfSpace> bounds, double tolerance) {
-  const PolygonBody faces = mitred_offset_faces(body, thickness, bounds, tolerance);
+  const PolygonMesh faces = mitred_offset_faces(body, thickness, bounds, tolerance);
   if (faces.faces.empty()) return {};
   return triangulate(faces);
-}
-
-std::vector<bool> merge_short_edges(PolygonBody& body, double length) {
-  std::vector<std::uint32_t> parent(body.vertices.size());
-  for (std::uint32_t v = 0; v < parent.size(); ++v) parent[v] = v;
-  const auto root = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const auto& face : body.faces) {
-    for (std::size_t k = 0; k < face.size(); ++k) {
-      const std::uint32_t a = face[k];
-      const std::uint32_t b = face[(k + 1) % face.size()];
-      if ((body.vertices[a] - body.vertices[b]).norm() >= length) continue;
-      const std::uint32_t ra = root(a);
-      const std::uint32_t rb = root(b);
-      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
-    }
-  }
-  std::vector<bool> is_changed;
-  std::vector<std::vector<std::uint32_t>> faces;
-  for (const auto& face : body.faces) {
-    std::vector<std::uint32_t> loop;
-    for (const std::uint32_t v : face) {
-      const std::uint32_t r = root(v);
-      if (loop.empty() || loop.back() != r) loop.push_back(r);
-    }
-    while (loop.size() > 1 && loop.front() == loop.back()) loop.pop_back();
-    if (loop.size() < 3) continue;
-    is_changed.push_back(loop.size() != face.size() ||
-                         !std::equal(loop.begin(), loop.end(), face.begin()));
-    faces.push_back(std::move(loop));
-  }
-  std::vector<std::uint32_t> index(body.vertices.size(), UINT32_MAX);
-  std::vector<Vec3> vertices;
-  for (auto& face : faces) {
-    for (std::uint32_t& v : face) {
-      if (index[v] == UINT32_MAX) {
-        index[v] = static_cast<std::uint32_t>(vertices.size());
-        vertices.push_back(body.vertices[v]);
-      }
-      v = index[v];
-    }
-  }
-  body.vertices = std::move(vertices);
-  body.faces = std::move(faces);
-  return is_changed;
 }
 
 double mitre_factor(const ConvexPolyhedron& body, const ConvexPolyhedron& offset,

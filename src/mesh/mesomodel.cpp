@@ -119,8 +119,6 @@ std::vector<Vec3> wall_grid(const Prism& prism, std::size_t w, double spacing) {
 // What the mesher is told about one particle.
 struct Inclusion {
   ConvexPolyhedron aggregate;
-  PolygonBody shell_faces;      // the mitred offset clipped by the walls (empty without an ITZ)
-  std::vector<bool> is_fanned;  // per shell face: TetGen gets its corner fan, not the polygon
   ConvexPolyhedron shell;       // the same, triangulated
   double aggregate_volume = 0.0;
   double shell_volume = 0.0;  // enclosed by the outer surface

@@ -39,30 +39,6 @@ std::vector<HalfSpace> face_half_spaces(const ConvexPolyhedron& body);
 ConvexPolyhedron mitred_offset(const ConvexPolyhedron& body, double thickness,
                                std::span<const HalfSpace> bounds, double tolerance);
 
-/// A convex polyhedron as planar face polygons (outward, counter-clockwise) over one vertex array.
-struct PolygonBody {
-  std::vector<Vec3> vertices;
-  std::vector<std::vector<std::uint32_t>> faces;
-};
-
-/// mitred_offset before triangulation: one polygon per face (a mesher can triangulate each face
-/// itself). Empty when nothing is left.
-PolygonBody mitred_offset_faces(const ConvexPolyhedron& body, double thickness,
-                                std::span<const HalfSpace> bounds, double tolerance);
-
-/// Collapses every edge shorter than `length` (m): its end vertices become one (the lower
-/// numbered keeps its place, so a vertex on a wall stays there), repeated vertices leave their
-/// loops and loops with fewer than 3 left disappear; unused vertices are dropped. Faces that lost a
-/// vertex may be non-planar by up to `length`: their entries in the returned flags are true
-/// (a mesher should take them as triangles). Near-coincident face planes leave edges of a
-/// nanometre that TetGen merges on its own, failing an assertion afterwards.
-std::vector<bool> merge_short_edges(PolygonBody& body, double length);
-
-/// The polygons fanned into triangles (from a corner; from the face's centroid, a new vertex,
-/// where a corner is straight or reflex), as a ConvexPolyhedron. \throw InvalidInput as its
-/// constructor (fewer than 4 faces).
-ConvexPolyhedron triangulate(const PolygonBody& body);
-
 /// Largest distance from a vertex of `offset` to `body`, divided by `thickness`: 1 for a smooth
 /// offset, > 1 at the mitred corners. Two bodies whose offsets of thickness t must not meet need
 /// a gap of at least t x (factor_a + factor_b) (a sufficient bound).
