@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "aggpack/core/error.h"
@@ -201,11 +202,20 @@ PlcMesh tetrahedralize_plc(const Plc& plc, const std::string& switches, double t
                    {.workers = 1, .time_limit = time_limit})
           .front();
   if (detected.is_done && !detected.bytes.empty()) {
-    failure += "; intersecting facets (markers): " + detected.bytes;
+    failure += "; TetGen finds these surfaces intersecting:";
+    std::istringstream markers(detected.bytes);
+    int marker = 0;
+    while (markers >> marker) {
+      failure += marker < 0        ? " wall " + std::to_string(-marker)
+                 : marker % 2 == 0 ? " aggregate " + std::to_string(marker / 2)
+                                   : " ITZ layer of particle " + std::to_string(marker / 2);
+      failure += ',';
+    }
+    failure.pop_back();
   }
   throw LimitExceeded("mesomodel mesh", failure,
-                      "a complex TetGen can mesh (markers: 2k aggregate k, 2k+1 its ITZ, < 0 "
-                      "walls)");
+                      "a packing TetGen can mesh (a larger packer.gap or container.wall_gap helps "
+                      "with nearly touching surfaces)");
 }
 
 #else
