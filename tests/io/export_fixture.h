@@ -138,6 +138,28 @@ inline CommandResult run_python(const ScratchFolder& folder, const std::string& 
   return run_command("cd / && " + system_python() + " " + path + " " + arguments);
 }
 
+/// Has Gmsh read the mesh file `path` and write it again as MSH 4.1 to `again` (gmsh -0).
+/// Succeeds when Gmsh exits with 0, prints no "Error" (nor "Warning" unless `allow_warnings`)
+/// and wrote `again`; the failure message holds Gmsh's output.
+inline ::testing::AssertionResult gmsh_rewrites(const std::string& path, const std::string& again,
+                                                bool allow_warnings) {
+  const CommandResult gmsh = run_command("gmsh " + path + " -0 -format msh41 -o " + again);
+  if (gmsh.exit_code != 0) {
+    return ::testing::AssertionFailure() << "gmsh exit code " << gmsh.exit_code << ":\n"
+                                         << gmsh.output;
+  }
+  if (gmsh.output.find("Error") != std::string::npos) {
+    return ::testing::AssertionFailure() << "gmsh reported an error:\n" << gmsh.output;
+  }
+  if (!allow_warnings && gmsh.output.find("Warning") != std::string::npos) {
+    return ::testing::AssertionFailure() << "gmsh warned:\n" << gmsh.output;
+  }
+  if (!std::filesystem::exists(again)) {
+    return ::testing::AssertionFailure() << "gmsh wrote no " << again << ":\n" << gmsh.output;
+  }
+  return ::testing::AssertionSuccess();
+}
+
 inline std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream buffer;
