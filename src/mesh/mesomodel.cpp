@@ -119,10 +119,12 @@ std::vector<Vec3> wall_grid(const Prism& prism, std::size_t w, double spacing) {
 // What the mesher is told about one particle.
 struct Inclusion {
   ConvexPolyhedron aggregate;
-  ConvexPolyhedron shell;       // the same, triangulated
+  // The ITZ layer's outer surface: the aggregate's triangles over moved vertices (empty without
+  // an ITZ).
+  ConvexPolyhedron shell;
   double aggregate_volume = 0.0;
   double shell_volume = 0.0;  // enclosed by the outer surface
-  double mitre = 1.0;         // largest vertex displacement / thickness
+  double reach = 1.0;         // largest vertex displacement / thickness
   double wall_clearance = 0.0;
   Aabb bounds;  // of the outer body (shell, or aggregate without ITZ)
 };
@@ -178,15 +180,15 @@ void check_gaps(const std::vector<Inclusion>& inclusions, const MesoOptions& opt
   const double gap =
       gjk_distance(inclusions[worst_a].aggregate, identity, inclusions[worst_b].aggregate, identity)
           .distance;
-  double mitre = 1.0;
-  for (const Inclusion& inclusion : inclusions) mitre = std::max(mitre, inclusion.mitre);
+  double reach = 1.0;
+  for (const Inclusion& inclusion : inclusions) reach = std::max(reach, inclusion.reach);
   const double needed =
-      has_itz ? 2.0 * mitre * options.itz_thickness + 2.0 * min_gap : 2.0 * min_gap;
+      has_itz ? 2.0 * reach * options.itz_thickness + 2.0 * min_gap : 2.0 * min_gap;
   const std::string itz =
-      has_itz ? ", their ITZ shells (" + metres(options.itz_thickness) + " thick) meet"
+      has_itz ? ", their ITZ layers (" + metres(options.itz_thickness) + " thick) meet"
               : " (aggregates must not touch)";
-  const std::string why = has_itz ? " (2 x ITZ thickness x the sharpest corner's mitre factor " +
-                                        number(mitre, 3) + ", plus the mesher's margin)"
+  const std::string why = has_itz ? " (2 x the layers' farthest corner reach, " + number(reach, 3) +
+                                        " x the ITZ thickness, plus the mesher's margin)"
                                   : " (the mesher's margin)";
   throw InvalidInput(
       "particles " + std::to_string(worst_a + 1) + " and " + std::to_string(worst_b + 1),
@@ -256,7 +258,7 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
       const detail::ItzLayer layer = detail::itz_layer(inclusion.aggregate, t, prism.planes);
       inclusion.shell = ConvexPolyhedron(layer.outer, inclusion.aggregate.triangles());
       inclusion.shell_volume = mass_properties(inclusion.shell).volume;
-      inclusion.mitre = layer.max_offset / t;
+      inclusion.reach = layer.max_offset / t;
       inclusion.bounds = inclusion.shell.bounds();
     } else {
       inclusion.bounds = inclusion.aggregate.bounds();
