@@ -283,9 +283,11 @@ bool is_inside(const ConvexPolyhedron& body, const Vec3& point, double margin) {
   return true;
 }
 
-// A point of the mortar (outside every outer body by `margin`), searched on ever finer grids.
-bool find_mortar_seed(const std::vector<Inclusion>& inclusions, const Prism& prism, bool has_itz,
-                      double margin, Vec3& seed) {
+// A point of the mortar, searched on ever finer grids: outside every aggregate by more than its
+// layer can reach (the aggregate is convex and exact, the layer's outer surface only nearly), and
+// `margin` inside the walls.
+bool find_mortar_seed(const std::vector<Inclusion>& inclusions, const Prism& prism,
+                      double thickness, double margin, Vec3& seed) {
   Aabb box;
   for (const Vec3& p : prism.points) box.expand(p);
   for (int n = 2; n <= 32; n *= 2) {
@@ -303,7 +305,8 @@ bool find_mortar_seed(const std::vector<Inclusion>& inclusions, const Prism& pri
                 (p.array() > inclusion.bounds.upper.array() + margin).any()) {
               continue;
             }
-            is_free = !is_inside(has_itz ? inclusion.shell : inclusion.aggregate, p, margin);
+            const double reach = thickness > 0.0 ? 2.0 * inclusion.reach * thickness : 0.0;
+            is_free = !is_inside(inclusion.aggregate, p, reach + margin);
           }
           if (is_free) {
             seed = p;
@@ -455,7 +458,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
     plc.holes.push_back(itz_seed(inclusion));
   }
   Vec3 mortar_seed;
-  if (find_mortar_seed(inclusions, prism, has_itz, min_gap, mortar_seed)) {
+  if (find_mortar_seed(inclusions, prism, t, min_gap, mortar_seed)) {
     plc.regions.push_back({mortar_seed, 0, regular_tetra_volume(options.mortar_size)});
   }
 
