@@ -57,13 +57,14 @@ void GuiApp::start_mesomodel_export(const std::string& extension) {
   const std::string path = export_base_ + "-mesomodel" + extension;
   set_status("Meshing the mesomodel for " + path + "...", false);
   job_.start("Meshing mesomodel", [packing = packing_, meso, path](BackgroundJob& job) {
-    job.set_detail("TetGen: aggregates, ITZ shells and mortar");
+    job.set_detail("TetGen: aggregates and mortar; the ITZ layers");
     MesoReport report;
     const MesoMesh mesh = build_mesomodel(*packing, meso, &report);
     job.set_progress(0.9);
     job.set_detail("writing " + path);
     MesoFileOptions options;
     options.overwrite = Overwrite::kAllow;
+    options.units = MesoUnits::kMillimetre;  // as the CLI's default: ccx takes the thin layers
     const MesoFileSummary summary = write_mesomodel(path, mesh, options);
     const double volume = report.container_volume > 0.0 ? report.container_volume : 1.0;
     std::array<double, 3> percent{};
@@ -72,7 +73,7 @@ void GuiApp::start_mesomodel_export(const std::string& extension) {
     }
     JobResult out;
     out.message = fmt::format(
-        "Wrote {}: mesomodel of {} aggregates, ITZ {:g} mm, {} nodes, {} tetrahedra; volume "
+        "Wrote {}: mesomodel of {} aggregates, ITZ {:g} mm, {} nodes, {} tetrahedra (mm, N, MPa); volume "
         "aggregate {:.1f} %, ITZ {:.1f} %, mortar {:.1f} %.",
         path, mesh.particle_count, mesh.itz_thickness * 1e3, summary.nodes, summary.elements,
         percent[2], percent[1], percent[0]);

@@ -102,7 +102,7 @@ if [ -n "$cli" ]; then
     2>&1 || status=$?
   cat "$out/meso-bad.txt"
   [ "$status" -eq 2 ] || { echo "a refused mesomodel export exited $status, not 2"; exit 1; }
-  grep -q "status: invalid particles .* ITZ shells" "$out/meso-bad.txt"
+  grep -q "status: invalid particles .* ITZ layers" "$out/meso-bad.txt"
   [ ! -e "$out/meso-mesomodel.inp" ] || { echo "a refused export left a file"; exit 1; }
 fi
 
