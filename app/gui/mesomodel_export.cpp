@@ -73,7 +73,8 @@ void GuiApp::start_mesomodel_export(const std::string& extension) {
     }
     JobResult out;
     out.message = fmt::format(
-        "Wrote {}: mesomodel of {} aggregates, ITZ {:g} mm, {} nodes, {} tetrahedra (mm, N, MPa); volume "
+        "Wrote {}: mesomodel of {} aggregates, ITZ {:g} mm, {} nodes, {} tetrahedra (mm, N, MPa); "
+        "volume "
         "aggregate {:.1f} %, ITZ {:.1f} %, mortar {:.1f} %.",
         path, mesh.particle_count, mesh.itz_thickness * 1e3, summary.nodes, summary.elements,
         percent[2], percent[1], percent[0]);
