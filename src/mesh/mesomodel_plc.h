@@ -15,7 +15,8 @@ namespace aggpack::detail {
 
 struct PlcFacet {
   /// The facet's polygons (point numbers); the first is its outline, the others lie inside it and
-  /// become edges of its triangulation (e.g. an ITZ shell's footprint on a wall).
+  /// become edges of its triangulation; a one-point polygon is a point it must use (the walls'
+  /// grid).
   std::vector<std::vector<std::uint32_t>> polygons;
   int marker = 0;  ///< reported back when TetGen finds the facet intersecting another
 };

@@ -113,7 +113,7 @@ TEST(Mesomodel, WithoutItzAggregatesMeetMortarDirectly) {
   expect_conforming(mesh);
 }
 
-// Generated particles, one near a wall so that its ITZ shell is clipped by it.
+// Generated particles on a lattice in a box.
 Packing generated_packing(std::size_t count, double side, double radius, std::uint64_t seed) {
   std::vector<ConvexPolyhedron> shapes;
   std::vector<Vec3> at;

@@ -1,6 +1,7 @@
 #pragma once
 // Convex polyhedra cut by half-spaces: clipping by planes, and the mitred offset (every face plane
-// moved outwards by a thickness t) that bounds a concrete aggregate's ITZ shell (issue 16).
+// moved outwards by a thickness t; the mesomodel's first ITZ, now a prism layer, see
+// docs/mesomodel.md), and the distance from a point to a convex body.
 //
 // Clipping works on face polygons sharing one vertex array: a plane cut computes the point on a
 // crossed edge once, for both faces that share the edge, so the result stays a closed manifold;
