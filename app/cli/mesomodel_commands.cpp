@@ -6,10 +6,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
 
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/io/mesomodel_files.h"
@@ -137,24 +139,17 @@ void print_report(const MesoMesh& mesh, const MesoReport& report) {
 
 void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   flags.mesh.itz_thickness = flags.itz;
-  // The library names its fields (mesh/mesomodel.h); here the flags the user typed.
-  const MesoOptions& m = flags.mesh;
-  const auto require = [](const char* flag, double value, bool is_ok, const char* allowed) {
-    if (!is_ok || !std::isfinite(value)) throw InvalidInput(flag, format_value(value), allowed);
-  };
-  require("--aggregate-size", m.aggregate_size, m.aggregate_size >= 0.0, ">= 0 (m), 0 = no bound");
-  require("--mortar-size", m.mortar_size, m.mortar_size >= 0.0, ">= 0 (m), 0 = no bound");
-  require("--radius-edge", m.radius_edge_ratio,
-          m.radius_edge_ratio == 0.0 || (m.radius_edge_ratio >= 1.2 && m.radius_edge_ratio <= 10.0),
-          "0 (none) or [1.2, 10]");
-  require("--min-dihedral", m.min_dihedral_degrees,
-          m.min_dihedral_degrees >= 0.0 && m.min_dihedral_degrees < 70.0, "[0, 70) degrees");
-  require("--max-aspect", m.max_aspect_ratio, m.max_aspect_ratio >= 1.0, ">= 1");
-  require("--cylinder-segments", m.cylinder_segments,
-          m.cylinder_segments >= 8 && m.cylinder_segments <= 4096, "[8, 4096]");
-  require("--time-limit", m.time_limit, m.time_limit >= 0.001 && m.time_limit <= 604800.0,
-          "[0.001, 604800] s");
-  validate(flags.mesh);
+  // The library names its fields (mesh/mesomodel.h); the messages name the flags typed.
+  static const std::map<std::string, std::string> kFlagOf = {
+      {"itz_thickness", "--itz"},
+      {"aggregate_size", "--aggregate-size"},
+      {"mortar_size", "--mortar-size"},
+      {"radius_edge_ratio", "--radius-edge"},
+      {"cylinder_segments", "--cylinder-segments"},
+      {"min_dihedral", "--min-dihedral"},
+      {"max_aspect_ratio", "--max-aspect"},
+      {"time_limit", "--time-limit"}};
+  with_key_names({}, kFlagOf, [&] { validate(flags.mesh); });
   for (const std::string& text : flags.materials) apply_material(text, flags.file.materials);
   flags.file.has_particle_sets = !flags.has_no_particle_sets;
   flags.file.units = flags.units == "m" ? MesoUnits::kMetre : MesoUnits::kMillimetre;

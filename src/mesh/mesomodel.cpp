@@ -216,8 +216,8 @@ void validate(const MesoOptions& options) {
   };
   check("itz_thickness", options.itz_thickness, options.itz_thickness >= 0.0, ">= 0 (m)");
   check("aggregate_size", options.aggregate_size, options.aggregate_size >= 0.0,
-        ">= 0 (m), 0 = none");
-  check("mortar_size", options.mortar_size, options.mortar_size >= 0.0, ">= 0 (m), 0 = none");
+        ">= 0 (m), 0 = no bound");
+  check("mortar_size", options.mortar_size, options.mortar_size >= 0.0, ">= 0 (m), 0 = no bound");
   check("radius_edge_ratio", options.radius_edge_ratio,
         options.radius_edge_ratio == 0.0 ||
             (options.radius_edge_ratio >= 1.2 && options.radius_edge_ratio <= 10.0),
@@ -228,9 +228,7 @@ void validate(const MesoOptions& options) {
   check("min_dihedral", options.min_dihedral_degrees,
         options.min_dihedral_degrees >= 0.0 && options.min_dihedral_degrees < 70.0,
         "[0, 70) degrees");
-  if (!(options.max_aspect_ratio >= 1.0)) {
-    throw InvalidInput("max_aspect_ratio", format_value(options.max_aspect_ratio), ">= 1");
-  }
+  check("max_aspect_ratio", options.max_aspect_ratio, options.max_aspect_ratio >= 1.0, ">= 1");
   check("time_limit", options.time_limit,
         options.time_limit >= 0.001 && options.time_limit <= 604800.0, "[0.001, 604800] s");
 }
