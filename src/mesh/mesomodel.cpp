@@ -498,7 +498,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
 
   std::vector<detail::PhaseBody> bodies(inclusions.size());
   parallel_for_index(0, bodies.size(), [&](std::size_t i) {
-    bodies[i].aggregate = face_half_spaces(inclusions[i].aggregate);
+    bodies[i].planes = face_half_spaces(inclusions[i].aggregate);
     bodies[i].bounds = inclusions[i].aggregate.bounds();
   });
   const std::size_t relabelled = detail::relabel_by_geometry(bodies, 1e-10 * size, mesh);

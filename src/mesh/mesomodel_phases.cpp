@@ -78,30 +78,19 @@ std::size_t relabel_by_geometry(const std::vector<PhaseBody>& bodies, double mar
     const Tetrahedron& tet = mesh.tetrahedra[e];
     const Vec3 c =
         0.25 * (mesh.nodes[tet[0]] + mesh.nodes[tet[1]] + mesh.nodes[tet[2]] + mesh.nodes[tet[3]]);
-    bool is_decided_outside = true;  // clearly outside every candidate's outer body
     MesoPhase phase = MesoPhase::kMortar;
     std::uint32_t particle = 0;
-    bool is_found = false;
+    bool is_undecided = false;  // near some aggregate's surface
     for (const std::uint32_t b : grid.at(c)) {
-      const PhaseBody& body = bodies[b];
-      const double in_aggregate = excess(body.aggregate, c);
-      const double in_outer = body.shell.empty() ? in_aggregate : excess(body.shell, c);
-      if (in_outer > -margin && in_outer < margin) is_decided_outside = false;
-      if (in_aggregate < -margin) {
+      const double depth = excess(bodies[b].planes, c);
+      if (depth < -margin) {
         phase = MesoPhase::kAggregate;
         particle = b + 1;
-        is_found = true;
         break;
       }
-      if (!body.shell.empty() && in_outer < -margin && in_aggregate > margin) {
-        phase = MesoPhase::kItz;
-        particle = b + 1;
-        is_found = true;
-        break;
-      }
-      if (in_outer <= -margin) is_decided_outside = false;  // near the aggregate: undecided
+      is_undecided |= depth < margin;
     }
-    if (!is_found && !is_decided_outside) return;  // too close to an interface: keep TetGen's
+    if (particle == 0 && is_undecided) return;  // too close to decide: keep TetGen's
     if (mesh.phase[e] != phase || mesh.particle[e] != particle) {
       mesh.phase[e] = phase;
       mesh.particle[e] = particle;

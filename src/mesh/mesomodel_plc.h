@@ -63,18 +63,17 @@ ItzLayer itz_layer(const ConvexPolyhedron& aggregate, double thickness,
 void append_prism_tetrahedra(std::span<const Triangle> triangles, std::uint32_t inner_base,
                              std::uint32_t outer_base, std::vector<Tetrahedron>& out);
 
-/// One particle's two nested convex regions, as face planes.
+/// One aggregate as face planes (convex, exact), with its bounding box.
 struct PhaseBody {
-  std::vector<HalfSpace> aggregate;
-  std::vector<HalfSpace> shell;  ///< empty without an ITZ
-  Aabb bounds;                   ///< of the outer one
+  std::vector<HalfSpace> planes;
+  Aabb bounds;
 };
 
-/// Checks every tetrahedron's phase and particle against the geometry: its centroid clearly
-/// (`margin`, m) inside aggregate k, inside shell k but outside aggregate k, or outside every
-/// shell. TetGen's regions are the phases only if its flood from each seed reached every
-/// tetrahedron of the region; once (1 of 331 shells) it left a corner pocket of a shell unreached
-/// and so labelled mortar. A tetrahedron whose centroid is too close to an interface to decide
+/// Checks the phase and particle of every tetrahedron TetGen made (aggregates and mortar; the ITZ
+/// layers are holes there) against the geometry: its centroid clearly (`margin`, m) inside
+/// aggregate k, or clearly outside every aggregate. TetGen's regions are the phases only if its
+/// flood from each seed reached every tetrahedron of the region (with an earlier ITZ geometry it
+/// once did not). A tetrahedron whose centroid is too close to an aggregate's surface to decide
 /// keeps TetGen's label. Returns the number of tetrahedra relabelled.
 std::size_t relabel_by_geometry(const std::vector<PhaseBody>& bodies, double margin,
                                 MesoMesh& mesh);
