@@ -140,7 +140,7 @@ void print_report(const MesoMesh& mesh, const MesoReport& report) {
 void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   flags.mesh.itz_thickness = flags.itz;
   // The library names its fields (mesh/mesomodel.h); the messages name the flags typed.
-  static const std::map<std::string, std::string> kFlagOf = {
+  static const std::map<std::string, std::string> flag_of = {
       {"itz_thickness", "--itz"},
       {"aggregate_size", "--aggregate-size"},
       {"mortar_size", "--mortar-size"},
@@ -149,7 +149,7 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
       {"min_dihedral", "--min-dihedral"},
       {"max_aspect_ratio", "--max-aspect"},
       {"time_limit", "--time-limit"}};
-  with_key_names({}, kFlagOf, [&] { validate(flags.mesh); });
+  with_key_names({}, flag_of, [&] { validate(flags.mesh); });
   for (const std::string& text : flags.materials) apply_material(text, flags.file.materials);
   flags.file.has_particle_sets = !flags.has_no_particle_sets;
   flags.file.units = flags.units == "m" ? MesoUnits::kMetre : MesoUnits::kMillimetre;

@@ -119,6 +119,7 @@ std::vector<Vec3> wall_grid(const Prism& prism, std::size_t w, double spacing) {
 // What the mesher is told about one particle.
 struct Inclusion {
   ConvexPolyhedron aggregate;
+  std::vector<HalfSpace> planes;  // the aggregate's face planes
   // The ITZ layer's outer surface: the aggregate's triangles over moved vertices (empty without
   // an ITZ).
   ConvexPolyhedron shell;
@@ -245,6 +246,7 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
     Inclusion& inclusion = inclusions[i];
     inclusion.aggregate = packing.placed(i);
     inclusion.aggregate_volume = mass_properties(inclusion.aggregate).volume;
+    inclusion.planes = face_half_spaces(inclusion.aggregate);
     inclusion.wall_clearance = std::numeric_limits<double>::infinity();
     for (const HalfSpace& wall : prism.planes) {
       for (const Vec3& v : inclusion.aggregate.vertices()) {
@@ -274,13 +276,6 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
   return inclusions;
 }
 
-bool is_inside(const ConvexPolyhedron& body, const Vec3& point, double margin) {
-  for (const HalfSpace& plane : face_half_spaces(body)) {
-    if (plane.normal.dot(point) > plane.offset + margin) return false;
-  }
-  return true;
-}
-
 // A point of the mortar, searched on ever finer grids: outside every aggregate by more than its
 // layer can reach (the aggregate is convex and exact, the layer's outer surface only nearly), and
 // `margin` inside the walls.
@@ -304,7 +299,7 @@ bool find_mortar_seed(const std::vector<Inclusion>& inclusions, const Prism& pri
               continue;
             }
             const double reach = thickness > 0.0 ? 2.0 * inclusion.reach * thickness : 0.0;
-            is_free = !is_inside(inclusion.aggregate, p, reach + margin);
+            is_free = plane_excess(inclusion.planes, p) > reach + margin;
           }
           if (is_free) {
             seed = p;
@@ -498,7 +493,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
 
   std::vector<detail::PhaseBody> bodies(inclusions.size());
   parallel_for_index(0, bodies.size(), [&](std::size_t i) {
-    bodies[i].planes = face_half_spaces(inclusions[i].aggregate);
+    bodies[i].planes = inclusions[i].planes;
     bodies[i].bounds = inclusions[i].aggregate.bounds();
   });
   const std::size_t relabelled = detail::relabel_by_geometry(bodies, 1e-10 * size, mesh);

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <limits>
 
 #include "aggpack/core/parallel.h"
 #include "mesomodel_plc.h"
@@ -12,13 +11,6 @@
 namespace aggpack::detail {
 
 namespace {
-
-// Largest excess of p over the planes: < 0 inside, > 0 outside (a lower bound of the distance).
-double excess(const std::vector<HalfSpace>& planes, const Vec3& p) {
-  double worst = -std::numeric_limits<double>::infinity();
-  for (const HalfSpace& plane : planes) worst = std::max(worst, plane.normal.dot(p) - plane.offset);
-  return worst;
-}
 
 // A uniform grid of cells listing the bodies whose bounds meet them.
 struct BodyGrid {
@@ -82,7 +74,7 @@ std::size_t relabel_by_geometry(const std::vector<PhaseBody>& bodies, double mar
     std::uint32_t particle = 0;
     bool is_undecided = false;  // near some aggregate's surface
     for (const std::uint32_t b : grid.at(c)) {
-      const double depth = excess(bodies[b].planes, c);
+      const double depth = plane_excess(bodies[b].planes, c);
       if (depth < -margin) {
         phase = MesoPhase::kAggregate;
         particle = b + 1;

@@ -65,7 +65,7 @@ void append_prism_tetrahedra(std::span<const Triangle> triangles, std::uint32_t 
 
 /// One aggregate as face planes (convex, exact), with its bounding box.
 struct PhaseBody {
-  std::vector<HalfSpace> planes;
+  std::span<const HalfSpace> planes;
   Aabb bounds;
 };
 

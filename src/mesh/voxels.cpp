@@ -18,36 +18,20 @@ namespace aggpack {
 
 namespace {
 
-// A placed particle: its face planes (unit normal n, offset d: n.x <= d inside), centre and reach.
+// A placed particle: its face planes, centre and reach.
 struct Body {
   ConvexPolyhedron shape;
-  std::vector<Vec3> normals;
-  std::vector<double> offsets;
+  std::vector<HalfSpace> planes;
   Vec3 centre = Vec3::Zero();
   double radius = 0.0;  // vertices lie within this distance of centre
   Aabb bounds;
-
-  // Largest signed distance of p to a face plane: <= 0 inside, a lower bound of the distance.
-  [[nodiscard]] double plane_distance(const Vec3& p) const {
-    double s = -std::numeric_limits<double>::infinity();
-    for (std::size_t f = 0; f < normals.size(); ++f)
-      s = std::max(s, normals[f].dot(p) - offsets[f]);
-    return s;
-  }
 };
 
 Body make_body(ConvexPolyhedron shape, const Vec3& centre) {
   Body body;
   body.centre = centre;
   for (const Vec3& v : shape.vertices()) body.radius = std::max(body.radius, (v - centre).norm());
-  body.normals.reserve(shape.triangle_count());
-  body.offsets.reserve(shape.triangle_count());
-  for (std::size_t f = 0; f < shape.triangle_count(); ++f) {
-    const Vec3 n = shape.face_normal(f);
-    if (!n.allFinite()) continue;  // a zero-area triangle bounds nothing
-    body.normals.push_back(n);
-    body.offsets.push_back(n.dot(shape.vertices()[shape.triangles()[f][0]]));
-  }
+  body.planes = face_half_spaces(shape);
   body.bounds = shape.bounds();
   body.shape = std::move(shape);
   return body;
@@ -158,7 +142,7 @@ VoxelImage voxelize(const Packing& packing, const VoxelOptions& options) {
               y > bb.upper.y() + t) {
             continue;
           }
-          const double s = body.plane_distance(p);
+          const double s = plane_excess(body.planes, p);
           if (s <= 0.0) {
             image.phase[index] = static_cast<std::uint8_t>(VoxelPhase::kAggregate);
             image.particle[index] = b + 1;

@@ -1,5 +1,5 @@
 // The conforming mesomodel (mesh/mesomodel.h): phase volumes against the exact polyhedra, every
-// interface face shared by exactly one tetrahedron on each side, clipping at the walls, the
+// interface face shared by exactly one tetrahedron on each side, the layer thinned at a wall, the
 // cylinder's prism, and the refusals.
 
 #include "aggpack/mesh/mesomodel.h"
@@ -12,7 +12,6 @@
 #include <numbers>
 
 #include "aggpack/core/error.h"
-#include "aggpack/geom/halfspace.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/shape/generator.h"
 #include "support/packings.h"
@@ -82,7 +81,8 @@ TEST(Mesomodel, CubeInABoxHasExactPhaseVolumes) {
   options.itz_thickness = 0.05;
   MesoReport report;
   const MesoMesh mesh = build_mesomodel(packing, options, &report);
-  // The mitred offset of a brick is the brick grown by t on every side; mortar the rest.
+  // A brick's layer (its corners are 3-face vertices, moved exactly) is the brick grown by t on
+  // every side; mortar the rest.
   const Vec3 size = 2 * half;
   const Vec3 grown = size + Vec3::Constant(0.1);
   EXPECT_NEAR(report.phases[2].expected_volume, size.prod(), 1e-15);
