@@ -12,6 +12,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/isolated.h"
 #include "mesomodel_plc.h"
+#include "tetgen_worker.h"
 
 #ifdef AGGPACK_HAS_TETGEN
 #define TETLIBRARY
@@ -25,9 +26,7 @@ namespace aggpack::detail {
 
 namespace {
 
-struct Failure {
-  std::string what;
-};
+using Failure = TetGenFailure;
 
 void fill_input(const Plc& plc, tetgenio& in) {
   in.firstnumber = 0;
@@ -69,11 +68,6 @@ void fill_input(const Plc& plc, tetgenio& in) {
     in.regionlist[5 * r + 3] = region.attribute;
     in.regionlist[5 * r + 4] = region.max_volume > 0.0 ? region.max_volume : -1.0;
   }
-}
-
-template <class T>
-void append_array(std::string& out, const std::vector<T>& values) {
-  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
 // The mesh as the worker sends it: counts, then the arrays as they are in memory.
@@ -176,22 +170,15 @@ PlcMesh deserialize(const std::string& bytes) {
 
 PlcMesh tetrahedralize_plc(const Plc& plc, const std::string& switches, double time_limit) {
   const auto work = [&](std::size_t) {
-    try {
-      return 'M' + mesh_here(plc, switches);
-    } catch (const Failure& failure) {
-      return 'F' + failure.what;
-    }
+    return worker_answer([&] { return mesh_here(plc, switches); });
   };
   const IsolatedOutcome outcome =
       run_isolated(1, work, {.workers = 1, .time_limit = time_limit}).front();
+  std::string bytes;
   std::string failure;
-  if (!outcome.is_done) {
-    failure = "TetGen " + outcome.failure;
-  } else if (!outcome.bytes.empty() && outcome.bytes[0] == 'F') {
-    failure = outcome.bytes.substr(1);
-  } else {
+  if (worker_result(outcome, bytes, failure)) {
     try {
-      return deserialize(outcome.bytes.substr(1));
+      return deserialize(bytes);
     } catch (const Failure& malformed) {
       failure = malformed.what;
     }

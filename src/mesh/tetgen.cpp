@@ -15,6 +15,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/isolated.h"
 #include "aggpack/mesh/tetrahedra.h"
+#include "tetgen_worker.h"
 
 #ifdef AGGPACK_HAS_TETGEN
 #define TETLIBRARY
@@ -42,10 +43,7 @@ struct TriangleKeyHash {
   }
 };
 
-// What TetGen did wrong on a shape, as the worker reports it.
-struct Failure {
-  std::string what;
-};
+using Failure = detail::TetGenFailure;
 
 // TetGen in this process: only ever called in a worker process. \throw Failure.
 TetMesh mesh_here(const ConvexPolyhedron& body, const TetOptions& options) {
@@ -137,12 +135,8 @@ TetMesh mesh_here(const ConvexPolyhedron& body, const TetOptions& options) {
   return mesh;
 }
 
-// A mesh as the worker sends it: node and tetrahedron counts, then the arrays as they are in
-// memory (parent and worker are the same program).
-template <class T>
-void append_array(std::string& out, const std::vector<T>& values) {
-  out.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-}
+// A mesh as the worker sends it: node and tetrahedron counts, then the arrays.
+using detail::append_array;
 
 std::string serialize(const TetMesh& mesh) {
   const std::uint64_t counts[2] = {mesh.nodes.size(), mesh.tetrahedra.size()};
@@ -198,25 +192,17 @@ std::vector<TetGenOutcome> tetgen_meshes(std::span<const ConvexPolyhedron* const
       throw InvalidInput("body " + std::to_string(i), "empty", "a convex polyhedron");
     }
   }
-  // A worker's answer is 'M' and the mesh, or 'F' and what TetGen reported.
   const auto work = [&](std::size_t i) {
-    try {
-      return 'M' + serialize(mesh_here(*bodies[i], options));
-    } catch (const Failure& failure) {
-      return 'F' + failure.what;
-    }
+    return detail::worker_answer([&] { return serialize(mesh_here(*bodies[i], options)); });
   };
   const std::vector<IsolatedOutcome> results =
       run_isolated(bodies.size(), work, {.time_limit = options.time_limit});
   std::vector<TetGenOutcome> outcomes(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     TetGenOutcome& outcome = outcomes[i];
-    const std::string& bytes = results[i].bytes;
-    if (!results[i].is_done) {
-      outcome.failure = "TetGen " + results[i].failure;
-    } else if (!bytes.empty() && bytes[0] == 'F') {
-      outcome.failure = bytes.substr(1);
-    } else if (!bytes.empty() && bytes[0] == 'M' && deserialize(bytes.substr(1), outcome.mesh)) {
+    std::string bytes;
+    if (!detail::worker_result(results[i], bytes, outcome.failure)) continue;
+    if (deserialize(bytes, outcome.mesh)) {
       outcome.is_meshed = true;
     } else {
       outcome.mesh = {};
