@@ -83,13 +83,9 @@ void run_voxels(const MesomodelFlags& flags, const Overwrite overwrite) {
   }
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
-  const double half_side = 0.5 * packing.container.bounds().extent().minCoeff();
-  if (flags.itz >= half_side) {
-    throw InvalidInput(
-        "--itz", format_value(flags.itz),
-        "[0, " + format_value(half_side) + ") m: half the container's smallest side");
-  }
-  const VoxelImage image = voxelize(packing, options);
+  VoxelImage image;  // voxelize checks the ITZ against the container; its messages name the flags
+  with_key_names({}, {{"itz_thickness", "--itz"}, {"voxels", "--voxels"}},
+                 [&] { image = voxelize(packing, options); });
   if (is_vti) {
     write_vti(flags.output, image, overwrite);
   } else {
