@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Whole-program mesomodel benchmark (issue 16, item 5): packs the 100 mm cube
 # (examples/mesomodel-cube.toml) and the 150 x 300 mm cylinder (examples/mesomodel-cylinder.toml),
-# then meshes each with a 0.1 mm ITZ; logs wall/CPU time and peak memory of every step and the
+# then meshes each with a 0.1 mm ITZ, as a solid layer (.vtu) and as cohesive elements (.inp); logs wall/CPU time and peak memory of every step and the
 # mesomodel's report (element counts, volumes, quality per phase).
 #
 #   bench/run_mesomodel.sh [AGGPACK] [OUT_DIR] [ITZ_M]
@@ -34,5 +34,8 @@ for case in cube cylinder; do
   timed "pack $case" "$aggpack" pack "$here/examples/mesomodel-$case.toml" -o "$case.h5" \
     --progress none --force
   timed "mesomodel $case" "$aggpack" mesomodel "$case.h5" --itz "$itz" -o "$case.vtu" --force
+  # The cohesive ITZ of the same packing: bonded mesh, split, one COH3D6 per surface triangle.
+  timed "mesomodel $case cohesive" "$aggpack" mesomodel "$case.h5" --itz "$itz" \
+    --itz-kind cohesive -o "$case-cohesive.inp" --force
 done
-grep -E "^## |wall,|^(mesomodel|mesh|phase|AGGREGATE|ITZ|MORTAR|solid fraction|particles) " "$log"
+grep -E "^## |wall,|^(mesomodel|mesh|phase|AGGREGATE|ITZ|MORTAR|cohesive ITZ|solid fraction|particles) " "$log"

@@ -34,6 +34,7 @@ struct MesomodelFlags {
   MesoFileOptions file;
   std::vector<std::string> materials;
   std::string units = "mm";
+  std::string itz_kind = "solid";
   bool has_no_particle_sets = false;
   int threads = 0;
   bool is_forced = false;
@@ -131,13 +132,24 @@ void print_report(const MesoMesh& mesh, const MesoReport& report) {
         p.quality.tetrahedra > 0 ? p.quality.min_dihedral_degrees : 0.0, p.quality.max_aspect_ratio,
         p.quality.below_10_degrees);
   }
+  if (report.cohesive_elements > 0) {
+    const double error =
+        (report.interface_area - report.expected_interface_area) / report.expected_interface_area;
+    fmt::print(
+        "cohesive ITZ  {} COH3D6 elements, area {:.8g} m^2 (exact {:.8g}, rel.err {:.2e}), "
+        "constitutive thickness {:.6g} m\n",
+        report.cohesive_elements, report.interface_area, report.expected_interface_area, error,
+        mesh.itz_thickness);
+  }
 }
 
 void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   flags.mesh.itz_thickness = flags.itz;
+  flags.mesh.itz_kind = flags.itz_kind == "cohesive" ? ItzKind::kCohesive : ItzKind::kSolid;
   // The library names its fields (mesh/mesomodel.h); the messages name the flags typed.
   static const std::map<std::string, std::string> flag_of = {
       {"itz_thickness", "--itz"},
+      {"itz_kind", "--itz-kind"},
       {"aggregate_size", "--aggregate-size"},
       {"mortar_size", "--mortar-size"},
       {"radius_edge_ratio", "--radius-edge"},
@@ -146,6 +158,10 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
       {"max_aspect_ratio", "--max-aspect"},
       {"time_limit", "--time-limit"}};
   with_key_names({}, flag_of, [&] { validate(flags.mesh); });
+  if (flags.file.is_quadratic && flags.mesh.itz_kind == ItzKind::kCohesive) {
+    throw InvalidInput("--quadratic", "with --itz-kind cohesive",
+                       "linear elements (COH3D6 joins the faces of C3D4, not of C3D10)");
+  }
   for (const std::string& text : flags.materials) apply_material(text, flags.file.materials);
   flags.file.has_particle_sets = !flags.has_no_particle_sets;
   flags.file.units = flags.units == "m" ? MesoUnits::kMetre : MesoUnits::kMillimetre;
@@ -159,8 +175,10 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   const MesoMesh mesh = build_mesomodel(packing, flags.mesh, &report);
   print_report(mesh, report);
   const MesoModulusBounds bounds = voigt_reuss_bounds(mesh, flags.file.materials);
-  fmt::print("modulus       Voigt {:.5g} Pa, Reuss {:.5g} Pa (bounds of the effective E)\n",
-             bounds.voigt, bounds.reuss);
+  fmt::print("modulus       Voigt {:.5g} Pa, Reuss {:.5g} Pa ({})\n", bounds.voigt, bounds.reuss,
+             mesh.cohesive.empty()
+                 ? "bounds of the effective E"
+                 : "of aggregate and mortar; the compliant interfaces may go below Reuss");
   const MesoFileSummary summary = write_mesomodel(flags.output, mesh, flags.file);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -179,7 +197,8 @@ void register_mesomodel(CLI::App& app) {
   auto* command = app.add_subcommand(
       "mesomodel",
       "Concrete mesomodel of a packing: the container meshed into aggregate, ITZ and mortar "
-      "tetrahedra sharing nodes on every interface (.inp for Abaqus/CalculiX with sets, materials "
+      "tetrahedra sharing nodes on every interface, or with --itz-kind cohesive aggregate and "
+      "mortar joined by cohesive elements (.inp for Abaqus/CalculiX with sets, materials "
       "and an optional compression step; .msh; .vtu), or with --voxels N the phase image (.vti, "
       "or .raw + .json for FFT solvers). Aggregates must not touch each other or the walls.");
   command->add_option("input", flags->input, "native packing file (.h5)")->required();
@@ -189,8 +208,15 @@ void register_mesomodel(CLI::App& app) {
       ->required();
   command
       ->add_option("--itz", flags->itz,
-                   "ITZ thickness (m), >= 0; 0 = no ITZ (typical 20-50 um). Meshed as the mitred "
-                   "offset of each aggregate, clipped by the walls")
+                   "ITZ thickness (m), >= 0; 0 = no ITZ (typical 20-50 um). Solid: a layer of "
+                   "tetrahedra this thick over each aggregate, thinned near walls; cohesive: the "
+                   "elements' constitutive thickness")
+      ->capture_default_str();
+  command
+      ->add_option("--itz-kind", flags->itz_kind,
+                   "solid (a layer of tetrahedra) or cohesive (zero-thickness COH3D6 elements on "
+                   "every aggregate surface, for Abaqus; needs --itz > 0)")
+      ->check(CLI::IsMember({"solid", "cohesive"}))
       ->capture_default_str();
   command
       ->add_option("--aggregate-size", flags->mesh.aggregate_size,
@@ -246,6 +272,10 @@ void register_mesomodel(CLI::App& app) {
     }
     const Overwrite overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (flags->resolution != 0) {
+      if (flags->itz_kind != "solid") {
+        throw InvalidInput("--itz-kind", flags->itz_kind,
+                           "solid with --voxels (the phase image has no cohesive elements)");
+      }
       run_voxels(*flags, overwrite);
     } else {
       run_mesh(*flags, overwrite);

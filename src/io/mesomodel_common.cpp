@@ -27,6 +27,32 @@ void validate_phase(const std::string& name, const PhaseMaterial& material) {
   }
 }
 
+// The cohesive wedges: one particle each, nodes in range, and no ITZ tetrahedra beside them.
+void validate_cohesive(const MesoMesh& mesh, std::uint32_t nodes) {
+  if (mesh.cohesive_particle.size() != mesh.cohesive.size()) {
+    throw InvalidInput("mesh.cohesive_particle size", std::to_string(mesh.cohesive_particle.size()),
+                       std::to_string(mesh.cohesive.size()) + " (one per cohesive element)");
+  }
+  if (mesh.cohesive.empty()) return;
+  if (std::find(mesh.phase.begin(), mesh.phase.end(), MesoPhase::kItz) != mesh.phase.end()) {
+    throw InvalidInput("mesh.phase", "ITZ tetrahedra beside cohesive elements",
+                       "one ITZ model: a solid layer or cohesive elements");
+  }
+  for (std::size_t i = 0; i < mesh.cohesive.size(); ++i) {
+    for (const std::uint32_t node : mesh.cohesive[i]) {
+      if (node >= nodes) {
+        throw InvalidInput("mesh.cohesive[" + std::to_string(i) + "] node", std::to_string(node),
+                           "0.." + std::to_string(nodes == 0 ? 0 : nodes - 1) + " (0-based)");
+      }
+    }
+    const std::uint32_t particle = mesh.cohesive_particle[i];
+    if (particle == 0 || particle > mesh.particle_count) {
+      throw InvalidInput("mesh.cohesive_particle[" + std::to_string(i) + "]",
+                         std::to_string(particle), "1.." + std::to_string(mesh.particle_count));
+    }
+  }
+}
+
 }  // namespace
 
 const PhaseMaterial& MesoMaterials::of(MesoPhase phase) const {
@@ -70,11 +96,12 @@ void validate(const MesoMesh& mesh) {
                        std::to_string(count) + " (one per tetrahedron)");
   }
   if (count == 0) throw InvalidInput("mesh.tetrahedra", "none", "at least one tetrahedron");
-  if (mesh.nodes.size() > 0xFFFFFFFFULL || count > 999999999ULL) {
+  const std::uint64_t elements = count + mesh.cohesive.size();
+  if (mesh.nodes.size() > 0xFFFFFFFFULL || elements > 999999999ULL) {
     throw InvalidInput(
         "mesh size",
-        std::to_string(mesh.nodes.size()) + " nodes, " + std::to_string(count) + " tetrahedra",
-        "< 2^32 nodes and <= 999999999 tetrahedra (Abaqus labels)");
+        std::to_string(mesh.nodes.size()) + " nodes, " + std::to_string(elements) + " elements",
+        "< 2^32 nodes and <= 999999999 elements (Abaqus labels)");
   }
   const Vec3 extent = mesh.bounds.upper - mesh.bounds.lower;
   if (!(extent.x() > 0.0 && extent.y() > 0.0 && extent.z() > 0.0 && extent.allFinite())) {
@@ -84,6 +111,7 @@ void validate(const MesoMesh& mesh) {
                        "a box with positive, finite extent");
   }
   const auto nodes = static_cast<std::uint32_t>(mesh.nodes.size());
+  validate_cohesive(mesh, nodes);
   for (std::size_t i = 0; i < count; ++i) {
     for (const std::uint32_t node : mesh.tetrahedra[i]) {
       if (node >= nodes) {
@@ -191,17 +219,29 @@ std::uint64_t MesoLayout::phase_end(MesoPhase phase) const {
   return group_offsets.back();
 }
 
+MesoPhase element_phase(const MesoMesh& mesh, std::uint32_t element) {
+  return element < mesh.tetrahedra.size() ? mesh.phase[element] : MesoPhase::kItz;
+}
+
+std::uint32_t element_particle(const MesoMesh& mesh, std::uint32_t element) {
+  return element < mesh.tetrahedra.size()
+             ? mesh.particle[element]
+             : mesh.cohesive_particle[element - mesh.tetrahedra.size()];
+}
+
 MesoLayout make_layout(const MesoMesh& mesh) {
   MesoLayout layout;
   const std::uint32_t n = mesh.particle_count;
   layout.particle_count = n;
+  layout.is_cohesive = !mesh.cohesive.empty();
   const std::size_t groups = 2ULL * n + 1;
-  auto group_of = [&](std::size_t i) -> std::size_t {
-    switch (mesh.phase[i]) {
+  const auto elements = static_cast<std::uint32_t>(element_count(mesh));
+  auto group_of = [&](std::uint32_t i) -> std::size_t {
+    switch (element_phase(mesh, i)) {
       case MesoPhase::kAggregate:
-        return mesh.particle[i] - 1;
+        return element_particle(mesh, i) - 1;
       case MesoPhase::kItz:
-        return n + mesh.particle[i] - 1;
+        return n + element_particle(mesh, i) - 1;
       case MesoPhase::kMortar:
         break;
     }
@@ -209,15 +249,13 @@ MesoLayout make_layout(const MesoMesh& mesh) {
   };
   // Counting sort, stable: each group keeps the mesh's order.
   layout.group_offsets.assign(groups + 1, 0);
-  for (std::size_t i = 0; i < mesh.tetrahedra.size(); ++i) ++layout.group_offsets[group_of(i) + 1];
+  for (std::uint32_t i = 0; i < elements; ++i) ++layout.group_offsets[group_of(i) + 1];
   for (std::size_t g = 0; g < groups; ++g) {
     layout.group_offsets[g + 1] += layout.group_offsets[g];
   }
   std::vector<std::uint64_t> next(layout.group_offsets.begin(), layout.group_offsets.end() - 1);
-  layout.order.resize(mesh.tetrahedra.size());
-  for (std::size_t i = 0; i < mesh.tetrahedra.size(); ++i) {
-    layout.order[next[group_of(i)]++] = static_cast<std::uint32_t>(i);
-  }
+  layout.order.resize(elements);
+  for (std::uint32_t i = 0; i < elements; ++i) layout.order[next[group_of(i)]++] = i;
   return layout;
 }
 

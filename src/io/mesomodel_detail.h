@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <ostream>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -11,12 +12,28 @@
 
 namespace aggpack::detail {
 
-/// The order every mesomodel file writes the elements in: group g holds the tetrahedra of
-/// aggregate g + 1 (g < n), of ITZ shell g - n + 1 (n <= g < 2n) or the mortar (g = 2n), n being
-/// mesh.particle_count; each group in the mesh's order. Element id (1-based) = position + 1.
+/// A mesh's elements in one numbering: its tetrahedra 0..T-1, then its cohesive wedges
+/// T..T+C-1 (a cohesive mesh has no ITZ tetrahedra, validate(MesoMesh)).
+[[nodiscard]] inline std::span<const std::uint32_t> element_nodes(const MesoMesh& mesh,
+                                                                  std::uint32_t element) {
+  if (element < mesh.tetrahedra.size()) return mesh.tetrahedra[element];
+  return mesh.cohesive[element - mesh.tetrahedra.size()];
+}
+[[nodiscard]] inline std::uint64_t element_count(const MesoMesh& mesh) {
+  return mesh.tetrahedra.size() + mesh.cohesive.size();
+}
+/// Phase and 1-based particle (0 for the mortar) of an element of that numbering.
+[[nodiscard]] MesoPhase element_phase(const MesoMesh& mesh, std::uint32_t element);
+[[nodiscard]] std::uint32_t element_particle(const MesoMesh& mesh, std::uint32_t element);
+
+/// The order every mesomodel file writes the elements in: group g holds the elements of
+/// aggregate g + 1 (g < n), of the ITZ of particle g - n + 1 (n <= g < 2n: tetrahedra of a solid
+/// layer or cohesive wedges) or the mortar (g = 2n), n being mesh.particle_count; each group in
+/// the mesh's order. Element id (1-based) = position + 1.
 struct MesoLayout {
   std::uint32_t particle_count = 0;
-  std::vector<std::uint32_t> order;          ///< tetrahedron index by position
+  bool is_cohesive = false;                  ///< the ITZ groups hold cohesive wedges
+  std::vector<std::uint32_t> order;          ///< element (element_nodes numbering) by position
   std::vector<std::uint64_t> group_offsets;  ///< 2n + 2 entries: positions of group g
   [[nodiscard]] std::size_t group_count() const { return group_offsets.size() - 1; }
   [[nodiscard]] std::uint64_t group_size(std::size_t g) const {
@@ -25,6 +42,10 @@ struct MesoLayout {
   /// Phase and 1-based particle (0 for the mortar) of group g.
   [[nodiscard]] MesoPhase group_phase(std::size_t g) const;
   [[nodiscard]] std::uint32_t group_particle(std::size_t g) const;
+  /// Whether group g holds cohesive wedges (else tetrahedra).
+  [[nodiscard]] bool is_cohesive_group(std::size_t g) const {
+    return is_cohesive && group_phase(g) == MesoPhase::kItz;
+  }
   /// First and one-past-last position of a phase's groups (they are consecutive).
   [[nodiscard]] std::uint64_t phase_begin(MesoPhase phase) const;
   [[nodiscard]] std::uint64_t phase_end(MesoPhase phase) const;

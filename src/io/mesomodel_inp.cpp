@@ -107,17 +107,26 @@ void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const 
                     std::uint64_t nodes, std::string& out) {
   char line[512];
   std::snprintf(line, sizeof line,
-                "*HEADING\naggpack %s concrete mesomodel: %u aggregates, %zu %s elements, %llu "
-                "nodes\n",
+                "*HEADING\naggpack %s concrete mesomodel: %u aggregates, %zu %s elements%s%s%s, "
+                "%llu nodes\n",
                 AGGPACK_VERSION, mesh.particle_count, mesh.tetrahedra.size(), type,
+                mesh.cohesive.empty() ? "" : " and ",
+                mesh.cohesive.empty() ? "" : std::to_string(mesh.cohesive.size()).c_str(),
+                mesh.cohesive.empty() ? "" : " COH3D6 cohesive ITZ elements",
                 static_cast<unsigned long long>(nodes));
   out += line;
   const bool is_mm = options.units == MesoUnits::kMillimetre;
-  out += is_mm
-             ? "** Written by aggpack (docs/mesomodel.md). Units: mm, N, t, s, MPa. ITZ thickness "
-             : "** Written by aggpack (docs/mesomodel.md). Units: m, N, kg, s, Pa. ITZ thickness ";
+  out += is_mm ? "** Written by aggpack (docs/mesomodel.md). Units: mm, N, t, s, MPa. ITZ "
+               : "** Written by aggpack (docs/mesomodel.md). Units: m, N, kg, s, Pa. ITZ ";
+  out += mesh.cohesive.empty() ? "thickness " : "constitutive thickness ";
   append_real(out, mesh.itz_thickness * length_scale(options.units));
   out += is_mm ? " mm.\n" : " m.\n";
+  if (!mesh.cohesive.empty()) {
+    out +=
+        "** The ITZ is zero-thickness COH3D6 elements on every aggregate surface (nodes 1-3 on\n"
+        "** the aggregate, 4-6 their copies on the mortar), traction-separation response with\n"
+        "** K_nn = E_ITZ and K_ss = K_tt = G_ITZ over the constitutive thickness above.\n";
+  }
   out += "** Element sets: AGGREGATE, ITZ (when the mesh has an ITZ), MORTAR";
   if (options.has_particle_sets) out += "; per particle k (from 1) AGG<k> and ITZ<k>";
   out +=
@@ -134,19 +143,41 @@ void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const 
 
 // Materials in the file's units: E / s^2 (N per length unit squared), rho / s^4 (the mass unit
 // that keeps F = m a in N: kg x s), s being the length scale.
-void append_materials(const MesoMaterials& materials, double scale,
+// A cohesive ITZ's material is a traction-separation law whose nominal strain is the opening
+// over the constitutive thickness T0 (*COHESIVE SECTION, THICKNESS=SPECIFIED): with T0 the ITZ
+// thickness, K_nn = E and K_ss = K_tt = G = E / (2 (1 + nu)) make the wedge as stiff as a layer
+// of that thickness loaded across it (normal) or along it (shear), and its mass density x T0 x
+// area that of the layer.
+void append_materials(const MesoMaterials& materials, double scale, const MesoMesh& mesh,
                       const detail::MesoLayout& layout, std::string& out) {
   for (const MesoPhase phase : {MesoPhase::kAggregate, MesoPhase::kItz, MesoPhase::kMortar}) {
     if (layout.phase_begin(phase) == layout.phase_end(phase)) continue;  // no such elements
     const std::string name = phase_set_name(phase);
     const PhaseMaterial& material = materials.of(phase);
-    out += "*MATERIAL, NAME=MAT_" + name + "\n*ELASTIC\n";
-    append_real(out, material.youngs_modulus / (scale * scale));
+    const double modulus = material.youngs_modulus / (scale * scale);
+    const bool is_cohesive = phase == MesoPhase::kItz && layout.is_cohesive;
+    out += "*MATERIAL, NAME=MAT_" + name +
+           (is_cohesive ? "\n*ELASTIC, TYPE=TRACTION\n" : "\n*ELASTIC\n");
+    append_real(out, modulus);
     out += ", ";
-    append_real(out, material.poisson_ratio);
+    if (is_cohesive) {
+      const double shear = modulus / (2.0 * (1.0 + material.poisson_ratio));
+      append_real(out, shear);
+      out += ", ";
+      append_real(out, shear);
+    } else {
+      append_real(out, material.poisson_ratio);
+    }
     out += "\n*DENSITY\n";
     append_real(out, material.density / (scale * scale * scale * scale));
-    out += ",\n*SOLID SECTION, ELSET=" + name + ", MATERIAL=MAT_" + name + "\n";
+    if (is_cohesive) {
+      out += ",\n*COHESIVE SECTION, ELSET=" + name + ", MATERIAL=MAT_" + name +
+             ", RESPONSE=TRACTION SEPARATION, THICKNESS=SPECIFIED\n";
+      append_real(out, mesh.itz_thickness * scale);
+      out += ",\n";
+    } else {
+      out += ",\n*SOLID SECTION, ELSET=" + name + ", MATERIAL=MAT_" + name + "\n";
+    }
   }
 }
 
@@ -201,13 +232,19 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
                                     const MesoFileOptions& options) {
   validate(options);
   validate(mesh);
+  if (options.is_quadratic && !mesh.cohesive.empty()) {
+    throw InvalidInput("quadratic", "true with a cohesive ITZ",
+                       "linear elements (COH3D6 joins the faces of C3D4, not of C3D10)");
+  }
   check_writable(path, options.overwrite);
   const detail::MesoLayout layout = detail::make_layout(mesh);
-  std::vector<Tetrahedron> tets(mesh.tetrahedra.size());
-  for (std::size_t i = 0; i < tets.size(); ++i) tets[i] = mesh.tetrahedra[layout.order[i]];
+  // C3D10 (no cohesive elements then): the tetrahedra in layout order, with mid-side nodes.
+  std::vector<Tetrahedron> tets;
   QuadraticTopology quadratic;
   std::vector<Vec3> nodes = mesh.nodes;
   if (options.is_quadratic) {
+    tets.resize(mesh.tetrahedra.size());
+    for (std::size_t i = 0; i < tets.size(); ++i) tets[i] = mesh.tetrahedra[layout.order[i]];
     quadratic = quadratic_topology(tets, static_cast<std::uint32_t>(mesh.nodes.size()));
     append_midside_nodes(quadratic, nodes);
   }
@@ -236,7 +273,7 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
   append_node_set("TOP", face_sets[static_cast<int>(SpecimenFace::kTop)], tail);
   append_node_set("SIDES", face_sets[static_cast<int>(SpecimenFace::kSide)], tail);
   const double scale = length_scale(options.units);
-  append_materials(options.materials, scale, layout, tail);
+  append_materials(options.materials, scale, mesh, layout, tail);
   if (options.step.strain > 0.0) append_step(mesh, options.step, scale, bottom, tail);
 
   detail::write_atomically(path, options.overwrite, [&](std::ostream& out) {
@@ -256,7 +293,8 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
       const std::uint64_t begin = layout.group_offsets[g];
       const std::uint64_t end = layout.group_offsets[g + 1];
       if (begin == end) continue;
-      out << "*ELEMENT, TYPE=" << type << ", ELSET=" << element_set_name(g) << '\n';
+      out << "*ELEMENT, TYPE=" << (layout.is_cohesive_group(g) ? "COH3D6" : type)
+          << ", ELSET=" << element_set_name(g) << '\n';
       const std::size_t chunks = (end - begin + kChunk - 1) / kChunk;
       detail::stream_items(chunks, out, [&](std::size_t c, std::string& buffer) {
         const std::uint64_t first = begin + c * kChunk;
@@ -272,7 +310,7 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
           if (options.is_quadratic) {
             append_nodes(quadratic.tetrahedra[e]);
           } else {
-            append_nodes(tets[e]);
+            append_nodes(detail::element_nodes(mesh, layout.order[e]));
           }
           buffer += '\n';
         }
@@ -280,7 +318,7 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
     }
     out << tail;
   });
-  return {.format = MesoFileFormat::kInp, .nodes = nodes.size(), .elements = tets.size()};
+  return {.format = MesoFileFormat::kInp, .nodes = nodes.size(), .elements = layout.order.size()};
 }
 
 }  // namespace aggpack

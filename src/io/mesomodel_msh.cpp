@@ -1,7 +1,9 @@
 // The mesomodel as Gmsh MSH 4.1 ASCII (io/mesomodel_files.h). One volume entity per element group
-// of MesoLayout - entity k is aggregate k, entity n + k the ITZ shell of particle k, entity 2n + 1
-// the mortar - each in the physical group of its phase: 1 "MORTAR", 2 "ITZ", 3 "AGGREGATE"
+// of MesoLayout - entity k is aggregate k, entity n + k the ITZ of particle k, entity 2n + 1 the
+// mortar - each in the physical group of its phase: 1 "MORTAR", 2 "ITZ", 3 "AGGREGATE"
 // (MesoPhase code + 1). A node is listed under the entity of the first element that uses it.
+// A cohesive ITZ's wedges are Gmsh prisms (type 6; nodes 1-3 the aggregate side, 4-6 the mortar
+// side, Gmsh's order like Abaqus's), of zero volume.
 
 #include <algorithm>
 #include <limits>
@@ -16,6 +18,7 @@ namespace {
 using detail::append_number;
 
 constexpr int kGmshTetrahedron = 4;
+constexpr int kGmshPrism = 6;
 constexpr std::uint32_t kUnassigned = std::numeric_limits<std::uint32_t>::max();
 
 void append_point(std::string& out, const Vec3& point, double scale) {
@@ -43,7 +46,7 @@ MesoFileSummary write_mesomodel_msh(const std::string& path, const MesoMesh& mes
   for (std::size_t g = 0; g < groups; ++g) {
     if (layout.group_size(g) > 0) last_group = g;
     for (std::uint64_t e = layout.group_offsets[g]; e < layout.group_offsets[g + 1]; ++e) {
-      for (const std::uint32_t node : mesh.tetrahedra[layout.order[e]]) {
+      for (const std::uint32_t node : detail::element_nodes(mesh, layout.order[e])) {
         boxes[g].expand(mesh.nodes[node]);
         if (node_group[node] == kUnassigned) node_group[node] = static_cast<std::uint32_t>(g);
       }
@@ -109,16 +112,17 @@ MesoFileSummary write_mesomodel_msh(const std::string& path, const MesoMesh& mes
         buffer += '\n';
       });
     }
-    out << "$EndNodes\n$Elements\n"
-        << entities << ' ' << mesh.tetrahedra.size() << " 1 " << mesh.tetrahedra.size() << '\n';
+    const std::size_t elements = layout.order.size();
+    out << "$EndNodes\n$Elements\n" << entities << ' ' << elements << " 1 " << elements << '\n';
     for (std::size_t g = 0; g < groups; ++g) {
       const std::uint64_t begin = layout.group_offsets[g];
       const std::uint64_t end = layout.group_offsets[g + 1];
       if (begin == end) continue;
-      out << "3 " << (g + 1) << ' ' << kGmshTetrahedron << ' ' << (end - begin) << '\n';
+      const int type = layout.is_cohesive_group(g) ? kGmshPrism : kGmshTetrahedron;
+      out << "3 " << (g + 1) << ' ' << type << ' ' << (end - begin) << '\n';
       detail::stream_items(end - begin, out, [&](std::size_t i, std::string& buffer) {
         append_number(buffer, begin + i + 1);
-        for (const std::uint32_t node : mesh.tetrahedra[layout.order[begin + i]]) {
+        for (const std::uint32_t node : detail::element_nodes(mesh, layout.order[begin + i])) {
           buffer += ' ';
           append_number(buffer, static_cast<std::uint64_t>(node) + 1);
         }
@@ -127,9 +131,8 @@ MesoFileSummary write_mesomodel_msh(const std::string& path, const MesoMesh& mes
     }
     out << "$EndElements\n";
   });
-  return {.format = MesoFileFormat::kMsh,
-          .nodes = mesh.nodes.size(),
-          .elements = mesh.tetrahedra.size()};
+  return {
+      .format = MesoFileFormat::kMsh, .nodes = mesh.nodes.size(), .elements = layout.order.size()};
 }
 
 }  // namespace aggpack

@@ -199,6 +199,8 @@ void check_gaps(const std::vector<Inclusion>& inclusions, const MesoOptions& opt
 
 }  // namespace
 
+const char* to_string(ItzKind kind) { return kind == ItzKind::kCohesive ? "cohesive" : "solid"; }
+
 const char* phase_set_name(MesoPhase phase) {
   switch (phase) {
     case MesoPhase::kMortar:
@@ -216,6 +218,15 @@ void validate(const MesoOptions& options) {
     if (!is_ok || !std::isfinite(value)) throw InvalidInput(field, format_value(value), allowed);
   };
   check("itz_thickness", options.itz_thickness, options.itz_thickness >= 0.0, ">= 0 (m)");
+  if (options.itz_kind != ItzKind::kSolid && options.itz_kind != ItzKind::kCohesive) {
+    throw InvalidInput("itz_kind", std::to_string(static_cast<int>(options.itz_kind)),
+                       "solid or cohesive");
+  }
+  if (options.itz_kind == ItzKind::kCohesive && !(options.itz_thickness > 0.0)) {
+    throw InvalidInput(
+        "itz_thickness", format_value(options.itz_thickness),
+        "> 0 (m) for a cohesive ITZ (the cohesive elements' constitutive thickness)");
+  }
   check("aggregate_size", options.aggregate_size, options.aggregate_size >= 0.0,
         ">= 0 (m), 0 = no bound");
   check("mortar_size", options.mortar_size, options.mortar_size >= 0.0, ">= 0 (m), 0 = no bound");
@@ -391,8 +402,13 @@ void add_itz_layers(const std::vector<Inclusion>& inclusions,
 
 }  // namespace
 
-MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, MesoReport* report) {
-  validate(options);
+MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoReport* report) {
+  validate(given);
+  // A cohesive ITZ has no geometric thickness: the aggregates and the mortar are meshed bonded,
+  // then split along the interfaces (split_cohesive_interfaces).
+  const bool is_cohesive = given.itz_kind == ItzKind::kCohesive;
+  MesoOptions options = given;
+  if (is_cohesive) options.itz_thickness = 0.0;
   validate(packing.container);
   const Prism prism = make_prism(packing.container, options.cylinder_segments);
   Aabb box;
@@ -498,6 +514,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
   });
   const std::size_t relabelled = detail::relabel_by_geometry(bodies, 1e-10 * size, mesh);
   if (has_itz) add_itz_layers(inclusions, aggregate_base, count, mesh);
+  if (is_cohesive) split_cohesive_interfaces(mesh, given.itz_thickness);
 
   MesoReport measured = measure_mesomodel(mesh);
   measured.relabelled_tetrahedra = relabelled;
@@ -509,6 +526,9 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options, Mes
   for (const Inclusion& inclusion : inclusions) {
     aggregates += inclusion.aggregate_volume;
     shells += has_itz ? inclusion.shell_volume : inclusion.aggregate_volume;
+    if (is_cohesive) {
+      measured.expected_interface_area += mass_properties(inclusion.aggregate).surface_area;
+    }
   }
   measured.phases[static_cast<int>(MesoPhase::kAggregate)].expected_volume = aggregates;
   measured.phases[static_cast<int>(MesoPhase::kItz)].expected_volume = shells - aggregates;
@@ -551,6 +571,16 @@ MesoReport measure_mesomodel(const MesoMesh& mesh) {
     phase.nodes = static_cast<std::uint64_t>(std::count(is_used.begin(), is_used.end(), 1));
     phase.quality = measure_quality(mesh.nodes, by_phase[p]);
   }
+  MesoPhaseReport& itz = report.phases[static_cast<int>(MesoPhase::kItz)];
+  std::vector<std::uint8_t> is_used(mesh.cohesive.empty() ? 0 : mesh.nodes.size(), 0);
+  for (const CohesiveWedge& wedge : mesh.cohesive) {
+    const Vec3& a = mesh.nodes[wedge[0]];
+    report.interface_area +=
+        0.5 * (mesh.nodes[wedge[1]] - a).cross(mesh.nodes[wedge[2]] - a).norm();
+    for (const std::uint32_t node : wedge) is_used[node] = 1;
+  }
+  report.cohesive_elements = mesh.cohesive.size();
+  itz.nodes += static_cast<std::uint64_t>(std::count(is_used.begin(), is_used.end(), 1));
   return report;
 }
 

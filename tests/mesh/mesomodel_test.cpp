@@ -269,5 +269,142 @@ TEST(Mesomodel, ATetGenOverrunIsStoppedAndReported) {
   }
 }
 
+// ---- cohesive ITZ ------------------------------------------------------------------------------
+
+double triangle_area(const MesoMesh& mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  return 0.5 * (mesh.nodes[b] - mesh.nodes[a]).cross(mesh.nodes[c] - mesh.nodes[a]).norm();
+}
+
+// The cohesive form: aggregate and mortar tetrahedra share no node; every face used once lies on
+// a wall or is one side of exactly one wedge (its aggregate side on an aggregate tetrahedron of
+// the wedge's particle, the mortar side on a mortar tetrahedron), both sides at the same points,
+// the wedge's normal (nodes 0-2, right hand) pointing out of the aggregate.
+void expect_cohesive(const MesoMesh& mesh) {
+  std::vector<std::uint8_t> sides(mesh.nodes.size(), 0);
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    ASSERT_NE(mesh.phase[e], MesoPhase::kItz);
+    for (const std::uint32_t n : mesh.tetrahedra[e])
+      sides[n] |= mesh.phase[e] == MesoPhase::kAggregate ? 1 : 2;
+  }
+  EXPECT_EQ(std::count(sides.begin(), sides.end(), 3), 0) << "a node on both sides";
+  std::map<std::array<std::uint32_t, 3>, std::vector<std::size_t>> faces;
+  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
+    for (const auto& local : kTetraFaces) {
+      std::array<std::uint32_t, 3> key{mesh.tetrahedra[e][local[0]], mesh.tetrahedra[e][local[1]],
+                                       mesh.tetrahedra[e][local[2]]};
+      std::sort(key.begin(), key.end());
+      faces[key].push_back(e);
+    }
+  }
+  std::map<std::array<std::uint32_t, 3>, int> wedge_sides;
+  ASSERT_EQ(mesh.cohesive.size(), mesh.cohesive_particle.size());
+  for (std::size_t w = 0; w < mesh.cohesive.size(); ++w) {
+    const CohesiveWedge& wedge = mesh.cohesive[w];
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(mesh.nodes[wedge[k]], mesh.nodes[wedge[k + 3]]);
+    const Vec3 normal = (mesh.nodes[wedge[1]] - mesh.nodes[wedge[0]])
+                            .cross(mesh.nodes[wedge[2]] - mesh.nodes[wedge[0]]);
+    for (int side = 0; side < 2; ++side) {
+      std::array<std::uint32_t, 3> key{wedge[3 * side], wedge[3 * side + 1], wedge[3 * side + 2]};
+      std::sort(key.begin(), key.end());
+      ++wedge_sides[key];
+      const auto found = faces.find(key);
+      ASSERT_NE(found, faces.end()) << "wedge " << w << " side " << side << " on no tetrahedron";
+      ASSERT_EQ(found->second.size(), 1U) << "wedge " << w << " side " << side;
+      const std::size_t e = found->second[0];
+      EXPECT_EQ(mesh.phase[e], side == 0 ? MesoPhase::kAggregate : MesoPhase::kMortar);
+      if (side == 0) {
+        EXPECT_EQ(mesh.particle[e], mesh.cohesive_particle[w]);
+      }
+      // The tetrahedron's fourth node: behind the normal for the aggregate, ahead for the mortar.
+      for (const std::uint32_t n : mesh.tetrahedra[e]) {
+        if (std::find(key.begin(), key.end(), n) != key.end()) continue;
+        const double ahead = normal.dot(mesh.nodes[n] - mesh.nodes[wedge[0]]);
+        EXPECT_TRUE(side == 0 ? ahead < 0.0 : ahead > 0.0) << "wedge " << w << " side " << side;
+      }
+    }
+  }
+  const double tolerance = 1e-9 * mesh.bounds.extent().maxCoeff();
+  for (const auto& [key, users] : faces) {
+    ASSERT_LE(users.size(), 2U);
+    if (users.size() == 2) {
+      EXPECT_EQ(mesh.phase[users[0]], mesh.phase[users[1]]) << "phases meet without a wedge";
+      continue;
+    }
+    if (wedge_sides.count(key) == 1) continue;
+    const Vec3 centre = (mesh.nodes[key[0]] + mesh.nodes[key[1]] + mesh.nodes[key[2]]) / 3.0;
+    EXPECT_TRUE((centre - mesh.bounds.lower).cwiseAbs().minCoeff() <= tolerance ||
+                (centre - mesh.bounds.upper).cwiseAbs().minCoeff() <= tolerance)
+        << "an open face inside the container";
+  }
+  for (const auto& [key, count] : wedge_sides) EXPECT_EQ(count, 1) << "a face of two wedges";
+}
+
+TEST(MesomodelCohesive, GeneratedParticlesAreJoinedByOneWedgePerSurfaceTriangle) {
+  const Packing packing = generated_packing(8, 0.04, 0.008, 3);
+  MesoOptions options;
+  options.itz_thickness = 3e-4;
+  options.itz_kind = ItzKind::kCohesive;
+  MesoReport report;
+  const MesoMesh mesh = build_mesomodel(packing, options, &report);
+  expect_cohesive(mesh);
+  // No layer: aggregates exact, mortar the rest, the ITZ no volume; the interfaces are exactly
+  // the aggregates' surfaces, one wedge per surface triangle (TetGen -Y keeps them whole).
+  EXPECT_EQ(report.phases[1].expected_volume, 0.0);
+  EXPECT_EQ(report.phases[1].quality.tetrahedra, 0U);
+  expect_exact_volumes(report);
+  double area = 0.0;
+  std::size_t triangles = 0;
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    area += mass_properties(packing.placed(i)).surface_area;
+    triangles += packing.placed(i).triangle_count();
+  }
+  EXPECT_EQ(mesh.cohesive.size(), triangles);
+  EXPECT_EQ(report.cohesive_elements, triangles);
+  EXPECT_LT(relative(report.interface_area, area), 1e-12);
+  EXPECT_LT(relative(report.expected_interface_area, area), 1e-12);
+  EXPECT_EQ(mesh.itz_thickness, 3e-4);
+  // Wedges come particle by particle, each particle's triangles all there.
+  std::vector<double> per_particle(packing.particles.size() + 1, 0.0);
+  for (std::size_t w = 0; w < mesh.cohesive.size(); ++w) {
+    if (w > 0) {
+      EXPECT_LE(mesh.cohesive_particle[w - 1], mesh.cohesive_particle[w]);
+    }
+    const CohesiveWedge& t = mesh.cohesive[w];
+    per_particle[mesh.cohesive_particle[w]] += triangle_area(mesh, t[0], t[1], t[2]);
+  }
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    EXPECT_LT(relative(per_particle[i + 1], mass_properties(packing.placed(i)).surface_area),
+              1e-12);
+  }
+  // Same input, same mesh (the wedges' order included).
+  const MesoMesh again = build_mesomodel(packing, options);
+  EXPECT_EQ(again.cohesive, mesh.cohesive);
+  EXPECT_EQ(again.nodes, mesh.nodes);
+}
+
+TEST(MesomodelCohesive, ACohesiveItzNeedsAThicknessAndABondedMesh) {
+  MesoOptions options;
+  options.itz_kind = ItzKind::kCohesive;
+  try {
+    validate(options);
+    FAIL() << "a cohesive ITZ without a thickness accepted";
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("itz_thickness"), std::string::npos) << error.what();
+  }
+  // Aggregates closer than the mesher's margin are refused as without an ITZ: the cohesive ITZ
+  // has no geometric thickness, so a 2 x t gap is not needed.
+  const ConvexPolyhedron cube = make_box(Vec3::Constant(-0.1), Vec3::Constant(0.1));
+  const Packing packing = box_with(1.0, {cube, cube}, {Vec3(0.3, 0.5, 0.5), Vec3(0.55, 0.5, 0.5)});
+  options.itz_thickness = 0.03;  // a solid layer this thick would not fit in the 0.05 gap
+  MesoReport report;
+  const MesoMesh mesh = build_mesomodel(packing, options, &report);
+  expect_cohesive(mesh);
+  EXPECT_EQ(mesh.cohesive.size(), 24U);  // two cubes, 12 triangles each
+  EXPECT_NEAR(report.interface_area, 2 * 6 * 0.04, 1e-15);
+  // A mesh that has an ITZ already cannot be split again.
+  MesoMesh split = mesh;
+  EXPECT_THROW(split_cohesive_interfaces(split, 0.03), InvalidInput);
+}
+
 }  // namespace
 }  // namespace aggpack

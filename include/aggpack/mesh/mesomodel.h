@@ -35,10 +35,28 @@ enum class MesoPhase : std::uint8_t { kMortar = 0, kItz = 1, kAggregate = 2 };
 /// Names used for element sets and reports: "MORTAR", "ITZ", "AGGREGATE".
 const char* phase_set_name(MesoPhase phase);
 
+/// How the ITZ is modelled (the user's choice, `--itz-kind`).
+enum class ItzKind : std::uint8_t {
+  /// A solid layer of the ITZ thickness around every aggregate, meshed with tetrahedra.
+  kSolid = 0,
+  /// Zero-thickness cohesive elements (Abaqus COH3D6) on every aggregate-mortar interface: the
+  /// aggregates and the mortar meshed bonded (no layer), then split along each aggregate's
+  /// surface, the mortar side on its own copies of the surface nodes, and each surface triangle
+  /// joined to its copy by a 6-node wedge. The ITZ thickness is then the elements' constitutive
+  /// thickness (their stiffness is the ITZ's modulus over it), not a geometric one.
+  kCohesive = 1
+};
+
+/// "solid" or "cohesive".
+const char* to_string(ItzKind kind);
+
 struct MesoOptions {
   /// ITZ thickness t (m), >= 0; 0 = no ITZ (aggregates bonded directly to mortar). Typical
   /// 20-50 um; the layers of two particles must not meet (checked, see build_mesomodel).
   double itz_thickness = 0.0;
+  /// Solid layer or cohesive elements; kCohesive needs itz_thickness > 0 (its constitutive
+  /// thickness) and a packing whose aggregates do not touch.
+  ItzKind itz_kind = ItzKind::kSolid;
   /// Target element edge length in the aggregates and in the mortar (m); 0 = no size bound
   /// (TetGen's quality bound alone). The bound passed to TetGen is the volume of the regular
   /// tetrahedron of that edge, h^3 / (6 sqrt 2).
@@ -62,8 +80,15 @@ struct MesoOptions {
 /// Throws InvalidInput naming the field unless the options are usable.
 void validate(const MesoOptions& options);
 
+/// A 6-node zero-thickness cohesive element (Abaqus COH3D6 node order): nodes 0-2 a triangle of
+/// the aggregate's surface, ordered so that its right-hand normal points out of the aggregate
+/// (the element's thickness direction, bottom to top), nodes 3-5 the mortar side's copies of
+/// nodes 0-2 (same positions).
+using CohesiveWedge = std::array<std::uint32_t, 6>;
+
 /// A conforming tetrahedral mesh of the specimen. Node numbers 0-based; tetrahedra positively
-/// oriented (tetrahedra.h conventions).
+/// oriented (tetrahedra.h conventions). With a cohesive ITZ the aggregate and mortar tetrahedra
+/// share no node: the cohesive wedges join them.
 struct MesoMesh {
   std::vector<Vec3> nodes;
   std::vector<Tetrahedron> tetrahedra;
@@ -75,7 +100,9 @@ struct MesoMesh {
   Vec3 axis_point = Vec3::Zero();       ///< cylinder: a point on its axis (x, y used)
   double cylinder_radius = 0.0;         ///< cylinder: radius of the circle the prism circumscribes
   int cylinder_segments = 0;            ///< cylinder: sides of the prism (the first at angle 0)
-  double itz_thickness = 0.0;           ///< m, as meshed
+  double itz_thickness = 0.0;           ///< m, as meshed (cohesive: the constitutive thickness)
+  std::vector<CohesiveWedge> cohesive;  ///< cohesive ITZ elements (empty for a solid ITZ)
+  std::vector<std::uint32_t> cohesive_particle;  ///< per cohesive element: 1-based particle
 };
 
 /// Expected (exact) and meshed volumes and the quality of one phase.
@@ -94,6 +121,11 @@ struct MesoReport {
   /// (see build_mesomodel); 0 in nearly every mesh.
   std::uint64_t relabelled_tetrahedra = 0;
   std::string tetgen_switches;
+  /// Cohesive ITZ: its elements, their area (sum of the wedges' triangles, m^2) and the exact
+  /// one (the aggregates' surface areas).
+  std::uint64_t cohesive_elements = 0;
+  double interface_area = 0.0;
+  double expected_interface_area = 0.0;
 };
 
 /// Meshes the packing's container into phases. \throw InvalidInput (options; particles closer
@@ -104,8 +136,20 @@ struct MesoReport {
 MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& options,
                          MesoReport* report = nullptr);
 
-/// Per-phase volumes, node counts and quality of a mesh (`expected_volume` left 0).
+/// Per-phase volumes, node counts and quality of a mesh, and its cohesive elements and their
+/// area (`expected_volume` and `expected_interface_area` left 0). The ITZ phase's node count of
+/// a cohesive mesh counts the wedges' nodes.
 MesoReport measure_mesomodel(const MesoMesh& mesh);
+
+/// Turns a bonded mesh (aggregate and mortar tetrahedra sharing their interface nodes, no ITZ
+/// tetrahedra) into the cohesive-ITZ form (ItzKind::kCohesive): every node used by both an
+/// aggregate and a mortar tetrahedron gets a copy (appended to mesh.nodes, same position) that the
+/// mortar tetrahedra use instead, and every aggregate-mortar triangle becomes a CohesiveWedge of
+/// its aggregate's particle, ordered by particle, then by the aggregate tetrahedron and face it
+/// lies on; mesh.itz_thickness = thickness. build_mesomodel calls it; public for meshes made
+/// elsewhere. \throw InvalidInput (ITZ tetrahedra or wedges present, thickness <= 0),
+/// LimitExceeded (2^32 nodes or more).
+void split_cohesive_interfaces(MesoMesh& mesh, double thickness);
 
 /// Faces of the specimen for node sets: bottom (z min), top (z max), sides (the rest).
 enum class SpecimenFace : std::uint8_t { kBottom = 0, kTop = 1, kSide = 2 };
