@@ -143,7 +143,7 @@ void register_pack(py::module_& m) {
 pack_config()): the same packing, byte for byte once written. Releases the GIL while it runs.
 
 progress: None or a callable progress(dict) called at most every progress_interval seconds
-(default 0.1, [0, 3600]) and once at the end, from the calling thread, with stage ('shapes',
+(default 0.1, [0, 3600]) and once at the end (holding the GIL only then), with stage ('shapes',
 'placement', 'densify'), fraction (of this stage, [0, 1]), placed, attempted, total,
 solid_fraction. Returning False cancels: the packer stops and pack() returns what it placed
 (report['stop_reason'] == 'cancelled'). An exception raised by the callback also cancels, and
