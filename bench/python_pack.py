@@ -11,12 +11,14 @@ Each run is a whole process doing the same work: parse the config, pack, write t
   cli:    aggpack pack CONFIG -o cli.h5 --progress none
   python: python3 -c 'import aggpack; aggpack.pack(PackConfig.from_file(CONFIG)).write(py.h5)'
 Runs alternate (cli, python, cli, ...) so that a change in machine load hits both; the table shows
-every run and the medians. The two files must be byte-identical.
+every run and the medians of wall and CPU (user + sys) time. The two files must be
+byte-identical.
 """
 import argparse
 import filecmp
 import math
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -68,20 +70,28 @@ commands = {
     "python": [sys.executable, "-c", python_code, config_path, py_out],
 }
 times = {"cli": [], "python": []}
+cpu = {"cli": [], "python": []}
 print(f"cube side {side:.4f} m; {os.cpu_count()} cores; load {os.getloadavg()}")
 for run in range(args.repeats):
     for name, command in commands.items():
+        usage = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
         result = subprocess.run(command, capture_output=True, text=True, check=False)
         elapsed = time.perf_counter() - start
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu_seconds = (after.ru_utime - usage.ru_utime) + (after.ru_stime - usage.ru_stime)
+        cpu[name].append(cpu_seconds)
         if result.returncode != 0:
             sys.exit(f"{name} failed: {result.stderr}")
         times[name].append(elapsed)
         last = result.stdout.strip().splitlines()[-1] if name == "python" else ""
-        print(f"run {run + 1} {name:6s} {elapsed:7.2f} s  {last}")
+        print(f"run {run + 1} {name:6s} {elapsed:7.2f} s wall {cpu_seconds:7.2f} s CPU  {last}")
 same = filecmp.cmp(cli_out, py_out, shallow=False)
 cli, py = statistics.median(times["cli"]), statistics.median(times["python"])
-print(f"median: cli {cli:.2f} s, python {py:.2f} s, python / cli = {py / cli:.3f} "
+print(f"median wall: cli {cli:.2f} s, python {py:.2f} s, python / cli = {py / cli:.3f} "
       f"({100 * (py / cli - 1):+.1f} %); native files identical: {same}")
+cli_cpu, py_cpu = statistics.median(cpu["cli"]), statistics.median(cpu["python"])
+print(f"median CPU:  cli {cli_cpu:.2f} s, python {py_cpu:.2f} s, python / cli = "
+      f"{py_cpu / cli_cpu:.3f} ({100 * (py_cpu / cli_cpu - 1):+.1f} %)")
 print(f"load after: {os.getloadavg()}")
 sys.exit(0 if same else 1)

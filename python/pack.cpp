@@ -3,6 +3,7 @@
 // exception in it, Ctrl-C included).
 
 #include <Python.h>
+#include <pybind11/stl.h>
 
 #include <atomic>
 #include <exception>

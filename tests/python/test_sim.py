@@ -21,3 +21,28 @@ def test_settle_returns_a_packing_and_a_report(small_packing):
 def test_settle_bad_option_names_it(small_packing):
     with pytest.raises(aggpack.InvalidInput, match="friction"):
         small_packing.settle(friction=-1.0)
+
+
+SMALL_TROUGH = {"trough": {"length": 1.2, "width": 0.2, "height": 0.6, "baffle_position": 0.6},
+                "particles": {"radius": 0.05, "edge_length": 0.05, "fill_height": 0.4},
+                "rest": {"max_time": 2.0, "confirm_window": 0.0}}
+
+
+def test_repose_on_a_small_trough():
+    result = aggpack.repose(SMALL_TROUGH)
+    count = result["particle_count"]
+    assert count > 10
+    assert len(result["final"]) == count == len(result["initial"])
+    profile = result["profile"]
+    assert profile["x"].shape == profile["height"].shape and profile["height"].max() > 0
+    # The baffle moved and the particles spread beyond it.
+    assert result["baffle_travel"] > 0
+    assert result["final"].positions[:, 0].max() > 0.6
+    if result["fit"]["is_valid"]:
+        assert 0 < result["angle_degrees"] < 90
+
+
+def test_repose_bad_key_names_it():
+    with pytest.raises(aggpack.ConfigError) as caught:
+        aggpack.repose(SMALL_TROUGH, ["trough.baffle_speed=-1"])
+    assert caught.value.key == "trough.baffle_speed"
