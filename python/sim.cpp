@@ -66,11 +66,6 @@ std::shared_ptr<PyPacking> wrap(Packing packing) {
   return result;
 }
 
-// The paper's lattice fill of a repose case, made by the pipeline (as the CLI's repose_fill).
-PackResult lattice_fill(const ReposeOptions& options) {
-  return pack(PackerOptions{repose_fill_options(options)});
-}
-
 // Sweep options from None / dict / TOML text, with the CLI's keys and messages.
 SweepOptions sweep_options(const py::object& config, const std::vector<std::string>& overrides) {
   std::string text;
@@ -150,7 +145,7 @@ overlapping_pairs, max_overlap m, escaped_particles, ...). Raises InvalidInput n
         {
           const py::gil_scoped_release release;
           with_sweep_key_names(
-              [&] { result = run_repose(options.base, lattice_fill(options.base)); });
+              [&] { result = run_repose(options.base, repose_fill(options.base)); });
         }
         py::dict d;
         d["angle_degrees"] = result->fit.angle_degrees;
@@ -194,7 +189,7 @@ float64 arrays), and the packings initial, settled, final. Raises ConfigError na
         std::vector<SweepCase> cases;
         {
           const py::gil_scoped_release release;
-          with_sweep_key_names([&] { cases = run_sweep(options, lattice_fill); });
+          with_sweep_key_names([&] { cases = run_sweep(options, repose_fill); });
         }
         py::list rows;
         for (const SweepCase& c : cases) {
