@@ -19,7 +19,7 @@ build=build-fuzz
 CC=${CC_FUZZ:-clang-14} CXX=${CXX_FUZZ:-clang++-14} cmake -S . -B "$build" -G Ninja \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAGGPACK_BUILD_FUZZ=ON -DAGGPACK_BUILD_TESTS=OFF \
   -DAGGPACK_BUILD_BENCH=OFF -DAGGPACK_BUILD_GUI=OFF -DAGGPACK_BUILD_RENDER=OFF \
-  -DAGGPACK_BUILD_SIM=OFF "$@" >/dev/null
+  -DAGGPACK_BUILD_SIM=OFF -DAGGPACK_BUILD_PYTHON=OFF "$@" >/dev/null
 cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $targets)
 
 # max_len: the native seeds are up to ~24 KB; a config is a few hundred bytes. malloc_limit_mb:

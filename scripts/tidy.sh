@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # clang-tidy (Debian's clang-tidy 14) with the project's .clang-tidy (naming rules + cheap bugprone
 # checks, warnings are errors) over every C++ file the build compiles: src/, app/ (CLI and GUI),
-# tests/ and bench/, and the headers they include from include/aggpack, src/, app/ and tests/.
+# python/ (the module), tests/ and bench/, and the headers they include from include/aggpack, src/,
+# app/, python/ and tests/.
 # Configures (does not build) build-tidy/ with every part on, for its compile_commands.json.
 #
 #   scripts/tidy.sh [FILE_REGEX]     e.g. scripts/tidy.sh 'src/io/' (default: all our files)
@@ -22,7 +23,7 @@ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_CO
   cat "$build_dir/configure.log"
   exit 1
 }
-files=${1:-'(src|app|tests|bench)/'}
+files=${1:-'(src|app|python|tests|bench)/'}
 SECONDS=0
 # -Wno-unknown-warning-option: clang does not know GCC's -Wno-restrict (CMakeLists.txt).
 "$runner" -clang-tidy-binary "$tidy" -p "$build_dir" -j "$jobs" -quiet \

@@ -282,24 +282,10 @@ void register_export(CLI::App& app) {
     options.overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     options.stl_encoding = flags->is_ascii ? StlEncoding::kAscii : StlEncoding::kBinary;
     if (!flags->format.empty()) options.format = parse_export_format(flags->format);
-    if (flags->cells == "surface") {
-      options.cells = MeshCells::kSurface;
-    } else if (flags->cells == "tetrahedra") {
-      options.cells = MeshCells::kTetrahedra;
-    } else if (flags->cells != "default") {
-      throw InvalidInput("--cells", "'" + flags->cells + "'", "surface | tetrahedra");
-    }
-    if (flags->tet_method == "tetgen") {
-      options.tetrahedra.method = TetMethod::kTetGen;
-    } else if (flags->tet_method != "fan") {
-      throw InvalidInput("--tet-method", "'" + flags->tet_method + "'", "fan | tetgen");
-    }
+    options.cells = parse_mesh_cells(flags->cells, "--cells");
+    options.tetrahedra.method = parse_tet_method(flags->tet_method, "--tet-method");
     options.tetrahedra.is_surface_kept = !flags->is_surface_split;
-    if (flags->inp_layout == "parts") {
-      options.abaqus_layout = AbaqusLayout::kPartsInstances;
-    } else if (flags->inp_layout != "sets") {
-      throw InvalidInput("--inp-layout", "'" + flags->inp_layout + "'", "sets | parts");
-    }
+    options.abaqus_layout = parse_abaqus_layout(flags->inp_layout, "--inp-layout");
     options.deck.kind = parse_deck_kind(flags->deck);
     // Check options and the destination before the (possibly long) read of the input.
     options.format = resolve_format(flags->output, options);

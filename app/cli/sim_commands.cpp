@@ -182,11 +182,6 @@ void print_result(const ReposeResult& r) {
   }
 }
 
-// The paper's lattice fill of a repose case, made by the pipeline.
-PackResult repose_fill(const ReposeOptions& options) {
-  return pack(PackerOptions{repose_fill_options(options)});
-}
-
 // The plan of a distributed run: the resolved configuration (with the seed list) and its hash.
 RunRecord plan_record(RunKind kind, const SweepOptions& options, std::size_t run_count,
                       int image_width) {

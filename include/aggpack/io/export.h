@@ -231,6 +231,19 @@ DeckKind parse_deck_kind(const std::string& name);
 /// Short name of a deck ("none", "abaqus", "calculix", "lsdyna", "yade").
 std::string deck_name(DeckKind kind);
 
+/// The cells a word names: "default", "surface", "tetrahedra" (`export --cells`). `field` names
+/// the option in the message. \throw InvalidInput "invalid <field> = '<word>' (allowed: surface |
+/// tetrahedra)".
+MeshCells parse_mesh_cells(const std::string& word, const std::string& field);
+
+/// The tetrahedra method a word names: "fan" or "tetgen" (`export --tet-method`).
+/// \throw InvalidInput naming `field`.
+TetMethod parse_tet_method(const std::string& word, const std::string& field);
+
+/// The Abaqus layout a word names: "sets" or "parts" (`export --inp-layout`).
+/// \throw InvalidInput naming `field`.
+AbaqusLayout parse_abaqus_layout(const std::string& word, const std::string& field);
+
 /// Short name of a format, its row's name ("stl", "dat", "inp", "vtu", "msh", "k", "mac", "obj",
 /// "py", "h5").
 std::string format_name(ExportFormat format);

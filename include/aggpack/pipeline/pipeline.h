@@ -17,6 +17,9 @@
 #include "aggpack/pack/dense_packer.h"
 #include "aggpack/pack/packer_kinds.h"
 #include "aggpack/pack/progress.h"
+#ifdef AGGPACK_HAS_SIM
+#include "aggpack/sim/repose.h"
+#endif
 
 namespace aggpack {
 
@@ -80,5 +83,12 @@ PipelineResult pack(const PackConfig& config, const PackControl& control = {});
 /// \throw InvalidInput naming "densify.<option>" or "start packing".
 PipelineResult densify_packing(Packing start, const DensifyOptions& options, std::string_view note,
                                const PackControl& control = {});
+
+#ifdef AGGPACK_HAS_SIM
+/// The fill of a repose case: the paper's lattice placement of repose_fill_options(options)
+/// packed by pack(). What `aggpack repose|sweep` and the Python module's repose() and sweep()
+/// run the simulation on (a ReposeFill; called concurrently by a sweep).
+PackResult repose_fill(const ReposeOptions& options);
+#endif
 
 }  // namespace aggpack
