@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,33 @@ void sort_by_high_word(std::vector<std::uint64_t>& keys, std::vector<std::uint64
 
 using namespace render_detail;  // NOLINT(google-build-using-namespace): internal header
 
+// One buffer of a scene upload: the GL buffer, its bytes and their data.
+struct UploadPiece {
+  GLuint buffer;
+  std::size_t bytes;
+  const void* data;
+};
+
+// Everything drawn from a packing, computed without OpenGL (prepare_scene, on any thread) and
+// uploaded by PackingRenderer::begin_upload / upload_step in bounded pieces.
+struct SceneData {
+  std::vector<ShapeRange> shapes;
+  std::vector<std::uint32_t> instanced_shapes;
+  std::vector<std::uint32_t> particle_shape;
+  std::vector<ParticleSphere> particle_sphere;
+  std::vector<float> impostor_radius;
+  std::array<ParticleColors, 3> colors;
+  Aabb bounds;
+  std::vector<GpuVertex> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<float> transforms;  // 16 per particle (at least one particle's worth)
+  std::vector<float> lines;       // container outline, 3 per vertex
+  std::size_t merged_shapes = 0;  // shapes drawn as a scaled copy of another
+};
+
+// Most particles one step of a frame submits (step_frame): about 30 ms on llvmpipe.
+constexpr std::size_t kStepParticles = 12000;
+
 // Below this many particles in view, drawing them all costs less than a depth read-back.
 constexpr std::size_t kOcclusionMinParticles = 4000;
 
@@ -135,10 +163,25 @@ struct PackingRenderer::State {
   std::vector<const void*> single_offsets;
   std::vector<GLint> single_base_vertices;
 
+  // The scene being uploaded (begin_upload / upload_step), null when none: its buffers in order
+  // (vertices, indices, transforms, outline), the buffer and byte reached.
+  std::shared_ptr<SceneData> pending;
+  std::size_t pending_buffer = 0, pending_offset = 0;
+  bool is_pending_allocated = false;  // the buffer pending_buffer has its storage
+  std::size_t merged_shapes = 0;
+  // The pending scene's buffers in upload order (pending not null).
+  [[nodiscard]] std::array<UploadPiece, 4> upload_pieces() const {
+    return {
+        {{vertex_buffer, pending->vertices.size() * sizeof(GpuVertex), pending->vertices.data()},
+         {index_buffer, pending->indices.size() * sizeof(std::uint32_t), pending->indices.data()},
+         {transform_buffer, pending->transforms.size() * sizeof(float), pending->transforms.data()},
+         {line_buffer, pending->lines.size() * sizeof(float), pending->lines.data()}}};
+  }
+
   // The frame begun by begin_frame(), drawn by step_frame().
   struct Frame {
-    // Next step: 1 first pass (or its nearer half), 5 the first pass's farther half, 2 read-back
-    // + occlusion test, 3 rest, 4 container outline only, 0 done.
+    // Next step: 1 first pass (a piece of it per step), 2 read-back + occlusion test, 3 rest (a
+    // piece per step), 4 container outline only, 0 done.
     int step = 0;
     int width = 1, height = 1;
     RenderStyle style;
@@ -147,7 +190,8 @@ struct PackingRenderer::State {
     bool is_orthographic = false;
     bool is_culled = false;  // occlusion culling this frame
     std::size_t first = 0;   // candidates [0, first) are drawn in the first pass
-    std::size_t split = 0;   // ... in two steps, [0, split) and [split, first)
+    std::size_t chunk = 0;   // candidates per step of a pass
+    std::size_t cursor = 0;  // next candidate to submit in the pass under way
     std::size_t used = 0;    // mesh triangles of the first pass
     DrawStats stats;
   };
