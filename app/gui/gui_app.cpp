@@ -313,6 +313,7 @@ void GuiApp::finish_upload_if_done() {
   // A bounded piece per frame: the window stays live while a large scene goes to OpenGL.
   constexpr std::size_t kUploadBytesPerFrame = std::size_t{24} << 20;
   if (!renderer_->upload_step(kUploadBytesPerFrame)) return;
+  is_upload_finished_now_ = true;
   const Aabb old_bounds = packing_ ? last_bounds_ : Aabb{};
   packing_ = std::move(pending_packing_);
   packing_entries_ = std::move(pending_entries_);
@@ -533,6 +534,11 @@ void GuiApp::note_frame_end() {
     return;
   }
   longest_frame_ = std::max(longest_frame_, seconds);
+  if (options_.is_frame_log) {
+    std::printf("frame %d: %.1f ms%s%s\n", timed_frames_, 1e3 * seconds,
+                job_.is_running() ? " (job running)" : "",
+                renderer_->is_upload_pending() ? " (uploading)" : "");
+  }
   ++timed_frames_;
 }
 

@@ -42,6 +42,7 @@ struct GuiOptions {
   /// --edit KEY=VALUE: typed into the panel's field once the first pack/open is done (or at
   /// start without one), as a user would (values as `--set` takes them).
   std::vector<std::string> edits;
+  bool is_frame_log = false;  ///< --frame-log: print every timed frame's time
   /// --export FORMAT: once the first job (and the edits) are done, press that export, as the
   /// Export menu does (the dialog's questions are printed and answered by --answer).
   std::optional<std::string> export_format;
@@ -168,6 +169,7 @@ class GuiApp {
   // Whether frames drawn while the view moves must be light: the last full-detail picture took
   // longer than the detail controller's target (else they stay in full detail).
   bool needs_light_frames_ = false;
+  bool is_upload_finished_now_ = false;  // this frame finished an upload: no drawing in it
   std::unique_ptr<PackingRenderer> renderer_;
   std::unique_ptr<OffscreenTarget> scene_target_;
   // Light frames drawn at a lower resolution (DetailLevel::resolution_scale) go here.

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "aggpack/core/error.h"
 #include "gui_app.h"
@@ -34,8 +35,9 @@ void GuiApp::render_scene_if_needed(int width, int height) {
     has_picture_ = false;
     is_scene_dirty_ = true;
   }
-  // While a new scene goes to OpenGL the last picture stays (the renderer cannot draw).
-  if (renderer_->is_upload_pending()) return;
+  // While a new scene goes to OpenGL the last picture stays (the renderer cannot draw), and the
+  // frame that finished the upload draws nothing more.
+  if (renderer_->is_upload_pending() || std::exchange(is_upload_finished_now_, false)) return;
   const bool is_moving = is_interacting();
   const bool is_light = is_moving && needs_light_frames_;
   if (!is_scene_dirty_ && (is_moving || !renderer_->is_frame_pending())) return;

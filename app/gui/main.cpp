@@ -94,6 +94,8 @@ int main(int argc, char** argv) {
                  "after the first pack/open, type VALUE into the panel's KEY field, as a user "
                  "would (KEY=VALUE, repeat); the run prints the fields' errors and whether the "
                  "shown result is out of date");
+  cli.add_flag("--frame-log", options.is_frame_log,
+               "print the time of every frame from the first job to the end of the script");
   std::string export_format;
   cli.add_option("--export", export_format,
                  "after the first pack/open (and --edit), open the Export dialog for FORMAT (stl, "

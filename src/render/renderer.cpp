@@ -205,6 +205,16 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
       range.coarse_count = range.full_count;
     }
   }
+  std::size_t most_vertices = 0;
+  for (std::size_t k = 0; k < shape_count; ++k) {
+    if (s.shapes[k].instances > 0) {
+      most_vertices = std::max(most_vertices, packing.shapes[k].vertices().size());
+    }
+  }
+  if (most_vertices <= 65536) {
+    s.short_indices.assign(indices.begin(), indices.end());
+    indices = std::vector<std::uint32_t>();
+  }
   if (!report(0.9)) return nullptr;
 
   // Transforms: rows of [scale * R | t] (float is ample: 1e-7 relative to the scene size), then
@@ -329,6 +339,8 @@ bool PackingRenderer::upload_step(std::size_t max_bytes) {
   s.colors = std::move(scene.colors);
   s.bounds = scene.bounds;
   s.merged_shapes = scene.merged_shapes;
+  s.index_type = scene.short_indices.empty() ? GL_UNSIGNED_INT : GL_UNSIGNED_SHORT;
+  s.index_size = scene.short_indices.empty() ? 4u : 2u;
   s.line_vertex_count = static_cast<GLsizei>(scene.lines.size() / 3);
   s.pending.reset();
   s.was_visible.clear();

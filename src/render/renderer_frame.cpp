@@ -210,6 +210,28 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
   f.step = 1;
 }
 
+std::size_t PackingRenderer::State::step_end(std::size_t begin, std::size_t end, std::size_t most,
+                                             int width, int height) const {
+  // At most `most` candidates, about one view's worth of covered pixels (the near particles,
+  // first in the order, are large on screen) and kStepTriangles mesh triangles at full detail
+  // (the near ones take the triangle budget: without this the first piece drew all of it).
+  const double pixel_budget = static_cast<double>(width) * static_cast<double>(height);
+  double pixels = 0.0;
+  std::size_t triangles = 0;
+  std::size_t k = begin;
+  const std::size_t last = std::min(end, begin + most);
+  while (k < last) {
+    const double diameter = std::min(static_cast<double>(candidates[k].pixels),
+                                     static_cast<double>(std::max(width, height)));
+    pixels += 0.785 * diameter * diameter;
+    triangles +=
+        static_cast<std::size_t>(shapes[particle_shape[candidates[k].particle]].full_count / 3);
+    ++k;
+    if (pixels > pixel_budget || triangles > kStepTriangles) break;
+  }
+  return k;
+}
+
 bool PackingRenderer::step_frame() {
   State& s = *state_;
   State::Frame& f = s.frame;
@@ -229,7 +251,7 @@ bool PackingRenderer::step_frame() {
   };
   if (f.step == 1) {
     // Everything (no culling), or the particles seen last frame: the next piece of them.
-    const std::size_t end = std::min(f.first, f.cursor + f.chunk);
+    const std::size_t end = s.step_end(f.cursor, f.first, f.chunk, f.width, f.height);
     f.used += s.submit(f.cursor, end, budget_after(f.used), style, f.view, f.projection, stats);
     f.cursor = end;
     if (f.cursor < f.first) return false;
@@ -284,7 +306,8 @@ bool PackingRenderer::step_frame() {
   if (f.step == 3) {
     // The newly seen, in pieces; budget used up: they are points this frame (and first next).
     if (f.cursor < f.first) f.cursor = f.first;
-    const std::size_t end = std::min(s.candidates.size(), f.cursor + kStepParticles);
+    const std::size_t end =
+        s.step_end(f.cursor, s.candidates.size(), kStepParticles, f.width, f.height);
     f.used += s.submit(f.cursor, end, budget_after(f.used), style, f.view, f.projection, stats);
     f.cursor = end;
     if (f.cursor < s.candidates.size()) return false;

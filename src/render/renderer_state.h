@@ -104,13 +104,18 @@ struct SceneData {
   Aabb bounds;
   std::vector<GpuVertex> vertices;
   std::vector<std::uint32_t> indices;
+  // The same indices in 16 bits when every shape has at most 65,536 vertices (indices are local
+  // to a shape: each draw adds its base vertex), else empty: half the memory to allocate and copy.
+  std::vector<std::uint16_t> short_indices;
   std::vector<float> transforms;  // 16 per particle (at least one particle's worth)
   std::vector<float> lines;       // container outline, 3 per vertex
   std::size_t merged_shapes = 0;  // shapes drawn as a scaled copy of another
 };
 
-// Most particles one step of a frame submits (step_frame): about 30 ms on llvmpipe.
+// Most particles one step of a frame submits (step_frame), and most full-detail mesh triangles:
+// about 30 ms on llvmpipe.
 constexpr std::size_t kStepParticles = 12000;
+constexpr std::size_t kStepTriangles = 60000;
 
 // Below this many particles in view, drawing them all costs less than a depth read-back.
 constexpr std::size_t kOcclusionMinParticles = 4000;
@@ -169,11 +174,17 @@ struct PackingRenderer::State {
   std::size_t pending_buffer = 0, pending_offset = 0;
   bool is_pending_allocated = false;  // the buffer pending_buffer has its storage
   std::size_t merged_shapes = 0;
+  GLenum index_type = GL_UNSIGNED_INT;  // of the uploaded index buffer
+  std::uintptr_t index_size = 4;        // its bytes per index
   // The pending scene's buffers in upload order (pending not null).
   [[nodiscard]] std::array<UploadPiece, 4> upload_pieces() const {
     return {
         {{vertex_buffer, pending->vertices.size() * sizeof(GpuVertex), pending->vertices.data()},
-         {index_buffer, pending->indices.size() * sizeof(std::uint32_t), pending->indices.data()},
+         {index_buffer,
+          pending->short_indices.empty() ? pending->indices.size() * sizeof(std::uint32_t)
+                                         : pending->short_indices.size() * sizeof(std::uint16_t),
+          pending->short_indices.empty() ? static_cast<const void*>(pending->indices.data())
+                                         : static_cast<const void*>(pending->short_indices.data())},
          {transform_buffer, pending->transforms.size() * sizeof(float), pending->transforms.data()},
          {line_buffer, pending->lines.size() * sizeof(float), pending->lines.data()}}};
   }
@@ -196,6 +207,11 @@ struct PackingRenderer::State {
     DrawStats stats;
   };
   Frame frame;
+
+  // The end of the next step's piece of candidates [begin, end): at most `most`, and about one
+  // view of `width` x `height` pixels' worth of their bounding discs (at least one).
+  [[nodiscard]] std::size_t step_end(std::size_t begin, std::size_t end, std::size_t most,
+                                     int width, int height) const;
 
   // Draws candidates [begin, end) (front to back) with levels of detail chosen by size and at
   // most `budget` mesh triangles (0 = no limit); adds to `stats`; returns the mesh triangles.

@@ -462,7 +462,7 @@ TEST(Headless, SteppedFrameDrawsTheSamePictureWithOtherDrawingBetweenSteps) {
     is_done = renderer.step_frame();
     ++steps;
   }
-  EXPECT_EQ(steps, 3);
+  EXPECT_GE(steps, 3);  // first pass (in pieces of at most 60,000 triangles), read-back, rest
   EXPECT_FALSE(renderer.is_frame_pending());
   EXPECT_TRUE(renderer.step_frame());  // nothing left to do
   EXPECT_EQ(renderer.frame_stats().particles_in_frustum, whole.particles_in_frustum);
