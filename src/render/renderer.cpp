@@ -301,15 +301,20 @@ bool PackingRenderer::upload_step(std::size_t max_bytes) {
   while (s.pending_buffer < pieces.size() && budget > 0) {
     const UploadPiece& piece = pieces[s.pending_buffer];
     glBindBuffer(GL_COPY_WRITE_BUFFER, piece.buffer);
+    std::size_t& capacity = s.buffer_capacity[s.pending_buffer];
+    if (!s.is_pending_allocated && piece.bytes <= capacity) {
+      s.is_pending_allocated = true;  // the last scene's storage holds it (a repeated pack)
+    }
     if (!s.is_pending_allocated) {
       // The buffer's storage, in a step of its own when large: the driver may clear it (llvmpipe
-      // takes about 0.5 ms per MB), so one step never allocates two large buffers.
+      // takes about 0.5-1 ms per MB), so one step never allocates two large buffers.
       const bool is_large = piece.bytes > (std::size_t{1} << 20);
       if (is_large && budget < max_bytes) break;  // next step
       glBufferData(GL_COPY_WRITE_BUFFER,
                    static_cast<GLsizeiptr>(std::max<std::size_t>(piece.bytes, 4)), nullptr,
                    GL_STATIC_DRAW);
       s.is_pending_allocated = true;
+      capacity = std::max<std::size_t>(piece.bytes, 4);
       if (is_large && max_bytes != std::numeric_limits<std::size_t>::max()) break;
     }
     const std::size_t bytes = std::min(budget, piece.bytes - s.pending_offset);

@@ -173,6 +173,9 @@ struct PackingRenderer::State {
   std::shared_ptr<SceneData> pending;
   std::size_t pending_buffer = 0, pending_offset = 0;
   bool is_pending_allocated = false;  // the buffer pending_buffer has its storage
+  // Bytes of storage of the upload's buffers (in upload_pieces order): a scene that fits is
+  // copied into the storage it has, with no new allocation.
+  std::array<std::size_t, 4> buffer_capacity{};
   std::size_t merged_shapes = 0;
   GLenum index_type = GL_UNSIGNED_INT;  // of the uploaded index buffer
   std::uintptr_t index_size = 4;        // its bytes per index

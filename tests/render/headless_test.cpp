@@ -556,6 +556,18 @@ TEST(Headless, SceneUploadedInPiecesDrawsTheSamePicture) {
   whole.draw(style);
   EXPECT_EQ(differing_pixels(whole.target.read(), expected), 0u);
 
+  // A smaller scene next goes into the storage the first one had: the same picture as a fresh
+  // renderer draws.
+  const Packing smaller = test::grid_packing(3, 4, 2, 0.1);
+  CullingScene fresh(smaller);
+  fresh.draw(style);
+  renderer.begin_upload(prepare_scene(smaller));
+  while (!renderer.upload_step(4096)) {
+  }
+  whole.target.bind();
+  renderer.draw(fresh.camera, 320, 240, style);
+  EXPECT_EQ(differing_pixels(whole.target.read(), fresh.target.read()), 0u);
+
   // Cancelled: no scene.
   const std::atomic<bool> cancel{true};
   EXPECT_EQ(prepare_scene(packing, {}, &cancel), nullptr);
