@@ -107,7 +107,10 @@ void GuiApp::draw_file_dialog() {
     return;
   }
   const int scripted = std::exchange(dialog_.scripted, 0);
-  const bool is_yes = scripted == 1, is_no = scripted == 2;
+  const bool is_yes = scripted == 1;
+  // Esc closes the dialog (as Cancel), unless a text field has the keyboard.
+  const bool is_no = scripted == 2 || (!ImGui::GetIO().WantTextInput &&
+                                       ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)));
   auto close = [this] {
     dialog_.kind = FileDialog::Kind::kNone;
     ImGui::CloseCurrentPopup();

@@ -362,7 +362,6 @@ void GuiApp::poll_job() {
     is_waiting_for_first_job_ = false;
     frames_since_job_ = 0;
     if (!result.is_ok) exit_code_ = 2;
-    if (options_.benchmark_frames > 0) start_benchmark();
   }
 }
 
@@ -453,6 +452,12 @@ void GuiApp::after_render() {
   if (frames_since_job_ < 2 || benchmark_phase_ != BenchmarkPhase::kOff || is_script_done_ ||
       is_scene_dirty_ || renderer_->is_frame_pending() || renderer_->is_upload_pending() ||
       job_.is_running() || is_waiting_for_first_job_) {
+    return;
+  }
+  if (options_.benchmark_frames > 0 && !is_benchmark_started_) {
+    // Once the packing is shown (uploaded, its first full-detail picture drawn).
+    is_benchmark_started_ = true;
+    start_benchmark();
     return;
   }
   if (!are_edits_applied_) {

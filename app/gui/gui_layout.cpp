@@ -210,8 +210,8 @@ void GuiApp::on_key(int key, int action, int mods) {
     return;
   }
   if (key == GLFW_KEY_F12) is_screenshot_requested_ = true;
-  if (key == GLFW_KEY_F1) show_help_ = true;
   if (ImGui::GetIO().WantTextInput || dialog_.kind != FileDialog::Kind::kNone) return;
+  if (key == GLFW_KEY_F1) show_help_ = true;
   if (key == GLFW_KEY_R) reset_view();
   if (key == GLFW_KEY_ENTER || key == GLFW_KEY_KP_ENTER) start_pack();
   if (key == GLFW_KEY_ESCAPE && job_.is_running()) job_.request_cancel();

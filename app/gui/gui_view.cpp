@@ -191,6 +191,9 @@ void GuiApp::note_present_times(double ui_draw_seconds, double swap_seconds) {
   if (benchmark_phase_ == BenchmarkPhase::kMoving) {
     const DetailLevel level = detail_.level();
     print_benchmark("camera moving (light frames, adaptive detail)", t);
+    std::printf("  while moving: %s (a full-detail picture took %.1f ms; target %.0f ms)\n",
+                needs_light_frames_ ? "light frames" : "full detail", 1e3 * last_picture_latency_,
+                1e3 * detail_.target_seconds());
     std::printf(
         "  detail reached: triangle budget %zu, resolution %.0f %%, at most %zu particles (0 = "
         "all); target %.0f ms/frame\n",
