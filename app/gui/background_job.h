@@ -3,6 +3,7 @@
 // thread so the window stays live, reports progress through atomics, and can be cancelled.
 
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -10,6 +11,7 @@
 #include <thread>
 
 #include "aggpack/pack/packing.h"
+#include "aggpack/render/renderer.h"
 
 namespace aggpack::gui {
 
@@ -18,6 +20,8 @@ struct JobResult {
   bool is_ok = false;
   std::string message;                     ///< status line: summary or error
   std::shared_ptr<const Packing> packing;  ///< new packing to show, or null (export)
+  /// The packing's scene, built on the worker (prepare_scene) for the window to upload.
+  std::shared_ptr<SceneData> scene;
   /// Open only: the configuration stored in the file, to fill the panel ("" = none).
   std::string config_toml;
 };
@@ -36,7 +40,9 @@ class BackgroundJob {
   /// Starts `task` on a worker thread. Precondition: !is_running().
   void start(std::string name, Task task) {
     wait();
-    name_ = std::move(name);
+    set_name(std::move(name));
+    set_detail("");
+    start_time_ = std::chrono::steady_clock::now();
     progress_ = 0.0;
     cancel_ = false;
     is_running_ = true;
@@ -73,7 +79,19 @@ class BackgroundJob {
   }
 
   [[nodiscard]] bool is_running() const { return is_running_; }
-  [[nodiscard]] const std::string& name() const { return name_; }
+  /// What the job does now ("Packing", then "Building the scene"); the task may change it.
+  [[nodiscard]] std::string name() const {
+    std::lock_guard lock(mutex_);
+    return name_;
+  }
+  void set_name(std::string name) {
+    std::lock_guard lock(mutex_);
+    name_ = std::move(name);
+  }
+  /// Seconds since the job started.
+  [[nodiscard]] double elapsed_seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time_).count();
+  }
   /// Fraction done in [0, 1] (set by the task).
   [[nodiscard]] double progress() const { return progress_; }
   void set_progress(double fraction) { progress_ = fraction; }
@@ -94,6 +112,7 @@ class BackgroundJob {
  private:
   std::thread worker_;
   std::string name_;
+  std::chrono::steady_clock::time_point start_time_ = std::chrono::steady_clock::now();
   std::atomic<double> progress_{0.0};
   std::atomic<bool> cancel_{false};
   std::atomic<bool> is_running_{false};

@@ -23,6 +23,8 @@ class ConfigFields {
   /// packer.threads, are not shown).
   static bool is_editable(const Key<PackConfig>& key);
 
+  /// Whether the panel holds a value for `key`.
+  [[nodiscard]] bool has(const std::string& key) const { return values_.count(key) > 0; }
   [[nodiscard]] Value& value(const std::string& key) { return values_.at(key); }
   [[nodiscard]] const Value& value(const std::string& key) const { return values_.at(key); }
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <map>
 
 #include "aggpack/core/error.h"
 #include "aggpack/pack/grading.h"
@@ -27,12 +28,32 @@ double step_for(double value) {
   return std::pow(10.0, std::floor(std::log10(std::abs(value))) - 1.0);
 }
 
+// Said of input alpha beside its doc line: why the measured alpha of the result differs.
+constexpr const char* kAlphaNote =
+    "\n\nThis is the input alpha (the paper's Eq. 3), a control of the growth. The alpha\n"
+    "measured on the finished particles (Eq. 2, sphericity^1.5; 'Colour by alpha') is a\n"
+    "different quantity: grown particles are rounder than the control suggests, so the\n"
+    "measured value is usually higher (about 0.68-0.89 for an input of 0.3).";
+
 void key_tooltip(const Key<PackConfig>& key, const KeyView& view) {
   if (!ImGui::IsItemHovered()) return;
   ImGui::SetTooltip(
-      "%s\n%s: %s%s%s; default %s", key.doc.c_str(), key.name.c_str(), allowed_text(view).c_str(),
+      "%s\n%s: %s%s%s; default %s%s", key.doc.c_str(), key.name.c_str(), allowed_text(view).c_str(),
       key.unit.empty() || key.unit == "-" ? "" : " ", key.unit == "-" ? "" : key.unit.c_str(),
-      default_text(view, *key.default_value, key.default_from, key.default_text).c_str());
+      default_text(view, *key.default_value, key.default_from, key.default_text).c_str(),
+      key.name == "particle.alpha" ? kAlphaNote : "");
+}
+
+// Typed values beyond a closed end of the range are clamped to it (an open end cannot be
+// reached: such a value stays and its field says why).
+template <typename Number>
+void clamp_to_range(Number& number, const Range& range) {
+  if (range.lo_end == End::kClosed && static_cast<double>(number) < range.lo) {
+    number = static_cast<Number>(range.lo);
+  }
+  if (range.hi_end == End::kClosed && static_cast<double>(number) > range.hi) {
+    number = static_cast<Number>(range.hi);
+  }
 }
 
 }  // namespace
@@ -71,6 +92,20 @@ void GuiApp::draw_key(const Key<PackConfig>& key, const KeyView& view) {
                             }) > 1;
   const std::string label = (is_ambiguous ? key.name : short_name) + "##" + key.name;
   Value& value = fields_.value(key.name);
+  // The field's error in plain words, right under it.
+  struct ErrorLine {
+    const std::map<std::string, std::string>& errors;
+    const std::string& name;
+    ~ErrorLine() {
+      const auto found = errors.find(name);
+      if (found == errors.end()) return;
+      ImGui::PushStyleColor(ImGuiCol_Text, kErrorText);
+      ImGui::PushTextWrapPos(0.0f);
+      ImGui::TextUnformatted(found->second.c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::PopStyleColor();
+    }
+  } error_line{field_errors_, key.name};
   if (key.presence == Presence::kOptional && key.type != ValueType::kSieve) {
     bool is_on = fields_.is_on(key.name);
     if (ImGui::Checkbox(("##on" + key.name).c_str(), &is_on)) fields_.set_on(key.name, is_on);
@@ -99,21 +134,26 @@ void GuiApp::draw_key_input(const Key<PackConfig>& key, const KeyView& view,
     }
     case ValueType::kFloat: {
       auto& number = std::get<double>(value);
-      const bool is_bad = !key.range.contains(number);
+      const bool is_bad = !key.range.contains(number) || field_errors_.count(key.name) > 0;
       if (is_bad) ImGui::PushStyleColor(ImGuiCol_FrameBg, kErrorFrame);
       const double step = step_for(number);
       const std::string format =
           key.unit.empty() || key.unit == "-" ? std::string("%.4g") : "%.4g " + key.unit;
-      ImGui::InputDouble(label.c_str(), &number, step, 10.0 * step, format.c_str());
+      if (ImGui::InputDouble(label.c_str(), &number, step, 10.0 * step, format.c_str())) {
+        clamp_to_range(number, key.range);
+      }
       if (is_bad) ImGui::PopStyleColor();
       break;
     }
     case ValueType::kInteger: {
       auto& number = std::get<std::int64_t>(value);
-      const bool is_bad = !key.range.contains(static_cast<double>(number));
+      const bool is_bad =
+          !key.range.contains(static_cast<double>(number)) || field_errors_.count(key.name) > 0;
       if (is_bad) ImGui::PushStyleColor(ImGuiCol_FrameBg, kErrorFrame);
       const std::int64_t step = 1, fast = 100;
-      ImGui::InputScalar(label.c_str(), ImGuiDataType_S64, &number, &step, &fast);
+      if (ImGui::InputScalar(label.c_str(), ImGuiDataType_S64, &number, &step, &fast)) {
+        clamp_to_range(number, key.range);
+      }
       if (is_bad) ImGui::PopStyleColor();
       break;
     }

@@ -3,6 +3,7 @@
 // particle shape, grading and packer; Pack on a worker thread with progress and Cancel; a 3D
 // view with arcball rotation, pan, zoom and colour modes; Open and Export.
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -15,6 +16,8 @@
 #include "aggpack/render/renderer.h"
 #include "background_job.h"
 #include "config_fields.h"
+#include "file_dialog.h"
+#include "gui_settings.h"
 
 struct GLFWwindow;
 
@@ -31,12 +34,27 @@ struct GuiOptions {
   int benchmark_frames = 0;  ///< redraw the turning scene this many frames (moving), print fps
   ViewPreset view = ViewPreset::kIso;
   RenderStyle style;
-  std::string export_base = "aggpack_out";  ///< export file name without extension
+  std::string export_base = "rock";  ///< export file name without extension
   /// Scripted runs: once the first pack/open is done, export the mesomodel with this extension
   /// (".inp", ".msh", ".vtu"), as the Mesomodel buttons do, before the screenshot / quit.
   std::optional<std::string> mesomodel_export;
   double mesomodel_itz_mm = 0.0;  ///< the ITZ thickness field's start value (mm)
+  /// --edit KEY=VALUE: typed into the panel's field once the first pack/open is done (or at
+  /// start without one), as a user would (values as `--set` takes them).
+  std::vector<std::string> edits;
+  bool is_frame_log = false;  ///< --frame-log: print every timed frame's time
+  /// --export FORMAT: once the first job (and the edits) are done, press that export, as the
+  /// Export menu does (the dialog's questions are printed and answered by --answer).
+  std::optional<std::string> export_format;
+  /// --answer yes|no: the scripted answer to the export dialog's question (stale, overwrite).
+  std::string answer = "no";
+  /// Settings folder (default $XDG_CONFIG_HOME/aggpack or ~/.config/aggpack).
+  std::string settings_dir;
 };
+
+/// An error message in the panel's words: no "gui: " or "--set KEY=VALUE: " origin, and
+/// "invalid KEY = V (allowed: R)" as "KEY: V is not allowed; allowed: R".
+std::string plain_error(std::string message);
 
 class GuiApp {
  public:
@@ -59,6 +77,10 @@ class GuiApp {
   [[nodiscard]] bool is_timing_frames() const { return benchmark_phase_ != BenchmarkPhase::kOff; }
   /// Time (s) of drawing the panels (ImGui's draw data, finished) and of the buffer swap.
   void note_present_times(double ui_draw_seconds, double swap_seconds);
+  /// Main calls these when a frame's work begins (events are in) and after its buffer swap:
+  /// scripted runs print the longest such frame since the first job began.
+  void note_frame_start();
+  void note_frame_end();
   /// Exit code for main: non-zero when a --pack/--open/--screenshot step failed.
   [[nodiscard]] int exit_code() const { return exit_code_; }
 
@@ -66,10 +88,26 @@ class GuiApp {
   void on_mouse_button(int button, int action);
   void on_cursor(double x, double y);
   void on_scroll(double dy);
-  void on_key(int key, int action);
+  void on_key(int key, int action, int mods);
 
  private:
   void draw_panel();
+  // gui_layout.cpp: the menu bar, the status bar, the Help window, the view's overlays.
+  void draw_menu_bar();
+  void draw_status_bar();
+  void draw_help_window();
+  void draw_view_overlays();
+  // file_dialog.cpp: the Open and Export dialogs (folder browsing, overwrite, stale result).
+  void open_dialog(FileDialog::Kind kind, const std::string& format = "");
+  void draw_file_dialog();
+  // Whether the shown packing was made with other parameters than the panel shows now.
+  [[nodiscard]] bool is_result_stale() const;
+  // The keys whose panel value differs from the shown packing's.
+  [[nodiscard]] std::vector<std::string> changed_keys() const;
+  // Field checks: field_errors_ from the panel's values (each frame the values changed).
+  void update_field_errors();
+  void apply_edits();
+  void finish_upload_if_done();
   // config_panel.cpp: the configuration sections, one widget per schema key.
   void draw_config_section(const char* title, const std::vector<std::string>& tables);
   void draw_key(const Key<PackConfig>& key, const KeyView& view);
@@ -81,12 +119,14 @@ class GuiApp {
   void draw_view_section();
   void start_pack();
   void start_open(const std::string& path);
-  void start_export(const std::string& format);
+  void start_export(const std::string& format, const std::string& path);
   // mesomodel_export.cpp: the concrete mesomodel (.inp, .msh, .vtu) of the shown packing.
   void draw_mesomodel_export(bool can_export);
   void start_mesomodel_export(const std::string& extension);
   void poll_job();
-  void show_packing(std::shared_ptr<const Packing> packing);
+  void warm_up_renderer();
+  void show_packing(std::shared_ptr<const Packing> packing, std::shared_ptr<SceneData> scene,
+                    std::vector<std::string> entries);
   void render_scene_if_needed(int width, int height);
   void reset_view();
   void set_status(std::string text, bool is_error);
@@ -100,6 +140,38 @@ class GuiApp {
   ConfigFields fields_;
   BackgroundJob job_;
   std::shared_ptr<const Packing> packing_;
+  std::vector<std::string> packing_entries_;
+  std::vector<std::string> job_entries_;  // set_entries() of the pack job under way
+  std::string job_kind_;                  // "pack", "open" (the job that gives a packing)
+  Aabb last_bounds_;                      // scene bounds of packing_
+  double frame_work_start_ = 0.0;         // the panel's set_entries() that made packing_
+  // A finished job's packing whose scene is being uploaded (a bounded piece per frame).
+  std::shared_ptr<const Packing> pending_packing_;
+  std::vector<std::string> pending_entries_;
+  std::vector<std::string> last_entries_;            // set_entries() when field_errors_ were made
+  std::map<std::string, std::string> field_errors_;  // key -> plain-words message
+  std::string form_error_;                           // an error no field is named for
+  GuiSettings settings_;
+  FileDialog dialog_;
+  bool show_help_ = false;
+  bool show_fps_ = false;
+  float menu_height_ = 0.0f;    // window pixels taken by the menu bar (top)
+  float status_height_ = 0.0f;  // ... and by the status bar (bottom)
+  // Longest wall time between two frames since the first job started (scripted runs print it).
+  double longest_frame_ = 0.0;
+  double first_frame_ = -1.0;  // the window's first frame (start-up), not in longest_frame_
+  int timed_frames_ = 0;
+  bool is_timing_frames_script_ = false;
+  bool are_edits_applied_ = false;
+  bool is_export_script_started_ = false;
+  bool is_screenshot_taken_ = false;      // the scripted screenshot was written
+  bool is_frame_timing_skipped_ = false;  // this frame wrote a screenshot: not timed
+  // Whether frames drawn while the view moves must be light: the last full-detail picture took
+  // longer than the detail controller's target (else they stay in full detail).
+  bool needs_light_frames_ = false;
+  bool is_upload_finished_now_ = false;
+  bool is_benchmark_started_ =
+      false;  // --benchmark-frames began  // this frame finished an upload: no drawing in it
   std::unique_ptr<PackingRenderer> renderer_;
   std::unique_ptr<OffscreenTarget> scene_target_;
   // Light frames drawn at a lower resolution (DetailLevel::resolution_scale) go here.

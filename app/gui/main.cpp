@@ -11,10 +11,13 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <system_error>
 
 #include "aggpack/core/error.h"
+#include "aggpack/io/export.h"
 #include "gui_app.h"
 
 namespace {
@@ -31,8 +34,8 @@ void on_cursor(GLFWwindow*, double x, double y) {
 void on_scroll(GLFWwindow*, double, double dy) {
   if (g_app != nullptr) g_app->on_scroll(dy);
 }
-void on_key(GLFWwindow*, int key, int, int action, int) {
-  if (g_app != nullptr) g_app->on_key(key, action);
+void on_key(GLFWwindow*, int key, int, int action, int mods) {
+  if (g_app != nullptr) g_app->on_key(key, action, mods);
 }
 void on_glfw_error(int code, const char* text) {
   std::fprintf(stderr, "aggpack-gui: GLFW error %d: %s\n", code, text);
@@ -87,6 +90,23 @@ int main(int argc, char** argv) {
   cli.add_option("--mesomodel-itz", options.mesomodel_itz_mm,
                  "start value of the mesomodel's ITZ thickness field (mm)")
       ->capture_default_str();
+  cli.add_option("--edit", options.edits,
+                 "after the first pack/open, type VALUE into the panel's KEY field, as a user "
+                 "would (KEY=VALUE, repeat); the run prints the fields' errors and whether the "
+                 "shown result is out of date");
+  cli.add_flag("--frame-log", options.is_frame_log,
+               "print the time of every frame from the first job to the end of the script");
+  std::string export_format;
+  cli.add_option("--export", export_format,
+                 "after the first pack/open (and --edit), open the Export dialog for FORMAT (stl, "
+                 "dat, ...) and press Export; its questions are printed and answered by --answer");
+  cli.add_option("--answer", options.answer,
+                 "the answer to the Export dialog's questions (out-of-date result, existing file)")
+      ->check(CLI::IsMember({"yes", "no"}))
+      ->capture_default_str();
+  cli.add_option("--settings-dir", options.settings_dir,
+                 "folder of the kept settings (default $XDG_CONFIG_HOME/aggpack or "
+                 "~/.config/aggpack)");
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -97,6 +117,9 @@ int main(int argc, char** argv) {
   try {
     if (!config_path.empty()) options.config_path = config_path;
     if (!open_path.empty()) options.open_path = open_path;
+    if (!export_format.empty()) {
+      options.export_format = aggpack::format_name(aggpack::parse_export_format(export_format));
+    }
     if (!mesomodel_export.empty()) {
       if (mesomodel_export != "inp" && mesomodel_export != "msh" && mesomodel_export != "vtu") {
         throw aggpack::InvalidInput("--mesomodel-export", mesomodel_export, "inp, msh or vtu");
@@ -140,7 +163,15 @@ int main(int argc, char** argv) {
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
-  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini littering the working folder
+  // ImGui's window state is kept beside the program's settings, never in the working folder.
+  const std::string settings_folder = aggpack::gui::GuiSettings::folder_of(options.settings_dir);
+  static std::string ini_path;
+  ini_path = settings_folder.empty() ? std::string() : settings_folder + "/imgui.ini";
+  if (!ini_path.empty()) {
+    std::error_code ignored;
+    std::filesystem::create_directories(settings_folder, ignored);
+  }
+  ImGui::GetIO().IniFilename = ini_path.empty() ? nullptr : ini_path.c_str();
   ImGui::StyleColorsDark();
   // An opaque panel: the window's back buffer is not cleared under it (the scene is blitted
   // beside it), so a see-through one shows older frames' text as ghosts.
@@ -169,6 +200,7 @@ int main(int argc, char** argv) {
       } else {
         glfwWaitEventsTimeout(0.25);
       }
+      app->note_frame_start();
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
@@ -183,6 +215,7 @@ int main(int argc, char** argv) {
       const double swap_start = glfwGetTime();
       glfwSwapBuffers(window);
       if (is_timing) app->note_present_times(ui_seconds, glfwGetTime() - swap_start);
+      app->note_frame_end();
     }
     if (app) exit_code = app->exit_code();
     g_app = nullptr;

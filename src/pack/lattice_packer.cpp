@@ -9,6 +9,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
+#include "aggpack/geom/mass_properties.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/resources.h"
@@ -205,6 +206,12 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
                             .max_vertices = options.max_vertices};
 
   auto last_report = Clock::now() - std::chrono::hours(1);
+  // Solid volume grown so far, for the live solid fraction (sites that settle() later shrinks
+  // count at their grown size until the end; the final report is exact).
+  const double container_volume = options.container.volume();
+  std::vector<double> grown_volume(site_count, 0.0);
+  double grown_solid = 0.0;
+  std::size_t summed = 0;
   auto report_progress = [&](std::size_t done, bool is_final) {
     if (!control.on_progress) return;
     const auto now = Clock::now();
@@ -213,11 +220,14 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
       return;
     }
     last_report = now;
-    control.on_progress({.stage = PackStage::kPlacement,
-                         .fraction = static_cast<double>(done) / static_cast<double>(site_count),
-                         .placed = done,
-                         .attempted = done,
-                         .total = site_count});
+    for (; summed < done; ++summed) grown_solid += grown_volume[summed];
+    control.on_progress(
+        {.stage = PackStage::kPlacement,
+         .fraction = static_cast<double>(done) / static_cast<double>(site_count),
+         .placed = done,
+         .attempted = done,
+         .total = site_count,
+         .solid_fraction = container_volume > 0.0 ? grown_solid / container_volume : 0.0});
   };
   auto is_cancelled = [&] {
     return control.cancel != nullptr && control.cancel->load(std::memory_order_relaxed);
@@ -305,6 +315,7 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
         Rng rng(options.seed, i);
         grown[i].body = grow_aggregate(params, rng);
         grown[i].outer_radius = bounding_radius(grown[i].body);
+        if (control.on_progress) grown_volume[i] = mass_properties(grown[i].body).volume;
         // Verify the premise of the argument above, exactly; anything else goes to `settle`.
         needs_check[i] =
             grown[i].outer_radius > options.radius * (1.0 + kRadiusSlack) ||
@@ -341,6 +352,7 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
       grown[i].body = grow_aggregate(params, rng, neighbour_planes.empty() ? GrowthLimit{} : limit);
       grown[i].outer_radius = bounding_radius(grown[i].body);
       settle(i);
+      if (control.on_progress) grown_volume[i] = mass_properties(grown[i].body).volume;
       done = i + 1;
       report_progress(done, false);
     }

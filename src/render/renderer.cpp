@@ -5,7 +5,10 @@
 
 #include "aggpack/render/renderer.h"
 
+#include <unordered_map>
+
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/container.h"
 #include "renderer_state.h"
@@ -58,42 +61,128 @@ std::vector<std::uint32_t> coarse_indices(const ConvexPolyhedron& shape) {
   return indices;
 }
 
-}  // namespace
-
-void PackingRenderer::set_packing(const Packing& packing) {
-  State& s = *state_;
-  const std::size_t particle_count = packing.particles.size();
-  for (std::size_t i = 0; i < particle_count; ++i) {
-    if (packing.particles[i].shape >= packing.shapes.size()) {
-      throw InvalidInput("particles[" + std::to_string(i) + "].shape",
-                         std::to_string(packing.particles[i].shape),
-                         "[0, " + std::to_string(packing.shapes.size()) + ")");
+// Shape `candidate` as a scaled copy of `base`: the factor c with candidate = c * base (same
+// triangles, every vertex in proportion to 1e-9 of the size), or 0 when it is not one.
+double copy_scale(const ConvexPolyhedron& base, double base_radius,
+                  const ConvexPolyhedron& candidate, double candidate_radius) {
+  if (base_radius <= 0.0 || candidate_radius <= 0.0) return 0.0;
+  if (base.vertices().size() != candidate.vertices().size() ||
+      base.triangles() != candidate.triangles()) {
+    return 0.0;
+  }
+  const double c = candidate_radius / base_radius;
+  const double tolerance = 1e-9 * candidate_radius;
+  for (std::size_t k = 0; k < base.vertices().size(); ++k) {
+    if ((candidate.vertices()[k] - c * base.vertices()[k]).lpNorm<Eigen::Infinity>() > tolerance) {
+      return 0.0;
     }
   }
-  GLint max_texels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  if (4.0 * static_cast<double>(particle_count) > static_cast<double>(max_texels)) {
-    throw LimitExceeded("particle count", std::to_string(particle_count),
-                        "<= " + std::to_string(max_texels / 4) + " for this OpenGL driver");
-  }
+  return c;
+}
 
-  // Which shapes are used, and how often: a shape used once carries its particle index in its
-  // vertices and joins one multi-draw; a shape used more often is drawn instanced.
-  s.shapes.assign(packing.shapes.size(), ShapeRange{});
-  for (const auto& particle : packing.particles) ++s.shapes[particle.shape].instances;
-  std::vector<std::uint32_t> single_owner(packing.shapes.size(), 0);
+// A hash of a shape up to scale: its triangles and its vertices divided by its radius, rounded
+// to 1e-6 (scaled copies whose rounding differs only miss the sharing).
+std::uint64_t shape_key(const ConvexPolyhedron& shape, double radius) {
+  std::uint64_t hash = 1469598103934665603ull ^ shape.vertices().size();
+  auto mix = [&hash](std::uint64_t value) {
+    hash ^= value + 0x9e3779b97f4a7c15ull + (hash << 6) + (hash >> 2);
+  };
+  for (const Triangle& t : shape.triangles()) {
+    for (auto index : t) mix(index);
+  }
+  if (radius <= 0.0) return hash;
+  for (const Vec3& v : shape.vertices()) {
+    for (int axis = 0; axis < 3; ++axis) {
+      mix(static_cast<std::uint64_t>(std::llround(1e6 * v[axis] / radius)));
+    }
+  }
+  return hash;
+}
+
+}  // namespace
+
+std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
+                                         const std::function<void(double)>& progress,
+                                         const std::atomic<bool>* cancel) {
+  auto scene = std::make_shared<SceneData>();
+  SceneData& s = *scene;
+  const std::size_t particle_count = packing.particles.size();
+  const std::size_t shape_count = packing.shapes.size();
   for (std::size_t i = 0; i < particle_count; ++i) {
-    single_owner[packing.particles[i].shape] = static_cast<std::uint32_t>(i);
+    if (packing.particles[i].shape >= shape_count) {
+      throw InvalidInput("particles[" + std::to_string(i) + "].shape",
+                         std::to_string(packing.particles[i].shape),
+                         "[0, " + std::to_string(shape_count) + ")");
+    }
   }
+  // Progress: shapes measured (40 %), colours (40 %), meshes and transforms (20 %).
+  auto report = [&](double fraction) {
+    if (progress) progress(fraction);
+    return cancel == nullptr || !cancel->load();
+  };
+  if (!report(0.0)) return nullptr;
 
-  std::vector<GpuVertex> vertices;
-  std::vector<std::uint32_t> indices;
-  s.instanced_shapes.clear();
-  for (std::size_t shape_index = 0; shape_index < packing.shapes.size(); ++shape_index) {
+  // Per shape: its radius and inner radius (every shape, on all cores), then which earlier
+  // shape it is a scaled copy of (drawn with that one's mesh).
+  s.shapes.assign(shape_count, ShapeRange{});
+  std::vector<std::uint8_t> is_used(shape_count, 0);
+  for (const auto& particle : packing.particles) is_used[particle.shape] = 1;
+  constexpr std::size_t kBlock = 1024;
+  const std::size_t blocks = (shape_count + kBlock - 1) / kBlock;
+  std::atomic<bool> is_cancelled{false};
+  parallel_for_index(0, blocks, [&](std::size_t block) {
+    if (is_cancelled.load()) return;
+    for (std::size_t k = block * kBlock; k < std::min(shape_count, (block + 1) * kBlock); ++k) {
+      ShapeRange& range = s.shapes[k];
+      const ConvexPolyhedron& shape = packing.shapes[k];
+      for (const Vec3& v : shape.vertices()) range.radius = std::max(range.radius, v.norm());
+      range.inner_radius = std::min(range.radius, inner_radius(shape));
+    }
+    if (cancel != nullptr && cancel->load()) is_cancelled = true;
+  });
+  if (!report(0.2)) return nullptr;
+  std::vector<std::uint32_t> mesh_of(shape_count);   // shape whose mesh draws shape k
+  std::vector<double> mesh_scale(shape_count, 1.0);  // shape k = mesh_scale * that mesh
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> by_key;
+  for (std::size_t k = 0; k < shape_count; ++k) {
+    mesh_of[k] = static_cast<std::uint32_t>(k);
+    if (is_used[k] == 0 || packing.shapes[k].is_empty()) continue;
+    auto& same_key = by_key[shape_key(packing.shapes[k], s.shapes[k].radius)];
+    for (std::uint32_t base : same_key) {
+      const double c = copy_scale(packing.shapes[base], s.shapes[base].radius, packing.shapes[k],
+                                  s.shapes[k].radius);
+      if (c > 0.0) {
+        mesh_of[k] = base;
+        mesh_scale[k] = c;
+        ++s.merged_shapes;
+        break;
+      }
+    }
+    if (mesh_of[k] == k) same_key.push_back(static_cast<std::uint32_t>(k));
+  }
+  by_key.clear();
+
+  // Which meshes are used, and how often: a mesh used once carries its particle index in its
+  // vertices and joins one multi-draw; a mesh used more often is drawn instanced.
+  for (const auto& particle : packing.particles) ++s.shapes[mesh_of[particle.shape]].instances;
+  std::vector<std::uint32_t> single_owner(shape_count, 0);
+  for (std::size_t i = 0; i < particle_count; ++i) {
+    single_owner[mesh_of[packing.particles[i].shape]] = static_cast<std::uint32_t>(i);
+  }
+  if (!report(0.4)) return nullptr;
+
+  const ShapeMeasures measures = measure_shapes(packing);
+  if (!report(0.6)) return nullptr;
+  for (ColorMode mode : {ColorMode::kParticle, ColorMode::kSize, ColorMode::kAlpha}) {
+    s.colors[static_cast<std::size_t>(mode)] = particle_colors(packing, measures, mode);
+  }
+  if (!report(0.8)) return nullptr;
+
+  auto& vertices = s.vertices;
+  auto& indices = s.indices;
+  for (std::size_t shape_index = 0; shape_index < shape_count; ++shape_index) {
     ShapeRange& range = s.shapes[shape_index];
     const ConvexPolyhedron& shape = packing.shapes[shape_index];
-    for (const Vec3& v : shape.vertices()) range.radius = std::max(range.radius, v.norm());
-    range.inner_radius = std::min(range.radius, inner_radius(shape));
     if (range.instances == 0 || shape.is_empty()) continue;
     if (range.instances >= 2) s.instanced_shapes.push_back(static_cast<std::uint32_t>(shape_index));
     const std::uint32_t particle = range.instances == 1 ? single_owner[shape_index] : 0;
@@ -116,15 +205,25 @@ void PackingRenderer::set_packing(const Packing& packing) {
       range.coarse_count = range.full_count;
     }
   }
+  std::size_t most_vertices = 0;
+  for (std::size_t k = 0; k < shape_count; ++k) {
+    if (s.shapes[k].instances > 0) {
+      most_vertices = std::max(most_vertices, packing.shapes[k].vertices().size());
+    }
+  }
+  if (most_vertices <= 65536) {
+    s.short_indices.assign(indices.begin(), indices.end());
+    indices = std::vector<std::uint32_t>();
+  }
+  if (!report(0.9)) return nullptr;
 
   // Transforms: rows of [scale * R | t] (float is ample: 1e-7 relative to the scene size), then
   // the impostor radius (volume-equivalent, m).
-  const ShapeMeasures measures = measure_shapes(packing);
-  std::vector<float> transforms(std::max<std::size_t>(particle_count, 1) * 16, 0.0f);
+  auto& transforms = s.transforms;
+  transforms.assign(std::max<std::size_t>(particle_count, 1) * 16, 0.0f);
   s.particle_shape.resize(particle_count);
   s.particle_sphere.resize(particle_count);
   s.impostor_radius.resize(particle_count);
-  s.bounds = Aabb{};
   const Aabb container_bounds = packing.container.bounds();
   if (!container_bounds.is_empty()) {
     s.bounds.expand(container_bounds.lower);
@@ -132,7 +231,8 @@ void PackingRenderer::set_packing(const Packing& packing) {
   }
   for (std::size_t i = 0; i < particle_count; ++i) {
     const Particle& particle = packing.particles[i];
-    const Mat3 linear = particle.pose.rotation.normalized().toRotationMatrix() * particle.scale;
+    const Mat3 linear = particle.pose.rotation.normalized().toRotationMatrix() *
+                        (particle.scale * mesh_scale[particle.shape]);
     const Vec3& t = particle.pose.position;
     for (int row = 0; row < 3; ++row) {
       for (int column = 0; column < 3; ++column) {
@@ -145,7 +245,7 @@ void PackingRenderer::set_packing(const Packing& packing) {
         static_cast<float>(0.5 * measures.equivalent_diameter[particle.shape] * particle.scale);
     s.impostor_radius[i] = transforms[16 * i + 12];
     const double radius = s.shapes[particle.shape].radius * particle.scale;
-    s.particle_shape[i] = particle.shape;
+    s.particle_shape[i] = mesh_of[particle.shape];
     s.particle_sphere[i] = {
         static_cast<float>(t.x()), static_cast<float>(t.y()), static_cast<float>(t.z()),
         static_cast<float>(radius),
@@ -154,33 +254,8 @@ void PackingRenderer::set_packing(const Packing& packing) {
     s.bounds.expand(t + Vec3::Constant(radius));
   }
 
-  glBindBuffer(GL_ARRAY_BUFFER, s.vertex_buffer);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * sizeof(GpuVertex)),
-               vertices.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  glBindVertexArray(s.vertex_array);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-               static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(),
-               GL_STATIC_DRAW);
-  glBindVertexArray(0);
-
-  glBindBuffer(GL_TEXTURE_BUFFER, s.transform_buffer);
-  glBufferData(GL_TEXTURE_BUFFER, static_cast<GLsizeiptr>(transforms.size() * sizeof(float)),
-               transforms.data(), GL_STATIC_DRAW);
-  glBindBuffer(GL_TEXTURE_BUFFER, 0);
-  glBindTexture(GL_TEXTURE_BUFFER, s.transform_texture);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, s.transform_buffer);
-  glBindTexture(GL_TEXTURE_BUFFER, s.color_texture);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, s.color_buffer);
-  glBindTexture(GL_TEXTURE_BUFFER, 0);
-
-  for (ColorMode mode : {ColorMode::kParticle, ColorMode::kSize, ColorMode::kAlpha}) {
-    s.colors[static_cast<std::size_t>(mode)] = particle_colors(packing, measures, mode);
-  }
-  s.upload_colors(ColorMode::kParticle);
-
   // Container outline as line segments.
-  std::vector<float> lines;
+  auto& lines = s.lines;
   auto add_segment = [&lines](const Vec3& a, const Vec3& b) {
     for (const Vec3* p : {&a, &b}) {
       lines.push_back(static_cast<float>(p->x()));
@@ -191,12 +266,116 @@ void PackingRenderer::set_packing(const Packing& packing) {
   for (const OutlineSegment& segment : container_outline(packing.container)) {
     add_segment(segment[0], segment[1]);
   }
-  s.line_vertex_count = static_cast<GLsizei>(lines.size() / 3);
-  glBindBuffer(GL_ARRAY_BUFFER, s.line_buffer);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(lines.size() * sizeof(float)), lines.data(),
-               GL_STATIC_DRAW);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  if (!report(1.0)) return nullptr;
+  return scene;
 }
+
+void PackingRenderer::set_packing(const Packing& packing) {
+  begin_upload(prepare_scene(packing));
+  while (!upload_step(std::numeric_limits<std::size_t>::max())) {
+  }
+}
+
+void PackingRenderer::begin_upload(std::shared_ptr<SceneData> scene) {
+  State& s = *state_;
+  if (!scene) throw InvalidInput("scene", "null", "a prepared scene");
+  const std::size_t particle_count = scene->particle_shape.size();
+  GLint max_texels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+  if (4.0 * static_cast<double>(particle_count) > static_cast<double>(max_texels)) {
+    throw LimitExceeded("particle count", std::to_string(particle_count),
+                        "<= " + std::to_string(max_texels / 4) + " for this OpenGL driver");
+  }
+  s.frame.step = 0;  // the frame under way used the buffers about to change
+  s.pending = std::move(scene);
+  s.pending_buffer = 0;
+  s.pending_offset = 0;
+  s.is_pending_allocated = false;
+}
+
+bool PackingRenderer::upload_step(std::size_t max_bytes) {
+  State& s = *state_;
+  if (!s.pending) return true;
+  const auto pieces = s.upload_pieces();
+  std::size_t budget = std::max<std::size_t>(max_bytes, 1);
+  while (s.pending_buffer < pieces.size() && budget > 0) {
+    const UploadPiece& piece = pieces[s.pending_buffer];
+    glBindBuffer(GL_COPY_WRITE_BUFFER, piece.buffer);
+    std::size_t& capacity = s.buffer_capacity[s.pending_buffer];
+    if (!s.is_pending_allocated && piece.bytes <= capacity) {
+      s.is_pending_allocated = true;  // the last scene's storage holds it (a repeated pack)
+    }
+    if (!s.is_pending_allocated) {
+      // The buffer's storage, in a step of its own when large: the driver may clear it (llvmpipe
+      // takes about 0.5-1 ms per MB), so one step never allocates two large buffers.
+      const bool is_large = piece.bytes > (std::size_t{1} << 20);
+      if (is_large && budget < max_bytes) break;  // next step
+      glBufferData(GL_COPY_WRITE_BUFFER,
+                   static_cast<GLsizeiptr>(std::max<std::size_t>(piece.bytes, 4)), nullptr,
+                   GL_STATIC_DRAW);
+      s.is_pending_allocated = true;
+      capacity = std::max<std::size_t>(piece.bytes, 4);
+      if (is_large && max_bytes != std::numeric_limits<std::size_t>::max()) break;
+    }
+    const std::size_t bytes = std::min(budget, piece.bytes - s.pending_offset);
+    if (bytes > 0) {
+      glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(s.pending_offset),
+                      static_cast<GLsizeiptr>(bytes),
+                      static_cast<const char*>(piece.data) + s.pending_offset);
+      s.pending_offset += bytes;
+      budget -= bytes;
+    }
+    if (s.pending_offset >= piece.bytes) {
+      ++s.pending_buffer;
+      s.pending_offset = 0;
+      s.is_pending_allocated = false;
+    }
+  }
+  glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+  if (s.pending_buffer < pieces.size()) return false;
+
+  // All uploaded: the scene's CPU side replaces the last one's.
+  SceneData& scene = *s.pending;
+  s.shapes = std::move(scene.shapes);
+  s.instanced_shapes = std::move(scene.instanced_shapes);
+  s.particle_shape = std::move(scene.particle_shape);
+  s.particle_sphere = std::move(scene.particle_sphere);
+  s.impostor_radius = std::move(scene.impostor_radius);
+  s.colors = std::move(scene.colors);
+  s.bounds = scene.bounds;
+  s.merged_shapes = scene.merged_shapes;
+  s.index_type = scene.short_indices.empty() ? GL_UNSIGNED_INT : GL_UNSIGNED_SHORT;
+  s.index_size = scene.short_indices.empty() ? 4u : 2u;
+  s.line_vertex_count = static_cast<GLsizei>(scene.lines.size() / 3);
+  s.pending.reset();
+  s.was_visible.clear();
+  s.has_visibility = false;
+  s.visible_count = 0;
+  glBindTexture(GL_TEXTURE_BUFFER, s.transform_texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, s.transform_buffer);
+  glBindTexture(GL_TEXTURE_BUFFER, s.color_texture);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, s.color_buffer);
+  glBindTexture(GL_TEXTURE_BUFFER, 0);
+  s.upload_colors(ColorMode::kParticle);
+  return true;
+}
+
+bool PackingRenderer::is_upload_pending() const { return state_->pending != nullptr; }
+
+double PackingRenderer::upload_progress() const {
+  const State& s = *state_;
+  if (!s.pending) return 1.0;
+  const auto pieces = s.upload_pieces();
+  std::size_t total = 0, done = 0;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    total += pieces[k].bytes;
+    if (k < s.pending_buffer) done += pieces[k].bytes;
+  }
+  done += s.pending_offset;
+  return total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
+}
+
+std::size_t PackingRenderer::merged_shape_count() const { return state_->merged_shapes; }
 
 const DrawStats& PackingRenderer::frame_stats() const { return state_->frame.stats; }
 

@@ -1,6 +1,7 @@
 // A frame of PackingRenderer: frustum culling and front-to-back order (begin_frame), then the
 // steps of step_frame (first pass, depth read-back and occlusion test, the rest, the outline).
 
+#include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
 #include "renderer_state.h"
 
@@ -57,6 +58,9 @@ DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
 void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
                                   const RenderStyle& style) {
   State& s = *state_;
+  if (s.pending)
+    throw Error(ErrorKind::kInvalidInput,
+                "PackingRenderer: drawing while a scene is being uploaded");
   State::Frame& f = s.frame;
   f = State::Frame{};
   f.style = style;
@@ -197,10 +201,35 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
                               [&](const Candidate& c) { return s.was_visible[c.particle] != 0; }) -
         s.candidates.begin());
   }
-  // A large first pass in two steps (nearer half first, with the first claim on the triangle
-  // budget), so no step is much longer than the others.
-  f.split = f.is_culled && f.first >= 2 * kOcclusionMinParticles ? f.first / 2 : f.first;
+  // A large pass in steps of at most kStepParticles (a large first pass in two at least; nearer
+  // particles first, with the first claim on the triangle budget), so no step is long.
+  f.chunk = f.is_culled && f.first >= 2 * kOcclusionMinParticles
+                ? std::min(kStepParticles, (f.first + 1) / 2)
+                : kStepParticles;
+  f.cursor = 0;
   f.step = 1;
+}
+
+std::size_t PackingRenderer::State::step_end(std::size_t begin, std::size_t end, std::size_t most,
+                                             int width, int height) const {
+  // At most `most` candidates, about one view's worth of covered pixels (the near particles,
+  // first in the order, are large on screen) and kStepTriangles mesh triangles at full detail
+  // (the near ones take the triangle budget: without this the first piece drew all of it).
+  const double pixel_budget = static_cast<double>(width) * static_cast<double>(height);
+  double pixels = 0.0;
+  std::size_t triangles = 0;
+  std::size_t k = begin;
+  const std::size_t last = std::min(end, begin + most);
+  while (k < last) {
+    const double diameter = std::min(static_cast<double>(candidates[k].pixels),
+                                     static_cast<double>(std::max(width, height)));
+    pixels += 0.785 * diameter * diameter;
+    triangles +=
+        static_cast<std::size_t>(shapes[particle_shape[candidates[k].particle]].full_count / 3);
+    ++k;
+    if (pixels > pixel_budget || triangles > kStepTriangles) break;
+  }
+  return k;
 }
 
 bool PackingRenderer::step_frame() {
@@ -221,14 +250,12 @@ bool PackingRenderer::step_frame() {
     return used < style.triangle_budget ? style.triangle_budget - used : 1;
   };
   if (f.step == 1) {
-    // Everything (no culling), or the particles seen last frame (or the nearer half of them).
-    f.used = s.submit(0, f.split, style.triangle_budget, style, f.view, f.projection, stats);
-    f.step = f.split < f.first ? 5 : f.is_culled ? 2 : 4;
-    return false;
-  }
-  if (f.step == 5) {
-    f.used += s.submit(f.split, f.first, budget_after(f.used), style, f.view, f.projection, stats);
-    f.step = 2;
+    // Everything (no culling), or the particles seen last frame: the next piece of them.
+    const std::size_t end = s.step_end(f.cursor, f.first, f.chunk, f.width, f.height);
+    f.used += s.submit(f.cursor, end, budget_after(f.used), style, f.view, f.projection, stats);
+    f.cursor = end;
+    if (f.cursor < f.first) return false;
+    f.step = f.is_culled ? 2 : 4;
     return false;
   }
   if (f.step == 2) {
@@ -277,9 +304,13 @@ bool PackingRenderer::step_frame() {
     return false;
   }
   if (f.step == 3) {
-    // Budget used up: the newly seen are points this frame (and first next frame).
-    s.submit(f.first, s.candidates.size(), budget_after(f.used), style, f.view, f.projection,
-             stats);
+    // The newly seen, in pieces; budget used up: they are points this frame (and first next).
+    if (f.cursor < f.first) f.cursor = f.first;
+    const std::size_t end =
+        s.step_end(f.cursor, s.candidates.size(), kStepParticles, f.width, f.height);
+    f.used += s.submit(f.cursor, end, budget_after(f.used), style, f.view, f.projection, stats);
+    f.cursor = end;
+    if (f.cursor < s.candidates.size()) return false;
   }
 
   if (style.show_container && s.line_vertex_count > 0) {

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,38 @@ void sort_by_high_word(std::vector<std::uint64_t>& keys, std::vector<std::uint64
 
 using namespace render_detail;  // NOLINT(google-build-using-namespace): internal header
 
+// One buffer of a scene upload: the GL buffer, its bytes and their data.
+struct UploadPiece {
+  GLuint buffer;
+  std::size_t bytes;
+  const void* data;
+};
+
+// Everything drawn from a packing, computed without OpenGL (prepare_scene, on any thread) and
+// uploaded by PackingRenderer::begin_upload / upload_step in bounded pieces.
+struct SceneData {
+  std::vector<ShapeRange> shapes;
+  std::vector<std::uint32_t> instanced_shapes;
+  std::vector<std::uint32_t> particle_shape;
+  std::vector<ParticleSphere> particle_sphere;
+  std::vector<float> impostor_radius;
+  std::array<ParticleColors, 3> colors;
+  Aabb bounds;
+  std::vector<GpuVertex> vertices;
+  std::vector<std::uint32_t> indices;
+  // The same indices in 16 bits when every shape has at most 65,536 vertices (indices are local
+  // to a shape: each draw adds its base vertex), else empty: half the memory to allocate and copy.
+  std::vector<std::uint16_t> short_indices;
+  std::vector<float> transforms;  // 16 per particle (at least one particle's worth)
+  std::vector<float> lines;       // container outline, 3 per vertex
+  std::size_t merged_shapes = 0;  // shapes drawn as a scaled copy of another
+};
+
+// Most particles one step of a frame submits (step_frame), and most full-detail mesh triangles:
+// about 30 ms on llvmpipe.
+constexpr std::size_t kStepParticles = 12000;
+constexpr std::size_t kStepTriangles = 60000;
+
 // Below this many particles in view, drawing them all costs less than a depth read-back.
 constexpr std::size_t kOcclusionMinParticles = 4000;
 
@@ -135,10 +168,34 @@ struct PackingRenderer::State {
   std::vector<const void*> single_offsets;
   std::vector<GLint> single_base_vertices;
 
+  // The scene being uploaded (begin_upload / upload_step), null when none: its buffers in order
+  // (vertices, indices, transforms, outline), the buffer and byte reached.
+  std::shared_ptr<SceneData> pending;
+  std::size_t pending_buffer = 0, pending_offset = 0;
+  bool is_pending_allocated = false;  // the buffer pending_buffer has its storage
+  // Bytes of storage of the upload's buffers (in upload_pieces order): a scene that fits is
+  // copied into the storage it has, with no new allocation.
+  std::array<std::size_t, 4> buffer_capacity{};
+  std::size_t merged_shapes = 0;
+  GLenum index_type = GL_UNSIGNED_INT;  // of the uploaded index buffer
+  std::uintptr_t index_size = 4;        // its bytes per index
+  // The pending scene's buffers in upload order (pending not null).
+  [[nodiscard]] std::array<UploadPiece, 4> upload_pieces() const {
+    return {
+        {{vertex_buffer, pending->vertices.size() * sizeof(GpuVertex), pending->vertices.data()},
+         {index_buffer,
+          pending->short_indices.empty() ? pending->indices.size() * sizeof(std::uint32_t)
+                                         : pending->short_indices.size() * sizeof(std::uint16_t),
+          pending->short_indices.empty() ? static_cast<const void*>(pending->indices.data())
+                                         : static_cast<const void*>(pending->short_indices.data())},
+         {transform_buffer, pending->transforms.size() * sizeof(float), pending->transforms.data()},
+         {line_buffer, pending->lines.size() * sizeof(float), pending->lines.data()}}};
+  }
+
   // The frame begun by begin_frame(), drawn by step_frame().
   struct Frame {
-    // Next step: 1 first pass (or its nearer half), 5 the first pass's farther half, 2 read-back
-    // + occlusion test, 3 rest, 4 container outline only, 0 done.
+    // Next step: 1 first pass (a piece of it per step), 2 read-back + occlusion test, 3 rest (a
+    // piece per step), 4 container outline only, 0 done.
     int step = 0;
     int width = 1, height = 1;
     RenderStyle style;
@@ -147,11 +204,17 @@ struct PackingRenderer::State {
     bool is_orthographic = false;
     bool is_culled = false;  // occlusion culling this frame
     std::size_t first = 0;   // candidates [0, first) are drawn in the first pass
-    std::size_t split = 0;   // ... in two steps, [0, split) and [split, first)
+    std::size_t chunk = 0;   // candidates per step of a pass
+    std::size_t cursor = 0;  // next candidate to submit in the pass under way
     std::size_t used = 0;    // mesh triangles of the first pass
     DrawStats stats;
   };
   Frame frame;
+
+  // The end of the next step's piece of candidates [begin, end): at most `most`, and about one
+  // view of `width` x `height` pixels' worth of their bounding discs (at least one).
+  [[nodiscard]] std::size_t step_end(std::size_t begin, std::size_t end, std::size_t most,
+                                     int width, int height) const;
 
   // Draws candidates [begin, end) (front to back) with levels of detail chosen by size and at
   // most `budget` mesh triangles (0 = no limit); adds to `stats`; returns the mesh triangles.

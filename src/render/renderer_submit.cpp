@@ -145,7 +145,8 @@ std::size_t PackingRenderer::State::build_draw_lists(std::size_t begin, std::siz
     } else {
       single_counts.push_back(lod == 1 ? range.coarse_count : range.full_count);
       single_offsets.push_back(reinterpret_cast<const void*>(
-          static_cast<std::uintptr_t>(lod == 1 ? range.coarse_offset : range.full_offset) * 4u));
+          static_cast<std::uintptr_t>(lod == 1 ? range.coarse_offset : range.full_offset) *
+          index_size));
       single_base_vertices.push_back(range.base_vertex);
     }
   }
@@ -201,7 +202,7 @@ void PackingRenderer::State::draw_meshes(const RenderStyle& style, const Eigen::
                instance_list.data(), GL_STREAM_DRAW);
   glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
   if (!single_counts.empty()) {
-    glMultiDrawElementsBaseVertex(GL_TRIANGLES, single_counts.data(), GL_UNSIGNED_INT,
+    glMultiDrawElementsBaseVertex(GL_TRIANGLES, single_counts.data(), index_type,
                                   single_offsets.data(), static_cast<GLsizei>(single_counts.size()),
                                   single_base_vertices.data());
     ++stats.draw_calls;
@@ -221,9 +222,9 @@ void PackingRenderer::State::draw_meshes(const RenderStyle& style, const Eigen::
       const GLsizei index_count = lod == 1 ? range.coarse_count : range.full_count;
       const GLuint offset = lod == 1 ? range.coarse_offset : range.full_offset;
       glDrawElementsInstancedBaseVertex(
-          GL_TRIANGLES, index_count, GL_UNSIGNED_INT,
-          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset) * 4u), instances,
-          range.base_vertex);
+          GL_TRIANGLES, index_count, index_type,
+          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(offset) * index_size),
+          instances, range.base_vertex);
       ++stats.draw_calls;
       // Hand what is set up to the rasteriser threads now and then (see the impostors).
       unflushed += static_cast<std::size_t>(index_count / 3) * static_cast<std::size_t>(instances);

@@ -98,16 +98,21 @@ TEST(LatticePacker, CancelStopsEarlyAndProgressIsReported) {
   std::atomic<bool> cancel{false};
   int calls = 0;
   double last_fraction = 0.0;
+  double last_solid = 0.0;
   PackControl control{.on_progress =
                           [&](const PackProgress& progress) {
                             ++calls;
                             EXPECT_GE(progress.fraction, last_fraction);
+                            // The live solid fraction grows with the particles grown.
+                            EXPECT_GE(progress.solid_fraction, last_solid);
                             last_fraction = progress.fraction;
+                            last_solid = progress.solid_fraction;
                           },
                       .progress_interval = 0.0};
   const PackResult full = pack_lattice(LatticeOptions{.radius = 0.2, .edge_length = 0.2}, control);
   EXPECT_GE(calls, 2);
   EXPECT_DOUBLE_EQ(last_fraction, 1.0);
+  EXPECT_NEAR(last_solid, full.report.solid_fraction, 1e-3);
   cancel = true;
   const PackResult cancelled = pack_lattice(LatticeOptions{.radius = 0.2, .edge_length = 0.2},
                                             PackControl{.cancel = &cancel});

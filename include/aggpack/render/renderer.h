@@ -15,8 +15,10 @@
 // frame are drawn first, the depth buffer is read back, and the rest are drawn only if part of
 // their bounding sphere could show (exact: the picture is the same as drawing all).
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include "aggpack/geom/vec.h"
@@ -82,6 +84,21 @@ struct DrawStats {
   }
 };
 
+/// Everything PackingRenderer draws from a packing (shape meshes, per-particle transforms,
+/// bounding spheres, colours in every mode), computed without OpenGL. Opaque.
+struct SceneData;
+
+/// Builds the scene data of `packing` on the calling thread, which may be any thread (no
+/// OpenGL): an interactive program calls it on a worker so the window stays live. Shapes that
+/// are scaled copies of another shape (same triangles, vertices in proportion) share its mesh
+/// and are drawn instanced with the scale in their transform. `progress` (optional) is called
+/// now and then with the fraction done in [0, 1]; when `cancel` (optional) becomes true the
+/// function returns null.
+/// \throw InvalidInput if a particle refers to a shape that does not exist.
+std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
+                                         const std::function<void(double)>& progress = {},
+                                         const std::atomic<bool>* cancel = nullptr);
+
 /// Draws one packing with OpenGL 3.3 core. Construct, use and destroy it only while the same
 /// OpenGL 3.3 (or later) core context is current on the calling thread.
 class PackingRenderer {
@@ -96,15 +113,31 @@ class PackingRenderer {
   /// Uploads `packing`: every distinct shape once, every particle's transform and its colours
   /// in all colour modes. Replaces what was uploaded before. The packing is not kept.
   /// \throw InvalidInput if a particle refers to a shape that does not exist.
+  /// Same as begin_upload(prepare_scene(packing)) followed by upload_step until done.
   void set_packing(const Packing& packing);
+
+  /// Starts uploading a prepared scene (not null) in pieces; until upload_step returns true the
+  /// renderer must not draw (begin_frame / draw throw Error), and an unfinished frame is dropped.
+  /// The accessors below describe the last completed scene until then. A new begin_upload
+  /// replaces an unfinished one.
+  /// \throw LimitExceeded if the driver's buffer textures cannot hold the particles.
+  void begin_upload(std::shared_ptr<SceneData> scene);
+  /// Uploads at most about `max_bytes` of the pending scene (at least one piece); returns true
+  /// when the whole scene is uploaded and in use (true at once when nothing is pending).
+  bool upload_step(std::size_t max_bytes);
+  /// Whether begin_upload's scene is not completely uploaded yet.
+  [[nodiscard]] bool is_upload_pending() const;
+  /// Fraction of the pending upload done, in [0, 1] (1 when none is pending).
+  [[nodiscard]] double upload_progress() const;
 
   /// Draws into the currently bound framebuffer (clears it first), viewport (0, 0, width,
   /// height) in pixels (> 0).
   DrawStats draw(const Camera& camera, int width, int height, const RenderStyle& style);
 
   /// The same frame as draw(), in steps, so an interactive caller can keep its event loop
-  /// running while a heavy frame is drawn (at most four steps: the particles seen last frame, in
-  /// two halves when there are many; the depth read-back and occlusion test; the rest).
+  /// running while a heavy frame is drawn (the particles seen last frame, in pieces of at most
+  /// 12,000 and in two at least when there are many; the depth read-back and occlusion test; the
+  /// rest, in pieces).
   /// begin_frame() clears the bound
   /// framebuffer and sorts; each step_frame() call does the next step and returns true once the
   /// frame is complete. The caller may draw elsewhere between steps but must bind the same
@@ -124,6 +157,8 @@ class PackingRenderer {
   /// Number of particles / distinct shapes uploaded.
   [[nodiscard]] std::size_t particle_count() const;
   [[nodiscard]] std::size_t shape_count() const;
+  /// Of the shapes, how many are drawn with another shape's mesh (scaled copies of it).
+  [[nodiscard]] std::size_t merged_shape_count() const;
 
  private:
   struct State;

@@ -1,0 +1,254 @@
+// aggpack-gui's Open and Export dialog: browse folders, pick or type a file name (the paper's
+// default names), and answer the questions before an export (a result older than the panel's
+// parameters, an existing file). The folder is remembered between runs (gui_settings.h).
+
+#include "file_dialog.h"
+
+#include <fmt/core.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+#include <utility>
+
+#include "aggpack/io/export.h"
+#include "gui_app.h"
+
+namespace aggpack::gui {
+
+namespace fs = std::filesystem;
+
+void FileDialog::list() {
+  std::error_code code;
+  const fs::path dir = fs::absolute(folder.empty() ? fs::path(".") : fs::path(folder), code);
+  std::vector<std::string> new_folders, new_files;
+  fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, code);
+  if (code) {
+    error = fmt::format("Cannot read the folder {}: {}.", dir.string(), code.message());
+    return;
+  }
+  const std::string wanted = extension();
+  for (; it != fs::directory_iterator(); it.increment(code)) {
+    if (code) break;
+    const std::string entry = it->path().filename().string();
+    if (entry.empty() || entry[0] == '.') continue;
+    std::error_code type_code;
+    if (it->is_directory(type_code)) {
+      new_folders.push_back(entry);
+    } else if (it->path().extension().string() == wanted) {
+      new_files.push_back(entry);
+    }
+  }
+  std::sort(new_folders.begin(), new_folders.end());
+  std::sort(new_files.begin(), new_files.end());
+  folder = dir.lexically_normal().string();
+  if (folder.size() > 1 && folder.back() == '/') folder.pop_back();
+  folders = std::move(new_folders);
+  files = std::move(new_files);
+  error.clear();
+}
+
+std::string FileDialog::path() const { return (fs::path(folder) / name).string(); }
+
+std::string FileDialog::extension() const {
+  return kind == Kind::kOpen ? std::string(".h5") : "." + format;
+}
+
+std::string default_export_name(const std::string& format, const std::string& stem) {
+  if (format == "dat") return "rock.dat";
+  return stem + "." + format;
+}
+
+void GuiApp::open_dialog(FileDialog::Kind kind, const std::string& format) {
+  if (job_.is_running() || pending_packing_) return;
+  if (kind == FileDialog::Kind::kExport && !packing_) return;
+  dialog_.kind = kind;
+  dialog_.is_open_requested = true;
+  // The folder of the last export (or of --export-name), else the remembered one.
+  const std::string base_folder = fs::path(export_base_).parent_path().string();
+  dialog_.folder =
+      kind == FileDialog::Kind::kExport && !base_folder.empty() ? base_folder : settings_.folder;
+  dialog_.format = format.empty() ? settings_.export_format : format;
+  const std::string stem = fs::path(export_base_).filename().string();
+  dialog_.name = kind == FileDialog::Kind::kOpen
+                     ? fs::path(open_path_).filename().string()
+                     : default_export_name(dialog_.format, stem.empty() ? "rock" : stem);
+  dialog_.list();
+  dialog_.stage = kind == FileDialog::Kind::kExport && is_result_stale()
+                      ? FileDialog::Stage::kAskStale
+                      : FileDialog::Stage::kBrowse;
+}
+
+namespace {
+
+// A button of the dialog's width share.
+bool dialog_button(const char* label) {
+  const float width = ImGui::CalcTextSize(label).x + 2.0f * ImGui::GetStyle().FramePadding.x;
+  return ImGui::Button(label, ImVec2(std::max(170.0f, width), 0.0f));
+}
+
+}  // namespace
+
+void GuiApp::draw_file_dialog() {
+  if (dialog_.kind == FileDialog::Kind::kNone) return;
+  const bool is_open = dialog_.kind == FileDialog::Kind::kOpen;
+  const char* title = is_open ? "Open a packing###file" : "Export###file";
+  if (dialog_.is_open_requested) {
+    ImGui::OpenPopup(title);
+    dialog_.is_open_requested = false;
+  }
+  const ImVec2 centre = ImGui::GetMainViewport()->GetCenter();
+  ImGui::SetNextWindowPos(centre, ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowSize(ImVec2(600.0f, 440.0f), ImGuiCond_Appearing);
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
+    dialog_.kind = FileDialog::Kind::kNone;
+    return;
+  }
+  const int scripted = std::exchange(dialog_.scripted, 0);
+  const bool is_yes = scripted == 1;
+  // Esc closes the dialog (as Cancel), unless a text field has the keyboard.
+  const bool is_no = scripted == 2 || (!ImGui::GetIO().WantTextInput &&
+                                       ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape)));
+  auto close = [this] {
+    dialog_.kind = FileDialog::Kind::kNone;
+    ImGui::CloseCurrentPopup();
+  };
+  auto write_now = [this, &close] {
+    settings_.folder = dialog_.folder;
+    settings_.export_format = dialog_.format;
+    settings_.save(GuiSettings::folder_of(options_.settings_dir));
+    const std::string stem = fs::path(dialog_.name).stem().string();
+    export_base_ = (fs::path(dialog_.folder) / stem).string();
+    start_export(dialog_.format, dialog_.path());
+    close();
+  };
+  if (dialog_.stage == FileDialog::Stage::kAskStale) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
+    ImGui::TextWrapped("The shown packing is out of date.");
+    ImGui::PopStyleColor();
+    std::string keys;
+    for (const std::string& key : changed_keys()) keys += (keys.empty() ? "" : ", ") + key;
+    ImGui::TextWrapped(
+        "The panel's parameters changed after it was made (%s). Export writes the shown, older "
+        "packing, not one made with the new parameters.",
+        keys.c_str());
+    ImGui::Spacing();
+    if (dialog_button("Export the shown packing") || is_yes) {
+      dialog_.stage = FileDialog::Stage::kBrowse;
+    }
+    ImGui::SameLine();
+    if (dialog_button("Pack again first")) {
+      close();
+      start_pack();
+    }
+    ImGui::SameLine();
+    if (dialog_button("Cancel") || is_no) close();
+    ImGui::EndPopup();
+    return;
+  }
+  if (dialog_.stage == FileDialog::Stage::kAskOverwrite) {
+    ImGui::TextWrapped("%s already exists in %s.", dialog_.name.c_str(), dialog_.folder.c_str());
+    ImGui::TextWrapped("Replace it?");
+    ImGui::Spacing();
+    if (dialog_button("Replace") || is_yes) write_now();
+    ImGui::SameLine();
+    if (dialog_button("Back")) dialog_.stage = FileDialog::Stage::kBrowse;
+    ImGui::SameLine();
+    if (dialog_button("Cancel") || is_no) close();
+    ImGui::EndPopup();
+    return;
+  }
+
+  // Browsing: the format (export), the folder, its list, the name.
+  if (!is_open) {
+    ImGui::SetNextItemWidth(200.0f);
+    if (ImGui::BeginCombo("format", dialog_.format.c_str())) {
+      for (const FormatInfo& info : export_formats()) {
+        const std::string name(info.name);
+        if (ImGui::Selectable(fmt::format("{} ({})", info.title, name).c_str(),
+                              name == dialog_.format)) {
+          const std::string old_default = default_export_name(dialog_.format, "rock");
+          if (dialog_.name == old_default ||
+              fs::path(dialog_.name).extension() == "." + dialog_.format) {
+            dialog_.name = default_export_name(name, fs::path(dialog_.name).stem().string());
+            if (name == "dat") dialog_.name = "rock.dat";
+          }
+          dialog_.format = name;
+          dialog_.list();
+        }
+      }
+      ImGui::EndCombo();
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the file format to write");
+  }
+  char buffer[1024];
+  std::snprintf(buffer, sizeof(buffer), "%s", dialog_.folder.c_str());
+  if (ImGui::Button("Up")) {
+    dialog_.folder = fs::path(dialog_.folder).parent_path().string();
+    dialog_.list();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the folder above");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(-60.0f);
+  if (ImGui::InputText("folder", buffer, sizeof(buffer), ImGuiInputTextFlags_EnterReturnsTrue)) {
+    dialog_.folder = buffer;
+    dialog_.list();
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("type a folder and press Enter, or browse below");
+  const float footer = 3.0f * ImGui::GetFrameHeightWithSpacing();
+  if (ImGui::BeginChild("entries", ImVec2(0.0f, -footer), true)) {
+    std::string enter;
+    for (const std::string& sub : dialog_.folders) {
+      if (ImGui::Selectable((sub + "/").c_str(), false, ImGuiSelectableFlags_AllowDoubleClick)) {
+        enter = sub;
+      }
+    }
+    for (const std::string& file : dialog_.files) {
+      if (ImGui::Selectable(file.c_str(), file == dialog_.name,
+                            ImGuiSelectableFlags_AllowDoubleClick)) {
+        dialog_.name = file;
+      }
+    }
+    if (dialog_.folders.empty() && dialog_.files.empty()) {
+      ImGui::TextDisabled("(no folders or %s files here)", dialog_.extension().c_str());
+    }
+    if (!enter.empty()) {
+      dialog_.folder = (fs::path(dialog_.folder) / enter).string();
+      dialog_.list();
+    }
+  }
+  ImGui::EndChild();
+  std::snprintf(buffer, sizeof(buffer), "%s", dialog_.name.c_str());
+  ImGui::SetNextItemWidth(-60.0f);
+  if (ImGui::InputText("name", buffer, sizeof(buffer))) dialog_.name = buffer;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the file's name in the folder above");
+  if (!dialog_.error.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.3f, 1.0f));
+    ImGui::TextWrapped("%s", dialog_.error.c_str());
+    ImGui::PopStyleColor();
+  }
+  const bool has_name = !dialog_.name.empty();
+  ImGui::BeginDisabled(!has_name);
+  if (dialog_button(is_open ? "Open" : "Export") || (is_yes && has_name)) {
+    std::error_code code;
+    if (is_open) {
+      settings_.folder = dialog_.folder;
+      settings_.save(GuiSettings::folder_of(options_.settings_dir));
+      open_path_ = dialog_.path();
+      start_open(open_path_);
+      close();
+    } else if (fs::exists(dialog_.path(), code)) {
+      dialog_.stage = FileDialog::Stage::kAskOverwrite;
+    } else {
+      write_now();
+    }
+  }
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (dialog_button("Cancel") || is_no) close();
+  ImGui::EndPopup();
+}
+
+}  // namespace aggpack::gui
