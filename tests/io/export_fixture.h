@@ -182,4 +182,19 @@ inline std::string trim(const std::string& text) {
   return text.substr(begin, end - begin + 1);
 }
 
+/// A Python script (argv[1] = the file) prints `expected` both for the mesh file `path` and for
+/// Gmsh's rewrite of it (gmsh_rewrites, no warnings allowed): Gmsh reads the file and loses
+/// nothing the script looks at.
+inline void expect_same_through_gmsh(const ScratchFolder& folder, const std::string& script,
+                                     const std::string& path, const std::string& expected) {
+  const CommandResult ours = run_python(folder, script, path);
+  ASSERT_EQ(ours.exit_code, 0) << ours.output;
+  EXPECT_EQ(trim(ours.output), expected);
+  const std::string again = folder.file("again.msh");
+  ASSERT_TRUE(gmsh_rewrites(path, again, /*allow_warnings=*/false));
+  const CommandResult theirs = run_python(folder, script, again);
+  ASSERT_EQ(theirs.exit_code, 0) << theirs.output;
+  EXPECT_EQ(trim(theirs.output), expected);
+}
+
 }  // namespace aggpack::test

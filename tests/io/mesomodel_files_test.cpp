@@ -251,15 +251,7 @@ TEST(MesomodelFiles, GmshAndMeshioReadTheMshWithPhaseGroups) {
   // Physical = MesoPhase code + 1: 3 aggregate, 2 ITZ, 1 mortar.
   const std::string expected =
       "64 162 tetra\n1:3:6 2:3:6 4:2:6 5:2:6 7:1:138\nAGGREGATE=3 ITZ=2 MORTAR=1";
-  const auto ours = test::run_python(folder, kMeshioScript, path);
-  ASSERT_EQ(ours.exit_code, 0) << ours.output;
-  EXPECT_EQ(test::trim(ours.output), expected);
-  // Gmsh reads it and writes it again; meshio finds the same in Gmsh's file.
-  const std::string again = folder.file("again.msh");
-  ASSERT_TRUE(test::gmsh_rewrites(path, again, /*allow_warnings=*/false));
-  const auto theirs = test::run_python(folder, kMeshioScript, again);
-  ASSERT_EQ(theirs.exit_code, 0) << theirs.output;
-  EXPECT_EQ(test::trim(theirs.output), expected);
+  test::expect_same_through_gmsh(folder, kMeshioScript, path, expected);
 }
 
 constexpr const char* kVtkScript = R"(
