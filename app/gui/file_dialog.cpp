@@ -103,8 +103,12 @@ void GuiApp::draw_file_dialog() {
   }
   const ImVec2 centre = ImGui::GetMainViewport()->GetCenter();
   ImGui::SetNextWindowPos(centre, ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  const float height = std::min(ImGui::GetMainViewport()->Size.y - 20.0f, 600.0f);
-  ImGui::SetNextWindowSize(ImVec2(640.0f, height), ImGuiCond_Appearing);
+  // Taller with a solver deck's fields (and again when the format list picks or leaves a deck).
+  auto dialog_size = [this] {
+    const float tall = dialog_.deck != DeckKind::kNone ? 600.0f : 440.0f;
+    return ImVec2(640.0f, std::min(ImGui::GetMainViewport()->Size.y - 20.0f, tall));
+  };
+  ImGui::SetNextWindowSize(dialog_size(), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
     dialog_.kind = FileDialog::Kind::kNone;
     return;
@@ -167,6 +171,7 @@ void GuiApp::draw_file_dialog() {
   // Browsing: the format (export), the folder, its list, the name.
   if (!is_open) {
     // The formats of the table, then the complete solver decks (`aggpack export --deck`).
+    const DeckKind old_deck = dialog_.deck;
     auto choose = [this](const std::string& format, DeckKind deck) {
       const std::string stem = plain_stem(fs::path(dialog_.name).stem().string());
       const std::string old_default = dialog_.deck != DeckKind::kNone
@@ -184,7 +189,7 @@ void GuiApp::draw_file_dialog() {
     const std::string shown =
         dialog_.deck != DeckKind::kNone ? deck_title(dialog_.deck) : dialog_.format;
     ImGui::SetNextItemWidth(260.0f);
-    if (ImGui::BeginCombo("format", shown.c_str())) {
+    if (ImGui::BeginCombo("format", shown.c_str(), ImGuiComboFlags_HeightLargest)) {
       for (const FormatInfo& info : export_formats()) {
         const std::string name(info.name);
         if (ImGui::Selectable(fmt::format("{} ({})", info.title, name).c_str(),
@@ -201,6 +206,11 @@ void GuiApp::draw_file_dialog() {
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", deck_run_hint(info.kind));
       }
       ImGui::EndCombo();
+    }
+    if ((old_deck == DeckKind::kNone) != (dialog_.deck == DeckKind::kNone)) {
+      const ImVec2 size = dialog_size();
+      ImGui::SetWindowSize(size);
+      ImGui::SetWindowPos(ImVec2(centre.x - 0.5f * size.x, centre.y - 0.5f * size.y));
     }
     if (ImGui::IsItemHovered()) {
       ImGui::SetTooltip(
