@@ -90,6 +90,20 @@ struct DeckField {
   double* value;
 };
 
+// "invalid friction = 11 (allowed: [0, 10])" as "friction: 11 is not allowed; allowed: [0, 10]."
+std::string plain_words(const InvalidInput& invalid) {
+  const std::string message = invalid.what();
+  const auto equals = message.find(" = ");
+  const auto allowed = message.find(" (allowed: ");
+  if (equals == std::string::npos || allowed == std::string::npos || allowed < equals ||
+      message.back() != ')') {
+    return plain_error(message);
+  }
+  const std::string value = message.substr(equals + 3, allowed - equals - 3);
+  const std::string range = message.substr(allowed + 11, message.size() - allowed - 12);
+  return fmt::format("{}: {} is not allowed; allowed: {}.", invalid.field(), value, range);
+}
+
 }  // namespace
 
 std::string GuiApp::draw_deck_fields(DeckKind deck) {
@@ -105,7 +119,7 @@ std::string GuiApp::draw_deck_fields(DeckKind deck) {
   try {  // the library's own check: the words and ranges `aggpack export --deck` uses
     validate(options, options.format);
   } catch (const InvalidInput& invalid) {
-    error = plain_error(invalid.what());
+    error = plain_words(invalid);
     error_field = invalid.field();
   } catch (const Error& other) {
     error = plain_error(other.what());
