@@ -203,17 +203,26 @@ void GuiApp::draw_sieve_table(std::vector<SieveRow>& rows) {
       ImGui::TableNextColumn();
       ImGui::AlignTextToFramePadding();
       ImGui::Text("%d", k);
-      auto cell = [&error_field](const std::string& name, const char* id, double* value,
-                                 const char* format) {
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Sieve %d (grading.sieve[%d])", k, k);
+      auto cell = [&error_field, &error](const std::string& name, const char* id, double* value,
+                                         const char* format, const std::string& tooltip) {
         ImGui::TableNextColumn();
         const bool is_bad = error_field == name;
         if (is_bad) ImGui::PushStyleColor(ImGuiCol_FrameBg, kErrorFrame);
         ImGui::SetNextItemWidth(-FLT_MIN);
         ImGui::InputDouble(id, value, 0.0, 0.0, format);
         if (is_bad) ImGui::PopStyleColor();
+        if (ImGui::IsItemHovered()) {
+          ImGui::SetTooltip("%s\n%s%s%s", tooltip.c_str(), name.c_str(), is_bad ? "\n\n" : "",
+                            is_bad ? error.c_str() : "");
+        }
       };
-      cell(field + ".size", "##size", &row.size, "%.4g m");
-      cell(field + ".percent_passing", "##percent", &row.percent_passing, "%.4g");
+      cell(field + ".size", "##size", &row.size, "%.4g m",
+           "Sieve opening d (m), the control diameter of the particles: > 0, larger than the row "
+           "above.");
+      cell(field + ".percent_passing", "##percent", &row.percent_passing, "%.4g",
+           "Percent by volume passing this sieve, [0, 100]: not less than the row above; the "
+           "first row below 100, the last row 100.");
       ImGui::TableNextColumn();
       if (ImGui::Button("+", ImVec2(button_width, 0))) insert_after = k;
       if (ImGui::IsItemHovered()) {

@@ -61,7 +61,7 @@ std::string default_export_name(const std::string& format, const std::string& st
   return stem + "." + format;
 }
 
-void GuiApp::open_dialog(FileDialog::Kind kind, const std::string& format) {
+void GuiApp::open_dialog(FileDialog::Kind kind, const std::string& format, DeckKind deck) {
   if (job_.is_running() || pending_packing_) return;
   if (kind == FileDialog::Kind::kExport && !packing_) return;
   dialog_.kind = kind;
@@ -71,10 +71,12 @@ void GuiApp::open_dialog(FileDialog::Kind kind, const std::string& format) {
   dialog_.folder =
       kind == FileDialog::Kind::kExport && !base_folder.empty() ? base_folder : settings_.folder;
   dialog_.format = format.empty() ? settings_.export_format : format;
-  const std::string stem = fs::path(export_base_).filename().string();
-  dialog_.name = kind == FileDialog::Kind::kOpen
-                     ? fs::path(open_path_).filename().string()
-                     : default_export_name(dialog_.format, stem.empty() ? "rock" : stem);
+  dialog_.deck = format.empty() ? DeckKind::kNone : deck;
+  std::string stem = fs::path(export_base_).filename().string();
+  if (stem.empty()) stem = "rock";
+  dialog_.name = kind == FileDialog::Kind::kOpen   ? fs::path(open_path_).filename().string()
+                 : dialog_.deck != DeckKind::kNone ? default_deck_name(dialog_.deck, stem)
+                                                   : default_export_name(dialog_.format, stem);
   dialog_.list();
   dialog_.stage = kind == FileDialog::Kind::kExport && is_result_stale()
                       ? FileDialog::Stage::kAskStale
@@ -101,7 +103,12 @@ void GuiApp::draw_file_dialog() {
   }
   const ImVec2 centre = ImGui::GetMainViewport()->GetCenter();
   ImGui::SetNextWindowPos(centre, ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
-  ImGui::SetNextWindowSize(ImVec2(600.0f, 440.0f), ImGuiCond_Appearing);
+  // Taller with a solver deck's fields (and again when the format list picks or leaves a deck).
+  auto dialog_size = [this] {
+    const float tall = dialog_.deck != DeckKind::kNone ? 600.0f : 440.0f;
+    return ImVec2(640.0f, std::min(ImGui::GetMainViewport()->Size.y - 20.0f, tall));
+  };
+  ImGui::SetNextWindowSize(dialog_size(), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_NoSavedSettings)) {
     dialog_.kind = FileDialog::Kind::kNone;
     return;
@@ -119,9 +126,9 @@ void GuiApp::draw_file_dialog() {
     settings_.folder = dialog_.folder;
     settings_.export_format = dialog_.format;
     settings_.save(GuiSettings::folder_of(options_.settings_dir));
-    const std::string stem = fs::path(dialog_.name).stem().string();
+    const std::string stem = plain_stem(fs::path(dialog_.name).stem().string());
     export_base_ = (fs::path(dialog_.folder) / stem).string();
-    start_export(dialog_.format, dialog_.path());
+    start_export(dialog_.format, dialog_.deck, dialog_.path());
     close();
   };
   if (dialog_.stage == FileDialog::Stage::kAskStale) {
@@ -163,25 +170,52 @@ void GuiApp::draw_file_dialog() {
 
   // Browsing: the format (export), the folder, its list, the name.
   if (!is_open) {
-    ImGui::SetNextItemWidth(200.0f);
-    if (ImGui::BeginCombo("format", dialog_.format.c_str())) {
+    // The formats of the table, then the complete solver decks (`aggpack export --deck`).
+    const DeckKind old_deck = dialog_.deck;
+    auto choose = [this](const std::string& format, DeckKind deck) {
+      const std::string stem = plain_stem(fs::path(dialog_.name).stem().string());
+      const std::string old_default = dialog_.deck != DeckKind::kNone
+                                          ? default_deck_name(dialog_.deck, stem)
+                                          : default_export_name(dialog_.format, stem);
+      if (dialog_.name == old_default ||
+          fs::path(dialog_.name).extension() == "." + dialog_.format) {
+        dialog_.name = deck != DeckKind::kNone ? default_deck_name(deck, stem)
+                                               : default_export_name(format, stem);
+      }
+      dialog_.format = format;
+      dialog_.deck = deck;
+      dialog_.list();
+    };
+    const std::string shown =
+        dialog_.deck != DeckKind::kNone ? deck_title(dialog_.deck) : dialog_.format;
+    ImGui::SetNextItemWidth(260.0f);
+    if (ImGui::BeginCombo("format", shown.c_str(), ImGuiComboFlags_HeightLargest)) {
       for (const FormatInfo& info : export_formats()) {
         const std::string name(info.name);
         if (ImGui::Selectable(fmt::format("{} ({})", info.title, name).c_str(),
-                              name == dialog_.format)) {
-          const std::string old_default = default_export_name(dialog_.format, "rock");
-          if (dialog_.name == old_default ||
-              fs::path(dialog_.name).extension() == "." + dialog_.format) {
-            dialog_.name = default_export_name(name, fs::path(dialog_.name).stem().string());
-            if (name == "dat") dialog_.name = "rock.dat";
-          }
-          dialog_.format = name;
-          dialog_.list();
+                              name == dialog_.format && dialog_.deck == DeckKind::kNone)) {
+          choose(name, DeckKind::kNone);
         }
+      }
+      ImGui::Separator();
+      ImGui::TextDisabled("Complete solver models of the trough test");
+      for (const DeckInfo& info : deck_kinds()) {
+        if (ImGui::Selectable(deck_title(info.kind).c_str(), info.kind == dialog_.deck)) {
+          choose(format_name(info.format), info.kind);
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", deck_run_hint(info.kind));
       }
       ImGui::EndCombo();
     }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the file format to write");
+    if ((old_deck == DeckKind::kNone) != (dialog_.deck == DeckKind::kNone)) {
+      const ImVec2 size = dialog_size();
+      ImGui::SetWindowSize(size);
+      ImGui::SetWindowPos(ImVec2(centre.x - 0.5f * size.x, centre.y - 0.5f * size.y));
+    }
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "the file format to write: the particles' mesh, or a complete solver deck around it");
+    }
   }
   char buffer[1024];
   std::snprintf(buffer, sizeof(buffer), "%s", dialog_.folder.c_str());
@@ -197,7 +231,8 @@ void GuiApp::draw_file_dialog() {
     dialog_.list();
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("type a folder and press Enter, or browse below");
-  const float footer = 3.0f * ImGui::GetFrameHeightWithSpacing();
+  const bool has_deck = !is_open && dialog_.deck != DeckKind::kNone;
+  const float footer = (has_deck ? 11.0f : 3.0f) * ImGui::GetFrameHeightWithSpacing();
   if (ImGui::BeginChild("entries", ImVec2(0.0f, -footer), true)) {
     std::string enter;
     for (const std::string& sub : dialog_.folders) {
@@ -229,7 +264,9 @@ void GuiApp::draw_file_dialog() {
     ImGui::TextWrapped("%s", dialog_.error.c_str());
     ImGui::PopStyleColor();
   }
-  const bool has_name = !dialog_.name.empty();
+  // A deck's fields, checked as the library checks them: Export waits for valid values.
+  const std::string deck_error = has_deck ? draw_deck_fields(dialog_.deck) : std::string();
+  const bool has_name = !dialog_.name.empty() && deck_error.empty();
   ImGui::BeginDisabled(!has_name);
   if (dialog_button(is_open ? "Open" : "Export") || (is_yes && has_name)) {
     std::error_code code;
@@ -246,6 +283,10 @@ void GuiApp::draw_file_dialog() {
     }
   }
   ImGui::EndDisabled();
+  if (is_yes && !has_name) {  // scripted: nothing to press; say why, as the dialog shows it
+    set_status(deck_error.empty() ? "Export: no file name." : deck_error, true);
+    close();
+  }
   ImGui::SameLine();
   if (dialog_button("Cancel") || is_no) close();
   ImGui::EndPopup();

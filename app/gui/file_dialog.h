@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/io/export.h"
+
 namespace aggpack::gui {
 
 struct FileDialog {
@@ -15,8 +17,11 @@ struct FileDialog {
 
   Kind kind = Kind::kNone;
   Stage stage = Stage::kBrowse;
-  bool is_open_requested = false;    ///< ImGui::OpenPopup on the next frame
-  std::string format;                ///< export: export_formats() name ("stl", "dat", ...)
+  bool is_open_requested = false;  ///< ImGui::OpenPopup on the next frame
+  std::string format;              ///< export: export_formats() name ("stl", "dat", ...)
+  /// export: a complete solver deck (`aggpack export --deck`) written in `format` (the deck's
+  /// own, deck_kinds()), or kNone for the mesh alone.
+  DeckKind deck = DeckKind::kNone;
   std::string folder;                ///< absolute folder shown
   std::string name;                  ///< file name in the folder
   std::string error;                 ///< why the last folder / file was refused ("" = none)
@@ -38,5 +43,16 @@ struct FileDialog {
 /// The paper's default file name for an export format: "rock.dat" for rock.dat, else
 /// `stem` + "." + the format's extension.
 std::string default_export_name(const std::string& format, const std::string& stem);
+
+/// The default file name of a solver deck: `stem` + "-" + deck_name() + its format's extension
+/// ("rock-calculix.inp"), so it does not replace the mesh export of the same stem.
+std::string default_deck_name(DeckKind deck, const std::string& stem);
+
+/// `stem` without a deck's "-calculix" (...) ending: the stem the exports share.
+std::string plain_stem(const std::string& stem);
+
+/// What the dialog and the menus call a deck ("CalculiX deck (.inp)") and how it is run.
+std::string deck_title(DeckKind deck);
+const char* deck_run_hint(DeckKind deck);
 
 }  // namespace aggpack::gui

@@ -119,6 +119,7 @@ GuiApp::GuiApp(GLFWwindow* window, GuiOptions options)
   view_ = options_.view;
   export_base_ = options_.export_base;
   mesomodel_itz_mm_ = options_.mesomodel_itz_mm;
+  mesomodel_itz_kind_ = options_.mesomodel_itz_kind;
   renderer_ = std::make_unique<PackingRenderer>();
   warm_up_renderer();
   // Show the empty container until there is a packing.
@@ -279,15 +280,26 @@ void GuiApp::start_open(const std::string& path) {
   });
 }
 
-void GuiApp::start_export(const std::string& format, const std::string& path) {
+void GuiApp::start_export(const std::string& format, DeckKind deck, const std::string& path) {
   if (job_.is_running() || !packing_) return;
-  const ExportOptions options{.format = parse_export_format(format),
-                              .overwrite = Overwrite::kAllow};
+  ExportOptions options{.format = parse_export_format(format), .overwrite = Overwrite::kAllow};
+  if (deck != DeckKind::kNone) {  // a complete solver model around the mesh (export --deck)
+    options.deck = deck_options_;
+    options.deck.kind = deck;
+    options.material = deck_material_;
+  }
+  try {  // the fields' errors at once, before the job
+    validate(options, options.format);
+  } catch (const Error& error) {
+    set_status(plain_error(error.what()), true);
+    return;
+  }
   set_status("Writing " + path + "...", false);
-  job_.start("Exporting", [packing = packing_, options, path](BackgroundJob&) {
+  const std::string what = deck == DeckKind::kNone ? std::string() : deck_title(deck) + ", ";
+  job_.start("Exporting", [packing = packing_, options, path, what](BackgroundJob&) {
     JobResult out;
     const ExportSummary summary = write(*packing, path, options);
-    out.message = fmt::format("Wrote {}: {} particles, {} nodes, {} elements.", path,
+    out.message = fmt::format("Wrote {}: {}{} particles, {} nodes, {} elements.", path, what,
                               summary.particles, summary.nodes, summary.elements);
     out.is_ok = true;
     return out;
@@ -470,7 +482,7 @@ void GuiApp::after_render() {
   }
   if (options_.export_format && !is_export_script_started_) {
     is_export_script_started_ = true;
-    open_dialog(FileDialog::Kind::kExport, *options_.export_format);
+    open_dialog(FileDialog::Kind::kExport, *options_.export_format, options_.export_deck);
     frames_since_job_ = 0;
     if (dialog_.kind != FileDialog::Kind::kNone) return;
   }
@@ -488,7 +500,10 @@ void GuiApp::after_render() {
         std::printf("dialog: asks: replace %s?\n", dialog_.path().c_str());
         break;
       case FileDialog::Stage::kBrowse:
-        std::printf("dialog: export %s to %s\n", dialog_.format.c_str(), dialog_.path().c_str());
+        std::printf("dialog: export %s to %s\n",
+                    dialog_.deck == DeckKind::kNone ? dialog_.format.c_str()
+                                                    : deck_title(dialog_.deck).c_str(),
+                    dialog_.path().c_str());
         break;
     }
     const bool is_question = dialog_.stage != FileDialog::Stage::kBrowse;
@@ -513,6 +528,9 @@ void GuiApp::after_render() {
   std::printf("result: %s\n", !packing_ ? "none" : is_result_stale() ? "out of date" : "current");
   for (const auto& [key, message] : field_errors_) {
     std::printf("field error: %s: %s\n", key.c_str(), message.c_str());
+  }
+  for (const auto& [field, message] : mesomodel_field_errors()) {
+    std::printf("field error: %s: %s\n", field.c_str(), message.c_str());
   }
   if (!form_error_.empty()) std::printf("form error: %s\n", form_error_.c_str());
   if (is_timing_frames_script_) {

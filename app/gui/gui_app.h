@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "aggpack/config/config.h"
+#include "aggpack/io/export.h"
+#include "aggpack/mesh/mesomodel.h"
 #include "aggpack/render/camera.h"
 #include "aggpack/render/detail_controller.h"
 #include "aggpack/render/headless.h"
@@ -38,7 +40,8 @@ struct GuiOptions {
   /// Scripted runs: once the first pack/open is done, export the mesomodel with this extension
   /// (".inp", ".msh", ".vtu"), as the Mesomodel buttons do, before the screenshot / quit.
   std::optional<std::string> mesomodel_export;
-  double mesomodel_itz_mm = 0.0;  ///< the ITZ thickness field's start value (mm)
+  double mesomodel_itz_mm = 0.0;                 ///< the ITZ thickness field's start value (mm)
+  ItzKind mesomodel_itz_kind = ItzKind::kSolid;  ///< the ITZ model combo's start value
   /// --edit KEY=VALUE: typed into the panel's field once the first pack/open is done (or at
   /// start without one), as a user would (values as `--set` takes them).
   std::vector<std::string> edits;
@@ -46,6 +49,8 @@ struct GuiOptions {
   /// --export FORMAT: once the first job (and the edits) are done, press that export, as the
   /// Export menu does (the dialog's questions are printed and answered by --answer).
   std::optional<std::string> export_format;
+  /// --export-deck NAME: as --export, the solver deck NAME (export_format is then its format).
+  DeckKind export_deck = DeckKind::kNone;
   /// --answer yes|no: the scripted answer to the export dialog's question (stale, overwrite).
   std::string answer = "no";
   /// Settings folder (default $XDG_CONFIG_HOME/aggpack or ~/.config/aggpack).
@@ -98,8 +103,12 @@ class GuiApp {
   void draw_help_window();
   void draw_view_overlays();
   // file_dialog.cpp: the Open and Export dialogs (folder browsing, overwrite, stale result).
-  void open_dialog(FileDialog::Kind kind, const std::string& format = "");
+  void open_dialog(FileDialog::Kind kind, const std::string& format = "",
+                   DeckKind deck = DeckKind::kNone);
   void draw_file_dialog();
+  // deck_export.cpp: a solver deck's fields in the Export dialog; returns their error in plain
+  // words ("" = the library's check passes).
+  std::string draw_deck_fields(DeckKind deck);
   // Whether the shown packing was made with other parameters than the panel shows now.
   [[nodiscard]] bool is_result_stale() const;
   // The keys whose panel value differs from the shown packing's.
@@ -119,10 +128,12 @@ class GuiApp {
   void draw_view_section();
   void start_pack();
   void start_open(const std::string& path);
-  void start_export(const std::string& format, const std::string& path);
+  void start_export(const std::string& format, DeckKind deck, const std::string& path);
   // mesomodel_export.cpp: the concrete mesomodel (.inp, .msh, .vtu) of the shown packing.
   void draw_mesomodel_export(bool can_export);
   void start_mesomodel_export(const std::string& extension);
+  // The mesomodel fields' errors in plain words, by field label ("" key: none).
+  [[nodiscard]] std::map<std::string, std::string> mesomodel_field_errors() const;
   void poll_job();
   void warm_up_renderer();
   void show_packing(std::shared_ptr<const Packing> packing, std::shared_ptr<SceneData> scene,
@@ -200,8 +211,11 @@ class GuiApp {
   bool is_status_error_ = false;
   std::string open_path_ = "run.h5";
   std::string export_base_;
-  double mesomodel_itz_mm_ = 0.0;          // ITZ thickness of the mesomodel export (mm)
-  double mesomodel_mortar_size_mm_ = 0.0;  // target mortar element edge (mm), 0 = no bound
+  double mesomodel_itz_mm_ = 0.0;                 // ITZ thickness of the mesomodel export (mm)
+  double mesomodel_mortar_size_mm_ = 0.0;         // target mortar element edge (mm), 0 = no bound
+  ItzKind mesomodel_itz_kind_ = ItzKind::kSolid;  // solid layer or cohesive elements
+  DeckOptions deck_options_;                      // the Export dialog's solver deck fields
+  MaterialOptions deck_material_;                 // ... and the deck's material
 
   // Mouse state.
   int dragging_button_ = -1;

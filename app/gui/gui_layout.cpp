@@ -68,6 +68,15 @@ void GuiApp::draw_menu_bar() {
       }
       ImGui::EndMenu();
     }
+    if (ImGui::BeginMenu("Export solver deck", can_export)) {
+      for (const DeckInfo& deck : deck_kinds()) {
+        if (ImGui::MenuItem(deck_title(deck.kind).c_str())) {
+          open_dialog(FileDialog::Kind::kExport, format_name(deck.format), deck.kind);
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", deck_run_hint(deck.kind));
+      }
+      ImGui::EndMenu();
+    }
     if (ImGui::BeginMenu("Export mesomodel", can_export)) {
       for (const char* extension : {".inp", ".msh", ".vtu"}) {
         if (ImGui::MenuItem(extension)) start_mesomodel_export(extension);

@@ -18,6 +18,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/io/export.h"
+#include "aggpack/mesh/mesomodel.h"
 #include "gui_app.h"
 
 namespace {
@@ -90,6 +91,12 @@ int main(int argc, char** argv) {
   cli.add_option("--mesomodel-itz", options.mesomodel_itz_mm,
                  "start value of the mesomodel's ITZ thickness field (mm)")
       ->capture_default_str();
+  std::string itz_kind = "solid";
+  cli.add_option("--mesomodel-itz-kind", itz_kind,
+                 "start value of the mesomodel's ITZ model: solid (a layer of tetrahedra) or "
+                 "cohesive (COH3D6 elements, .inp for Abaqus)")
+      ->check(CLI::IsMember({"solid", "cohesive"}))
+      ->capture_default_str();
   cli.add_option("--edit", options.edits,
                  "after the first pack/open, type VALUE into the panel's KEY field, as a user "
                  "would (KEY=VALUE, repeat); the run prints the fields' errors and whether the "
@@ -100,6 +107,10 @@ int main(int argc, char** argv) {
   cli.add_option("--export", export_format,
                  "after the first pack/open (and --edit), open the Export dialog for FORMAT (stl, "
                  "dat, ...) and press Export; its questions are printed and answered by --answer");
+  std::string export_deck;
+  cli.add_option("--export-deck", export_deck,
+                 "as --export, for the complete solver deck NAME (abaqus, calculix, lsdyna, "
+                 "yade), as File > Export solver deck does");
   cli.add_option("--answer", options.answer,
                  "the answer to the Export dialog's questions (out-of-date result, existing file)")
       ->check(CLI::IsMember({"yes", "no"}))
@@ -120,6 +131,19 @@ int main(int argc, char** argv) {
     if (!export_format.empty()) {
       options.export_format = aggpack::format_name(aggpack::parse_export_format(export_format));
     }
+    if (!export_deck.empty()) {
+      if (!export_format.empty()) {
+        throw aggpack::InvalidInput("--export-deck", export_deck, "not with --export");
+      }
+      options.export_deck = aggpack::parse_deck_kind(export_deck);
+      for (const aggpack::DeckInfo& deck : aggpack::deck_kinds()) {
+        if (deck.kind == options.export_deck) {
+          options.export_format = aggpack::format_name(deck.format);
+        }
+      }
+    }
+    options.mesomodel_itz_kind =
+        itz_kind == "cohesive" ? aggpack::ItzKind::kCohesive : aggpack::ItzKind::kSolid;
     if (!mesomodel_export.empty()) {
       if (mesomodel_export != "inp" && mesomodel_export != "msh" && mesomodel_export != "vtu") {
         throw aggpack::InvalidInput("--mesomodel-export", mesomodel_export, "inp, msh or vtu");

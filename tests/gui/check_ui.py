@@ -6,6 +6,8 @@
   stale     the Export dialog asking about an out-of-date result: a dark modal over the view
             with the warning's amber text
   error     a field's error in the panel: red text in the panel's area
+  deck      the Export dialog with a solver deck's fields, one out of range: a dark modal with
+            the bad field's red frame and the red error text under the fields
 Usage: check_ui.py WHAT FILE WIDTH HEIGHT"""
 import os
 import sys
@@ -65,6 +67,16 @@ def main():
         red = count(pixel, range(0, PANEL), range(0, height),
                     lambda c: c[0] > 200 and c[1] < 120 and c[2] < 110)
         assert red > 60, f"no red error text in the panel: {red} pixels"
+    elif what == "deck":
+        xs = range(width // 2 - 300, width // 2 + 300)
+        ys = range(height // 2 - 280, height // 2 + 280)
+        dark = count(pixel, xs[::2], ys[::2], is_dark)
+        assert dark > 0.3 * len(xs[::2]) * len(ys[::2]), f"no dialog in the middle: {dark}"
+        # The marked field's frame (config_panel's kErrorFrame, 0.55 0.15 0.12): a filled box.
+        frame = count(pixel, xs, ys, lambda c: 120 < c[0] < 160 and 25 < c[1] < 55 and c[2] < 50)
+        assert frame > 1500, f"no red field frame in the dialog: {frame} pixels"
+        red = count(pixel, xs, ys, lambda c: c[0] > 200 and c[1] < 120 and c[2] < 110)
+        assert red > 60, f"no red error text in the dialog: {red} pixels"
     else:
         raise SystemExit(f"unknown check {what}")
     print(f"check_ui {what}: ok")

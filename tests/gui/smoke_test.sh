@@ -80,7 +80,8 @@ fi
 
 # Concrete mesomodel export (issue 16), the Mesomodel buttons' path run by script: open a packing,
 # mesh it on the background job and write NAME-mesomodel.inp; an ITZ too thick for the packing's
-# gaps is refused with the mesher's message, exit 2 and no file.
+# gaps is refused with the mesher's message, exit 2 and no file. Then the cohesive ITZ model and
+# a solver deck (issue 18, item 5).
 if [ -n "$cli" ]; then
   rm -f "$out/meso.h5" "$out/meso-mesomodel.inp" "$out/meso.txt" "$out/meso-bad.txt"
   "$cli" pack --progress none -o "$out/meso.h5" --set packer.kind=random \
@@ -108,6 +109,67 @@ if [ -n "$cli" ]; then
   [ "$status" = 2 ] || { echo "a refused mesomodel export exited $status, not 2"; exit 1; }
   grep -q "status: invalid particles .* ITZ layers" "$out/meso-bad.txt"
   [ ! -e "$out/meso-mesomodel.inp" ] || { echo "a refused export left a file"; exit 1; }
+
+  # The cohesive ITZ model (the combo "ITZ model: cohesive elements"): the .inp joins aggregates
+  # and mortar by COH3D6 wedges, as many as the status line says; with an ITZ thickness of 0 the
+  # field says why in plain words, the export is refused (exit 2) and nothing is written.
+  rm -f "$out/cohesive-mesomodel.inp" "$out/cohesive.txt" "$out/cohesive-zero.txt"
+  xvfb-run -a -s "-screen 0 1280x800x24" "$gui" --settings-dir "$out/settings" --open \
+    "$out/meso.h5" --quit --size 800x600 --export-name "$out/cohesive" --mesomodel-export inp \
+    --mesomodel-itz 0.5 --mesomodel-itz-kind cohesive > "$out/cohesive.txt" 2>&1 ||
+    { cat "$out/cohesive.txt"; exit 1; }
+  cat "$out/cohesive.txt"
+  cohesive=$(sed -n 's/^status: Wrote .*cohesive-mesomodel.inp: mesomodel of [0-9]* aggregates, ITZ 0.5 mm (cohesive), .* and \([0-9]*\) cohesive elements (COH3D6).*/\1/p' \
+    "$out/cohesive.txt")
+  [ -n "$cohesive" ] && [ "$cohesive" -gt 0 ] ||
+    { echo "no cohesive element count in the status line"; exit 1; }
+  grep -q "TYPE=COH3D6" "$out/cohesive-mesomodel.inp" ||
+    { echo "the cohesive mesomodel .inp has no COH3D6 elements"; exit 1; }
+  wedges=$(awk '/^\*ELEMENT, TYPE=COH3D6/ { on = 1; next } /^\*/ { on = 0 } on && NF { n++ }
+    END { print n + 0 }' "$out/cohesive-mesomodel.inp")
+  [ "$wedges" = "$cohesive" ] ||
+    { echo "the .inp holds $wedges COH3D6 elements, the status says $cohesive"; exit 1; }
+  rm -f "$out/cohesive-zero.status"
+  xvfb-run -a -s "-screen 0 1280x800x24" bash -c '
+    "$1" --settings-dir "$2/settings" --open "$2/meso.h5" --quit --size 800x600 \
+      --export-name "$2/cohesive-zero" --mesomodel-export inp --mesomodel-itz 0 \
+      --mesomodel-itz-kind cohesive > "$2/cohesive-zero.txt" 2>&1
+    echo $? > "$2/cohesive-zero.status"' _ "$gui" "$out" || true
+  cat "$out/cohesive-zero.txt"
+  status=$(cat "$out/cohesive-zero.status" 2> /dev/null || echo none)
+  [ "$status" = 2 ] || { echo "a cohesive ITZ of 0 mm exited $status, not 2"; exit 1; }
+  grep -q "^field error: ITZ thickness (mm): Cohesive elements need an ITZ thickness above 0" \
+    "$out/cohesive-zero.txt"
+  [ ! -e "$out/cohesive-zero-mesomodel.inp" ] || { echo "a refused export left a file"; exit 1; }
+
+  # A complete solver deck (File > Export solver deck > CalculiX, `aggpack export --deck
+  # calculix`), through the Export dialog on the background job: the deck has its steps and
+  # nodes; its node count is the packing's (the centroid fan: each particle's vertices, counted
+  # in the CLI's OBJ of the same file, plus its centroid) and the status line's; and it is the
+  # very file the CLI writes.
+  rm -rf "$out/deck" "$out/deck.txt"
+  mkdir -p "$out/deck"
+  xvfb-run -a -s "-screen 0 1280x800x24" "$gui" --settings-dir "$out/settings" --open \
+    "$out/meso.h5" --quit --size 1000x700 --export-deck calculix --export-name "$out/deck/rock" \
+    --answer yes > "$out/deck.txt" 2>&1 || { cat "$out/deck.txt"; exit 1; }
+  cat "$out/deck.txt"
+  grep -q "^dialog: export CalculiX deck (.inp) to .*/deck/rock-calculix.inp" "$out/deck.txt"
+  read -r particles nodes < <(sed -n 's/^status: Wrote .*rock-calculix.inp: CalculiX deck (.inp), \([0-9]*\) particles, \([0-9]*\) nodes.*/\1 \2/p' \
+    "$out/deck.txt")
+  [ -n "${nodes:-}" ] || { echo "no deck line in the status"; exit 1; }
+  deck="$out/deck/rock-calculix.inp"
+  for keyword in '^\*STEP' '^\*NODE, NSET=ALLNODES' '^\*ELEMENT, TYPE=C3D4' '^\*CONTACT PAIR'; do
+    grep -q "$keyword" "$deck" || { echo "the deck lacks $keyword"; exit 1; }
+  done
+  [ "$(grep -c '^\*STEP' "$deck")" = 3 ] || { echo "the deck has not its 3 steps"; exit 1; }
+  written=$(awk '/^\*NODE, NSET=ALLNODES/ { on = 1; next } /^\*/ { on = 0 } on && NF { n++ }
+    END { print n + 0 }' "$deck")
+  "$cli" export "$out/meso.h5" -o "$out/deck/surface.obj" > /dev/null
+  vertices=$(grep -c '^v ' "$out/deck/surface.obj")
+  [ "$written" = "$nodes" ] && [ "$written" = $((vertices + particles)) ] ||
+    { echo "deck nodes $written, status $nodes, packing $vertices + $particles"; exit 1; }
+  "$cli" export "$out/meso.h5" --deck calculix -o "$out/deck/cli.inp" > /dev/null
+  cmp "$deck" "$out/deck/cli.inp" || { echo "the GUI's deck differs from the CLI's"; exit 1; }
 fi
 
 # The dense kind (examples/dense-box.toml, a budget it cannot finish for minutes): Pack at start,

@@ -8,7 +8,9 @@
 #   3. a value outside its range typed into a field: the plain-words error next to the field
 #      (no CLI syntax);
 #   4. a packing that draws in full detail within the frame target stays in full detail while the
-#      view moves (--benchmark-frames turns it as a drag does).
+#      view moves (--benchmark-frames turns it as a drag does);
+#   5. the Export dialog's solver deck (CalculiX, picked in the format list with xdotool) and a
+#      friction typed out of range: the field is marked and the library's rule shown beneath.
 # Settings go to a folder of the test's own (--settings-dir), so runs do not share them.
 # Usage: ui_test.sh AGGPACK_GUI OUTPUT_DIR
 set -euo pipefail
@@ -80,4 +82,27 @@ else
     { echo "light frames chosen for a $took ms picture (target $target)"; exit 1; }
   echo "(this machine drew the paper's case in $took ms > $target ms: light frames allowed)"
 fi
+
+# 5. A solver deck's field out of range (xdotool at the 1200x760 layout: the Export dialog is
+#    centred; its format list at y 190, CalculiX deck at 428 once listed, then the deck dialog
+#    grows and re-centres: friction at y 487). F12 saves the window to --screenshot's path.
+command -v xdotool > /dev/null || { echo "xdotool is missing (scripts/install-deps.sh)"; exit 1; }
+rm -f "$out/deck.png"
+xvfb-run -a -s "-screen 0 1200x760x24" bash -c '
+  "$1" --settings-dir "$2/settings" --size 1200x760 --screenshot "$2/deck.png" "${@:3}" --pack \
+    > "$2/deck.txt" 2>&1 &
+  pid=$!
+  for _ in $(seq 1 60); do grep -q "^status: Packing finished" "$2/deck.txt" && break; sleep 0.5; done
+  sleep 1
+  xdotool mousemove 700 400 key ctrl+s; sleep 1
+  xdotool mousemove 400 190 click 1; sleep 1
+  xdotool mousemove 400 428 click 1; sleep 1
+  xdotool mousemove 380 487 click 1; sleep 0.5
+  xdotool key ctrl+a; xdotool type 11; xdotool key Tab; sleep 0.5
+  xdotool mousemove 1100 300; sleep 0.5
+  xdotool key F12; sleep 1.5
+  xdotool key Escape; sleep 0.5; xdotool key ctrl+q
+  wait $pid' _ "$gui" "$out" "${small[@]}" || { cat "$out/deck.txt"; exit 1; }
+cat "$out/deck.txt"
+python3 "$here/check_ui.py" deck "$out/deck.png" 1200 760
 echo "ui_test: all checks passed"
