@@ -143,7 +143,7 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
   };
   // In chunks of consecutive particles on all cores (the rasteriser is idle at the start of a
   // frame), joined in chunk order: the same list as one loop would make.
-  constexpr std::size_t kChunk = 8192;
+  constexpr std::size_t kChunk = kFrustumChunk;
   const std::size_t chunk_count = (particle_count + kChunk - 1) / kChunk;
   s.chunk_candidates.resize(std::max(s.chunk_candidates.size(), chunk_count));
   parallel_for_index(0, chunk_count, [&](std::size_t chunk) {

@@ -93,11 +93,15 @@ struct SceneData;
 /// are scaled copies of another shape (same triangles, vertices in proportion) share its mesh
 /// and are drawn instanced with the scale in their transform. `progress` (optional) is called
 /// now and then with the fraction done in [0, 1]; when `cancel` (optional) becomes true the
-/// function returns null.
+/// function returns null. The meshes go into pages of at most `mesh_page_bytes` of vertices and
+/// of indices each (whole shapes; a larger shape has a page of its own), one OpenGL buffer pair
+/// per page: the driver clears a new buffer's storage, so an upload step allocates only a page's
+/// worth, never hundreds of MB (0 = the default, 4 MB).
 /// \throw InvalidInput if a particle refers to a shape that does not exist.
 std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
                                          const std::function<void(double)>& progress = {},
-                                         const std::atomic<bool>* cancel = nullptr);
+                                         const std::atomic<bool>* cancel = nullptr,
+                                         std::size_t mesh_page_bytes = 0);
 
 /// Draws one packing with OpenGL 3.3 core. Construct, use and destroy it only while the same
 /// OpenGL 3.3 (or later) core context is current on the calling thread.
