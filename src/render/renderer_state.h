@@ -151,6 +151,9 @@ constexpr std::size_t kStepTriangles = 60000;
 // Particles per chunk of the frustum pass (one task on the cores).
 constexpr std::size_t kFrustumChunk = 8192;
 
+// Chunks of the frustum pass per step of a frame (about 260,000 particles: 10-20 ms).
+constexpr std::size_t kFrustumChunksPerStep = 32;
+
 // Below this many particles in view, drawing them all costs less than a depth read-back.
 constexpr std::size_t kOcclusionMinParticles = 4000;
 
@@ -221,13 +224,19 @@ struct PackingRenderer::State {
 
   // The frame begun by begin_frame(), drawn by step_frame().
   struct Frame {
-    // Next step: 1 first pass (a piece of it per step), 2 read-back + occlusion test, 3 rest (a
-    // piece per step), 4 container outline only, 0 done.
+    // Next step: 5 frustum pass (a piece of it per step), 6 sort and set-up of the passes, 1
+    // first pass (a piece of it per step), 2 read-back + occlusion test, 3 rest (a piece per
+    // step), 4 container outline only, 0 done.
     int step = 0;
     int width = 1, height = 1;
     RenderStyle style;
     Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
     Eigen::Matrix4f projection = Eigen::Matrix4f::Identity();
+    Eigen::Matrix4f view_projection = Eigen::Matrix4f::Identity();
+    // The view volume's six planes (columns), normalised.
+    Eigen::Matrix<float, 4, 6> planes = Eigen::Matrix<float, 4, 6>::Zero();
+    float pixel_scale = 1.0f;    // pixels per metre at view depth 1 (perspective)
+    std::size_t next_chunk = 0;  // frustum pass: next chunk of particles
     bool is_orthographic = false;
     bool is_culled = false;  // occlusion culling this frame
     std::size_t first = 0;   // candidates [0, first) are drawn in the first pass
@@ -237,6 +246,12 @@ struct PackingRenderer::State {
     DrawStats stats;
   };
   Frame frame;
+
+  // The frustum pass over chunks [first_chunk, last_chunk) of particles (kFrustumChunk each, on
+  // all cores) into chunk_candidates; then finish_frustum joins them in order, sorts front to
+  // back and sets up the drawing passes.
+  void frustum_chunks(std::size_t first_chunk, std::size_t last_chunk);
+  void finish_frustum();
 
   // The end of the next step's piece of candidates [begin, end): at most `most`, and about one
   // view of `width` x `height` pixels' worth of their bounding discs (at least one).
