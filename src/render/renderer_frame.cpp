@@ -29,24 +29,6 @@ void sort_by_high_word(std::vector<std::uint64_t>& keys, std::vector<std::uint64
 
 }  // namespace render_detail
 
-namespace {
-
-// Sorts by near_depth, ties in their present order.
-void sort_front_to_back(std::vector<Candidate>& candidates, std::vector<std::uint64_t>& keys,
-                        std::vector<std::uint64_t>& key_scratch, std::vector<Candidate>& scratch) {
-  const std::size_t n = candidates.size();
-  keys.resize(n);
-  for (std::size_t c = 0; c < n; ++c) {
-    keys[c] = (static_cast<std::uint64_t>(float_order_key(candidates[c].near_depth)) << 32) | c;
-  }
-  sort_by_high_word(keys, key_scratch);
-  scratch.resize(n);
-  for (std::size_t c = 0; c < n; ++c) scratch[c] = candidates[keys[c] & 0xffffffffu];
-  candidates.swap(scratch);
-}
-
-}  // namespace
-
 DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
                                 const RenderStyle& style) {
   begin_frame(camera, width, height, style);
@@ -99,6 +81,8 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
   f.pixel_scale = static_cast<float>(camera.pixels_per_metre(1.0, height));
   const std::size_t chunk_count = (s.particle_shape.size() + kFrustumChunk - 1) / kFrustumChunk;
   s.chunk_candidates.resize(std::max(s.chunk_candidates.size(), chunk_count));
+  s.candidates.clear();
+  s.sort_keys.clear();
   f.next_chunk = 0;
   f.step = 5;
 }
@@ -165,6 +149,17 @@ void PackingRenderer::State::frustum_chunks(std::size_t first_chunk, std::size_t
       if (make_candidate(i, candidate)) out.push_back(candidate);
     }
   });
+  // Joined in chunk order, with their sort keys (near depth, then the position: ties keep it).
+  const bool is_sorted = f.style.triangle_budget != 1;
+  for (std::size_t chunk = first_chunk; chunk < last_chunk; ++chunk) {
+    for (const Candidate& c : chunk_candidates[chunk]) {
+      if (is_sorted) {
+        sort_keys.push_back((static_cast<std::uint64_t>(float_order_key(c.near_depth)) << 32) |
+                            candidates.size());
+      }
+      candidates.push_back(c);
+    }
+  }
 }
 
 void PackingRenderer::State::finish_frustum() {
@@ -173,17 +168,15 @@ void PackingRenderer::State::finish_frustum() {
   DrawStats& stats = f.stats;
   auto& s = *this;
   const std::size_t particle_count = particle_shape.size();
-  const std::size_t chunk_count = (particle_count + kFrustumChunk - 1) / kFrustumChunk;
-  s.candidates.clear();
-  for (std::size_t chunk = 0; chunk < chunk_count; ++chunk) {
-    s.candidates.insert(s.candidates.end(), s.chunk_candidates[chunk].begin(),
-                        s.chunk_candidates[chunk].end());
-  }
   // Front to back: lets the rasteriser's early depth test reject hidden fragments. Not for a
   // frame of impostors only (budget 1): their fragment shader discards, which turns the early
   // test off, so the order would buy nothing (the depth test still gives the same picture).
   if (style.triangle_budget != 1) {
-    sort_front_to_back(s.candidates, s.sort_keys, s.sort_scratch, s.sorted);
+    sort_by_high_word(sort_keys, sort_scratch);
+    const std::size_t n = candidates.size();
+    sorted.resize(n);
+    for (std::size_t c = 0; c < n; ++c) sorted[c] = candidates[sort_keys[c] & 0xffffffffu];
+    candidates.swap(sorted);
   }
   const std::size_t in_frustum = s.candidates.size();
   stats.particles_in_frustum = in_frustum;
