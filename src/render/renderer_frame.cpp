@@ -286,10 +286,15 @@ bool PackingRenderer::step_frame() {
     return false;
   }
   if (f.step == 2) {
-    auto start = std::chrono::steady_clock::now();
+    // The read-back waits for the rasteriser to finish the first pass: a step of its own.
+    const auto start = std::chrono::steady_clock::now();
     s.depth_pyramid.build(f.width, f.height);
     stats.depth_readback_seconds = seconds_since(start);
-    start = std::chrono::steady_clock::now();
+    f.step = 7;
+    return false;
+  }
+  if (f.step == 7) {
+    const auto start = std::chrono::steady_clock::now();
     const Eigen::Matrix4f& projection = f.projection;
     // Window depth of a view depth (both projections map view depth alone to window depth).
     auto window_depth = [&](float depth) {

@@ -225,8 +225,8 @@ struct PackingRenderer::State {
   // The frame begun by begin_frame(), drawn by step_frame().
   struct Frame {
     // Next step: 5 frustum pass (a piece of it per step), 6 sort and set-up of the passes, 1
-    // first pass (a piece of it per step), 2 read-back + occlusion test, 3 rest (a piece per
-    // step), 4 container outline only, 0 done.
+    // first pass (a piece of it per step), 2 depth read-back, 7 occlusion test, 3 rest (a piece
+    // per step), 4 container outline only, 0 done.
     int step = 0;
     int width = 1, height = 1;
     RenderStyle style;
