@@ -103,7 +103,9 @@ std::uint64_t shape_key(const ConvexPolyhedron& shape, double radius) {
 
 std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
                                          const std::function<void(double)>& progress,
-                                         const std::atomic<bool>* cancel) {
+                                         const std::atomic<bool>* cancel,
+                                         std::size_t mesh_page_bytes) {
+  const std::size_t page_bytes = mesh_page_bytes > 0 ? mesh_page_bytes : kPageBytes;
   auto scene = std::make_shared<SceneData>();
   SceneData& s = *scene;
   const std::size_t particle_count = packing.particles.size();
@@ -178,13 +180,33 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
   }
   if (!report(0.8)) return nullptr;
 
-  auto& vertices = s.vertices;
-  auto& indices = s.indices;
+  // Meshes in pages of at most page_bytes of vertices and of indices, whole shapes per page (a
+  // shape larger than a page has a page of its own). Indices are 16-bit when every shape has at
+  // most 65,536 vertices (indices are local to a shape: each draw adds its base vertex).
+  std::size_t most_vertices = 0;
+  for (std::size_t k = 0; k < shape_count; ++k) {
+    if (s.shapes[k].instances > 0) {
+      most_vertices = std::max(most_vertices, packing.shapes[k].vertices().size());
+    }
+  }
+  s.is_short_index = most_vertices <= 65536;
+  const std::size_t index_bytes = s.is_short_index ? 2 : 4;
   for (std::size_t shape_index = 0; shape_index < shape_count; ++shape_index) {
     ShapeRange& range = s.shapes[shape_index];
     const ConvexPolyhedron& shape = packing.shapes[shape_index];
     if (range.instances == 0 || shape.is_empty()) continue;
     if (range.instances >= 2) s.instanced_shapes.push_back(static_cast<std::uint32_t>(shape_index));
+    const std::size_t index_count = 3 * (shape.triangle_count() + 24);
+    if (s.pages.empty() ||
+        (!s.pages.back().vertices.empty() &&
+         ((s.pages.back().vertices.size() + shape.vertices().size()) * sizeof(GpuVertex) >
+              page_bytes ||
+          (s.pages.back().indices.size() + index_count) * index_bytes > page_bytes))) {
+      s.pages.emplace_back();
+    }
+    auto& vertices = s.pages.back().vertices;
+    auto& indices = s.pages.back().indices;
+    range.page = static_cast<std::uint32_t>(s.pages.size() - 1);
     const std::uint32_t particle = range.instances == 1 ? single_owner[shape_index] : 0;
     range.base_vertex = static_cast<GLint>(vertices.size());
     for (const Vec3& v : shape.vertices()) {
@@ -205,15 +227,11 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
       range.coarse_count = range.full_count;
     }
   }
-  std::size_t most_vertices = 0;
-  for (std::size_t k = 0; k < shape_count; ++k) {
-    if (s.shapes[k].instances > 0) {
-      most_vertices = std::max(most_vertices, packing.shapes[k].vertices().size());
+  if (s.is_short_index) {
+    for (ScenePage& page : s.pages) {
+      page.short_indices.assign(page.indices.begin(), page.indices.end());
+      page.indices = std::vector<std::uint32_t>();
     }
-  }
-  if (most_vertices <= 65536) {
-    s.short_indices.assign(indices.begin(), indices.end());
-    indices = std::vector<std::uint32_t>();
   }
   if (!report(0.9)) return nullptr;
 
@@ -254,6 +272,17 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
     s.bounds.expand(t + Vec3::Constant(radius));
   }
 
+  // The first frames' scratch, touched here (the drawing thread then reuses it).
+  FrameScratch& scratch = s.scratch;
+  scratch.candidates.resize(particle_count);
+  scratch.sorted.resize(particle_count);
+  scratch.sort_keys.resize(particle_count);
+  scratch.sort_scratch.resize(particle_count);
+  scratch.is_hidden_flag.resize(particle_count);
+  scratch.was_visible.assign(particle_count, 0);
+  scratch.chunk_candidates.resize((particle_count + kFrustumChunk - 1) / kFrustumChunk);
+  for (auto& chunk : scratch.chunk_candidates) chunk.resize(kFrustumChunk);
+
   // Container outline as line segments.
   auto& lines = s.lines;
   auto add_segment = [&lines](const Vec3& a, const Vec3& b) {
@@ -291,31 +320,70 @@ void PackingRenderer::begin_upload(std::shared_ptr<SceneData> scene) {
   s.pending_buffer = 0;
   s.pending_offset = 0;
   s.is_pending_allocated = false;
+  SceneData& pending = *s.pending;
+  s.upload_list.clear();
+  // All pages' GL objects first: the pieces point at their capacities.
+  if (!pending.pages.empty()) s.ensure_mesh_page(pending.pages.size() - 1);
+  for (std::size_t page = 0; page < pending.pages.size(); ++page) {
+    const ScenePage& data = pending.pages[page];
+    MeshPage& mesh = s.mesh_pages[page];
+    s.upload_list.push_back({mesh.vertex_buffer, data.vertices.size() * sizeof(GpuVertex),
+                             data.vertices.data(), &mesh.vertex_capacity});
+    s.upload_list.push_back(
+        pending.is_short_index
+            ? UploadPiece{mesh.index_buffer, data.short_indices.size() * sizeof(std::uint16_t),
+                          data.short_indices.data(), &mesh.index_capacity}
+            : UploadPiece{mesh.index_buffer, data.indices.size() * sizeof(std::uint32_t),
+                          data.indices.data(), &mesh.index_capacity});
+  }
+  s.upload_list.push_back({s.transform_buffer, pending.transforms.size() * sizeof(float),
+                           pending.transforms.data(), &s.transform_capacity});
+  s.upload_list.push_back({s.line_buffer, pending.lines.size() * sizeof(float),
+                           pending.lines.data(), &s.line_capacity});
+  s.upload_total = 0;
+  s.upload_done = 0;
+  for (const UploadPiece& piece : s.upload_list) s.upload_total += piece.bytes;
+}
+
+void PackingRenderer::State::release_piece(std::size_t piece) {
+  const std::size_t page = piece / 2;
+  if (page < pending->pages.size()) {
+    ScenePage& data = pending->pages[page];
+    if (piece % 2 == 0) {
+      data.vertices = std::vector<GpuVertex>();
+    } else {
+      data.indices = std::vector<std::uint32_t>();
+      data.short_indices = std::vector<std::uint16_t>();
+    }
+  } else if (piece == 2 * pending->pages.size()) {
+    pending->transforms = std::vector<float>();
+  }
 }
 
 bool PackingRenderer::upload_step(std::size_t max_bytes) {
   State& s = *state_;
   if (!s.pending) return true;
-  const auto pieces = s.upload_pieces();
+  const auto& pieces = s.upload_list;
+  // Allocating storage costs about as much per byte as copying (the driver clears it): both
+  // count against the budget, and a buffer larger than what is left waits for the next step.
+  const bool is_unbounded = max_bytes == std::numeric_limits<std::size_t>::max();
   std::size_t budget = std::max<std::size_t>(max_bytes, 1);
   while (s.pending_buffer < pieces.size() && budget > 0) {
     const UploadPiece& piece = pieces[s.pending_buffer];
     glBindBuffer(GL_COPY_WRITE_BUFFER, piece.buffer);
-    std::size_t& capacity = s.buffer_capacity[s.pending_buffer];
+    std::size_t& capacity = *piece.capacity;
     if (!s.is_pending_allocated && piece.bytes <= capacity) {
       s.is_pending_allocated = true;  // the last scene's storage holds it (a repeated pack)
     }
     if (!s.is_pending_allocated) {
-      // The buffer's storage, in a step of its own when large: the driver may clear it (llvmpipe
-      // takes about 0.5-1 ms per MB), so one step never allocates two large buffers.
-      const bool is_large = piece.bytes > (std::size_t{1} << 20);
-      if (is_large && budget < max_bytes) break;  // next step
+      if (!is_unbounded && piece.bytes > budget && budget < max_bytes) break;  // next step
       glBufferData(GL_COPY_WRITE_BUFFER,
                    static_cast<GLsizeiptr>(std::max<std::size_t>(piece.bytes, 4)), nullptr,
                    GL_STATIC_DRAW);
       s.is_pending_allocated = true;
       capacity = std::max<std::size_t>(piece.bytes, 4);
-      if (is_large && max_bytes != std::numeric_limits<std::size_t>::max()) break;
+      if (!is_unbounded) budget -= std::min(budget, piece.bytes);
+      if (budget == 0) break;
     }
     const std::size_t bytes = std::min(budget, piece.bytes - s.pending_offset);
     if (bytes > 0) {
@@ -323,9 +391,11 @@ bool PackingRenderer::upload_step(std::size_t max_bytes) {
                       static_cast<GLsizeiptr>(bytes),
                       static_cast<const char*>(piece.data) + s.pending_offset);
       s.pending_offset += bytes;
+      s.upload_done += bytes;
       budget -= bytes;
     }
     if (s.pending_offset >= piece.bytes) {
+      s.release_piece(s.pending_buffer);
       ++s.pending_buffer;
       s.pending_offset = 0;
       s.is_pending_allocated = false;
@@ -344,11 +414,24 @@ bool PackingRenderer::upload_step(std::size_t max_bytes) {
   s.colors = std::move(scene.colors);
   s.bounds = scene.bounds;
   s.merged_shapes = scene.merged_shapes;
-  s.index_type = scene.short_indices.empty() ? GL_UNSIGNED_INT : GL_UNSIGNED_SHORT;
-  s.index_size = scene.short_indices.empty() ? 4u : 2u;
+  s.index_type = scene.is_short_index ? GL_UNSIGNED_SHORT : GL_UNSIGNED_INT;
+  s.index_size = scene.is_short_index ? 2u : 4u;
+  s.page_count = scene.pages.size();
   s.line_vertex_count = static_cast<GLsizei>(scene.lines.size() / 3);
+  // The scratch touched on the preparing thread, where it is larger than what is here.
+  FrameScratch& scratch = scene.scratch;
+  auto take = [](auto& mine, auto& prepared) {
+    if (prepared.capacity() > mine.capacity()) mine.swap(prepared);
+  };
+  take(s.candidates, scratch.candidates);
+  take(s.sorted, scratch.sorted);
+  take(s.sort_keys, scratch.sort_keys);
+  take(s.sort_scratch, scratch.sort_scratch);
+  take(s.is_hidden_flag, scratch.is_hidden_flag);
+  take(s.chunk_candidates, scratch.chunk_candidates);
+  s.candidates.clear();
+  s.was_visible.swap(scratch.was_visible);  // all zero, one per particle
   s.pending.reset();
-  s.was_visible.clear();
   s.has_visibility = false;
   s.visible_count = 0;
   glBindTexture(GL_TEXTURE_BUFFER, s.transform_texture);
@@ -365,13 +448,7 @@ bool PackingRenderer::is_upload_pending() const { return state_->pending != null
 double PackingRenderer::upload_progress() const {
   const State& s = *state_;
   if (!s.pending) return 1.0;
-  const auto pieces = s.upload_pieces();
-  std::size_t total = 0, done = 0;
-  for (std::size_t k = 0; k < pieces.size(); ++k) {
-    total += pieces[k].bytes;
-    if (k < s.pending_buffer) done += pieces[k].bytes;
-  }
-  done += s.pending_offset;
+  const std::size_t total = s.upload_total, done = s.upload_done;
   return total > 0 ? static_cast<double>(done) / static_cast<double>(total) : 1.0;
 }
 

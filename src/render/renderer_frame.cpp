@@ -29,24 +29,6 @@ void sort_by_high_word(std::vector<std::uint64_t>& keys, std::vector<std::uint64
 
 }  // namespace render_detail
 
-namespace {
-
-// Sorts by near_depth, ties in their present order.
-void sort_front_to_back(std::vector<Candidate>& candidates, std::vector<std::uint64_t>& keys,
-                        std::vector<std::uint64_t>& key_scratch, std::vector<Candidate>& scratch) {
-  const std::size_t n = candidates.size();
-  keys.resize(n);
-  for (std::size_t c = 0; c < n; ++c) {
-    keys[c] = (static_cast<std::uint64_t>(float_order_key(candidates[c].near_depth)) << 32) | c;
-  }
-  sort_by_high_word(keys, key_scratch);
-  scratch.resize(n);
-  for (std::size_t c = 0; c < n; ++c) scratch[c] = candidates[keys[c] & 0xffffffffu];
-  candidates.swap(scratch);
-}
-
-}  // namespace
-
 DrawStats PackingRenderer::draw(const Camera& camera, int width, int height,
                                 const RenderStyle& style) {
   begin_frame(camera, width, height, style);
@@ -64,7 +46,6 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
   State::Frame& f = s.frame;
   f = State::Frame{};
   f.style = style;
-  DrawStats& stats = f.stats;
   width = std::max(width, 1);
   height = std::max(height, 1);
   f.width = width;
@@ -88,30 +69,45 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
 
-  auto start = std::chrono::steady_clock::now();
   // 1. Frustum: keep a particle unless its bounding sphere is wholly outside a plane of the
-  //    view volume (planes from the combined matrix, Gribb-Hartmann).
-  std::array<Eigen::Vector4f, 6> planes;
+  //    view volume (planes from the combined matrix, Gribb-Hartmann). The pass over the
+  //    particles and the sort are the frame's first steps (step_frame), bounded work each.
+  f.view_projection = view_projection;
   for (int k = 0; k < 3; ++k) {
-    planes[static_cast<std::size_t>(2 * k)] = view_projection.row(3) + view_projection.row(k);
-    planes[static_cast<std::size_t>(2 * k + 1)] = view_projection.row(3) - view_projection.row(k);
+    f.planes.col(2 * k) = (view_projection.row(3) + view_projection.row(k)).transpose();
+    f.planes.col(2 * k + 1) = (view_projection.row(3) - view_projection.row(k)).transpose();
   }
-  for (auto& plane : planes) plane /= plane.head<3>().norm();
+  for (int k = 0; k < 6; ++k) f.planes.col(k) /= f.planes.col(k).head<3>().norm();
+  f.pixel_scale = static_cast<float>(camera.pixels_per_metre(1.0, height));
+  const std::size_t chunk_count = (s.particle_shape.size() + kFrustumChunk - 1) / kFrustumChunk;
+  s.chunk_candidates.resize(std::max(s.chunk_candidates.size(), chunk_count));
+  s.candidates.clear();
+  s.sort_keys.clear();
+  f.next_chunk = 0;
+  f.step = 5;
+}
+
+void PackingRenderer::State::frustum_chunks(std::size_t first_chunk, std::size_t last_chunk) {
+  Frame& f = frame;
+  const Eigen::Matrix4f& view = f.view;
+  const Eigen::Matrix4f& view_projection = f.view_projection;
+  const auto& planes = f.planes;
   const Eigen::Vector4f depth_row = -view.row(2);
-  const float pixel_scale = static_cast<float>(camera.pixels_per_metre(1.0, height));
+  const float pixel_scale = f.pixel_scale;
   const bool is_orthographic = f.is_orthographic;
+  const int width = f.width, height = f.height;
+  auto& s = *this;
   // Pixels per metre at a view depth; perspective shrinks with depth.
   auto pixels_per_metre = [&](float depth) {
     return is_orthographic ? pixel_scale : pixel_scale / std::max(depth, 1e-9f);
   };
-  const std::size_t particle_count = s.particle_shape.size();
   // Whether particle i is in view, and its candidate record if so.
   auto make_candidate = [&](std::size_t i, Candidate& candidate) {
     const ParticleSphere& sphere = s.particle_sphere[i];
     const Eigen::Vector4f centre(sphere.x, sphere.y, sphere.z, 1.0f);
     bool is_inside = true;
-    for (const auto& plane : planes) {
-      if (plane.dot(centre) < -sphere.radius) {
+    for (int k = 0; k < 6; ++k) {
+      if (planes.col(k).dot(centre) < -sphere.radius) {
         is_inside = false;
         break;
       }
@@ -141,12 +137,11 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
     candidate.screen_y = (clip.y() / w + 1.0f) * 0.5f * static_cast<float>(height);
     return true;
   };
+  const std::size_t particle_count = particle_shape.size();
   // In chunks of consecutive particles on all cores (the rasteriser is idle at the start of a
   // frame), joined in chunk order: the same list as one loop would make.
-  constexpr std::size_t kChunk = 8192;
-  const std::size_t chunk_count = (particle_count + kChunk - 1) / kChunk;
-  s.chunk_candidates.resize(std::max(s.chunk_candidates.size(), chunk_count));
-  parallel_for_index(0, chunk_count, [&](std::size_t chunk) {
+  constexpr std::size_t kChunk = kFrustumChunk;
+  parallel_for_index(first_chunk, last_chunk, [&](std::size_t chunk) {
     std::vector<Candidate>& out = s.chunk_candidates[chunk];
     out.clear();
     Candidate candidate;
@@ -154,20 +149,37 @@ void PackingRenderer::begin_frame(const Camera& camera, int width, int height,
       if (make_candidate(i, candidate)) out.push_back(candidate);
     }
   });
-  s.candidates.clear();
-  for (std::size_t chunk = 0; chunk < chunk_count; ++chunk) {
-    s.candidates.insert(s.candidates.end(), s.chunk_candidates[chunk].begin(),
-                        s.chunk_candidates[chunk].end());
+  // Joined in chunk order, with their sort keys (near depth, then the position: ties keep it).
+  const bool is_sorted = f.style.triangle_budget != 1;
+  for (std::size_t chunk = first_chunk; chunk < last_chunk; ++chunk) {
+    for (const Candidate& c : chunk_candidates[chunk]) {
+      if (is_sorted) {
+        sort_keys.push_back((static_cast<std::uint64_t>(float_order_key(c.near_depth)) << 32) |
+                            candidates.size());
+      }
+      candidates.push_back(c);
+    }
   }
+}
+
+void PackingRenderer::State::finish_frustum() {
+  Frame& f = frame;
+  const RenderStyle& style = f.style;
+  DrawStats& stats = f.stats;
+  auto& s = *this;
+  const std::size_t particle_count = particle_shape.size();
   // Front to back: lets the rasteriser's early depth test reject hidden fragments. Not for a
   // frame of impostors only (budget 1): their fragment shader discards, which turns the early
   // test off, so the order would buy nothing (the depth test still gives the same picture).
   if (style.triangle_budget != 1) {
-    sort_front_to_back(s.candidates, s.sort_keys, s.sort_scratch, s.sorted);
+    sort_by_high_word(sort_keys, sort_scratch);
+    const std::size_t n = candidates.size();
+    sorted.resize(n);
+    for (std::size_t c = 0; c < n; ++c) sorted[c] = candidates[sort_keys[c] & 0xffffffffu];
+    candidates.swap(sorted);
   }
   const std::size_t in_frustum = s.candidates.size();
   stats.particles_in_frustum = in_frustum;
-  stats.frustum_sort_seconds = seconds_since(start);
 
   // 2. Draw, with occlusion culling when it can pay: llvmpipe pays per primitive, and in a
   //    packing of many small particles the view sees only the first few layers. Particles not
@@ -238,6 +250,21 @@ bool PackingRenderer::step_frame() {
   DrawStats& stats = f.stats;
   const RenderStyle& style = f.style;
   if (f.step == 0) return true;  // no frame begun, or finished
+  if (f.step == 5 || f.step == 6) {
+    // The frustum pass, a bounded number of particles per step, then the sort.
+    const auto start = std::chrono::steady_clock::now();
+    if (f.step == 5) {
+      const std::size_t chunk_count = (s.particle_shape.size() + kFrustumChunk - 1) / kFrustumChunk;
+      const std::size_t last = std::min(chunk_count, f.next_chunk + kFrustumChunksPerStep);
+      s.frustum_chunks(f.next_chunk, last);
+      f.next_chunk = last;
+      if (last == chunk_count) f.step = 6;
+    } else {
+      s.finish_frustum();  // on to step 1
+    }
+    stats.frustum_sort_seconds += seconds_since(start);
+    return false;
+  }
   glViewport(0, 0, f.width, f.height);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LEQUAL);
@@ -259,10 +286,15 @@ bool PackingRenderer::step_frame() {
     return false;
   }
   if (f.step == 2) {
-    auto start = std::chrono::steady_clock::now();
+    // The read-back waits for the rasteriser to finish the first pass: a step of its own.
+    const auto start = std::chrono::steady_clock::now();
     s.depth_pyramid.build(f.width, f.height);
     stats.depth_readback_seconds = seconds_since(start);
-    start = std::chrono::steady_clock::now();
+    f.step = 7;
+    return false;
+  }
+  if (f.step == 7) {
+    const auto start = std::chrono::steady_clock::now();
     const Eigen::Matrix4f& projection = f.projection;
     // Window depth of a view depth (both projections map view depth alone to window depth).
     auto window_depth = [&](float depth) {

@@ -182,9 +182,6 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 
-  glGenVertexArrays(1, &s.vertex_array);
-  glGenBuffers(1, &s.vertex_buffer);
-  glGenBuffers(1, &s.index_buffer);
   glGenBuffers(1, &s.instance_buffer);
   glGenBuffers(1, &s.transform_buffer);
   glGenBuffers(1, &s.color_buffer);
@@ -192,22 +189,9 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   glGenTextures(1, &s.color_texture);
   glGenVertexArrays(1, &s.line_array);
   glGenBuffers(1, &s.line_buffer);
-
-  glBindVertexArray(s.vertex_array);
-  glBindBuffer(GL_ARRAY_BUFFER, s.vertex_buffer);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(GpuVertex), nullptr);
-  glEnableVertexAttribArray(1);
-  glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(GpuVertex),
-                         reinterpret_cast<const void*>(offsetof(GpuVertex, particle)));
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, s.index_buffer);
   glBindBuffer(GL_ARRAY_BUFFER, s.instance_buffer);
   const std::uint32_t zero = 0;
   glBufferData(GL_ARRAY_BUFFER, sizeof(zero), &zero, GL_STREAM_DRAW);
-  glEnableVertexAttribArray(2);
-  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
-  glVertexAttribDivisor(2, 1);
-  glBindVertexArray(0);
 
   glBindVertexArray(s.line_array);
   glBindBuffer(GL_ARRAY_BUFFER, s.line_buffer);
@@ -222,6 +206,30 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   s.bounds = Aabb{};
 }
 
+void PackingRenderer::State::ensure_mesh_page(std::size_t page) {
+  while (mesh_pages.size() <= page) {
+    MeshPage mesh;
+    glGenVertexArrays(1, &mesh.vertex_array);
+    glGenBuffers(1, &mesh.vertex_buffer);
+    glGenBuffers(1, &mesh.index_buffer);
+    glBindVertexArray(mesh.vertex_array);
+    glBindBuffer(GL_ARRAY_BUFFER, mesh.vertex_buffer);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(GpuVertex), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribIPointer(1, 1, GL_UNSIGNED_INT, sizeof(GpuVertex),
+                           reinterpret_cast<const void*>(offsetof(GpuVertex, particle)));
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, instance_buffer);
+    glEnableVertexAttribArray(2);
+    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+    glVertexAttribDivisor(2, 1);
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    mesh_pages.push_back(mesh);
+  }
+}
+
 PackingRenderer::~PackingRenderer() {
   State& s = *state_;
   glDeleteProgram(s.particle_program);
@@ -229,18 +237,17 @@ PackingRenderer::~PackingRenderer() {
   glDeleteProgram(s.point_program);
   glDeleteBuffers(1, &s.point_buffer);
   glDeleteVertexArrays(1, &s.point_array);
-  const std::array<GLuint, 7> buffers = {s.vertex_buffer,
-                                         s.index_buffer,
-                                         s.instance_buffer,
-                                         s.transform_buffer,
-                                         s.color_buffer,
-                                         s.line_buffer,
-                                         0};
-  glDeleteBuffers(6, buffers.data());
+  for (const MeshPage& page : s.mesh_pages) {
+    const std::array<GLuint, 2> page_buffers = {page.vertex_buffer, page.index_buffer};
+    glDeleteBuffers(2, page_buffers.data());
+    glDeleteVertexArrays(1, &page.vertex_array);
+  }
+  const std::array<GLuint, 4> buffers = {s.instance_buffer, s.transform_buffer, s.color_buffer,
+                                         s.line_buffer};
+  glDeleteBuffers(4, buffers.data());
   const std::array<GLuint, 2> textures = {s.transform_texture, s.color_texture};
   glDeleteTextures(2, textures.data());
-  const std::array<GLuint, 2> arrays = {s.vertex_array, s.line_array};
-  glDeleteVertexArrays(2, arrays.data());
+  glDeleteVertexArrays(1, &s.line_array);
 }
 
 }  // namespace aggpack

@@ -29,10 +29,11 @@ struct GpuVertex {
   std::uint32_t particle;
 };
 
-// Where a shape's data lives in the shared vertex and index buffers.
+// Where a shape's data lives in the vertex and index buffers of its mesh page.
 struct ShapeRange {
-  GLint base_vertex = 0;
-  GLuint full_offset = 0;  // first index (not bytes)
+  std::uint32_t page = 0;  // mesh page (SceneData::pages, State::mesh_pages)
+  GLint base_vertex = 0;   // in the page
+  GLuint full_offset = 0;  // first index in the page (not bytes)
   GLsizei full_count = 0;
   GLuint coarse_offset = 0;
   GLsizei coarse_count = 0;
@@ -85,11 +86,36 @@ void sort_by_high_word(std::vector<std::uint64_t>& keys, std::vector<std::uint64
 
 using namespace render_detail;  // NOLINT(google-build-using-namespace): internal header
 
-// One buffer of a scene upload: the GL buffer, its bytes and their data.
+// One buffer of a scene upload: the GL buffer, its bytes and their data, and the bytes of
+// storage the buffer has (a scene that fits is copied into it, with no new allocation).
 struct UploadPiece {
   GLuint buffer;
   std::size_t bytes;
   const void* data;
+  std::size_t* capacity;
+};
+
+// Most bytes of vertices, and of indices, in one mesh page. The driver clears a buffer's new
+// storage (llvmpipe: about 1 ms per MB), so a scene's meshes go to buffers of a few MB, each
+// allocated in an upload step of its own budget, not to one buffer of hundreds of MB.
+constexpr std::size_t kPageBytes = std::size_t{4} << 20;
+
+// A page of the scene's meshes: whole shapes (indices local to a shape; each draw adds the
+// shape's base vertex in the page).
+struct ScenePage {
+  std::vector<GpuVertex> vertices;
+  std::vector<std::uint32_t> indices;
+  // The same indices in 16 bits when every shape has at most 65,536 vertices, else empty.
+  std::vector<std::uint16_t> short_indices;
+};
+
+// Per-frame scratch of a scene's size, allocated and touched on the thread that prepares the
+// scene, so the first frame does not pay for fresh memory on the drawing thread.
+struct FrameScratch {
+  std::vector<Candidate> candidates, sorted;
+  std::vector<std::uint64_t> sort_keys, sort_scratch;
+  std::vector<std::vector<Candidate>> chunk_candidates;
+  std::vector<std::uint8_t> is_hidden_flag, was_visible;
 };
 
 // Everything drawn from a packing, computed without OpenGL (prepare_scene, on any thread) and
@@ -102,20 +128,31 @@ struct SceneData {
   std::vector<float> impostor_radius;
   std::array<ParticleColors, 3> colors;
   Aabb bounds;
-  std::vector<GpuVertex> vertices;
-  std::vector<std::uint32_t> indices;
-  // The same indices in 16 bits when every shape has at most 65,536 vertices (indices are local
-  // to a shape: each draw adds its base vertex), else empty: half the memory to allocate and copy.
-  std::vector<std::uint16_t> short_indices;
+  std::vector<ScenePage> pages;
+  bool is_short_index = false;    // the pages' indices are 16-bit (half the memory to copy)
   std::vector<float> transforms;  // 16 per particle (at least one particle's worth)
   std::vector<float> lines;       // container outline, 3 per vertex
   std::size_t merged_shapes = 0;  // shapes drawn as a scaled copy of another
+  FrameScratch scratch;
+};
+
+// The GL objects of one mesh page: its vertex array (the vertex and index buffers and the
+// shared per-instance attribute) and the bytes of storage its buffers have.
+struct MeshPage {
+  GLuint vertex_array = 0, vertex_buffer = 0, index_buffer = 0;
+  std::size_t vertex_capacity = 0, index_capacity = 0;
 };
 
 // Most particles one step of a frame submits (step_frame), and most full-detail mesh triangles:
 // about 30 ms on llvmpipe.
 constexpr std::size_t kStepParticles = 12000;
 constexpr std::size_t kStepTriangles = 60000;
+
+// Particles per chunk of the frustum pass (one task on the cores).
+constexpr std::size_t kFrustumChunk = 8192;
+
+// Chunks of the frustum pass per step of a frame (about 260,000 particles: 10-20 ms).
+constexpr std::size_t kFrustumChunksPerStep = 32;
 
 // Below this many particles in view, drawing them all costs less than a depth read-back.
 constexpr std::size_t kOcclusionMinParticles = 4000;
@@ -129,9 +166,8 @@ struct PackingRenderer::State {
   GLint p_view = -1, p_projection = -1, p_lit = -1;
   GLuint point_array = 0, point_buffer = 0;
 
-  GLuint vertex_array = 0;
-  GLuint vertex_buffer = 0;
-  GLuint index_buffer = 0;
+  std::vector<MeshPage> mesh_pages;  // as many as the largest scene needed (kept for reuse)
+  std::size_t page_count = 0;        // pages of the uploaded scene
   GLuint instance_buffer = 0;
   GLuint transform_buffer = 0, transform_texture = 0;
   GLuint color_buffer = 0, color_texture = 0;
@@ -164,43 +200,43 @@ struct PackingRenderer::State {
   std::vector<std::uint32_t> instance_list;
   std::vector<std::uint32_t> group_counts;
   std::vector<std::uint32_t> group_start, cursor;
+  std::vector<std::uint32_t> page_single_start;  // per page: its first single-use draw (+ end)
   std::vector<GLsizei> single_counts;
   std::vector<const void*> single_offsets;
   std::vector<GLint> single_base_vertices;
 
   // The scene being uploaded (begin_upload / upload_step), null when none: its buffers in order
-  // (vertices, indices, transforms, outline), the buffer and byte reached.
+  // (per page vertices and indices, transforms, outline), the buffer and byte reached.
   std::shared_ptr<SceneData> pending;
+  std::vector<UploadPiece> upload_list;
   std::size_t pending_buffer = 0, pending_offset = 0;
-  bool is_pending_allocated = false;  // the buffer pending_buffer has its storage
-  // Bytes of storage of the upload's buffers (in upload_pieces order): a scene that fits is
-  // copied into the storage it has, with no new allocation.
-  std::array<std::size_t, 4> buffer_capacity{};
+  std::size_t upload_total = 0, upload_done = 0;  // bytes of the upload, and copied
+  bool is_pending_allocated = false;              // the buffer pending_buffer has its storage
+  std::size_t transform_capacity = 0, line_capacity = 0;
   std::size_t merged_shapes = 0;
-  GLenum index_type = GL_UNSIGNED_INT;  // of the uploaded index buffer
-  std::uintptr_t index_size = 4;        // its bytes per index
-  // The pending scene's buffers in upload order (pending not null).
-  [[nodiscard]] std::array<UploadPiece, 4> upload_pieces() const {
-    return {
-        {{vertex_buffer, pending->vertices.size() * sizeof(GpuVertex), pending->vertices.data()},
-         {index_buffer,
-          pending->short_indices.empty() ? pending->indices.size() * sizeof(std::uint32_t)
-                                         : pending->short_indices.size() * sizeof(std::uint16_t),
-          pending->short_indices.empty() ? static_cast<const void*>(pending->indices.data())
-                                         : static_cast<const void*>(pending->short_indices.data())},
-         {transform_buffer, pending->transforms.size() * sizeof(float), pending->transforms.data()},
-         {line_buffer, pending->lines.size() * sizeof(float), pending->lines.data()}}};
-  }
+  GLenum index_type = GL_UNSIGNED_INT;  // of the uploaded index buffers
+  std::uintptr_t index_size = 4;        // their bytes per index
+  // Creates the GL objects of mesh page `page` (once).
+  void ensure_mesh_page(std::size_t page);
+  // Frees the pending scene's copy of piece `piece` once uploaded, so the memory goes back in
+  // pieces and not all in the frame that ends the upload.
+  void release_piece(std::size_t piece);
 
   // The frame begun by begin_frame(), drawn by step_frame().
   struct Frame {
-    // Next step: 1 first pass (a piece of it per step), 2 read-back + occlusion test, 3 rest (a
-    // piece per step), 4 container outline only, 0 done.
+    // Next step: 5 frustum pass (a piece of it per step), 6 sort and set-up of the passes, 1
+    // first pass (a piece of it per step), 2 depth read-back, 7 occlusion test, 3 rest (a piece
+    // per step), 4 container outline only, 0 done.
     int step = 0;
     int width = 1, height = 1;
     RenderStyle style;
     Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
     Eigen::Matrix4f projection = Eigen::Matrix4f::Identity();
+    Eigen::Matrix4f view_projection = Eigen::Matrix4f::Identity();
+    // The view volume's six planes (columns), normalised.
+    Eigen::Matrix<float, 4, 6> planes = Eigen::Matrix<float, 4, 6>::Zero();
+    float pixel_scale = 1.0f;    // pixels per metre at view depth 1 (perspective)
+    std::size_t next_chunk = 0;  // frustum pass: next chunk of particles
     bool is_orthographic = false;
     bool is_culled = false;  // occlusion culling this frame
     std::size_t first = 0;   // candidates [0, first) are drawn in the first pass
@@ -210,6 +246,12 @@ struct PackingRenderer::State {
     DrawStats stats;
   };
   Frame frame;
+
+  // The frustum pass over chunks [first_chunk, last_chunk) of particles (kFrustumChunk each, on
+  // all cores) into chunk_candidates; then finish_frustum joins them in order, sorts front to
+  // back and sets up the drawing passes.
+  void frustum_chunks(std::size_t first_chunk, std::size_t last_chunk);
+  void finish_frustum();
 
   // The end of the next step's piece of candidates [begin, end): at most `most`, and about one
   // view of `width` x `height` pixels' worth of their bounding discs (at least one).

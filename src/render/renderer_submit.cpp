@@ -119,14 +119,12 @@ std::size_t PackingRenderer::State::choose_levels(std::size_t begin, std::size_t
   return mesh_triangles;
 }
 
-// Draw lists: single-use shapes in one multi-draw, instanced shapes by (shape, level),
-// points in one draw; all in front-to-back order.
+// Draw lists: single-use shapes in one multi-draw per mesh page, instanced shapes by (shape,
+// level), points in one draw; each in front-to-back order.
 std::size_t PackingRenderer::State::build_draw_lists(std::size_t begin, std::size_t count) {
   const std::size_t shape_count = shapes.size();
   group_counts.assign(2 * shape_count, 0);
-  single_counts.clear();
-  single_offsets.clear();
-  single_base_vertices.clear();
+  page_single_start.assign(page_count + 1, 0);
   point_list.clear();
   std::size_t coarse = 0;
   for (std::size_t k = 0; k < count; ++k) {
@@ -143,12 +141,27 @@ std::size_t PackingRenderer::State::build_draw_lists(std::size_t begin, std::siz
     if (range.instances >= 2) {
       ++group_counts[2 * shape + lod];
     } else {
-      single_counts.push_back(lod == 1 ? range.coarse_count : range.full_count);
-      single_offsets.push_back(reinterpret_cast<const void*>(
-          static_cast<std::uintptr_t>(lod == 1 ? range.coarse_offset : range.full_offset) *
-          index_size));
-      single_base_vertices.push_back(range.base_vertex);
+      ++page_single_start[range.page + 1];
     }
+  }
+  for (std::size_t page = 0; page < page_count; ++page) {
+    page_single_start[page + 1] += page_single_start[page];
+  }
+  const std::size_t singles = page_single_start[page_count];
+  single_counts.resize(singles);
+  single_offsets.resize(singles);
+  single_base_vertices.resize(singles);
+  cursor.assign(page_single_start.begin(), page_single_start.end());
+  for (std::size_t k = 0; k < count; ++k) {
+    const ShapeRange& range = shapes[particle_shape[candidates[begin + k].particle]];
+    const std::uint8_t lod = level[k];
+    if (lod >= 2 || range.instances >= 2) continue;
+    const std::uint32_t at = cursor[range.page]++;
+    single_counts[at] = lod == 1 ? range.coarse_count : range.full_count;
+    single_offsets[at] = reinterpret_cast<const void*>(
+        static_cast<std::uintptr_t>(lod == 1 ? range.coarse_offset : range.full_offset) *
+        index_size);
+    single_base_vertices[at] = range.base_vertex;
   }
   return coarse;
 }
@@ -195,16 +208,28 @@ void PackingRenderer::State::draw_meshes(const RenderStyle& style, const Eigen::
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
   }
-  glBindVertexArray(vertex_array);
   glBindBuffer(GL_ARRAY_BUFFER, instance_buffer);
   glBufferData(GL_ARRAY_BUFFER,
                static_cast<GLsizeiptr>(instance_list.size() * sizeof(std::uint32_t)),
                instance_list.data(), GL_STREAM_DRAW);
-  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
-  if (!single_counts.empty()) {
-    glMultiDrawElementsBaseVertex(GL_TRIANGLES, single_counts.data(), index_type,
-                                  single_offsets.data(), static_cast<GLsizei>(single_counts.size()),
-                                  single_base_vertices.data());
+  // Each page's vertex array reads the per-instance attribute from instance_buffer.
+  std::size_t bound_page = page_count;
+  auto bind_page = [&](std::size_t page) {
+    if (page == bound_page) return;
+    if (bound_page < page_count) {
+      glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+    }
+    glBindVertexArray(mesh_pages[page].vertex_array);
+    bound_page = page;
+  };
+  for (std::size_t page = 0; page < page_count; ++page) {
+    const std::uint32_t first = page_single_start[page];
+    const std::uint32_t end = page_single_start[page + 1];
+    if (first == end) continue;
+    bind_page(page);
+    glMultiDrawElementsBaseVertex(GL_TRIANGLES, single_counts.data() + first, index_type,
+                                  single_offsets.data() + first, static_cast<GLsizei>(end - first),
+                                  single_base_vertices.data() + first);
     ++stats.draw_calls;
   }
   // GL 3.3 has no base instance: point the per-instance attribute at each group's block.
@@ -216,6 +241,7 @@ void PackingRenderer::State::draw_meshes(const RenderStyle& style, const Eigen::
       const std::size_t group = 2 * shape + lod;
       const auto instances = static_cast<GLsizei>(group_counts[group]);
       if (instances == 0) continue;
+      bind_page(range.page);
       glVertexAttribIPointer(
           2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t),
           reinterpret_cast<const void*>(static_cast<std::uintptr_t>(group_start[group]) * 4u));
@@ -234,7 +260,9 @@ void PackingRenderer::State::draw_meshes(const RenderStyle& style, const Eigen::
       }
     }
   }
-  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  if (bound_page < page_count) {
+    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
+  }
   glBindVertexArray(0);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glDisable(GL_CULL_FACE);

@@ -599,5 +599,33 @@ TEST(Headless, ScaledCopiesOfAShapeShareItsMesh) {
   EXPECT_GT(covered_pixels(expected, style.background), 2000u);
 }
 
+TEST(Headless, MeshesSplitIntoSmallPagesDrawTheSamePicture) {
+  // Pages of 4 kB hold a few shapes each: the meshes are spread over many buffers (one
+  // multi-draw per page for single-use shapes, the page's vertex array for instanced ones), and
+  // the picture is the one drawn from a single page (draw order within a step may differ between
+  // pages, which only matters where two particles have the same depth at a pixel).
+  for (const std::uint32_t library_size : {0u, 5u}) {
+    const Packing packing = test::grid_packing(6, 5, 4, 0.1, library_size);
+    CullingScene scene(packing);
+    const RenderStyle style;
+    const DrawStats one_page = scene.draw(style);
+    const Image expected = scene.target.read();
+    scene.renderer.begin_upload(prepare_scene(packing, {}, nullptr, 4096));
+    int steps = 0;
+    while (!scene.renderer.upload_step(1024)) ++steps;
+    EXPECT_GT(steps, 3);
+    const DrawStats paged = scene.draw(style);
+    EXPECT_EQ(paged.particles_drawn, one_page.particles_drawn);
+    EXPECT_EQ(paged.triangles, one_page.triangles);
+    if (library_size == 0) {
+      EXPECT_GT(paged.draw_calls, one_page.draw_calls + 5);
+    }
+    const Image image = scene.target.read();
+    const std::size_t covered = covered_pixels(expected, style.background);
+    EXPECT_GT(covered, 2000u);
+    EXPECT_LE(differing_pixels(image, expected), covered / 1000);
+  }
+}
+
 }  // namespace
 }  // namespace aggpack

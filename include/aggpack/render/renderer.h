@@ -93,11 +93,15 @@ struct SceneData;
 /// are scaled copies of another shape (same triangles, vertices in proportion) share its mesh
 /// and are drawn instanced with the scale in their transform. `progress` (optional) is called
 /// now and then with the fraction done in [0, 1]; when `cancel` (optional) becomes true the
-/// function returns null.
+/// function returns null. The meshes go into pages of at most `mesh_page_bytes` of vertices and
+/// of indices each (whole shapes; a larger shape has a page of its own), one OpenGL buffer pair
+/// per page: the driver clears a new buffer's storage, so an upload step allocates only a page's
+/// worth, never hundreds of MB (0 = the default, 4 MB).
 /// \throw InvalidInput if a particle refers to a shape that does not exist.
 std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
                                          const std::function<void(double)>& progress = {},
-                                         const std::atomic<bool>* cancel = nullptr);
+                                         const std::atomic<bool>* cancel = nullptr,
+                                         std::size_t mesh_page_bytes = 0);
 
 /// Draws one packing with OpenGL 3.3 core. Construct, use and destroy it only while the same
 /// OpenGL 3.3 (or later) core context is current on the calling thread.
@@ -122,7 +126,8 @@ class PackingRenderer {
   /// replaces an unfinished one.
   /// \throw LimitExceeded if the driver's buffer textures cannot hold the particles.
   void begin_upload(std::shared_ptr<SceneData> scene);
-  /// Uploads at most about `max_bytes` of the pending scene (at least one piece); returns true
+  /// Uploads at most about `max_bytes` of the pending scene (at least one piece; a buffer's new
+  /// storage counts as its size, as the driver may clear it); returns true
   /// when the whole scene is uploaded and in use (true at once when nothing is pending).
   bool upload_step(std::size_t max_bytes);
   /// Whether begin_upload's scene is not completely uploaded yet.
@@ -135,13 +140,13 @@ class PackingRenderer {
   DrawStats draw(const Camera& camera, int width, int height, const RenderStyle& style);
 
   /// The same frame as draw(), in steps, so an interactive caller can keep its event loop
-  /// running while a heavy frame is drawn (the particles seen last frame, in pieces of at most
-  /// 12,000 and in two at least when there are many; the depth read-back and occlusion test; the
-  /// rest, in pieces).
-  /// begin_frame() clears the bound
-  /// framebuffer and sorts; each step_frame() call does the next step and returns true once the
-  /// frame is complete. The caller may draw elsewhere between steps but must bind the same
-  /// framebuffer again before each step. A new begin_frame() abandons an unfinished frame.
+  /// running while a heavy frame is drawn (the frustum test, about 260,000 particles per step;
+  /// the front-to-back sort; the particles seen last frame, in pieces of at most 12,000 and in
+  /// two at least when there are many; the depth read-back and occlusion test; the rest, in
+  /// pieces). begin_frame() clears the bound framebuffer; each step_frame() call does the next
+  /// step and returns true once the frame is complete. The caller may draw elsewhere between steps
+  /// but must bind the same framebuffer again before each step. A new begin_frame() abandons an
+  /// unfinished frame.
   void begin_frame(const Camera& camera, int width, int height, const RenderStyle& style);
   bool step_frame();
   /// Whether a frame was begun and is not complete yet.
