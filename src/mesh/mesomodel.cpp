@@ -124,8 +124,10 @@ struct Inclusion {
   // an ITZ).
   ConvexPolyhedron shell;
   double aggregate_volume = 0.0;
-  double shell_volume = 0.0;  // enclosed by the outer surface
-  double reach = 1.0;         // largest vertex displacement / thickness
+  double aggregate_area = 0.0;   // surface area (the cohesive ITZ's exact area)
+  Vec3 centroid = Vec3::Zero();  // of the aggregate (its region seed lies near it)
+  double shell_volume = 0.0;     // enclosed by the outer surface
+  double reach = 1.0;            // largest vertex displacement / thickness
   double wall_clearance = 0.0;
   Aabb bounds;  // of the outer body (shell, or aggregate without ITZ)
 };
@@ -222,10 +224,8 @@ void validate(const MesoOptions& options) {
     throw InvalidInput("itz_kind", std::to_string(static_cast<int>(options.itz_kind)),
                        "solid or cohesive");
   }
-  if (options.itz_kind == ItzKind::kCohesive && !(options.itz_thickness > 0.0)) {
-    throw InvalidInput(
-        "itz_thickness", format_value(options.itz_thickness),
-        "> 0 (m) for a cohesive ITZ (the cohesive elements' constitutive thickness)");
+  if (options.itz_kind == ItzKind::kCohesive) {
+    detail::check_cohesive_thickness(options.itz_thickness);
   }
   check("aggregate_size", options.aggregate_size, options.aggregate_size >= 0.0,
         ">= 0 (m), 0 = no bound");
@@ -256,7 +256,10 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
   parallel_for_index(0, inclusions.size(), [&](std::size_t i) {
     Inclusion& inclusion = inclusions[i];
     inclusion.aggregate = packing.placed(i);
-    inclusion.aggregate_volume = mass_properties(inclusion.aggregate).volume;
+    const MassProperties mass = mass_properties(inclusion.aggregate);
+    inclusion.aggregate_volume = mass.volume;
+    inclusion.aggregate_area = mass.surface_area;
+    inclusion.centroid = mass.centroid;
     inclusion.planes = face_half_spaces(inclusion.aggregate);
     inclusion.wall_clearance = std::numeric_limits<double>::infinity();
     for (const HalfSpace& wall : prism.planes) {
@@ -448,7 +451,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
     for (const Triangle& tri : inclusion.aggregate.triangles()) {
       plc.facets.push_back({{{base + tri[0], base + tri[1], base + tri[2]}}, 2 * id});
     }
-    const Vec3 centroid = mass_properties(inclusion.aggregate).centroid;
+    const Vec3& centroid = inclusion.centroid;
     const Triangle& first = inclusion.aggregate.triangles()[0];
     const Vec3 off_centre = generic_point(inclusion.aggregate.vertices()[first[0]],
                                           inclusion.aggregate.vertices()[first[1]],
@@ -527,7 +530,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
     aggregates += inclusion.aggregate_volume;
     shells += has_itz ? inclusion.shell_volume : inclusion.aggregate_volume;
     if (is_cohesive) {
-      measured.expected_interface_area += mass_properties(inclusion.aggregate).surface_area;
+      measured.expected_interface_area += inclusion.aggregate_area;
     }
   }
   measured.phases[static_cast<int>(MesoPhase::kAggregate)].expected_volume = aggregates;

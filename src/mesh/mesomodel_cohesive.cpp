@@ -7,6 +7,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/mesh/mesomodel.h"
+#include "mesomodel_plc.h"
 
 namespace aggpack {
 
@@ -21,12 +22,20 @@ struct FaceRecord {
 
 }  // namespace
 
-void split_cohesive_interfaces(MesoMesh& mesh, double thickness) {
+namespace detail {
+
+void check_cohesive_thickness(double thickness) {
   if (!(thickness > 0.0) || !std::isfinite(thickness)) {
     throw InvalidInput(
         "itz_thickness", format_value(thickness),
         "> 0 (m) for a cohesive ITZ (the cohesive elements' constitutive thickness)");
   }
+}
+
+}  // namespace detail
+
+void split_cohesive_interfaces(MesoMesh& mesh, double thickness) {
+  detail::check_cohesive_thickness(thickness);
   if (!mesh.cohesive.empty() ||
       std::find(mesh.phase.begin(), mesh.phase.end(), MesoPhase::kItz) != mesh.phase.end()) {
     throw InvalidInput("mesh", "an ITZ already (tetrahedra or cohesive elements)",

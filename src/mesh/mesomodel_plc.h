@@ -78,4 +78,8 @@ struct PhaseBody {
 std::size_t relabel_by_geometry(const std::vector<PhaseBody>& bodies, double margin,
                                 MesoMesh& mesh);
 
+/// Throws InvalidInput naming itz_thickness unless it can be a cohesive ITZ's constitutive
+/// thickness (finite, > 0): the one check of validate(MesoOptions) and split_cohesive_interfaces.
+void check_cohesive_thickness(double thickness);
+
 }  // namespace aggpack::detail
