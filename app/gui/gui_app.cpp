@@ -322,9 +322,18 @@ void GuiApp::show_packing(std::shared_ptr<const Packing> packing, std::shared_pt
 
 void GuiApp::finish_upload_if_done() {
   if (!pending_packing_) return;
-  // A bounded piece per frame: the window stays live while a large scene goes to OpenGL.
-  constexpr std::size_t kUploadBytesPerFrame = std::size_t{24} << 20;
-  if (!renderer_->upload_step(kUploadBytesPerFrame)) return;
+  // Pieces of a few MB while the frame has time (about 25 ms): the window stays live while a
+  // large scene goes to OpenGL, and a loaded machine uploads less per frame. A piece costs 4-10 ms
+  // on llvmpipe (it clears new storage, then copies); the particles' transforms (32 MB at 10^6
+  // particles) take one piece of their own, about 30 ms.
+  constexpr std::size_t kUploadPieceBytes = std::size_t{4} << 20;
+  constexpr double kUploadSecondsPerFrame = 0.025;
+  const double start = glfwGetTime();
+  bool is_uploaded = false;
+  do {
+    is_uploaded = renderer_->upload_step(kUploadPieceBytes);
+  } while (!is_uploaded && glfwGetTime() - start < kUploadSecondsPerFrame);
+  if (!is_uploaded) return;
   is_upload_finished_now_ = true;
   const Aabb old_bounds = packing_ ? last_bounds_ : Aabb{};
   packing_ = std::move(pending_packing_);

@@ -235,10 +235,12 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
   }
   if (!report(0.9)) return nullptr;
 
-  // Transforms: rows of [scale * R | t] (float is ample: 1e-7 relative to the scene size), then
-  // the impostor radius (volume-equivalent, m).
+  // Transforms: two texels per particle, [t | scale] and the rotation's unit quaternion
+  // (x, y, z, w), which the vertex shader applies (float is ample: 1e-7 relative to the scene
+  // size). Half the bytes of a 4 x 4 matrix: at 10^6 particles the buffer's storage (32 MB, which
+  // the driver clears when it allocates it) fits in one upload step of the frame budget.
   auto& transforms = s.transforms;
-  transforms.assign(std::max<std::size_t>(particle_count, 1) * 16, 0.0f);
+  transforms.assign(std::max<std::size_t>(particle_count, 1) * kTransformFloats, 0.0f);
   s.particle_shape.resize(particle_count);
   s.particle_sphere.resize(particle_count);
   s.impostor_radius.resize(particle_count);
@@ -249,19 +251,20 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
   }
   for (std::size_t i = 0; i < particle_count; ++i) {
     const Particle& particle = packing.particles[i];
-    const Mat3 linear = particle.pose.rotation.normalized().toRotationMatrix() *
-                        (particle.scale * mesh_scale[particle.shape]);
+    const Quat rotation = particle.pose.rotation.normalized();
     const Vec3& t = particle.pose.position;
-    for (int row = 0; row < 3; ++row) {
-      for (int column = 0; column < 3; ++column) {
-        transforms[16 * i + 4 * static_cast<std::size_t>(row) + static_cast<std::size_t>(column)] =
-            static_cast<float>(linear(row, column));
-      }
-      transforms[16 * i + 4 * static_cast<std::size_t>(row) + 3] = static_cast<float>(t[row]);
-    }
-    transforms[16 * i + 12] =
+    float* texels = transforms.data() + kTransformFloats * i;
+    texels[0] = static_cast<float>(t.x());
+    texels[1] = static_cast<float>(t.y());
+    texels[2] = static_cast<float>(t.z());
+    texels[3] = static_cast<float>(particle.scale * mesh_scale[particle.shape]);
+    texels[4] = static_cast<float>(rotation.x());
+    texels[5] = static_cast<float>(rotation.y());
+    texels[6] = static_cast<float>(rotation.z());
+    texels[7] = static_cast<float>(rotation.w());
+    // The impostor radius (volume-equivalent, m).
+    s.impostor_radius[i] =
         static_cast<float>(0.5 * measures.equivalent_diameter[particle.shape] * particle.scale);
-    s.impostor_radius[i] = transforms[16 * i + 12];
     const double radius = s.shapes[particle.shape].radius * particle.scale;
     s.particle_shape[i] = mesh_of[particle.shape];
     s.particle_sphere[i] = {
@@ -282,6 +285,8 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
   scratch.was_visible.assign(particle_count, 0);
   scratch.chunk_candidates.resize((particle_count + kFrustumChunk - 1) / kFrustumChunk);
   for (auto& chunk : scratch.chunk_candidates) chunk.resize(kFrustumChunk);
+  scratch.group_counts.resize(2 * s.shapes.size());
+  scratch.group_start.resize(2 * s.shapes.size());
 
   // Container outline as line segments.
   auto& lines = s.lines;
@@ -311,9 +316,11 @@ void PackingRenderer::begin_upload(std::shared_ptr<SceneData> scene) {
   const std::size_t particle_count = scene->particle_shape.size();
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  if (4.0 * static_cast<double>(particle_count) > static_cast<double>(max_texels)) {
+  constexpr double kTexels = kTransformFloats / 4;
+  if (kTexels * static_cast<double>(particle_count) > static_cast<double>(max_texels)) {
     throw LimitExceeded("particle count", std::to_string(particle_count),
-                        "<= " + std::to_string(max_texels / 4) + " for this OpenGL driver");
+                        "<= " + std::to_string(max_texels / static_cast<GLint>(kTexels)) +
+                            " for this OpenGL driver");
   }
   s.frame.step = 0;  // the frame under way used the buffers about to change
   s.pending = std::move(scene);
@@ -429,6 +436,8 @@ bool PackingRenderer::upload_step(std::size_t max_bytes) {
   take(s.sort_scratch, scratch.sort_scratch);
   take(s.is_hidden_flag, scratch.is_hidden_flag);
   take(s.chunk_candidates, scratch.chunk_candidates);
+  take(s.group_counts, scratch.group_counts);
+  take(s.group_start, scratch.group_start);
   s.candidates.clear();
   s.was_visible.swap(scratch.was_visible);  // all zero, one per particle
   s.pending.reset();

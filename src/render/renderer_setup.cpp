@@ -12,7 +12,7 @@ constexpr const char* kParticleVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in uint a_particle;
 layout(location = 2) in uint a_instance;
-uniform samplerBuffer u_transforms;  // four texels per particle: rows of [scale * R | t], radius
+uniform samplerBuffer u_transforms;  // two texels per particle: [t | scale], quaternion (x, y, z, w)
 uniform samplerBuffer u_colors;      // one normalised RGBA8 texel per particle
 uniform mat4 u_view;
 uniform mat4 u_projection;
@@ -20,10 +20,12 @@ out vec3 v_view_position;
 flat out vec3 v_color;
 void main() {
   int id = int(a_particle + a_instance);
-  vec4 p = vec4(a_position, 1.0);
-  vec3 world = vec3(dot(texelFetch(u_transforms, 4 * id), p),
-                    dot(texelFetch(u_transforms, 4 * id + 1), p),
-                    dot(texelFetch(u_transforms, 4 * id + 2), p));
+  vec4 placement = texelFetch(u_transforms, 2 * id);
+  vec4 q = texelFetch(u_transforms, 2 * id + 1);
+  // v + 2 w (q x v) + 2 q x (q x v): the unit quaternion's rotation of the scaled vertex.
+  vec3 v = a_position * placement.w;
+  vec3 u = 2.0 * cross(q.xyz, v);
+  vec3 world = v + q.w * u + cross(q.xyz, u) + placement.xyz;
   vec4 view = u_view * vec4(world, 1.0);
   v_view_position = view.xyz;
   v_color = texelFetch(u_colors, id).rgb;

@@ -95,6 +95,9 @@ struct UploadPiece {
   std::size_t* capacity;
 };
 
+// Floats of a particle's transform: two RGBA32F texels, [t | scale] and the unit quaternion.
+constexpr std::size_t kTransformFloats = 8;
+
 // Most bytes of vertices, and of indices, in one mesh page. The driver clears a buffer's new
 // storage (llvmpipe: about 1 ms per MB), so a scene's meshes go to buffers of a few MB, each
 // allocated in an upload step of its own budget, not to one buffer of hundreds of MB.
@@ -116,6 +119,7 @@ struct FrameScratch {
   std::vector<std::uint64_t> sort_keys, sort_scratch;
   std::vector<std::vector<Candidate>> chunk_candidates;
   std::vector<std::uint8_t> is_hidden_flag, was_visible;
+  std::vector<std::uint32_t> group_counts, group_start;  // two per shape
 };
 
 // Everything drawn from a packing, computed without OpenGL (prepare_scene, on any thread) and
@@ -130,7 +134,7 @@ struct SceneData {
   Aabb bounds;
   std::vector<ScenePage> pages;
   bool is_short_index = false;    // the pages' indices are 16-bit (half the memory to copy)
-  std::vector<float> transforms;  // 16 per particle (at least one particle's worth)
+  std::vector<float> transforms;  // kTransformFloats per particle (at least one particle's worth)
   std::vector<float> lines;       // container outline, 3 per vertex
   std::size_t merged_shapes = 0;  // shapes drawn as a scaled copy of another
   FrameScratch scratch;

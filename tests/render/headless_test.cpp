@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 #include <stb_image.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
 #include <tuple>
+#include <vector>
 
 #include "aggpack/core/error.h"
 #include "aggpack/geom/convex_polyhedron.h"
@@ -147,6 +149,82 @@ TEST(Headless, CubeCoversExactlyItsProjectedSquare) {
   const Rgb centre =
       image.pixel(static_cast<int>(0.5 * (x0 + x1)), static_cast<int>(0.5 * (y0 + y1)));
   EXPECT_GT(centre.r + centre.g + centre.b, 200);
+}
+
+// Whether point p is strictly inside the convex hull of `points` (2D, Andrew's monotone chain),
+// by more than `margin` pixels from every hull edge.
+bool is_inside_hull(std::vector<Eigen::Vector2d> points, const Eigen::Vector2d& p, double margin) {
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {  // lower chain
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);  // counter-clockwise, last point = first dropped
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Eigen::Vector2d& a = hull[i];
+    const Eigen::Vector2d& b = hull[(i + 1) % hull.size()];
+    if (cross(a, b, p) / (b - a).norm() <= margin) return false;
+  }
+  return true;
+}
+
+TEST(Headless, RotatedScaledParticleCoversItsProjectedOutline) {
+  // A flat box (0.6 x 0.2 x 0.1 m) scaled by 1.3 and turned 0.7 rad about (1, 2, 3), seen from
+  // the top, orthographic: the pixels it covers are the convex hull of its projected corners
+  // (the rotation and scale the vertex shader applies, against Eigen's on the CPU). A transposed
+  // rotation or a lost scale moves the outline by tens of pixels.
+  Packing packing;
+  packing.container.get_if<BoxContainer>()->length = 2.0;
+  packing.container.get_if<BoxContainer>()->width = 1.0;
+  packing.container.get_if<BoxContainer>()->depth = 1.0;
+  packing.shapes.push_back(make_box(Vec3(-0.3, -0.1, -0.05), Vec3(0.3, 0.1, 0.05)));
+  Particle particle;
+  particle.pose.position = Vec3(1.0, 0.5, 0.5);
+  particle.pose.rotation = Quat(Eigen::AngleAxisd(0.7, Vec3(1.0, 2.0, 3.0).normalized()));
+  particle.scale = 1.3;
+  packing.particles.push_back(particle);
+  RenderImageOptions options = small_options();
+  options.view = ViewPreset::kTop;
+  options.is_orthographic = true;
+  options.style.show_container = false;
+  const Image image = render_image(packing, options);
+
+  Aabb scene;
+  scene.expand(Vec3::Zero());
+  scene.expand(Vec3(2.0, 1.0, 1.0));
+  const Camera camera = Camera::framing(scene, ViewPreset::kTop, 320.0 / 240.0, true);
+  std::vector<Eigen::Vector2d> corners;
+  for (const Vec3& vertex : packing.shapes[0].vertices()) {
+    const Vec3 world = particle.pose.position + particle.pose.rotation * (particle.scale * vertex);
+    corners.push_back(project(camera, image.width, image.height, world));
+  }
+  std::size_t inside = 0, outside = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const Eigen::Vector2d centre(x + 0.5, y + 0.5);
+      const bool is_covered = !is_background(image, x, y, options.style.background);
+      if (is_inside_hull(corners, centre, 1.0)) {
+        EXPECT_TRUE(is_covered) << x << "," << y;
+        ++inside;
+      } else if (!is_inside_hull(corners, centre, -1.0)) {
+        EXPECT_FALSE(is_covered) << x << "," << y;
+        ++outside;
+      }
+    }
+  }
+  EXPECT_GT(inside, 1000u);  // the outline is large enough for the test to mean something
+  EXPECT_GT(outside, 50000u);
 }
 
 TEST(Headless, ParticlesCoverTheRegionTheyOccupy) {
