@@ -322,17 +322,29 @@ void GuiApp::show_packing(std::shared_ptr<const Packing> packing, std::shared_pt
 
 void GuiApp::finish_upload_if_done() {
   if (!pending_packing_) return;
-  // Pieces of a few MB while the frame has time (about 25 ms): the window stays live while a
-  // large scene goes to OpenGL, and a loaded machine uploads less per frame. A piece costs 4-10 ms
-  // on llvmpipe (it clears new storage, then copies); the particles' transforms (32 MB at 10^6
-  // particles) take one piece of their own, about 30 ms.
+  // Steps while the frame has time (about 25 ms): the window stays live while a large scene
+  // goes to OpenGL, and a loaded machine uploads less per frame. Each step allocates one buffer
+  // or copies at most 4 MB; a step starts only if it fits the time left at the cost per byte
+  // measured so far (llvmpipe clears new storage; fresh memory costs 1-3 ms per MB on this VM).
+  // The first step of a frame always runs.
   constexpr std::size_t kUploadPieceBytes = std::size_t{4} << 20;
   constexpr double kUploadSecondsPerFrame = 0.025;
   const double start = glfwGetTime();
   bool is_uploaded = false;
-  do {
+  for (bool is_first = true;; is_first = false) {
+    const std::size_t bytes = renderer_->next_upload_bytes(kUploadPieceBytes);
+    const double now = glfwGetTime();
+    if (!is_first && now - start + static_cast<double>(bytes) * upload_seconds_per_byte_ >
+                         kUploadSecondsPerFrame) {
+      break;
+    }
     is_uploaded = renderer_->upload_step(kUploadPieceBytes);
-  } while (!is_uploaded && glfwGetTime() - start < kUploadSecondsPerFrame);
+    if (bytes >= (std::size_t{1} << 20)) {  // large enough to time
+      const double rate = (glfwGetTime() - now) / static_cast<double>(bytes);
+      upload_seconds_per_byte_ = 0.5 * (upload_seconds_per_byte_ + rate);
+    }
+    if (is_uploaded) break;
+  }
   if (!is_uploaded) return;
   is_upload_finished_now_ = true;
   const Aabb old_bounds = packing_ ? last_bounds_ : Aabb{};

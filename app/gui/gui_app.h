@@ -181,6 +181,8 @@ class GuiApp {
   // longer than the detail controller's target (else they stay in full detail).
   bool needs_light_frames_ = false;
   bool is_upload_finished_now_ = false;
+  // Seconds per byte of a scene upload step, measured (a running average; 1 ms per MB at first).
+  double upload_seconds_per_byte_ = 1e-3 / (1 << 20);
   bool is_benchmark_started_ =
       false;  // --benchmark-frames began  // this frame finished an upload: no drawing in it
   std::unique_ptr<PackingRenderer> renderer_;

@@ -367,49 +367,54 @@ void PackingRenderer::State::release_piece(std::size_t piece) {
   }
 }
 
+std::size_t PackingRenderer::next_upload_bytes(std::size_t max_bytes) const {
+  const State& s = *state_;
+  if (!s.pending) return 0;
+  if (s.pending_buffer == s.upload_list.size()) return 4 * s.pending->particle_shape.size();
+  const UploadPiece& piece = s.upload_list[s.pending_buffer];
+  if (!s.is_pending_allocated && piece.bytes > *piece.capacity) return piece.bytes;
+  return std::min(std::max<std::size_t>(max_bytes, 1), piece.bytes - s.pending_offset);
+}
+
 bool PackingRenderer::upload_step(std::size_t max_bytes) {
   State& s = *state_;
   if (!s.pending) return true;
   const auto& pieces = s.upload_list;
-  // Allocating storage costs about as much per byte as copying (the driver clears it): both
-  // count against the budget, and a buffer larger than what is left waits for the next step.
-  const bool is_unbounded = max_bytes == std::numeric_limits<std::size_t>::max();
-  std::size_t budget = std::max<std::size_t>(max_bytes, 1);
-  while (s.pending_buffer < pieces.size() && budget > 0) {
+  if (s.pending_buffer < pieces.size()) {
+    // One unit of work: a buffer's new storage (the driver clears it: about as costly per byte
+    // as a copy), or a copy of at most max_bytes into it; the scene goes into use in a step of
+    // its own after the last piece.
     const UploadPiece& piece = pieces[s.pending_buffer];
     glBindBuffer(GL_COPY_WRITE_BUFFER, piece.buffer);
     std::size_t& capacity = *piece.capacity;
-    if (!s.is_pending_allocated && piece.bytes <= capacity) {
-      s.is_pending_allocated = true;  // the last scene's storage holds it (a repeated pack)
-    }
     if (!s.is_pending_allocated) {
-      if (!is_unbounded && piece.bytes > budget && budget < max_bytes) break;  // next step
-      glBufferData(GL_COPY_WRITE_BUFFER,
-                   static_cast<GLsizeiptr>(std::max<std::size_t>(piece.bytes, 4)), nullptr,
-                   GL_STATIC_DRAW);
       s.is_pending_allocated = true;
-      capacity = std::max<std::size_t>(piece.bytes, 4);
-      if (!is_unbounded) budget -= std::min(budget, piece.bytes);
-      if (budget == 0) break;
+      if (piece.bytes > capacity) {  // else the last scene's storage holds it (a repeated pack)
+        capacity = std::max<std::size_t>(piece.bytes, 4);
+        glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(capacity), nullptr,
+                     GL_STATIC_DRAW);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+        return false;
+      }
     }
-    const std::size_t bytes = std::min(budget, piece.bytes - s.pending_offset);
+    const std::size_t bytes =
+        std::min(std::max<std::size_t>(max_bytes, 1), piece.bytes - s.pending_offset);
     if (bytes > 0) {
       glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(s.pending_offset),
                       static_cast<GLsizeiptr>(bytes),
                       static_cast<const char*>(piece.data) + s.pending_offset);
       s.pending_offset += bytes;
       s.upload_done += bytes;
-      budget -= bytes;
     }
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
     if (s.pending_offset >= piece.bytes) {
       s.release_piece(s.pending_buffer);
       ++s.pending_buffer;
       s.pending_offset = 0;
       s.is_pending_allocated = false;
     }
+    return false;
   }
-  glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-  if (s.pending_buffer < pieces.size()) return false;
 
   // All uploaded: the scene's CPU side replaces the last one's.
   SceneData& scene = *s.pending;

@@ -126,10 +126,15 @@ class PackingRenderer {
   /// replaces an unfinished one.
   /// \throw LimitExceeded if the driver's buffer textures cannot hold the particles.
   void begin_upload(std::shared_ptr<SceneData> scene);
-  /// Uploads at most about `max_bytes` of the pending scene (at least one piece; a buffer's new
-  /// storage counts as its size, as the driver may clear it); returns true
-  /// when the whole scene is uploaded and in use (true at once when nothing is pending).
+  /// One unit of the pending upload: allocates one buffer's storage (the driver may clear it), or
+  /// copies at most `max_bytes` (at least 1) into it, or, after the last copy, puts the scene in
+  /// use. Returns true when the whole scene is uploaded and in use (true at once when nothing is
+  /// pending).
   bool upload_step(std::size_t max_bytes);
+  /// Bytes the next upload_step(max_bytes) allocates or copies (putting the scene in use counts
+  /// as its colour buffer, 4 bytes per particle), 0 when nothing is pending: what a caller with a
+  /// time budget weighs against the cost per byte it has measured.
+  [[nodiscard]] std::size_t next_upload_bytes(std::size_t max_bytes) const;
   /// Whether begin_upload's scene is not completely uploaded yet.
   [[nodiscard]] bool is_upload_pending() const;
   /// Fraction of the pending upload done, in [0, 1] (1 when none is pending).
