@@ -180,6 +180,40 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
   }
   if (!report(0.8)) return nullptr;
 
+  // Per particle: its transform (translation, scale with the mesh's, unit quaternion; float is
+  // ample: 1e-7 relative to the scene size), mesh, spheres and impostor radius.
+  auto& transforms = s.transforms;
+  transforms.resize(particle_count);
+  s.particle_shape.resize(particle_count);
+  s.particle_sphere.resize(particle_count);
+  s.impostor_radius.resize(particle_count);
+  const Aabb container_bounds = packing.container.bounds();
+  if (!container_bounds.is_empty()) {
+    s.bounds.expand(container_bounds.lower);
+    s.bounds.expand(container_bounds.upper);
+  }
+  for (std::size_t i = 0; i < particle_count; ++i) {
+    const Particle& particle = packing.particles[i];
+    const Quat rotation = particle.pose.rotation.normalized();
+    const Vec3& t = particle.pose.position;
+    transforms[i].placement = {static_cast<float>(t.x()), static_cast<float>(t.y()),
+                               static_cast<float>(t.z()),
+                               static_cast<float>(particle.scale * mesh_scale[particle.shape])};
+    transforms[i].rotation = {static_cast<float>(rotation.x()), static_cast<float>(rotation.y()),
+                              static_cast<float>(rotation.z()), static_cast<float>(rotation.w())};
+    // The impostor radius (volume-equivalent, m).
+    s.impostor_radius[i] =
+        static_cast<float>(0.5 * measures.equivalent_diameter[particle.shape] * particle.scale);
+    const double radius = s.shapes[particle.shape].radius * particle.scale;
+    s.particle_shape[i] = mesh_of[particle.shape];
+    s.particle_sphere[i] = {
+        static_cast<float>(t.x()), static_cast<float>(t.y()), static_cast<float>(t.z()),
+        static_cast<float>(radius),
+        static_cast<float>(s.shapes[particle.shape].inner_radius * particle.scale)};
+    s.bounds.expand(t - Vec3::Constant(radius));
+    s.bounds.expand(t + Vec3::Constant(radius));
+  }
+
   // Meshes in pages of at most page_bytes of vertices and of indices, whole shapes per page (a
   // shape larger than a page has a page of its own). Indices are 16-bit when every shape has at
   // most 65,536 vertices (indices are local to a shape: each draw adds its base vertex).
@@ -207,11 +241,23 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
     auto& vertices = s.pages.back().vertices;
     auto& indices = s.pages.back().indices;
     range.page = static_cast<std::uint32_t>(s.pages.size() - 1);
-    const std::uint32_t particle = range.instances == 1 ? single_owner[shape_index] : 0;
     range.base_vertex = static_cast<GLint>(vertices.size());
-    for (const Vec3& v : shape.vertices()) {
-      vertices.push_back({static_cast<float>(v.x()), static_cast<float>(v.y()),
-                          static_cast<float>(v.z()), particle});
+    if (range.instances == 1) {
+      // Used once: in world coordinates, with its particle's index.
+      const std::uint32_t owner = single_owner[shape_index];
+      const Particle& particle = packing.particles[owner];
+      const Quat rotation = particle.pose.rotation.normalized();
+      const double scale = particle.scale * mesh_scale[particle.shape];
+      for (const Vec3& v : shape.vertices()) {
+        const Vec3 world = particle.pose.position + rotation * (scale * v);
+        vertices.push_back({static_cast<float>(world.x()), static_cast<float>(world.y()),
+                            static_cast<float>(world.z()), owner});
+      }
+    } else {
+      for (const Vec3& v : shape.vertices()) {
+        vertices.push_back(
+            {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z()), 0});
+      }
     }
     range.full_offset = static_cast<GLuint>(indices.size());
     for (const Triangle& t : shape.triangles()) indices.insert(indices.end(), t.begin(), t.end());
@@ -235,46 +281,6 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
   }
   if (!report(0.9)) return nullptr;
 
-  // Transforms: two texels per particle, [t | scale] and the rotation's unit quaternion
-  // (x, y, z, w), which the vertex shader applies (float is ample: 1e-7 relative to the scene
-  // size). Half the bytes of a 4 x 4 matrix: at 10^6 particles the buffer's storage (32 MB, which
-  // the driver clears when it allocates it) fits in one upload step of the frame budget.
-  auto& transforms = s.transforms;
-  transforms.assign(std::max<std::size_t>(particle_count, 1) * kTransformFloats, 0.0f);
-  s.particle_shape.resize(particle_count);
-  s.particle_sphere.resize(particle_count);
-  s.impostor_radius.resize(particle_count);
-  const Aabb container_bounds = packing.container.bounds();
-  if (!container_bounds.is_empty()) {
-    s.bounds.expand(container_bounds.lower);
-    s.bounds.expand(container_bounds.upper);
-  }
-  for (std::size_t i = 0; i < particle_count; ++i) {
-    const Particle& particle = packing.particles[i];
-    const Quat rotation = particle.pose.rotation.normalized();
-    const Vec3& t = particle.pose.position;
-    float* texels = transforms.data() + kTransformFloats * i;
-    texels[0] = static_cast<float>(t.x());
-    texels[1] = static_cast<float>(t.y());
-    texels[2] = static_cast<float>(t.z());
-    texels[3] = static_cast<float>(particle.scale * mesh_scale[particle.shape]);
-    texels[4] = static_cast<float>(rotation.x());
-    texels[5] = static_cast<float>(rotation.y());
-    texels[6] = static_cast<float>(rotation.z());
-    texels[7] = static_cast<float>(rotation.w());
-    // The impostor radius (volume-equivalent, m).
-    s.impostor_radius[i] =
-        static_cast<float>(0.5 * measures.equivalent_diameter[particle.shape] * particle.scale);
-    const double radius = s.shapes[particle.shape].radius * particle.scale;
-    s.particle_shape[i] = mesh_of[particle.shape];
-    s.particle_sphere[i] = {
-        static_cast<float>(t.x()), static_cast<float>(t.y()), static_cast<float>(t.z()),
-        static_cast<float>(radius),
-        static_cast<float>(s.shapes[particle.shape].inner_radius * particle.scale)};
-    s.bounds.expand(t - Vec3::Constant(radius));
-    s.bounds.expand(t + Vec3::Constant(radius));
-  }
-
   // The first frames' scratch, touched here (the drawing thread then reuses it).
   FrameScratch& scratch = s.scratch;
   scratch.candidates.resize(particle_count);
@@ -287,6 +293,7 @@ std::shared_ptr<SceneData> prepare_scene(const Packing& packing,
   for (auto& chunk : scratch.chunk_candidates) chunk.resize(kFrustumChunk);
   scratch.group_counts.resize(2 * s.shapes.size());
   scratch.group_start.resize(2 * s.shapes.size());
+  scratch.cursor.resize(2 * s.shapes.size());
 
   // Container outline as line segments.
   auto& lines = s.lines;
@@ -316,11 +323,9 @@ void PackingRenderer::begin_upload(std::shared_ptr<SceneData> scene) {
   const std::size_t particle_count = scene->particle_shape.size();
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
-  constexpr double kTexels = kTransformFloats / 4;
-  if (kTexels * static_cast<double>(particle_count) > static_cast<double>(max_texels)) {
+  if (static_cast<double>(particle_count) > static_cast<double>(max_texels)) {  // colours
     throw LimitExceeded("particle count", std::to_string(particle_count),
-                        "<= " + std::to_string(max_texels / static_cast<GLint>(kTexels)) +
-                            " for this OpenGL driver");
+                        "<= " + std::to_string(max_texels) + " for this OpenGL driver");
   }
   s.frame.step = 0;  // the frame under way used the buffers about to change
   s.pending = std::move(scene);
@@ -343,8 +348,6 @@ void PackingRenderer::begin_upload(std::shared_ptr<SceneData> scene) {
             : UploadPiece{mesh.index_buffer, data.indices.size() * sizeof(std::uint32_t),
                           data.indices.data(), &mesh.index_capacity});
   }
-  s.upload_list.push_back({s.transform_buffer, pending.transforms.size() * sizeof(float),
-                           pending.transforms.data(), &s.transform_capacity});
   s.upload_list.push_back({s.line_buffer, pending.lines.size() * sizeof(float),
                            pending.lines.data(), &s.line_capacity});
   s.upload_total = 0;
@@ -362,8 +365,6 @@ void PackingRenderer::State::release_piece(std::size_t piece) {
       data.indices = std::vector<std::uint32_t>();
       data.short_indices = std::vector<std::uint16_t>();
     }
-  } else if (piece == 2 * pending->pages.size()) {
-    pending->transforms = std::vector<float>();
   }
 }
 
@@ -422,6 +423,7 @@ bool PackingRenderer::upload_step(std::size_t max_bytes) {
   s.instanced_shapes = std::move(scene.instanced_shapes);
   s.particle_shape = std::move(scene.particle_shape);
   s.particle_sphere = std::move(scene.particle_sphere);
+  s.transforms = std::move(scene.transforms);
   s.impostor_radius = std::move(scene.impostor_radius);
   s.colors = std::move(scene.colors);
   s.bounds = scene.bounds;
@@ -443,13 +445,12 @@ bool PackingRenderer::upload_step(std::size_t max_bytes) {
   take(s.chunk_candidates, scratch.chunk_candidates);
   take(s.group_counts, scratch.group_counts);
   take(s.group_start, scratch.group_start);
+  take(s.cursor, scratch.cursor);
   s.candidates.clear();
   s.was_visible.swap(scratch.was_visible);  // all zero, one per particle
   s.pending.reset();
   s.has_visibility = false;
   s.visible_count = 0;
-  glBindTexture(GL_TEXTURE_BUFFER, s.transform_texture);
-  glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, s.transform_buffer);
   glBindTexture(GL_TEXTURE_BUFFER, s.color_texture);
   glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA8, s.color_buffer);
   glBindTexture(GL_TEXTURE_BUFFER, 0);

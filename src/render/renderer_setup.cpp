@@ -12,7 +12,8 @@ constexpr const char* kParticleVertexShader = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in uint a_particle;
 layout(location = 2) in uint a_instance;
-uniform samplerBuffer u_transforms;  // two texels per particle: [t | scale], quaternion (x, y, z, w)
+layout(location = 3) in vec4 a_placement;  // per instance: translation (m), scale
+layout(location = 4) in vec4 a_rotation;   // per instance: unit quaternion (x, y, z, w)
 uniform samplerBuffer u_colors;      // one normalised RGBA8 texel per particle
 uniform mat4 u_view;
 uniform mat4 u_projection;
@@ -20,12 +21,10 @@ out vec3 v_view_position;
 flat out vec3 v_color;
 void main() {
   int id = int(a_particle + a_instance);
-  vec4 placement = texelFetch(u_transforms, 2 * id);
-  vec4 q = texelFetch(u_transforms, 2 * id + 1);
   // v + 2 w (q x v) + 2 q x (q x v): the unit quaternion's rotation of the scaled vertex.
-  vec3 v = a_position * placement.w;
-  vec3 u = 2.0 * cross(q.xyz, v);
-  vec3 world = v + q.w * u + cross(q.xyz, u) + placement.xyz;
+  vec3 v = a_position * a_placement.w;
+  vec3 u = 2.0 * cross(a_rotation.xyz, v);
+  vec3 world = v + a_rotation.w * u + cross(a_rotation.xyz, u) + a_placement.xyz;
   vec4 view = u_view * vec4(world, 1.0);
   v_view_position = view.xyz;
   v_color = texelFetch(u_colors, id).rgb;
@@ -160,7 +159,6 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   }
   State& s = *state_;
   s.particle_program = link_program(kParticleVertexShader, kParticleFragmentShader);
-  s.u_transforms = glGetUniformLocation(s.particle_program, "u_transforms");
   s.u_colors = glGetUniformLocation(s.particle_program, "u_colors");
   s.u_view = glGetUniformLocation(s.particle_program, "u_view");
   s.u_projection = glGetUniformLocation(s.particle_program, "u_projection");
@@ -185,15 +183,13 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   glBindBuffer(GL_ARRAY_BUFFER, 0);
 
   glGenBuffers(1, &s.instance_buffer);
-  glGenBuffers(1, &s.transform_buffer);
   glGenBuffers(1, &s.color_buffer);
-  glGenTextures(1, &s.transform_texture);
   glGenTextures(1, &s.color_texture);
   glGenVertexArrays(1, &s.line_array);
   glGenBuffers(1, &s.line_buffer);
   glBindBuffer(GL_ARRAY_BUFFER, s.instance_buffer);
-  const std::uint32_t zero = 0;
-  glBufferData(GL_ARRAY_BUFFER, sizeof(zero), &zero, GL_STREAM_DRAW);
+  const GpuInstance identity;
+  glBufferData(GL_ARRAY_BUFFER, sizeof(identity), &identity, GL_STREAM_DRAW);
 
   glBindVertexArray(s.line_array);
   glBindBuffer(GL_ARRAY_BUFFER, s.line_buffer);
@@ -206,6 +202,19 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   set_packing(Packing{});
   s.line_vertex_count = 0;
   s.bounds = Aabb{};
+}
+
+void PackingRenderer::State::point_instances_at(std::size_t first) {
+  // The bound vertex array's per-instance attributes, from instance_buffer (bound to
+  // GL_ARRAY_BUFFER), starting at element `first`.
+  const std::uintptr_t base = first * sizeof(GpuInstance);
+  auto at = [base](std::size_t offset) { return reinterpret_cast<const void*>(base + offset); };
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(GpuInstance),
+                         at(offsetof(GpuInstance, particle)));
+  glVertexAttribPointer(3, 4, GL_FLOAT, GL_FALSE, sizeof(GpuInstance),
+                        at(offsetof(GpuInstance, transform) + offsetof(GpuTransform, placement)));
+  glVertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, sizeof(GpuInstance),
+                        at(offsetof(GpuInstance, transform) + offsetof(GpuTransform, rotation)));
 }
 
 void PackingRenderer::State::ensure_mesh_page(std::size_t page) {
@@ -223,9 +232,11 @@ void PackingRenderer::State::ensure_mesh_page(std::size_t page) {
                            reinterpret_cast<const void*>(offsetof(GpuVertex, particle)));
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.index_buffer);
     glBindBuffer(GL_ARRAY_BUFFER, instance_buffer);
-    glEnableVertexAttribArray(2);
-    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
-    glVertexAttribDivisor(2, 1);
+    for (GLuint attribute = 2; attribute <= 4; ++attribute) {
+      glEnableVertexAttribArray(attribute);
+      glVertexAttribDivisor(attribute, 1);
+    }
+    point_instances_at(0);
     glBindVertexArray(0);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     mesh_pages.push_back(mesh);
@@ -244,11 +255,9 @@ PackingRenderer::~PackingRenderer() {
     glDeleteBuffers(2, page_buffers.data());
     glDeleteVertexArrays(1, &page.vertex_array);
   }
-  const std::array<GLuint, 4> buffers = {s.instance_buffer, s.transform_buffer, s.color_buffer,
-                                         s.line_buffer};
-  glDeleteBuffers(4, buffers.data());
-  const std::array<GLuint, 2> textures = {s.transform_texture, s.color_texture};
-  glDeleteTextures(2, textures.data());
+  const std::array<GLuint, 3> buffers = {s.instance_buffer, s.color_buffer, s.line_buffer};
+  glDeleteBuffers(3, buffers.data());
+  glDeleteTextures(1, &s.color_texture);
   glDeleteVertexArrays(1, &s.line_array);
 }
 

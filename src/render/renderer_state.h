@@ -22,11 +22,28 @@ namespace aggpack {
 
 namespace render_detail {
 
-// One particle (for shapes used once: its index) or 0 (instanced shapes: the particle index
-// comes from the per-instance attribute). The shader adds both, so one program serves both paths.
+// A mesh vertex. A mesh used by one particle is stored in world coordinates with that particle's
+// index; an instanced mesh in its shape's coordinates with particle 0 (the particle index and
+// its transform come from the per-instance attributes, GpuInstance). The shader adds both
+// indices and applies the instance's transform (the identity for single-use meshes), so one
+// program serves both paths.
 struct GpuVertex {
   float x, y, z;
   std::uint32_t particle;
+};
+
+// A particle's transform: world = placement.xyz + rotate(rotation, placement.w * vertex), with
+// the rotation a unit quaternion (x, y, z, w).
+struct GpuTransform {
+  std::array<float, 4> placement{0.0f, 0.0f, 0.0f, 1.0f};  // translation (m), scale
+  std::array<float, 4> rotation{0.0f, 0.0f, 0.0f, 1.0f};
+};
+
+// One instance of an instanced draw, streamed each frame (element 0: the identity, which the
+// single-use meshes read): its transform and particle index.
+struct GpuInstance {
+  GpuTransform transform;
+  std::uint32_t particle = 0;
 };
 
 // Where a shape's data lives in the vertex and index buffers of its mesh page.
@@ -95,9 +112,6 @@ struct UploadPiece {
   std::size_t* capacity;
 };
 
-// Floats of a particle's transform: two RGBA32F texels, [t | scale] and the unit quaternion.
-constexpr std::size_t kTransformFloats = 8;
-
 // Most bytes of vertices, and of indices, in one mesh page. The driver clears a buffer's new
 // storage (llvmpipe: about 1 ms per MB), so a scene's meshes go to buffers of a few MB, each
 // allocated in an upload step of its own budget, not to one buffer of hundreds of MB.
@@ -119,7 +133,7 @@ struct FrameScratch {
   std::vector<std::uint64_t> sort_keys, sort_scratch;
   std::vector<std::vector<Candidate>> chunk_candidates;
   std::vector<std::uint8_t> is_hidden_flag, was_visible;
-  std::vector<std::uint32_t> group_counts, group_start;  // two per shape
+  std::vector<std::uint32_t> group_counts, group_start, cursor;  // two per shape
 };
 
 // Everything drawn from a packing, computed without OpenGL (prepare_scene, on any thread) and
@@ -133,8 +147,10 @@ struct SceneData {
   std::array<ParticleColors, 3> colors;
   Aabb bounds;
   std::vector<ScenePage> pages;
-  bool is_short_index = false;    // the pages' indices are 16-bit (half the memory to copy)
-  std::vector<float> transforms;  // kTransformFloats per particle (at least one particle's worth)
+  bool is_short_index = false;  // the pages' indices are 16-bit (half the memory to copy)
+  // Per particle, for the instance stream (kept on the CPU: no GL buffer of all particles, whose
+  // storage the driver would clear in one piece).
+  std::vector<GpuTransform> transforms;
   std::vector<float> lines;       // container outline, 3 per vertex
   std::size_t merged_shapes = 0;  // shapes drawn as a scaled copy of another
   FrameScratch scratch;
@@ -163,7 +179,7 @@ constexpr std::size_t kOcclusionMinParticles = 4000;
 
 struct PackingRenderer::State {
   GLuint particle_program = 0;
-  GLint u_transforms = -1, u_colors = -1, u_view = -1, u_projection = -1, u_lit = -1;
+  GLint u_colors = -1, u_view = -1, u_projection = -1, u_lit = -1;
   GLuint line_program = 0;
   GLint u_view_projection = -1, u_line_color = -1;
   GLuint point_program = 0;
@@ -173,7 +189,6 @@ struct PackingRenderer::State {
   std::vector<MeshPage> mesh_pages;  // as many as the largest scene needed (kept for reuse)
   std::size_t page_count = 0;        // pages of the uploaded scene
   GLuint instance_buffer = 0;
-  GLuint transform_buffer = 0, transform_texture = 0;
   GLuint color_buffer = 0, color_texture = 0;
   GLuint line_array = 0, line_buffer = 0;
   GLsizei line_vertex_count = 0;
@@ -201,25 +216,30 @@ struct PackingRenderer::State {
   std::vector<std::uint32_t> point_list;
   std::vector<GpuPoint> points;
   std::vector<float> impostor_radius;  // per particle (m)
-  std::vector<std::uint32_t> instance_list;
+  std::vector<GpuInstance> instance_list;
+  std::vector<GpuTransform> transforms;  // per particle
   std::vector<std::uint32_t> group_counts;
   std::vector<std::uint32_t> group_start, cursor;
   std::vector<std::uint32_t> page_single_start;  // per page: its first single-use draw (+ end)
+  std::vector<std::uint32_t> page_cursor;        // per page: its next single-use draw
   std::vector<GLsizei> single_counts;
   std::vector<const void*> single_offsets;
   std::vector<GLint> single_base_vertices;
 
   // The scene being uploaded (begin_upload / upload_step), null when none: its buffers in order
-  // (per page vertices and indices, transforms, outline), the buffer and byte reached.
+  // (per page vertices and indices, outline), the buffer and byte reached.
   std::shared_ptr<SceneData> pending;
   std::vector<UploadPiece> upload_list;
   std::size_t pending_buffer = 0, pending_offset = 0;
   std::size_t upload_total = 0, upload_done = 0;  // bytes of the upload, and copied
   bool is_pending_allocated = false;              // the buffer pending_buffer has its storage
-  std::size_t transform_capacity = 0, line_capacity = 0;
+  std::size_t line_capacity = 0;
   std::size_t merged_shapes = 0;
   GLenum index_type = GL_UNSIGNED_INT;  // of the uploaded index buffers
   std::uintptr_t index_size = 4;        // their bytes per index
+  // Points the bound vertex array's per-instance attributes (2 particle, 3 placement, 4
+  // rotation) at element `first` of instance_buffer, which must be bound to GL_ARRAY_BUFFER.
+  void point_instances_at(std::size_t first);
   // Creates the GL objects of mesh page `page` (once).
   void ensure_mesh_page(std::size_t page);
   // Frees the pending scene's copy of piece `piece` once uploaded, so the memory goes back in

@@ -151,12 +151,12 @@ std::size_t PackingRenderer::State::build_draw_lists(std::size_t begin, std::siz
   single_counts.resize(singles);
   single_offsets.resize(singles);
   single_base_vertices.resize(singles);
-  cursor.assign(page_single_start.begin(), page_single_start.end());
+  page_cursor.assign(page_single_start.begin(), page_single_start.end());
   for (std::size_t k = 0; k < count; ++k) {
     const ShapeRange& range = shapes[particle_shape[candidates[begin + k].particle]];
     const std::uint8_t lod = level[k];
     if (lod >= 2 || range.instances >= 2) continue;
-    const std::uint32_t at = cursor[range.page]++;
+    const std::uint32_t at = page_cursor[range.page]++;
     single_counts[at] = lod == 1 ? range.coarse_count : range.full_count;
     single_offsets[at] = reinterpret_cast<const void*>(
         static_cast<std::uintptr_t>(lod == 1 ? range.coarse_offset : range.full_offset) *
@@ -177,13 +177,20 @@ std::uint32_t PackingRenderer::State::build_instance_list(std::size_t begin, std
       next += group_counts[2 * shape + lod];
     }
   }
-  instance_list.assign(next, 0);
-  cursor = group_start;
+  instance_list.resize(next);
+  instance_list[0] = GpuInstance{};  // the identity, with particle 0 (single-use meshes)
+  // Only the instanced shapes' entries: a copy of all of group_start costs 8 MB a step at 10^6
+  // shapes.
+  cursor.resize(group_start.size());
+  for (std::uint32_t shape : instanced_shapes) {
+    cursor[2 * shape] = group_start[2 * shape];
+    cursor[2 * shape + 1] = group_start[2 * shape + 1];
+  }
   for (std::size_t k = 0; k < count; ++k) {
     const std::uint32_t particle = candidates[begin + k].particle;
     const std::uint32_t shape = particle_shape[particle];
     if (level[k] >= 2 || shapes[shape].instances < 2) continue;
-    instance_list[cursor[2 * shape + level[k]]++] = particle;
+    instance_list[cursor[2 * shape + level[k]]++] = {transforms[particle], particle};
   }
   return next;
 }
@@ -195,11 +202,8 @@ void PackingRenderer::State::draw_meshes(const RenderStyle& style, const Eigen::
   glUniformMatrix4fv(u_projection, 1, GL_FALSE, projection.data());
   glUniform1i(u_lit, style.is_wireframe ? 0 : 1);
   glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_BUFFER, transform_texture);
-  glUniform1i(u_transforms, 0);
-  glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_BUFFER, color_texture);
-  glUniform1i(u_colors, 1);
+  glUniform1i(u_colors, 0);
   if (style.is_wireframe) {
     glDisable(GL_CULL_FACE);
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
@@ -209,16 +213,14 @@ void PackingRenderer::State::draw_meshes(const RenderStyle& style, const Eigen::
     glFrontFace(GL_CCW);
   }
   glBindBuffer(GL_ARRAY_BUFFER, instance_buffer);
-  glBufferData(GL_ARRAY_BUFFER,
-               static_cast<GLsizeiptr>(instance_list.size() * sizeof(std::uint32_t)),
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(instance_list.size() * sizeof(GpuInstance)),
                instance_list.data(), GL_STREAM_DRAW);
-  // Each page's vertex array reads the per-instance attribute from instance_buffer.
+  // Each page's vertex array reads the per-instance attributes from instance_buffer (element 0
+  // unless an instanced draw points them elsewhere).
   std::size_t bound_page = page_count;
   auto bind_page = [&](std::size_t page) {
     if (page == bound_page) return;
-    if (bound_page < page_count) {
-      glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
-    }
+    if (bound_page < page_count) point_instances_at(0);
     glBindVertexArray(mesh_pages[page].vertex_array);
     bound_page = page;
   };
@@ -242,9 +244,7 @@ void PackingRenderer::State::draw_meshes(const RenderStyle& style, const Eigen::
       const auto instances = static_cast<GLsizei>(group_counts[group]);
       if (instances == 0) continue;
       bind_page(range.page);
-      glVertexAttribIPointer(
-          2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t),
-          reinterpret_cast<const void*>(static_cast<std::uintptr_t>(group_start[group]) * 4u));
+      point_instances_at(group_start[group]);
       const GLsizei index_count = lod == 1 ? range.coarse_count : range.full_count;
       const GLuint offset = lod == 1 ? range.coarse_offset : range.full_offset;
       glDrawElementsInstancedBaseVertex(
@@ -260,9 +260,7 @@ void PackingRenderer::State::draw_meshes(const RenderStyle& style, const Eigen::
       }
     }
   }
-  if (bound_page < page_count) {
-    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, sizeof(std::uint32_t), nullptr);
-  }
+  if (bound_page < page_count) point_instances_at(0);
   glBindVertexArray(0);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glDisable(GL_CULL_FACE);

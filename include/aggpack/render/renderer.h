@@ -1,9 +1,12 @@
 #pragma once
 // OpenGL 3.3 core drawing of a Packing, shared by aggpack-gui and headless PNG rendering.
 //
-// Each distinct shape is uploaded once (shared vertices + triangle indices, in its local frame)
-// and drawn instanced: a particle is its shape index plus a per-particle transform
-// (scale * rotation, translation) and colour held in buffer textures. Facet normals come from
+// A shape used by several particles is uploaded once (vertices + triangle indices, in its local
+// frame) and drawn instanced: each frame streams the drawn instances' transforms (translation,
+// scale, unit quaternion) as per-instance attributes. A shape used once is uploaded in world
+// coordinates. Colours are a buffer texture (4 bytes a particle): no OpenGL buffer holds 32 or
+// 64 bytes for every particle, whose storage the driver would clear in one piece (at 10^6
+// particles that one step took up to 135 ms in the window). Facet normals come from
 // screen-space derivatives in the fragment shader, so facets are lit flat without duplicating
 // vertices per triangle.
 //
@@ -114,8 +117,8 @@ class PackingRenderer {
   PackingRenderer(const PackingRenderer&) = delete;
   PackingRenderer& operator=(const PackingRenderer&) = delete;
 
-  /// Uploads `packing`: every distinct shape once, every particle's transform and its colours
-  /// in all colour modes. Replaces what was uploaded before. The packing is not kept.
+  /// Uploads `packing`: every distinct shape once and the particles' colours; keeps the
+  /// particles' transforms for the instanced draws. Replaces what was uploaded before. The packing is not kept.
   /// \throw InvalidInput if a particle refers to a shape that does not exist.
   /// Same as begin_upload(prepare_scene(packing)) followed by upload_step until done.
   void set_packing(const Packing& packing);
