@@ -118,9 +118,10 @@ class PackingRenderer {
   PackingRenderer& operator=(const PackingRenderer&) = delete;
 
   /// Uploads `packing`: every distinct shape once and the particles' colours; keeps the
-  /// particles' transforms for the instanced draws. Replaces what was uploaded before. The packing
-  /// is not kept. \throw InvalidInput if a particle refers to a shape that does not exist. Same as
-  /// begin_upload(prepare_scene(packing)) followed by upload_step until done.
+  /// particles' transforms for the instanced draws. Replaces what was uploaded before.
+  /// The packing is not kept. Same as begin_upload(prepare_scene(packing)) followed by
+  /// upload_step until done.
+  /// \throw InvalidInput if a particle refers to a shape that does not exist.
   void set_packing(const Packing& packing);
 
   /// Starts uploading a prepared scene (not null) in pieces; until upload_step returns true the
