@@ -80,6 +80,31 @@ RenderImageOptions small_options() {
   return options;
 }
 
+// An empty packing in a 2 x 1 x 1 m box, the options that draw it from the top (orthographic,
+// no container outline) and that view's camera: the pixel-exact coverage tests' set-up.
+Packing two_by_one_box() {
+  Packing packing;
+  packing.container.get_if<BoxContainer>()->length = 2.0;
+  packing.container.get_if<BoxContainer>()->width = 1.0;
+  packing.container.get_if<BoxContainer>()->depth = 1.0;
+  return packing;
+}
+
+RenderImageOptions top_orthographic_options() {
+  RenderImageOptions options = small_options();
+  options.view = ViewPreset::kTop;
+  options.is_orthographic = true;
+  options.style.show_container = false;
+  return options;
+}
+
+Camera two_by_one_top_camera() {
+  Aabb scene;
+  scene.expand(Vec3::Zero());
+  scene.expand(Vec3(2.0, 1.0, 1.0));
+  return Camera::framing(scene, ViewPreset::kTop, 320.0 / 240.0, true);
+}
+
 TEST(Headless, EmptyPackingRendersOnlyBackground) {
   Packing packing;  // default container, no particles
   RenderImageOptions options = small_options();
@@ -107,24 +132,14 @@ TEST(Headless, EmptyPackingRendersOnlyBackground) {
 TEST(Headless, CubeCoversExactlyItsProjectedSquare) {
   // One cube of side 0.4 m at (1.0, 0.5, 0.5) in a 2 x 1 x 1 box, seen from the top,
   // orthographic: it must cover the square its corners project to, and nothing else.
-  Packing packing;
-  packing.container.get_if<BoxContainer>()->length = 2.0;
-  packing.container.get_if<BoxContainer>()->width = 1.0;
-  packing.container.get_if<BoxContainer>()->depth = 1.0;
+  Packing packing = two_by_one_box();
   packing.shapes.push_back(make_box(Vec3::Constant(-0.2), Vec3::Constant(0.2)));
   Particle particle;
   particle.pose.position = Vec3(1.0, 0.5, 0.5);
   packing.particles.push_back(particle);
-  RenderImageOptions options = small_options();
-  options.view = ViewPreset::kTop;
-  options.is_orthographic = true;
-  options.style.show_container = false;
+  const RenderImageOptions options = top_orthographic_options();
   const Image image = render_image(packing, options);
-
-  Aabb scene;
-  scene.expand(Vec3::Zero());
-  scene.expand(Vec3(2.0, 1.0, 1.0));
-  const Camera camera = Camera::framing(scene, ViewPreset::kTop, 320.0 / 240.0, true);
+  const Camera camera = two_by_one_top_camera();
   const Eigen::Vector2d a = project(camera, image.width, image.height, Vec3(0.8, 0.3, 0.7));
   const Eigen::Vector2d b = project(camera, image.width, image.height, Vec3(1.2, 0.7, 0.7));
   const double x0 = std::min(a.x(), b.x()), x1 = std::max(a.x(), b.x());
@@ -187,10 +202,7 @@ TEST(Headless, RotatedScaledParticlesCoverTheirProjectedOutlines) {
   // shader. A transposed rotation or a lost scale moves an outline by tens of pixels.
   for (const bool is_instanced : {false, true}) {
     SCOPED_TRACE(is_instanced ? "instanced" : "single-use mesh");
-    Packing packing;
-    packing.container.get_if<BoxContainer>()->length = 2.0;
-    packing.container.get_if<BoxContainer>()->width = 1.0;
-    packing.container.get_if<BoxContainer>()->depth = 1.0;
+    Packing packing = two_by_one_box();
     packing.shapes.push_back(make_box(Vec3(-0.3, -0.1, -0.05), Vec3(0.3, 0.1, 0.05)));
     Particle particle;
     particle.pose.position = Vec3(0.6, 0.5, 0.5);
@@ -203,16 +215,9 @@ TEST(Headless, RotatedScaledParticlesCoverTheirProjectedOutlines) {
       particle.scale = 0.9;
       packing.particles.push_back(particle);
     }
-    RenderImageOptions options = small_options();
-    options.view = ViewPreset::kTop;
-    options.is_orthographic = true;
-    options.style.show_container = false;
+    const RenderImageOptions options = top_orthographic_options();
     const Image image = render_image(packing, options);
-
-    Aabb scene;
-    scene.expand(Vec3::Zero());
-    scene.expand(Vec3(2.0, 1.0, 1.0));
-    const Camera camera = Camera::framing(scene, ViewPreset::kTop, 320.0 / 240.0, true);
+    const Camera camera = two_by_one_top_camera();
     std::vector<std::vector<Eigen::Vector2d>> outlines;
     for (const Particle& p : packing.particles) {
       auto& corners = outlines.emplace_back();
