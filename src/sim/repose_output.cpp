@@ -13,6 +13,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/raster.h"
+#include "aggpack/geom/convex_hull_2d.h"
 #include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
 
@@ -24,28 +25,6 @@ std::string number(double value) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.17g", value);
   return buffer;
-}
-
-// 2D convex hull (Andrew's monotone chain), counter-clockwise.
-std::vector<std::array<double, 2>> convex_hull(std::vector<std::array<double, 2>> points) {
-  std::sort(points.begin(), points.end());
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  if (points.size() < 3) return points;
-  std::vector<std::array<double, 2>> hull(2 * points.size());
-  std::size_t k = 0;
-  auto cross = [](const auto& o, const auto& a, const auto& b) {
-    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-  };
-  for (const auto& p : points) {
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0.0) --k;
-    hull[k++] = p;
-  }
-  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
-    hull[k++] = points[i];
-  }
-  hull.resize(k - 1);
-  return hull;
 }
 
 }  // namespace
@@ -210,7 +189,7 @@ void write_side_view_png(const std::string& path, const Packing& packing,
     std::vector<std::array<double, 2>> points;
     points.reserve(body.vertex_count());
     for (const auto& v : body.vertices()) points.push_back({px(v.x()), py(v.z())});
-    const auto hull = convex_hull(points);
+    const auto hull = convex_hull_2d(points);
     const double t = std::clamp((depth[i] - bounds.lower.y()) / y_span, 0.0, 1.0);
     const auto shade = [&](double near, double far) {
       return static_cast<std::uint8_t>(std::lround(near + t * (far - near)));

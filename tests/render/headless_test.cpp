@@ -10,9 +10,11 @@
 #include <filesystem>
 #include <set>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/geom/convex_hull_2d.h"
 #include "aggpack/geom/convex_polyhedron.h"
 #include "aggpack/render/headless.h"
 #include "test_packings.h"
@@ -166,30 +168,19 @@ TEST(Headless, CubeCoversExactlyItsProjectedSquare) {
   EXPECT_GT(centre.r + centre.g + centre.b, 200);
 }
 
-// Whether point p is strictly inside the convex hull of `points` (2D, Andrew's monotone chain),
-// by more than `margin` pixels from every hull edge.
-bool is_inside_hull(std::vector<Eigen::Vector2d> points, const Eigen::Vector2d& p, double margin) {
-  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-  };
-  std::vector<Eigen::Vector2d> hull(2 * points.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {  // lower chain
-    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
-    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  hull.resize(k - 1);  // counter-clockwise, last point = first dropped
+// Whether point p is inside the convex hull of `points` by more than `margin` pixels from every
+// hull edge (a negative margin: within -margin pixels outside it).
+bool is_inside_hull(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& p,
+                    double margin) {
+  std::vector<std::array<double, 2>> plane;
+  for (const Eigen::Vector2d& point : points) plane.push_back({point.x(), point.y()});
+  const auto hull = convex_hull_2d(std::move(plane));
   for (std::size_t i = 0; i < hull.size(); ++i) {
-    const Eigen::Vector2d& a = hull[i];
-    const Eigen::Vector2d& b = hull[(i + 1) % hull.size()];
-    if (cross(a, b, p) / (b - a).norm() <= margin) return false;
+    const Eigen::Vector2d a(hull[i][0], hull[i][1]);
+    const Eigen::Vector2d b(hull[(i + 1) % hull.size()][0], hull[(i + 1) % hull.size()][1]);
+    const Eigen::Vector2d edge = b - a;
+    const double cross = edge.x() * (p.y() - a.y()) - edge.y() * (p.x() - a.x());
+    if (cross / edge.norm() <= margin) return false;
   }
   return true;
 }
