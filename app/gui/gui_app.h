@@ -180,11 +180,10 @@ class GuiApp {
   // Whether frames drawn while the view moves must be light: the last full-detail picture took
   // longer than the detail controller's target (else they stay in full detail).
   bool needs_light_frames_ = false;
-  bool is_upload_finished_now_ = false;
+  bool is_upload_finished_now_ = false;  // this frame finished an upload: no drawing in it
   // Seconds per byte of a scene upload step, measured (a running average; 1 ms per MB at first).
   double upload_seconds_per_byte_ = 1e-3 / (1 << 20);
-  bool is_benchmark_started_ =
-      false;  // --benchmark-frames began  // this frame finished an upload: no drawing in it
+  bool is_benchmark_started_ = false;  // --benchmark-frames began
   std::unique_ptr<PackingRenderer> renderer_;
   std::unique_ptr<OffscreenTarget> scene_target_;
   // Light frames drawn at a lower resolution (DetailLevel::resolution_scale) go here.

@@ -331,7 +331,6 @@ void PackingRenderer::begin_upload(std::shared_ptr<SceneData> scene) {
   s.pending = std::move(scene);
   s.pending_buffer = 0;
   s.pending_offset = 0;
-  s.is_pending_allocated = false;
   SceneData& pending = *s.pending;
   s.upload_list.clear();
   // All pages' GL objects first: the pieces point at their capacities.
@@ -368,13 +367,21 @@ void PackingRenderer::State::release_piece(std::size_t piece) {
   }
 }
 
+bool PackingRenderer::State::needs_storage() const {
+  const UploadPiece& piece = upload_list[pending_buffer];
+  return piece.bytes > *piece.capacity;  // else the buffer holds it (a repeated pack, or done)
+}
+
+std::size_t PackingRenderer::State::copy_bytes(std::size_t max_bytes) const {
+  return std::min(std::max<std::size_t>(max_bytes, 1),
+                  upload_list[pending_buffer].bytes - pending_offset);
+}
+
 std::size_t PackingRenderer::next_upload_bytes(std::size_t max_bytes) const {
   const State& s = *state_;
   if (!s.pending) return 0;
   if (s.pending_buffer == s.upload_list.size()) return 4 * s.pending->particle_shape.size();
-  const UploadPiece& piece = s.upload_list[s.pending_buffer];
-  if (!s.is_pending_allocated && piece.bytes > *piece.capacity) return piece.bytes;
-  return std::min(std::max<std::size_t>(max_bytes, 1), piece.bytes - s.pending_offset);
+  return s.needs_storage() ? s.upload_list[s.pending_buffer].bytes : s.copy_bytes(max_bytes);
 }
 
 bool PackingRenderer::upload_step(std::size_t max_bytes) {
@@ -387,19 +394,14 @@ bool PackingRenderer::upload_step(std::size_t max_bytes) {
     // its own after the last piece.
     const UploadPiece& piece = pieces[s.pending_buffer];
     glBindBuffer(GL_COPY_WRITE_BUFFER, piece.buffer);
-    std::size_t& capacity = *piece.capacity;
-    if (!s.is_pending_allocated) {
-      s.is_pending_allocated = true;
-      if (piece.bytes > capacity) {  // else the last scene's storage holds it (a repeated pack)
-        capacity = std::max<std::size_t>(piece.bytes, 4);
-        glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(capacity), nullptr,
-                     GL_STATIC_DRAW);
-        glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-        return false;
-      }
+    if (s.needs_storage()) {
+      *piece.capacity = std::max<std::size_t>(piece.bytes, 4);
+      glBufferData(GL_COPY_WRITE_BUFFER, static_cast<GLsizeiptr>(*piece.capacity), nullptr,
+                   GL_STATIC_DRAW);
+      glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+      return false;
     }
-    const std::size_t bytes =
-        std::min(std::max<std::size_t>(max_bytes, 1), piece.bytes - s.pending_offset);
+    const std::size_t bytes = s.copy_bytes(max_bytes);
     if (bytes > 0) {
       glBufferSubData(GL_COPY_WRITE_BUFFER, static_cast<GLintptr>(s.pending_offset),
                       static_cast<GLsizeiptr>(bytes),
@@ -412,7 +414,6 @@ bool PackingRenderer::upload_step(std::size_t max_bytes) {
       s.release_piece(s.pending_buffer);
       ++s.pending_buffer;
       s.pending_offset = 0;
-      s.is_pending_allocated = false;
     }
     return false;
   }

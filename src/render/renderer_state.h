@@ -232,7 +232,6 @@ struct PackingRenderer::State {
   std::vector<UploadPiece> upload_list;
   std::size_t pending_buffer = 0, pending_offset = 0;
   std::size_t upload_total = 0, upload_done = 0;  // bytes of the upload, and copied
-  bool is_pending_allocated = false;              // the buffer pending_buffer has its storage
   std::size_t line_capacity = 0;
   std::size_t merged_shapes = 0;
   GLenum index_type = GL_UNSIGNED_INT;  // of the uploaded index buffers
@@ -240,6 +239,11 @@ struct PackingRenderer::State {
   // Points the bound vertex array's per-instance attributes (2 particle, 3 placement, 4
   // rotation) at element `first` of instance_buffer, which must be bound to GL_ARRAY_BUFFER.
   void point_instances_at(std::size_t first);
+  // Whether piece pending_buffer's buffer has less storage than the piece (its capacity is set
+  // when storage is allocated, so a piece needs it at most once), and the bytes a copy into it
+  // of at most max_bytes (at least 1) moves: upload_step's units, which next_upload_bytes sizes.
+  [[nodiscard]] bool needs_storage() const;
+  [[nodiscard]] std::size_t copy_bytes(std::size_t max_bytes) const;
   // Creates the GL objects of mesh page `page` (once).
   void ensure_mesh_page(std::size_t page);
   // Frees the pending scene's copy of piece `piece` once uploaded, so the memory goes back in
