@@ -5,6 +5,8 @@ if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
 packages=(
   # build
   build-essential cmake ninja-build pkg-config git
+  # compiler cache shared by every build folder and clone (cmake/ccache.cmake)
+  ccache
   # core + io libraries
   libeigen3-dev libtbb-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libhdf5-dev

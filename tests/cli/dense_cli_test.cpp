@@ -16,6 +16,7 @@
 #include "aggpack/pack/grading.h"
 #include "aggpack/pack/statistics.h"
 #include "support/cli_test.h"
+#include "support/paths.h"
 
 namespace aggpack::test {
 namespace {
@@ -143,8 +144,7 @@ TEST_F(DenseCliTest, AJammedFillIsAWarningNamingBothFractions) {
 // examples/dense-bed.toml's header.
 TEST_F(DenseCliTest, DenseExamplesAndTheContinueCommandsRun) {
   int count = 0;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(std::string(AGGPACK_SOURCE_DIR) + "/examples")) {
+  for (const auto& entry : std::filesystem::directory_iterator(test::source_dir() + "/examples")) {
     const std::string name = entry.path().filename().string();
     if (name.rfind("dense-", 0) != 0 || entry.path().extension() != ".toml") continue;
     ++count;
@@ -160,7 +160,7 @@ TEST_F(DenseCliTest, DenseExamplesAndTheContinueCommandsRun) {
     EXPECT_GE(packing.container.volume(), config.container().volume() * (1 - 1e-12)) << name;
   }
   EXPECT_GE(count, 3);
-  const std::string paper = std::string(AGGPACK_SOURCE_DIR) + "/examples/paper.toml";
+  const std::string paper = test::source_dir() + "/examples/paper.toml";
   const CliRun lattice = run("pack '" + paper + "' -o lattice.h5 --progress none");
   ASSERT_EQ(lattice.exit_code, 0) << lattice.err;
   const CliRun bed =

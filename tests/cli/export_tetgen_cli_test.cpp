@@ -12,6 +12,7 @@
 #include <iterator>
 #include <string>
 #include "support/cli_test.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -42,7 +43,7 @@ TEST_F(ExportTetGenCliTest, PaperPackingExportsAndReportsTheFallbacks) {
 }
 
 TEST_F(ExportTetGenCliTest, ConcreteFullerExampleExports) {
-  const std::string config = std::string(AGGPACK_SOURCE_DIR) + "/examples/concrete-fuller.toml";
+  const std::string config = test::source_dir() + "/examples/concrete-fuller.toml";
   ASSERT_EQ(run("pack '" + config + "' -o fuller.h5 --progress none").exit_code, 0);
   const CliRun result = run("export fuller.h5 --tet-method tetgen -o fuller.dat");
   ASSERT_EQ(result.exit_code, 0) << result.err;

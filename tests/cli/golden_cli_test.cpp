@@ -22,13 +22,14 @@
 
 #include "support/cli_test.h"
 #include "support/golden.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kCases = fs::path(AGGPACK_SOURCE_DIR) / "tests" / "cli" / "cases";
+const fs::path kCases = fs::path(test::source_dir()) / "tests" / "cli" / "cases";
 
 bool is_regenerating() {
   const char* value = std::getenv("AGGPACK_REGENERATE_GOLDEN");
@@ -62,7 +63,7 @@ std::vector<std::string> case_names() {
 bool has_subcommand(const std::string& subcommand) {
   static const std::string help = [] {
     std::string text;
-    FILE* pipe = popen("'" AGGPACK_BINARY "' --help 2>&1", "r");
+    FILE* pipe = popen(("'" + test::aggpack_binary() + "' --help 2>&1").c_str(), "r");
     if (pipe == nullptr) return text;
     char buffer[4096];
     while (const std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) text.append(buffer, n);
@@ -92,8 +93,8 @@ class Case : public ::testing::TestWithParam<std::string> {
   [[nodiscard]] std::string run(const std::string& arguments) const {
     const std::string out = scratch_.string() + ".stdout";
     const std::string err = scratch_.string() + ".stderr";
-    const std::string command = "cd '" + scratch_.string() + "' && '" AGGPACK_BINARY "' " +
-                                arguments + " >'" + out + "' 2>'" + err + "' </dev/null";
+    const std::string command = "cd '" + scratch_.string() + "' && '" + test::aggpack_binary() +
+                                "' " + arguments + " >'" + out + "' 2>'" + err + "' </dev/null";
     const int status = std::system(command.c_str());
     const int exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     std::string block = "$ aggpack " + arguments + "\n" + test::file_text(out);
@@ -102,7 +103,7 @@ class Case : public ::testing::TestWithParam<std::string> {
     block += "[exit " + std::to_string(exit_code) + "]\n";
     fs::remove(out);
     fs::remove(err);
-    return test::mask_volatile(block, scratch_.string(), AGGPACK_BINARY);
+    return test::mask_volatile(block, scratch_.string(), test::aggpack_binary());
   }
 
   fs::path source_;
@@ -133,7 +134,7 @@ TEST_P(Case, Matches) {
         << "the case lists output " << output << " but the commands did not write it\n"
         << transcript;
     results.emplace_back(output, test::mask_volatile(test::file_text(scratch_ / output),
-                                                     scratch_.string(), AGGPACK_BINARY));
+                                                     scratch_.string(), test::aggpack_binary()));
   }
 
   const fs::path expected = source_ / "expected";
@@ -181,7 +182,7 @@ TEST(GoldenCli, EveryCaseHasACommandAndReferences) {
 TEST(GoldenCli, EverySubcommandHasACase) {
   const std::string help_path =
       (fs::temp_directory_path() / ("aggpack_golden_help_" + std::to_string(::getpid()))).string();
-  const std::string command = "'" AGGPACK_BINARY "' --help >'" + help_path + "' 2>&1";
+  const std::string command = "'" + test::aggpack_binary() + "' --help >'" + help_path + "' 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::istringstream help(test::file_text(help_path));
   fs::remove(help_path);

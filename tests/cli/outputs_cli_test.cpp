@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "io/export_fixture.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -25,8 +26,8 @@ namespace fs = std::filesystem;
 using test::read_text;
 using test::ScratchFolder;
 
-const std::string kBinary = AGGPACK_BINARY;
-const std::string kFixtures = std::string(AGGPACK_SOURCE_DIR) + "/tests/io/fixtures/bad-inputs/";
+const std::string kBinary = test::aggpack_binary();
+const std::string kFixtures = test::source_dir() + "/tests/io/fixtures/bad-inputs/";
 
 test::CommandResult aggpack(const std::string& arguments) {
   return test::run_command("'" + kBinary + "' " + arguments);

@@ -18,6 +18,7 @@
 #include "aggpack/io/stl.h"
 #include "aggpack/pack/verify.h"
 #include "support/cli_test.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -101,7 +102,7 @@ TEST_F(PackCliTest, RandomPackingWithXdmfAndTargetGrading) {
 
 TEST_F(PackCliTest, ExampleConfigRunsWithOverrides) {
   // The concrete example, shrunk to a 50 mm cube at 15 % so that it runs in a test.
-  const CliRun pack = run("pack '" AGGPACK_SOURCE_DIR
+  const CliRun pack = run("pack '" + test::source_dir() +
                           "/examples/concrete-fuller.toml' --set container.length=0.05 "
                           "--set container.width=0.05 --set container.depth=0.05 "
                           "--set packer.target_fraction=0.15 --progress none --json");

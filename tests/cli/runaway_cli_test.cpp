@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include "support/cli_test.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -26,7 +27,7 @@ class RunawayCliTest : public test::CliTest {
   RunawayCliTest() : CliTest("aggpack_runaway_") {}
 };
 
-const std::string kFixtures = AGGPACK_SOURCE_DIR "/tests/io/fixtures/bad-inputs/";
+const std::string kFixtures = test::source_dir() + "/tests/io/fixtures/bad-inputs/";
 
 TEST_F(RunawayCliTest, CountTheBoxCannotHoldIsRefusedUpFront) {
   const CliRun pack = run("pack '" + kFixtures + "count_1e8_default_box.toml' -o out.h5");

@@ -12,6 +12,7 @@
 #include "aggpack/config/config.h"
 #include "aggpack/core/error.h"
 #include "aggpack/pack/lattice_packer.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -60,15 +61,13 @@ TEST(Config, EmptyConfigIsThePapersCase) {
 }
 
 TEST(Config, PaperExampleEqualsTheDefaults) {
-  const PackConfig example =
-      load_pack_config(std::string(AGGPACK_SOURCE_DIR) + "/examples/paper.toml");
+  const PackConfig example = load_pack_config(test::source_dir() + "/examples/paper.toml");
   EXPECT_EQ(example.resolved_toml, parse_pack_config("").resolved_toml);
 }
 
 TEST(Config, EveryExampleParsesAndItsResolvedTextIsAFixedPoint) {
   int count = 0;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(std::string(AGGPACK_SOURCE_DIR) + "/examples")) {
+  for (const auto& entry : std::filesystem::directory_iterator(test::source_dir() + "/examples")) {
     // Pack configs; repose-*.toml and sweep-*.toml are `aggpack repose` / `sweep` configs
     // (tested by test_sim).
     if (entry.path().extension() != ".toml" ||
@@ -89,7 +88,7 @@ TEST(Config, EveryExampleParsesAndItsResolvedTextIsAFixedPoint) {
 }
 
 TEST(Config, ExamplesHaveTheDocumentedSettings) {
-  const std::string root = std::string(AGGPACK_SOURCE_DIR) + "/examples/";
+  const std::string root = test::source_dir() + "/examples/";
   const PackConfig concrete = load_pack_config(root + "concrete-fuller.toml");
   ASSERT_TRUE(std::holds_alternative<RandomPackOptions>(concrete.packer));
   EXPECT_EQ(std::get<RandomPackOptions>(concrete.packer).grading.kind, GradingKind::kFuller);
@@ -309,7 +308,7 @@ TEST(Config, MissingConfigFileIsIoError) {
 }
 
 TEST(Config, EveryKeyIsDocumented) {
-  const std::string docs = read_file(std::string(AGGPACK_SOURCE_DIR) + "/docs/config.md");
+  const std::string docs = read_file(test::source_dir() + "/docs/config.md");
   ASSERT_FALSE(docs.empty());
   for (const auto& key : config_keys()) {
     EXPECT_NE(docs.find("`" + key.name + "`"), std::string::npos) << key.name << " undocumented";

@@ -17,6 +17,7 @@
 #include "aggpack/pack/container.h"
 #ifdef AGGPACK_HAS_SIM
 #include "aggpack/config/repose_config.h"
+#include "support/paths.h"
 #endif
 
 namespace aggpack {
@@ -150,7 +151,7 @@ TEST(ConfigSchema, EveryPackNumberOutOfRangeNamesKeyValueAndRange) {
 }
 
 TEST(ConfigDocs, TablesMatchTheSchema) {
-  const std::string path = std::string(AGGPACK_SOURCE_DIR) + "/docs/config.md";
+  const std::string path = test::source_dir() + "/docs/config.md";
   const std::string doc = read_text(path);
   ASSERT_FALSE(doc.empty());
   const std::string generated = regenerate_config_doc(doc);
@@ -190,8 +191,7 @@ TEST(ConfigDocs, RegenerateReplacesOnlyTheBlocks) {
 // back to the same resolved text (the pack examples are checked in config_test.cpp).
 TEST(ConfigSchema, EveryReposeAndSweepExampleParsesToAFixedPoint) {
   int count = 0;
-  for (const auto& entry :
-       std::filesystem::directory_iterator(std::string(AGGPACK_SOURCE_DIR) + "/examples")) {
+  for (const auto& entry : std::filesystem::directory_iterator(test::source_dir() + "/examples")) {
     const std::string name = entry.path().filename().string();
     if (entry.path().extension() != ".toml" ||
         (name.rfind("repose", 0) != 0 && name.rfind("sweep", 0) != 0)) {

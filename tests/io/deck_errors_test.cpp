@@ -6,6 +6,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "deck_fixture.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -97,7 +98,7 @@ TEST(DeckCli, ExportDeckEndToEnd) {
   const Packing packing = test::pile_near_floor(2, 1, 1, 0.01);
   ScratchFolder folder;
   write_packing(packing, folder.file("p.h5"));
-  const std::string binary = AGGPACK_BINARY;
+  const std::string binary = test::aggpack_binary();
   auto result = test::run_command(binary + " export " + folder.file("p.h5") +
                                   " --deck calculix --friction 0.3 --settle-time 0.2 -o " +
                                   folder.file("trough.inp"));

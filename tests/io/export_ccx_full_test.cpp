@@ -10,6 +10,7 @@
 #include "aggpack/io/native.h"
 #include "ccx_fixture.h"
 #include "export_fixture.h"
+#include "support/paths.h"
 #include "support/readers.h"
 
 namespace aggpack {
@@ -36,7 +37,7 @@ class PaperPackingInCalculix : public ::testing::Test {
     const std::string h5 = folder_->file("paper" + std::to_string(volumes_.size()) + ".h5");
     if (volumes_.count(pack_flags) == 0) {
       const auto pack =
-          test::run_command(std::string(AGGPACK_BINARY) + " pack -o " + h5 + " " + pack_flags);
+          test::run_command(test::aggpack_binary() + " pack -o " + h5 + " " + pack_flags);
       ASSERT_EQ(pack.exit_code, 0) << pack.output;
       const Packing packing = read_packing(h5);
       ASSERT_EQ(packing.particles.size(), kPaperParticles);
@@ -49,7 +50,7 @@ class PaperPackingInCalculix : public ::testing::Test {
     const auto& [packed, volume] = volumes_.at(pack_flags);
     ScratchFolder folder;
     const auto exported =
-        test::run_command(std::string(AGGPACK_BINARY) + " export " + packed + " --format inp -o " +
+        test::run_command(test::aggpack_binary() + " export " + packed + " --format inp -o " +
                           folder.file("model.inp") + " " + export_flags);
     ASSERT_EQ(exported.exit_code, 0) << exported.output;
     EXPECT_NE(exported.output.find("tetrahedron quality: min dihedral angle"), std::string::npos)

@@ -5,6 +5,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/mesh/tetrahedra.h"
 #include "export_fixture.h"
+#include "support/paths.h"
 #include "support/poly_file.h"
 
 namespace aggpack {
@@ -141,7 +142,7 @@ TEST(RockDatExport, TetGenVolumesMatchEveryParticle) {
 // and reported with every particle that uses them; the rest of the file is TetGen's.
 TEST(RockDatExport, ShapesTetGenAbortsOnAreFansAndReported) {
   Packing packing = test::grid_packing(3, 2, 1, 23);
-  const std::string fixtures = std::string(AGGPACK_SOURCE_DIR) + "/tests/mesh/fixtures/";
+  const std::string fixtures = test::source_dir() + "/tests/mesh/fixtures/";
   packing.shapes[1] = test::read_poly(fixtures + "tetgen-abort/s00324.poly");
   packing.shapes[3] = test::read_poly(fixtures + "tetgen-abort/s00336.poly");
   packing.particles[4].shape = 1;  // shape 1 twice: particles P2 and P5

@@ -8,6 +8,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "export_fixture.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -147,7 +148,7 @@ TEST(ExportCli, ExportsNativeFileAndFailsCleanly) {
   ScratchFolder folder;
   const std::string native = folder.file("run.h5");
   write_packing(packing, native);
-  const std::string binary = AGGPACK_BINARY;
+  const std::string binary = test::aggpack_binary();
   const std::string inp = folder.file("run.inp");
   auto run = [&](const std::string& arguments) {
     return test::run_command(binary + " export " + native + " " + arguments);

@@ -8,6 +8,7 @@
 #include "aggpack/io/native.h"
 #include "aggpack/mesh/quality.h"
 #include "export_fixture.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -72,8 +73,7 @@ TEST(ExportQuality, CliPrintsOneQualityLineForTetrahedra) {
   const Packing packing = test::grid_packing(3, 1, 1, 74);
   ScratchFolder folder;
   write_packing(packing, folder.file("run.h5"));
-  const std::string command =
-      std::string(AGGPACK_BINARY) + " export " + folder.file("run.h5") + " -o ";
+  const std::string command = test::aggpack_binary() + " export " + folder.file("run.h5") + " -o ";
   const auto inp = test::run_command(command + folder.file("run.inp"));
   ASSERT_EQ(inp.exit_code, 0) << inp.output;
   std::smatch match;

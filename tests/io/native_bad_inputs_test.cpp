@@ -18,13 +18,14 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/io/native.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kFixtures = AGGPACK_SOURCE_DIR "/tests/io/fixtures/bad-inputs/";
+const std::string kFixtures = test::source_dir() + "/tests/io/fixtures/bad-inputs/";
 
 struct CliRun {
   int exit_code = -1;
@@ -51,8 +52,9 @@ class NativeBadInputTest : public ::testing::Test {
   // Runs the CLI inside base_/work; stdout and stderr go beside it, so the folder shows exactly
   // what the command left.
   CliRun run(const std::string& arguments) const {
-    const std::string command = "cd '" + (base_ / "work").string() + "' && '" AGGPACK_BINARY "' " +
-                                arguments + " >../stdout.txt 2>../stderr.txt";
+    const std::string command = "cd '" + (base_ / "work").string() + "' && '" +
+                                test::aggpack_binary() + "' " + arguments +
+                                " >../stdout.txt 2>../stderr.txt";
     const int status = std::system(command.c_str());
     CliRun result;
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -202,7 +204,7 @@ TEST_F(NativeBadInputTest, UnreadableStoredConfigIsOneNoteLine) {
 // made HDF5 itself spin forever or copy terabytes (SIGSEGV). The string is read in a child
 // process now, so each is one line, exit 2, within the read's time limit.
 TEST_F(NativeBadInputTest, CorruptGlobalHeapIsOneLineNotACrashOrHang) {
-  const std::string crashes = AGGPACK_SOURCE_DIR "/tests/fuzz/crashes/";
+  const std::string crashes = test::source_dir() + "/tests/fuzz/crashes/";
   for (const char* name :
        {"native_reader-crash-vlen-global-heap-memcpy.h5", "native_reader-hang-vlen-global-heap.h5",
         "native_reader-hang-vlen-utf8-config.h5"}) {

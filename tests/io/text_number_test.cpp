@@ -13,6 +13,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/io/export.h"
 #include "export_fixture.h"
+#include "support/paths.h"
 #include "support/readers.h"
 
 namespace aggpack {
@@ -81,8 +82,8 @@ TEST(TextNumber, RejectsFieldsTooNarrowForAnyDouble) { EXPECT_THROW(fitted(1.0, 
 // The fixture as aggpack 0.1.0 wrote it stops ccx; the same coordinate in 20 characters runs.
 TEST(TextNumber, CalculixReadsTwentyCharactersAndNoMore) {
   AGGPACK_REQUIRE_READER("ccx");
-  const std::string fixture = test::read_text(std::string(AGGPACK_SOURCE_DIR) +
-                                              "/tests/io/fixtures/inp-long-numbers/single_tet.inp");
+  const std::string fixture =
+      test::read_text(test::source_dir() + "/tests/io/fixtures/inp-long-numbers/single_tet.inp");
   const std::string long_number = "-1.1006292118507371e-05";
   ASSERT_NE(fixture.find(long_number), std::string::npos);
   test::ScratchFolder folder;

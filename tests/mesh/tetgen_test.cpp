@@ -16,6 +16,7 @@
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/mesh/tetrahedra.h"
 #include "aggpack/shape/generator.h"
+#include "support/paths.h"
 #include "support/poly_file.h"
 
 namespace aggpack {
@@ -28,8 +29,8 @@ namespace {
 const std::vector<std::string> kAbortFixtures = {"s00324", "s00336", "s00599", "s00988"};
 
 ConvexPolyhedron abort_fixture(const std::string& name) {
-  return test::read_poly(std::string(AGGPACK_SOURCE_DIR) + "/tests/mesh/fixtures/tetgen-abort/" +
-                         name + ".poly");
+  return test::read_poly(test::source_dir() + "/tests/mesh/fixtures/tetgen-abort/" + name +
+                         ".poly");
 }
 
 // The surface triangles of the body, each as a sorted node triple, are exactly the mesh's faces
@@ -122,8 +123,8 @@ TEST(TetGenIsolated, SingleShapeFailureIsALimitExceededError) {
 }
 
 TEST(TetGenIsolated, ShapeTetGenNeverFinishesIsStoppedAtTheTimeLimit) {
-  const ConvexPolyhedron hang = test::read_poly(std::string(AGGPACK_SOURCE_DIR) +
-                                                "/tests/mesh/fixtures/tetgen-hang/s06534.poly");
+  const ConvexPolyhedron hang =
+      test::read_poly(test::source_dir() + "/tests/mesh/fixtures/tetgen-hang/s06534.poly");
   const ConvexPolyhedron good = generate_particle({.alpha = 0.5, .seed = 3}, 0).body;
   const std::vector<const ConvexPolyhedron*> bodies = {&hang, &good};
   // One second instead of the default 20 s keeps the test short; TetGen takes milliseconds on

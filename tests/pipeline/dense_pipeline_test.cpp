@@ -15,6 +15,7 @@
 #include "aggpack/pack/verify.h"
 #include "aggpack/pipeline/pipeline.h"
 #include "pack/pack_test_util.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -165,7 +166,7 @@ TEST(DensePipeline, BadCombinationsNameBothKeys) {
 }
 
 TEST(DensePipeline, DenseExamplesHaveTheDocumentedSettings) {
-  const std::string root = std::string(AGGPACK_SOURCE_DIR) + "/examples/";
+  const std::string root = test::source_dir() + "/examples/";
   const auto dense_of = [](const PackConfig& config) {
     return std::get<DensePackOptions>(config.packer);
   };

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "aggpack/io/native.h"
+#include "support/paths.h"
 #include "test_packings.h"
 
 namespace aggpack {
@@ -19,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 int run(const std::string& arguments) {
-  const std::string command = std::string(AGGPACK_BINARY) + " " + arguments + " > /dev/null 2>&1";
+  const std::string command = test::aggpack_binary() + " " + arguments + " > /dev/null 2>&1";
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }

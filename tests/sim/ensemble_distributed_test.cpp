@@ -14,6 +14,7 @@
 #include "aggpack/config/repose_config.h"
 #include "aggpack/core/error.h"
 #include "support/cli_test.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -86,7 +87,7 @@ TEST(EnsembleSeedsKey, ConfigKeyGivesTheSeedListAndWritesItBack) {
 }
 
 // The golden CLI test's tiny trough (120 particles, short rest times): about a second per run.
-const std::string kTinyCase = AGGPACK_SOURCE_DIR "/tests/cli/cases/repose/trough.toml";
+const std::string kTinyCase = test::source_dir() + "/tests/cli/cases/repose/trough.toml";
 
 class DistributedCli : public test::CliTest {
  protected:

@@ -22,6 +22,7 @@
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/sim/sweep.h"
 #include "support/cli_test.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -95,7 +96,7 @@ TEST(SeedList, RejectsBadValuesNamingTheFlag) {
 }
 
 // The golden CLI test's tiny trough (a few particles, short rest times): seconds per seed.
-const std::string kTinyCase = AGGPACK_SOURCE_DIR "/tests/cli/cases/repose/trough.toml";
+const std::string kTinyCase = test::source_dir() + "/tests/cli/cases/repose/trough.toml";
 
 TEST(Ensemble, AFailingSeedIsReportedAndLeftOutOfTheStatistics) {
   const ReposeOptions base = load_sweep_config(kTinyCase, {}).base;

@@ -18,6 +18,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/sim/settle.h"
 #include "aggpack/sim/world.h"
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -99,10 +100,10 @@ TEST(SimulationLimits, SettleOnAParticleAtScale1e200EndsWithOneLine) {
   fs::remove_all(folder);
   fs::create_directories(folder);
   const std::string input =
-      AGGPACK_SOURCE_DIR "/tests/io/fixtures/bad-inputs/settle_hang_scale_1e-200.h5";
-  const std::string command = "cd '" + folder.string() + "' && '" AGGPACK_BINARY "' settle '" +
-                              input + "' -o out.h5 --max-time 0.02 --progress lines " +
-                              ">stdout.txt 2>stderr.txt";
+      test::source_dir() + "/tests/io/fixtures/bad-inputs/settle_hang_scale_1e-200.h5";
+  const std::string command =
+      "cd '" + folder.string() + "' && '" + test::aggpack_binary() + "' settle '" + input +
+      "' -o out.h5 --max-time 0.02 --progress lines " + ">stdout.txt 2>stderr.txt";
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);

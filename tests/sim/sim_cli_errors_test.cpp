@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include "support/paths.h"
 
 namespace aggpack {
 namespace {
@@ -22,7 +23,7 @@ struct Run {
 
 Run aggpack(const std::string& arguments) {
   Run result;
-  const std::string command = "'" AGGPACK_BINARY "' " + arguments + " 2>&1";
+  const std::string command = "'" + test::aggpack_binary() + "' " + arguments + " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
   char buffer[4096];
@@ -34,7 +35,7 @@ Run aggpack(const std::string& arguments) {
   return result;
 }
 
-const std::string kExample = AGGPACK_SOURCE_DIR "/examples/repose-acrylic-048.toml";
+const std::string kExample = test::source_dir() + "/examples/repose-acrylic-048.toml";
 
 class SimCliErrors : public ::testing::Test {
  protected:

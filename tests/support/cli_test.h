@@ -1,7 +1,7 @@
 #pragma once
 // End-to-end CLI tests: a scratch folder per test and the aggpack program run inside it, with
 // stdout and stderr captured beside the folder, so the folder holds exactly what the command
-// wrote. AGGPACK_BINARY is set by tests/CMakeLists.txt.
+// wrote. The program's path: support/paths.h.
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -15,6 +15,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "support/paths.h"
 
 namespace aggpack::test {
 
@@ -53,8 +55,8 @@ class CliTest : public ::testing::Test {
     const std::filesystem::path out = folder_.string() + ".stdout";
     const std::filesystem::path err = folder_.string() + ".stderr";
     const std::string command = "cd '" + folder_.string() + "' && " + environment + " '" +
-                                AGGPACK_BINARY "' " + arguments + " >'" + out.string() + "' 2>'" +
-                                err.string() + "'";
+                                aggpack_binary() + "' " + arguments + " >'" + out.string() +
+                                "' 2>'" + err.string() + "'";
     const int status = std::system(command.c_str());
     CliRun result;
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -1,0 +1,165 @@
+#!/usr/bin/env python3
+"""Runs clang-tidy on the project's files of a compile_commands.json, skipping those already found
+clean with the same inputs (scripts/tidy.sh calls it; see there).
+
+A file's inputs are: the file, every project header it includes (transitively, by scanning its
+#include lines; a header under an #if counts too, so the set can only be too large), its compile
+command with the tree's and build folder's paths taken out, .clang-tidy and clang-tidy's version.
+Their SHA-256 names a marker in the cache folder, written when clang-tidy passes the file; a
+marker present means the file passed with exactly these inputs, so it is not run again. System
+headers are not hashed: a Debian upgrade of a library does not re-run the checks by itself
+(delete the cache folder, or pass --no-cache, to run everything).
+
+usage: tidy_files.py BUILD_DIR FILE_REGEX [--jobs N] [--cache DIR] [--no-cache]
+"""
+
+import argparse
+import concurrent.futures
+import hashlib
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+import time
+
+INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]', re.MULTILINE)
+
+
+def include_dirs(arguments, root, build_dir):
+    """The -I / -isystem / -iquote folders of a command that lie in the tree or the build."""
+    dirs = []
+    for i, arg in enumerate(arguments):
+        for flag in ("-I", "-isystem", "-iquote"):
+            if arg == flag and i + 1 < len(arguments):
+                path = arguments[i + 1]
+            elif arg.startswith(flag) and len(arg) > len(flag):
+                path = arg[len(flag):]
+            else:
+                continue
+            path = os.path.abspath(path)
+            if path.startswith(root) or path.startswith(build_dir):
+                dirs.append(path)
+    return dirs
+
+
+class Inputs:
+    """Hashes of files and of their project includes, each file read once."""
+
+    def __init__(self, root, build_dir):
+        self.root, self.build_dir = root, build_dir
+        self.content = {}
+        self.includes = {}
+
+    def text(self, path):
+        if path not in self.content:
+            with open(path, "rb") as f:
+                self.content[path] = f.read()
+        return self.content[path]
+
+    def project_includes(self, path, dirs):
+        key = (path, tuple(dirs))
+        if key in self.includes:
+            return self.includes[key]
+        found = []
+        for name in INCLUDE.findall(self.text(path).decode("utf-8", "replace")):
+            for folder in [os.path.dirname(path)] + dirs:
+                candidate = os.path.normpath(os.path.join(folder, name))
+                if os.path.isfile(candidate):
+                    found.append(candidate)
+                    break
+        self.includes[key] = found
+        return found
+
+    def closure(self, path, dirs):
+        seen, stack = set(), [path]
+        while stack:
+            current = stack.pop()
+            if current in seen:
+                continue
+            seen.add(current)
+            stack.extend(self.project_includes(current, dirs))
+        return sorted(seen)
+
+    def key(self, entry, common):
+        arguments = entry.get("arguments") or shlex.split(entry["command"])
+        source = os.path.abspath(os.path.join(entry["directory"], entry["file"]))
+        dirs = include_dirs(arguments, self.root, self.build_dir)
+        digest = hashlib.sha256(common)
+        command = " ".join(arguments[1:]).replace(self.build_dir, "<build>").replace(self.root, "<src>")
+        digest.update(command.encode())
+        for path in self.closure(source, dirs):
+            digest.update(os.path.relpath(path, self.root).encode() + b"\0")
+            digest.update(hashlib.sha256(self.text(path)).digest())
+        return digest.hexdigest()
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("build_dir")
+    parser.add_argument("file_regex")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--cache", default=os.path.expanduser("~/.cache/aggpack/tidy"))
+    parser.add_argument("--no-cache", action="store_true")
+    parser.add_argument("--tidy", default="clang-tidy")
+    args = parser.parse_args()
+
+    root = os.getcwd()
+    build_dir = os.path.abspath(args.build_dir)
+    with open(os.path.join(build_dir, "compile_commands.json")) as f:
+        entries = json.load(f)
+    pattern = re.compile("^" + re.escape(root) + "/" + args.file_regex)
+    chosen = {}
+    for entry in entries:
+        source = os.path.abspath(os.path.join(entry["directory"], entry["file"]))
+        if pattern.match(source) and source not in chosen:
+            chosen[source] = entry
+    version = subprocess.run([args.tidy, "--version"], capture_output=True, text=True).stdout
+    with open(os.path.join(root, ".clang-tidy"), "rb") as f:
+        common = version.encode() + b"\0" + f.read()
+    inputs = Inputs(root, build_dir)
+    keys = {source: inputs.key(entry, common) for source, entry in chosen.items()}
+
+    os.makedirs(args.cache, exist_ok=True)
+    # Markers of runs more than 60 days old go: the folder stays small.
+    now = time.time()
+    for name in os.listdir(args.cache):
+        marker = os.path.join(args.cache, name)
+        if now - os.path.getmtime(marker) > 60 * 86400:
+            os.remove(marker)
+    todo = [s for s in sorted(chosen)
+            if args.no_cache or not os.path.exists(os.path.join(args.cache, keys[s]))]
+
+    def run(source):
+        result = subprocess.run(
+            [args.tidy, "-p", build_dir, "-quiet", "--extra-arg=-Wno-unknown-warning-option",
+             source], capture_output=True, text=True)
+        return source, result.returncode, result.stdout + result.stderr
+
+    findings, failed = set(), []
+    with open(os.path.join(build_dir, "tidy.log"), "w") as log, \
+            concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        for source, status, output in pool.map(run, todo):
+            log.write(f"== {os.path.relpath(source, root)} (exit {status})\n{output}\n")
+            clean = re.sub(r"\x1b\[[0-9;]*m", "", output)
+            findings.update(line for line in clean.splitlines()
+                            if "warning:" in line or "error:" in line)
+            if status == 0:
+                open(os.path.join(args.cache, keys[source]), "w").close()
+            else:
+                failed.append(source)
+    for line in sorted(findings):
+        print(line)
+    summary = (f"{len(chosen)} files: {len(todo)} checked, "
+               f"{len(chosen) - len(todo)} unchanged since a clean run")
+    if failed:
+        print(f"tidy: clang-tidy found problems in {len(failed)} of {summary} "
+              f"(full log: {os.path.relpath(build_dir, root)}/tidy.log)")
+        return 1
+    print(f"tidy: clean ({summary})")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
