@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "aggpack/core/error.h"
@@ -23,9 +24,17 @@ namespace {
 GeneratorOptions generator_options(double alpha, std::optional<double> radius,
                                    std::optional<double> radius_min,
                                    std::optional<double> radius_max, double edge_length,
-                                   std::uint64_t seed, std::uint32_t max_vertices) {
+                                   std::uint64_t seed, std::uint32_t max_vertices,
+                                   const std::string& growth, double elongation, double flatness,
+                                   double min_edge_ratio) {
   GeneratorOptions options{
       .alpha = alpha, .edge_length = edge_length, .max_vertices = max_vertices, .seed = seed};
+  const auto rule = find_growth(growth);
+  if (!rule) throw InvalidInput("growth", growth, "hull or midpoint");
+  options.form = {.growth = *rule,
+                  .elongation = elongation,
+                  .flatness = flatness,
+                  .min_edge_ratio = min_edge_ratio};
   if (radius) {
     if (radius_min || radius_max) {
       throw InvalidInput("radius", format_value(*radius),
@@ -57,9 +66,11 @@ void register_particles(py::module_& m) {
       "generate_particle",
       [](double alpha, std::optional<double> radius, std::optional<double> radius_min,
          std::optional<double> radius_max, double edge_length, std::uint64_t seed,
-         std::uint64_t index, std::uint32_t max_vertices) {
-        const GeneratorOptions options = generator_options(alpha, radius, radius_min, radius_max,
-                                                           edge_length, seed, max_vertices);
+         std::uint64_t index, std::uint32_t max_vertices, const std::string& growth,
+         double elongation, double flatness, double min_edge_ratio) {
+        const GeneratorOptions options =
+            generator_options(alpha, radius, radius_min, radius_max, edge_length, seed,
+                              max_vertices, growth, elongation, flatness, min_edge_ratio);
         GeneratedParticle particle;
         ShapeDescriptors descriptors;
         {
@@ -89,14 +100,18 @@ void register_particles(py::module_& m) {
       py::kw_only(), py::arg("alpha") = 0.5, py::arg("radius") = py::none(),
       py::arg("radius_min") = py::none(), py::arg("radius_max") = py::none(),
       py::arg("edge_length") = 0.1, py::arg("seed") = 1, py::arg("index") = 0,
-      py::arg("max_vertices") = 20000,
+      py::arg("max_vertices") = 20000, py::arg("growth") = "hull", py::arg("elongation") = 1.0,
+      py::arg("flatness") = 1.0, py::arg("min_edge_ratio") = 0.25,
       R"doc(Grows one particle (paper Section 2), as `aggpack particle` does.
 
 Particle `index` of the family `seed` (its own random stream, so any index can be made alone).
 Lengths in metres. Keywords (defaults): alpha 0.5 (Eq. 3 shape control, [0, 1]); radius (sets
 radius_min and radius_max) or radius_min 0.1 m and radius_max (default radius_min): the control
 radius is uniform in [radius_min, radius_max]; edge_length 0.1 m (L: growth stops when every edge
-is <= L); seed 1; index 0; max_vertices 20000 (cap, [6, 10^6]).
+is <= L); seed 1; index 0; max_vertices 20000 (cap, [6, 10^6]); growth "hull" (the paper's
+words: a random point of the longest edge, out to its Eq. 3 distance, convex hull kept) or
+"midpoint" (aggpack 0.1's rule); elongation 1 and flatness 1 (the control ellipsoid's semi-axis
+ratios, [0.1, 1]); min_edge_ratio 0.25 (minimum edge length / L of hull growth, [0, 0.5]).
 
 Returns a dict: vertices float64 (V, 3) in m, centred on the growth centre; triangles uint32
 (T, 3), counter-clockwise seen from outside; control_radius (m); descriptors, a dict of floats
@@ -107,12 +122,14 @@ Raises InvalidInput / LimitExceeded naming the keyword.)doc");
       "generate_particles",
       [](std::uint64_t count, double alpha, std::optional<double> radius,
          std::optional<double> radius_min, std::optional<double> radius_max, double edge_length,
-         std::uint64_t seed, std::uint32_t max_vertices) {
+         std::uint64_t seed, std::uint32_t max_vertices, const std::string& growth,
+         double elongation, double flatness, double min_edge_ratio) {
         if (count < 1 || count > 100000000ULL) {
           throw InvalidInput("count", std::to_string(count), "[1, 100000000]");
         }
-        const GeneratorOptions options = generator_options(alpha, radius, radius_min, radius_max,
-                                                           edge_length, seed, max_vertices);
+        const GeneratorOptions options =
+            generator_options(alpha, radius, radius_min, radius_max, edge_length, seed,
+                              max_vertices, growth, elongation, flatness, min_edge_ratio);
         const auto n = static_cast<std::size_t>(count);
         std::vector<ShapeDescriptors> descriptors(n);
         std::vector<double> radii(n);
@@ -131,6 +148,8 @@ Raises InvalidInput / LimitExceeded naming the keyword.)doc");
       py::arg("count"), py::kw_only(), py::arg("alpha") = 0.5, py::arg("radius") = py::none(),
       py::arg("radius_min") = py::none(), py::arg("radius_max") = py::none(),
       py::arg("edge_length") = 0.1, py::arg("seed") = 1, py::arg("max_vertices") = 20000,
+      py::arg("growth") = "hull", py::arg("elongation") = 1.0, py::arg("flatness") = 1.0,
+      py::arg("min_edge_ratio") = 0.25,
       R"doc(Grows particles 0 .. count-1 of the family `seed` in parallel and measures them, as
 `aggpack shapes -n COUNT` does (the same numbers as its CSV), without keeping the shapes.
 

@@ -1,12 +1,17 @@
-// `aggpack calibrate`: particles to a measured target (issue 15, item 1). Finds the Eq. 3 alpha
-// whose particles match a measured mean V / V_circumscribed-sphere, Eq. 2 alpha or sphericity.
+// `aggpack calibrate`: particles to measured targets. Finds the generator inputs whose particles
+// match up to three measured mean descriptors (V / V_circ, Eq. 2 alpha, sphericity, elongation,
+// flatness) at once.
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 #include <memory>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
@@ -26,87 +31,148 @@ struct CalibrateFlags {
   double sphericity = 0;
   double elongation = 0;
   double flatness = 0;
+  double edge_ratio = 0;  // 0 = searched
+  std::string growth = "hull";
   std::string sphere = "enclosing";  // which circumscribed sphere --volume(-ratio) refers to
   int samples = 200;
-  int grid = 11;
-  double seed = 1;  // read as a number, checked to be a whole number >= 0
+  std::uint64_t seed = 1;
   std::string table;
   std::string plot;
   int threads = 0;
   bool is_forced = false;
+  std::vector<std::string> goal_flags;  // the flag each goal came from, in goal order
 };
 
-// Exactly one target option; --volume is V in m^3 at --diameter, i.e. a volume ratio.
-void resolve_target(CalibrateFlags& flags, const CLI::App& command) {
-  const char* names[] = {"--volume-ratio", "--volume",     "--alpha",
-                         "--sphericity",   "--elongation", "--flatness"};
-  int given = 0;
-  for (const char* name : names) given += command.count(name) > 0 ? 1 : 0;
-  if (given != 1) {
-    throw InvalidInput("--volume-ratio/--volume/--alpha/--sphericity/--elongation/--flatness",
-                       std::to_string(given) + " given", "exactly one");
-  }
+// The target options given (up to three), each checked under its own flag; --volume is V in m^3
+// at --diameter, i.e. a volume ratio.
+void resolve_goals(CalibrateFlags& flags, const CLI::App& command) {
   auto& o = flags.options;
   require_positive("--diameter", o.diameter);
-  const double sphere = std::numbers::pi / 6.0 * o.diameter * o.diameter * o.diameter;
   if (flags.sphere != "enclosing" && flags.sphere != "control") {
     throw InvalidInput("--sphere", flags.sphere, "enclosing or control");
   }
   const CalibrationTarget volume_target = flags.sphere == "enclosing"
                                               ? CalibrationTarget::kEnclosedVolumeRatio
                                               : CalibrationTarget::kVolumeRatio;
-  if (command.count("--volume-ratio") > 0) {
-    require_in_range("--volume-ratio", flags.volume_ratio, 1e-9, 1.0);
-    o.target = volume_target;
-    o.value = flags.volume_ratio;
-  } else if (command.count("--volume") > 0) {
-    require_in_range("--volume", flags.volume, 1e-30, sphere);
-    o.target = volume_target;
-    o.value = flags.volume / sphere;
-  } else if (command.count("--alpha") > 0) {
-    require_in_range("--alpha", flags.alpha, 1e-9, 1.0);
-    o.target = CalibrationTarget::kMeasuredAlpha;
-    o.value = flags.alpha;
-  } else if (command.count("--sphericity") > 0) {
-    require_in_range("--sphericity", flags.sphericity, 1e-9, 1.0);
-    o.target = CalibrationTarget::kSphericity;
-    o.value = flags.sphericity;
-  } else if (command.count("--elongation") > 0) {
-    require_in_range("--elongation", flags.elongation, 1e-9, 1.0);
-    o.target = CalibrationTarget::kElongation;
-    o.value = flags.elongation;
-  } else {
-    require_in_range("--flatness", flags.flatness, 1e-9, 1.0);
-    o.target = CalibrationTarget::kFlatness;
-    o.value = flags.flatness;
+  const double sphere = std::numbers::pi / 6.0 * o.diameter * o.diameter * o.diameter;
+  if (command.count("--volume-ratio") > 0 && command.count("--volume") > 0) {
+    throw InvalidInput("--volume", format_value(flags.volume),
+                       "either --volume (with --diameter) or --volume-ratio, not both");
   }
-  require_in_range("--edge-ratio", o.edge_ratio, 0.05, 1.5);
+  o.goals.clear();
+  flags.goal_flags.clear();
+  const auto add = [&](const char* flag, CalibrationTarget target, double typed, double value,
+                       double hi) {
+    if (command.count(flag) == 0) return;
+    require_in_range(flag, typed, hi * 1e-9, hi);
+    o.goals.push_back({.target = target, .value = value});
+    flags.goal_flags.emplace_back(flag);
+  };
+  add("--volume", volume_target, flags.volume, flags.volume / sphere, sphere);
+  add("--volume-ratio", volume_target, flags.volume_ratio, flags.volume_ratio, 1.0);
+  add("--alpha", CalibrationTarget::kMeasuredAlpha, flags.alpha, flags.alpha, 1.0);
+  add("--sphericity", CalibrationTarget::kSphericity, flags.sphericity, flags.sphericity, 1.0);
+  add("--elongation", CalibrationTarget::kElongation, flags.elongation, flags.elongation, 1.0);
+  add("--flatness", CalibrationTarget::kFlatness, flags.flatness, flags.flatness, 1.0);
+  if (o.goals.empty() || o.goals.size() > 3) {
+    throw InvalidInput("--volume/--volume-ratio/--alpha/--sphericity/--elongation/--flatness",
+                       std::to_string(o.goals.size()) + " given", "1 to 3 of them");
+  }
+  if (command.count("--edge-ratio") > 0) {
+    require_in_range("--edge-ratio", flags.edge_ratio, 0.05, 1.5);
+    o.edge_ratio = flags.edge_ratio;
+  }
+  const auto growth = find_growth(flags.growth);
+  if (!growth) throw InvalidInput("--growth", flags.growth, "hull or midpoint");
+  o.form.growth = *growth;
+  require_in_range("--min-edge-ratio", o.form.min_edge_ratio, 0.0, 0.5);
   if (flags.samples < 2 || flags.samples > 100000) {
     throw InvalidInput("--samples", std::to_string(flags.samples), "[2, 100000]");
   }
-  if (flags.grid < 3 || flags.grid > 101) {
-    throw InvalidInput("--grid", std::to_string(flags.grid), "[3, 101]");
-  }
-  if (!(flags.seed >= 0.0 && flags.seed <= 9007199254740992.0) ||
-      flags.seed != std::floor(flags.seed)) {
-    throw InvalidInput("--seed", format_value(flags.seed), "a whole number in [0, 2^53]");
-  }
+  require_in_range("--tolerance", o.tolerance, 1e-6, 0.2);
   o.samples = static_cast<std::size_t>(flags.samples);
-  o.grid_points = static_cast<std::size_t>(flags.grid);
-  o.seed = static_cast<std::uint64_t>(flags.seed);
+  o.seed = flags.seed;
+}
+
+// The flag a goal was given with, for messages in the user's words.
+std::string flag_of(const CalibrateFlags& flags, const std::string& target_name) {
+  for (std::size_t i = 0; i < flags.options.goals.size(); ++i) {
+    if (calibration_target_name(flags.options.goals[i].target) == target_name) {
+      return flags.goal_flags[i];
+    }
+  }
+  return target_name;
 }
 
 void write_table(const std::string& path, const CalibrationOptions& options,
                  const CalibrationResult& result, Overwrite overwrite) {
   AtomicFile file(path, overwrite);
   auto& out = file.stream();
-  const std::string name = calibration_target_name(options.target);
-  out << "alpha," << name << "_mean," << name << "_sd,samples,target\n";
-  for (const auto& point : result.evaluated) {
-    out << fmt::format("{:.17g},{:.17g},{:.17g},{},{:.17g}\n", point.alpha, point.achieved.mean,
-                       point.achieved.standard_deviation, point.achieved.count, options.value);
+  out << "evaluation,alpha,edge_ratio,elongation,flatness";
+  for (const auto& goal : options.goals) {
+    const std::string name = calibration_target_name(goal.target);
+    out << "," << name << "_mean," << name << "_sd," << name << "_target";
+  }
+  out << ",samples\n";
+  for (std::size_t i = 0; i < result.evaluated.size(); ++i) {
+    const CalibrationPoint& point = result.evaluated[i];
+    out << fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g}", i, point.inputs.alpha,
+                       point.inputs.edge_ratio, point.inputs.elongation, point.inputs.flatness);
+    for (const auto& goal : options.goals) {
+      for (std::size_t t = 0; t < std::size(kCalibrationTargets); ++t) {
+        if (kCalibrationTargets[t] != goal.target) continue;
+        out << fmt::format(",{:.17g},{:.17g},{:.17g}", point.descriptors[t].mean,
+                           point.descriptors[t].standard_deviation, goal.value);
+      }
+    }
+    out << "," << options.samples << "\n";
   }
   file.commit();
+}
+
+void print_result(const CalibrateFlags& flags, const CalibrationResult& result) {
+  const CalibrationOptions& options = flags.options;
+  const CalibrationInputs& in = result.inputs;
+  for (std::size_t i = 0; i < options.goals.size(); ++i) {
+    fmt::print("target        {} = {:.6g} ({})\n", calibration_target_name(options.goals[i].target),
+               options.goals[i].value, flags.goal_flags[i]);
+  }
+  fmt::print(
+      "found         alpha = {:.4g} (Eq. 3 input), L/R = {:.4g}, elongation = {:.4g}, flatness "
+      "= {:.4g}, growth {}; R = {:.4g} m, L = {:.4g} m\n",
+      in.alpha, in.edge_ratio, in.elongation, in.flatness, growth_name(options.form.growth),
+      result.radius, result.edge_length);
+  for (std::size_t i = 0; i < options.goals.size(); ++i) {
+    const auto& goal = options.goals[i];
+    const auto& achieved = result.achieved[i];
+    fmt::print("achieved      {} = {:.4g} +- {:.2g} (sd, {} particles, seed {}): {:+.2f} %\n",
+               calibration_target_name(goal.target), achieved.mean, achieved.standard_deviation,
+               achieved.count, options.seed, 100.0 * (achieved.mean - goal.value) / goal.value);
+  }
+  fmt::print("volume        {:.4g} +- {:.2g} mm^3 (sphere of diameter D: {:.4g} mm^3)\n",
+             result.volume.mean * 1e9, result.volume.standard_deviation * 1e9,
+             std::numbers::pi / 6.0 * std::pow(options.diameter, 3) * 1e9);
+  fmt::print(
+      "enclosing     diameter {:.4g} +- {:.2g} mm (smallest sphere around each particle; "
+      "control sphere 2R = {:.4g} mm)\n",
+      2e3 * result.enclosing_radius.mean, 2e3 * result.enclosing_radius.standard_deviation,
+      2e3 * result.radius);
+  for (std::size_t t = 0; t < result.all_descriptors.size(); ++t) {
+    const bool is_goal = std::any_of(options.goals.begin(), options.goals.end(),
+                                     [&](auto& g) { return g.target == kCalibrationTargets[t]; });
+    if (is_goal) continue;
+    fmt::print("also          {} = {:.4g} +- {:.2g}\n",
+               calibration_target_name(kCalibrationTargets[t]), result.all_descriptors[t].mean,
+               result.all_descriptors[t].standard_deviation);
+  }
+  fmt::print("evaluations   {} (grid + Nelder-Mead, {} particles each)\n", result.evaluated.size(),
+             options.samples);
+  fmt::print(
+      "config lines (under [particles] in repose/sweep configs, [particle] in pack configs):\n"
+      "alpha = {:.6g}\nradius = {:.6g}\nedge_length = {:.6g}\ngrowth = \"{}\"\n"
+      "elongation = {:.6g}\nflatness = {:.6g}\nmin_edge_ratio = {:.6g}\n",
+      in.alpha, result.radius, result.edge_length, growth_name(options.form.growth), in.elongation,
+      in.flatness, options.form.min_edge_ratio);
 }
 
 }  // namespace
@@ -116,11 +182,12 @@ void register_calibrate(CLI::App& app) {
   auto& o = flags->options;
   auto* command = app.add_subcommand(
       "calibrate",
-      "Find the Eq. 3 alpha whose particles match a measured mean descriptor (V / V_circ, Eq. 2 "
-      "alpha, sphericity, elongation or flatness); print the inputs, the achieved mean +- sd and "
+      "Find the generator inputs (Eq. 3 alpha, L/R, and the control ellipsoid's axis ratios when "
+      "an elongation or flatness is asked for) whose particles match up to three measured mean "
+      "descriptors at once; print the inputs, each target's achieved mean +- sd and miss, and "
       "the config lines.");
   command->add_option("--volume-ratio", flags->volume_ratio,
-                      "target mean V / V_circumscribed-sphere (the paper's Table 1 alpha), (0, 1]");
+                      "target mean V / V_circumscribed-sphere, (0, 1]");
   command->add_option("--volume", flags->volume,
                       "target mean particle volume (m^3) at --diameter (= a volume ratio)");
   command->add_option("--alpha", flags->alpha, "target mean Eq. 2 measured alpha, (0, 1]");
@@ -138,69 +205,56 @@ void register_calibrate(CLI::App& app) {
                    "particles; R is scaled so the mean enclosing diameter is D) or 'control' "
                    "(the generator's sphere of radius R = D / 2)")
       ->capture_default_str();
-  command->add_option("--edge-ratio", o.edge_ratio, "edge-length ratio L / R, [0.05, 1.5]")
+  command->add_option("--edge-ratio", flags->edge_ratio,
+                      "keep L / R fixed at this, [0.05, 1.5] (default: searched in [0.25, 1.4])");
+  command->add_option("--growth", flags->growth, "growth rule: hull or midpoint")
       ->capture_default_str();
-  command->add_option("--samples", flags->samples, "particles per evaluated alpha, [2, 100000]")
+  command
+      ->add_option("--min-edge-ratio", o.form.min_edge_ratio,
+                   "minimum edge length / L of hull growth, [0, 0.5]")
       ->capture_default_str();
-  command->add_option("--grid", flags->grid, "alpha grid points in [0, 1], [3, 101]")
+  command->add_option("--tolerance", o.tolerance, "relative miss accepted per target, (0, 0.2]")
       ->capture_default_str();
-  command->add_option("--seed", flags->seed, "seed of every evaluation's particles")
+  command->add_option("--samples", flags->samples, "particles per evaluation, [2, 100000]")
       ->capture_default_str();
-  command->add_option("--table", flags->table, "CSV of the search: alpha, mean, sd");
-  command->add_option("--plot", flags->plot, "PNG of the search: mean +- sd vs alpha, target");
+  command->add_option("--seed", flags->seed, "seed of every evaluation's particles, >= 0")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--table", flags->table,
+                      "CSV of the search: inputs and each target's mean, sd per evaluation");
+  command->add_option("--plot", flags->plot, "PNG of the search: each target's miss (%)");
   command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
       ->capture_default_str();
   command->add_flag("-f,--force", flags->is_forced, "replace existing output files");
   command->callback([=, &app]() {
     const auto* self = app.get_subcommand("calibrate");
-    resolve_target(*flags, *self);
+    resolve_goals(*flags, *self);
     set_thread_count(flags->threads);
     const Overwrite overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!flags->table.empty()) check_writable(flags->table, overwrite);
-    if (!flags->plot.empty()) {
-      check_writable(flags->plot, overwrite);
+    if (!flags->plot.empty()) check_writable(flags->plot, overwrite);
+    CalibrationResult result;
+    try {
+      result = calibrate(flags->options);
+    } catch (const InvalidInput& error) {
+      // Name the target in the user's words: the flag typed, not the descriptor's name.
+      const std::string flag = flag_of(*flags, error.field());
+      if (flag == error.field()) throw;
+      const double typed = flag == "--volume"         ? flags->volume
+                           : flag == "--volume-ratio" ? flags->volume_ratio
+                           : flag == "--alpha"        ? flags->alpha
+                           : flag == "--sphericity"   ? flags->sphericity
+                           : flag == "--elongation"   ? flags->elongation
+                                                      : flags->flatness;
+      throw InvalidInput(flag, format_value(typed), error.allowed());
     }
-    const CalibrationOptions& options = flags->options;
-    const CalibrationResult result = calibrate(options);
-    const std::string name = calibration_target_name(options.target);
-    const double miss = 100.0 * (result.achieved.mean - options.value) / options.value;
-    fmt::print("target        {} = {:.6g}\n", name, options.value);
-    fmt::print("reachable     [{:.6g}, {:.6g}] over alpha in [0, 1] at L/R = {:.6g}\n",
-               result.reachable_minimum, result.reachable_maximum, options.edge_ratio);
-    fmt::print("found         alpha = {:.6g} (Eq. 3 input), R = {:.6g} m, L = {:.6g} m\n",
-               result.alpha, result.radius, result.edge_length);
-    fmt::print("achieved      {} = {:.6g} +- {:.3g} (sd, {} particles, seed {}): {:+.2f} %\n", name,
-               result.achieved.mean, result.achieved.standard_deviation, result.achieved.count,
-               options.seed, miss);
-    fmt::print("volume        {:.6g} +- {:.3g} mm^3 (sphere of diameter D: {:.6g} mm^3)\n",
-               result.volume.mean * 1e9, result.volume.standard_deviation * 1e9,
-               std::numbers::pi / 6.0 * std::pow(options.diameter, 3) * 1e9);
-    fmt::print(
-        "enclosing     diameter {:.6g} +- {:.3g} mm (smallest sphere around each particle; "
-        "control sphere 2R = {:.6g} mm)\n",
-        2e3 * result.enclosing_radius.mean, 2e3 * result.enclosing_radius.standard_deviation,
-        2e3 * result.radius);
-    for (std::size_t t = 0; t < result.all_descriptors.size(); ++t) {
-      if (kCalibrationTargets[t] == options.target) continue;
-      fmt::print("also          {} = {:.6g} +- {:.3g}\n",
-                 calibration_target_name(kCalibrationTargets[t]), result.all_descriptors[t].mean,
-                 result.all_descriptors[t].standard_deviation);
-    }
-    fmt::print("evaluations   {} (grid {} + bisection)\n", result.evaluated.size(),
-               options.grid_points);
-    if (std::abs(miss) > 2.0) {
-      fmt::print("warning: the closest mean found misses the target by {:.2f} % (> 2 %)\n", miss);
-    }
-    fmt::print(
-        "config lines (under [particles] in repose/sweep configs, [particle] in pack configs):\n"
-        "alpha = {:.6g}\nradius = {:.6g}\nedge_length = {:.6g}\n",
-        result.alpha, result.radius, result.edge_length);
+    print_result(*flags, result);
     if (!flags->table.empty()) {
-      write_table(flags->table, options, result, overwrite);
+      write_table(flags->table, flags->options, result, overwrite);
       fmt::print("wrote {}\n", flags->table);
     }
     if (!flags->plot.empty()) {
-      write_calibration_plot(flags->plot, options, result);
+      write_calibration_plot(flags->plot, flags->options, result);
       fmt::print("wrote {}\n", flags->plot);
     }
   });

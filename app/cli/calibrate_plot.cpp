@@ -23,52 +23,57 @@ void write_calibration_plot(const std::string& path, const CalibrationOptions& o
   constexpr int kRight = 30;
   constexpr int kTop = 70;
   constexpr int kBottom = 70;
+  constexpr double kClamp = 50.0;  // misses beyond +- 50 % are drawn at the edge
   const Rgb black{0, 0, 0};
   const Rgb grey{200, 200, 200};
-  const Rgb blue{30, 90, 200};
-  const Rgb red{210, 40, 40};
-  const Rgb green{20, 150, 60};
-  double lo = options.value;
-  double hi = options.value;
-  for (const auto& p : result.evaluated) {
-    lo = std::min(lo, p.achieved.mean - p.achieved.standard_deviation);
-    hi = std::max(hi, p.achieved.mean + p.achieved.standard_deviation);
-  }
-  const double pad = 0.05 * std::max(hi - lo, 1e-6);
-  lo -= pad;
-  hi += pad;
+  const Rgb band{225, 245, 225};
+  const std::array<Rgb, 3> colours = {Rgb{30, 90, 200}, Rgb{210, 40, 40}, Rgb{20, 150, 60}};
+  const std::size_t n = std::max<std::size_t>(result.evaluated.size(), 2);
   const double plot_w = kWidth - kLeft - kRight;
   const double plot_h = kHeight - kTop - kBottom;
-  auto px = [&](double alpha) { return kLeft + alpha * plot_w; };
-  auto py = [&](double v) { return kTop + (hi - v) / (hi - lo) * plot_h; };
+  auto px = [&](double i) { return kLeft + i / static_cast<double>(n - 1) * plot_w; };
+  auto py = [&](double miss) {
+    return kTop + (kClamp - std::clamp(miss, -kClamp, kClamp)) / (2.0 * kClamp) * plot_h;
+  };
 
   Raster canvas(kWidth, kHeight);
+  const double tolerance = 100.0 * options.tolerance;
+  canvas.fill_rect(kLeft, static_cast<int>(py(tolerance)), kLeft + static_cast<int>(plot_w),
+                   static_cast<int>(py(-tolerance)), band);
   for (int k = 0; k <= 10; ++k) {  // grid and tick labels
-    const double a = 0.1 * k;
-    canvas.line(px(a), kTop, px(a), kTop + plot_h, 1, grey);
-    canvas.text(fmt::format("{:.1f}", a), static_cast<int>(px(a)) - 8, kTop + plot_h + 8, 2, black);
-    const double v = lo + (hi - lo) * k / 10.0;
-    canvas.line(kLeft, py(v), kLeft + plot_w, py(v), 1, grey);
-    canvas.text(fmt::format("{:.3f}", v), 10, static_cast<int>(py(v)) - 6, 2, black);
+    const double i = static_cast<double>(n - 1) * k / 10.0;
+    canvas.line(px(i), kTop, px(i), kTop + plot_h, 1, grey);
+    canvas.text(fmt::format("{:.0f}", i), static_cast<int>(px(i)) - 8, kTop + plot_h + 8, 2, black);
+    const double miss = -kClamp + 2.0 * kClamp * k / 10.0;
+    canvas.line(kLeft, py(miss), kLeft + plot_w, py(miss), 1, grey);
+    canvas.text(fmt::format("{:+.0f}", miss), 30, static_cast<int>(py(miss)) - 6, 2, black);
   }
   canvas.line(kLeft, kTop, kLeft, kTop + plot_h, 2, black);
   canvas.line(kLeft, kTop + plot_h, kLeft + plot_w, kTop + plot_h, 2, black);
-  canvas.line(kLeft, py(options.value), kLeft + plot_w, py(options.value), 2, red);
-  canvas.line(px(result.alpha), kTop, px(result.alpha), kTop + plot_h, 2, green);
-  for (const auto& p : result.evaluated) {
-    const double x = px(p.alpha);
-    const double s = p.achieved.standard_deviation;
-    canvas.line(x, py(p.achieved.mean - s), x, py(p.achieved.mean + s), 2, blue);
-    canvas.fill_rect(static_cast<int>(x) - 4, static_cast<int>(py(p.achieved.mean)) - 4,
-                     static_cast<int>(x) + 5, static_cast<int>(py(p.achieved.mean)) + 5, blue);
+  std::string legend;
+  for (std::size_t g = 0; g < options.goals.size(); ++g) {
+    const CalibrationGoal& goal = options.goals[g];
+    const Rgb& colour = colours[g % colours.size()];
+    double last_x = 0.0;
+    double last_y = 0.0;
+    for (std::size_t i = 0; i < result.evaluated.size(); ++i) {
+      const double miss =
+          100.0 * (mean_of(result.evaluated[i], goal.target) - goal.value) / goal.value;
+      const double x = px(static_cast<double>(i));
+      const double y = py(miss);
+      if (i > 0) canvas.line(last_x, last_y, x, y, 1, colour);
+      canvas.fill_rect(static_cast<int>(x) - 3, static_cast<int>(y) - 3, static_cast<int>(x) + 4,
+                       static_cast<int>(y) + 4, colour);
+      last_x = x;
+      last_y = y;
+    }
+    canvas.text(calibration_target_name(goal.target), 20 + static_cast<int>(g) * 250, 32, 2,
+                colour);
   }
-  const std::string name = calibration_target_name(options.target);
-  canvas.text(fmt::format("{} vs Eq. 3 alpha: mean +- sd (blue)", name), 20, 8, 2, black);
   canvas.text(
-      fmt::format("target {:.4g} (red), found alpha {:.4f} (green)", options.value, result.alpha),
-      20, 32, 2, black);
-  canvas.text(fmt::format("Eq. 3 alpha (L/R {:.3g}, {} per point, seed {})", options.edge_ratio,
-                          options.samples, options.seed),
+      fmt::format("miss (%) of each target per evaluation; green band +- {:.3g} %", tolerance), 20,
+      8, 2, black);
+  canvas.text(fmt::format("evaluation ({} particles each, seed {})", options.samples, options.seed),
               kLeft + 60, kHeight - 30, 2, black);
 
   write_png(path, canvas);

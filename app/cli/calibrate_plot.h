@@ -7,8 +7,8 @@
 
 namespace aggpack::cli {
 
-/// Mean +- sd of the target descriptor at every evaluated alpha, the target as a horizontal line
-/// and the alpha found as a vertical one.
+/// The search's course: each target's relative miss (%) at every evaluation, in order, with the
+/// accepted band (+- tolerance) and the point found.
 void write_calibration_plot(const std::string& path, const CalibrationOptions& options,
                             const CalibrationResult& result);
 

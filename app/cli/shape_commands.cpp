@@ -21,6 +21,7 @@ namespace {
 
 struct ShapeFlags {
   GeneratorOptions generator;
+  std::string growth = "hull";
   double radius = 0;  // --radius sets both ends of the range
   int threads = 0;
 };
@@ -49,6 +50,25 @@ void add_generator_options(CLI::App& command, ShapeFlags& flags) {
   command
       .add_option("-L,--edge-length", g.edge_length,
                   "maximum edge length L (m), > 0: growth stops when every edge <= L")
+      ->capture_default_str();
+  command
+      .add_option("--growth", flags.growth,
+                  "where a new vertex goes: hull (the paper's words: a random point of the "
+                  "longest edge, out to its Eq. 3 distance, convex hull kept) or midpoint "
+                  "(aggpack 0.1's rule, kept for earlier files)")
+      ->capture_default_str();
+  command
+      .add_option("--elongation", g.form.elongation,
+                  "control ellipsoid's intermediate / long semi-axis, [0.1, 1] (1 = sphere)")
+      ->capture_default_str();
+  command
+      .add_option("--flatness", g.form.flatness,
+                  "control ellipsoid's short / intermediate semi-axis, [0.1, 1] (1 = sphere)")
+      ->capture_default_str();
+  command
+      .add_option("--min-edge-ratio", g.form.min_edge_ratio,
+                  "minimum edge length / L (hull growth): the random point on the longest edge "
+                  "is at least this x L from both ends, [0, 0.5]")
       ->capture_default_str();
   command.add_option("--max-vertices", g.max_vertices, "vertex cap per particle, [6, 1000000]")
       ->check(kNotNegative)
@@ -80,6 +100,12 @@ void resolve_radius(ShapeFlags& flags, const CLI::App& command) {
                        ">= --radius-min = " + format_value(g.radius_min));
   }
   require_positive("--edge-length", g.edge_length);
+  const auto growth = find_growth(flags.growth);
+  if (!growth) throw InvalidInput("--growth", flags.growth, "hull or midpoint");
+  g.form.growth = *growth;
+  require_in_range("--elongation", g.form.elongation, 0.1, 1.0);
+  require_in_range("--flatness", g.form.flatness, 0.1, 1.0);
+  require_in_range("--min-edge-ratio", g.form.min_edge_ratio, 0.0, 0.5);
   validate(g);
 }
 

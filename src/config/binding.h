@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "aggpack/config/schema.h"
+#include "aggpack/shape/generator.h"
 
 namespace aggpack::config_detail {
 
@@ -16,6 +17,8 @@ template <typename X>
 Value to_value(const X& x) {
   if constexpr (std::is_same_v<X, double> || std::is_same_v<X, bool>) {
     return x;
+  } else if constexpr (std::is_same_v<X, Growth>) {
+    return std::string(growth_name(x));
   } else if constexpr (std::is_integral_v<X>) {
     return static_cast<std::int64_t>(x);
   } else {
@@ -27,6 +30,8 @@ template <typename X>
 X from_value(const Value& value) {
   if constexpr (std::is_same_v<X, double> || std::is_same_v<X, bool>) {
     return std::get<X>(value);
+  } else if constexpr (std::is_same_v<X, Growth>) {  // a word the schema has checked
+    return find_growth(std::get<std::string>(value)).value_or(Growth::kHull);
   } else if constexpr (std::is_integral_v<X>) {
     return static_cast<X>(std::get<std::int64_t>(value));
   } else {

@@ -206,6 +206,42 @@ std::vector<PackKey> particle_keys() {
            bind(on<LatticeOptions>([](auto& o) -> auto& { return o.max_vertices; }),
                 on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.max_vertices; })),
        .fields = {"lattice.max_vertices", "shape.max_vertices", "max_vertices"}},
+      {.name = "particle.growth",
+       .type = ValueType::kWord,
+       .words = {growth_name(Growth::kHull), growth_name(Growth::kMidpoint)},
+       .doc = "where growth puts a new vertex. hull (the paper's words): at a random point of "
+              "the longest edge, out along the ray from the centre to its Eq. 3 distance, the "
+              "convex hull kept; midpoint: aggpack 0.1's rule (edge midpoint, clamped onto the "
+              "neighbouring faces; particles stay near the base octahedron), for earlier files",
+       .binding =
+           bind(on<LatticeOptions>([](auto& o) -> auto& { return o.form.growth; }),
+                on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.form.growth; }))},
+      {.name = "particle.elongation",
+       .unit = "-",
+       .range = closed(0.1, 1),
+       .doc = "control ellipsoid's intermediate / long semi-axis (1 = sphere; the long semi-axis "
+              "is the control radius r): elongated particles",
+       .binding =
+           bind(on<LatticeOptions>([](auto& o) -> auto& { return o.form.elongation; }),
+                on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.form.elongation; })),
+       .fields = {"elongation"}},
+      {.name = "particle.flatness",
+       .unit = "-",
+       .range = closed(0.1, 1),
+       .doc = "control ellipsoid's short / intermediate semi-axis (1 = sphere): flaky particles",
+       .binding =
+           bind(on<LatticeOptions>([](auto& o) -> auto& { return o.form.flatness; }),
+                on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.form.flatness; })),
+       .fields = {"flatness"}},
+      {.name = "particle.min_edge_ratio",
+       .unit = "-",
+       .range = closed(0, 0.5),
+       .doc = "minimum edge length / L (hull growth): the random point on the longest edge is at "
+              "least this x L from both ends (0 = anywhere, 0.5 = the midpoint)",
+       .binding = bind(
+           on<LatticeOptions>([](auto& o) -> auto& { return o.form.min_edge_ratio; }),
+           on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.form.min_edge_ratio; })),
+       .fields = {"min_edge_ratio"}},
   };
 }
 

@@ -25,6 +25,8 @@ using Clock = std::chrono::steady_clock;
 // Relative slack on "every vertex within R": the generator places vertices at exactly r times a
 // unit direction, which rounds to within a few ulps of r.
 constexpr double kRadiusSlack = 1e-12;
+// Streams of the control ellipsoids' random orientations (one per site).
+constexpr std::uint64_t kAxesSalt = 0x2545F4914F6CDD1DULL;
 
 double effective_spacing(const LatticeOptions& options) {
   return options.spacing > 0.0 ? options.spacing : 2.0 * options.radius + options.gap;
@@ -142,12 +144,17 @@ double ray_entry(const Planes& planes, double gap, const Vec3& origin, const Vec
 
 }  // namespace
 
+GrowthParams growth_params(const LatticeOptions& options) {
+  return {.alpha = options.alpha,
+          .radius = options.radius,
+          .edge_length = options.edge_length,
+          .max_vertices = options.max_vertices,
+          .form = options.form};
+}
+
 void validate(const LatticeOptions& options) {
   validate(options.container);
-  const GrowthParams params{.alpha = options.alpha,
-                            .radius = options.radius,
-                            .edge_length = options.edge_length,
-                            .max_vertices = options.max_vertices};
+  const GrowthParams params = growth_params(options);
   require_in_range("lattice.alpha", options.alpha, 0.0, 1.0);
   require_positive("lattice.radius", options.radius);
   require_positive("lattice.edge_length", options.edge_length);
@@ -200,10 +207,16 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
   const std::size_t site_count = lattice.sites.size();
   const double spacing = effective_spacing(options);
   const bool is_contact_mode = spacing < 2.0 * options.radius + options.gap;
-  const GrowthParams params{.alpha = options.alpha,
-                            .radius = options.radius,
-                            .edge_length = options.edge_length,
-                            .max_vertices = options.max_vertices};
+  const GrowthParams params = growth_params(options);
+  // A control ellipsoid turned at random at each site, from a stream of its own.
+  const auto site_params = [&](std::size_t i) {
+    GrowthParams turned = params;
+    if (!options.form.is_sphere()) {
+      Rng turn(options.seed ^ kAxesSalt, i);
+      turned.axes = detail::random_rotation(turn);
+    }
+    return turned;
+  };
 
   auto last_report = Clock::now() - std::chrono::hours(1);
   // Solid volume grown so far, for the live solid fraction (sites that settle() later shrinks
@@ -313,7 +326,7 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
       const std::size_t end = std::min(site_count, begin + chunk);
       parallel_for_index(begin, end, [&](std::size_t i) {
         Rng rng(options.seed, i);
-        grown[i].body = grow_aggregate(params, rng);
+        grown[i].body = grow_aggregate(site_params(i), rng);
         grown[i].outer_radius = bounding_radius(grown[i].body);
         if (control.on_progress) grown_volume[i] = mass_properties(grown[i].body).volume;
         // Verify the premise of the argument above, exactly; anything else goes to `settle`.
@@ -349,7 +362,8 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
         return std::max(allowed, s_lo);
       };
       Rng rng(options.seed, i);
-      grown[i].body = grow_aggregate(params, rng, neighbour_planes.empty() ? GrowthLimit{} : limit);
+      grown[i].body =
+          grow_aggregate(site_params(i), rng, neighbour_planes.empty() ? GrowthLimit{} : limit);
       grown[i].outer_radius = bounding_radius(grown[i].body);
       settle(i);
       if (control.on_progress) grown_volume[i] = mass_properties(grown[i].body).volume;

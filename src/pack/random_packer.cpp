@@ -37,10 +37,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-double edge_length_for(const ShapeOptions& shape, double radius) {
-  return shape.edge_length > 0.0 ? shape.edge_length : shape.edge_length_ratio * radius;
-}
-
 StoredShape make_stored(const ConvexPolyhedron& grown) {
   StoredShape stored;
   Vec3 centroid;
@@ -67,11 +63,7 @@ Draw make_draw(const RandomPackOptions& options, std::uint64_t index) {
         std::floor(rng.uniform() * options.shape.library_size), options.shape.library_size - 1));
     return draw;
   }
-  const GrowthParams params{.alpha = options.shape.alpha,
-                            .radius = radius,
-                            .edge_length = edge_length_for(options.shape, radius),
-                            .max_vertices = options.shape.max_vertices};
-  draw.shape = make_stored(grow_aggregate(params, rng));
+  draw.shape = make_stored(grow_aggregate(growth_params(options.shape, radius), rng));
   return draw;
 }
 
@@ -99,6 +91,15 @@ class ProgressReporter {
 };
 }  // namespace
 
+GrowthParams growth_params(const ShapeOptions& shape, double radius) {
+  return {
+      .alpha = shape.alpha,
+      .radius = radius,
+      .edge_length = shape.edge_length > 0.0 ? shape.edge_length : shape.edge_length_ratio * radius,
+      .max_vertices = shape.max_vertices,
+      .form = shape.form};
+}
+
 PackResult pack_random(const RandomPackOptions& options, const PackControl& control) {
   validate(options);
   ProgressReporter progress(control);
@@ -116,14 +117,9 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   const bool is_library = options.shape.library_size > 0;
   if (is_library) {
     shapes.resize(options.shape.library_size);
-    const double ratio = options.shape.edge_length_ratio;
     parallel_for_index(0, shapes.size(), [&](std::size_t k) {
       Rng rng(options.seed ^ kLibrarySalt, k);
-      const GrowthParams params{.alpha = options.shape.alpha,
-                                .radius = 1.0,
-                                .edge_length = ratio,
-                                .max_vertices = options.shape.max_vertices};
-      shapes[k] = make_stored(grow_aggregate(params, rng));
+      shapes[k] = make_stored(grow_aggregate(growth_params(options.shape, 1.0), rng));
     });
   }
   std::vector<Item> items;

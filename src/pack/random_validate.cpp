@@ -36,9 +36,10 @@ void validate_shape(const ShapeOptions& shape, double largest_radius) {
                        "0 when shape.edge_length > 0 (a library rescales shapes, so L must be "
                        "relative: set shape.edge_length = 0 and use shape.edge_length_ratio)");
   }
-  const double estimate = shape.edge_length > 0.0
-                              ? estimated_vertex_count(largest_radius, shape.edge_length)
-                              : estimated_vertex_count(1.0, shape.edge_length_ratio);
+  const double estimate =
+      shape.edge_length > 0.0
+          ? estimated_vertex_count(largest_radius, shape.edge_length, shape.form.growth)
+          : estimated_vertex_count(1.0, shape.edge_length_ratio, shape.form.growth);
   if (estimate > shape.max_vertices) {
     const std::string field =
         shape.edge_length > 0.0 ? "shape.edge_length" : "shape.edge_length_ratio";

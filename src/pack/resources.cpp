@@ -179,30 +179,20 @@ RunEstimate estimate_run(const RandomPackOptions& options) {
   const double largest_edge =
       shape.edge_length > 0.0 ? shape.edge_length : shape.edge_length_ratio * largest_radius;
   const int count =
-      sample_size_for(estimated_vertex_count(largest_radius, largest_edge),
+      sample_size_for(estimated_vertex_count(largest_radius, largest_edge, shape.form.growth),
                       is_library ? shape.library_size : std::numeric_limits<std::uint64_t>::max());
   ShapeSample sample;
   if (is_library) {
     sample = sample_shapes(count, [&](std::uint64_t k) {
       Rng rng(options.seed ^ kSampleSalt, k);
-      const GrowthParams params{.alpha = shape.alpha,
-                                .radius = 1.0,
-                                .edge_length = shape.edge_length_ratio,
-                                .max_vertices = shape.max_vertices};
-      return std::make_pair(grow_aggregate(params, rng), 1.0);
+      return std::make_pair(grow_aggregate(growth_params(shape, 1.0), rng), 1.0);
     });
   } else {
     // The run's own first draws: size from stream (seed, i), then the shape from the same stream.
     sample = sample_shapes(count, [&](std::uint64_t i) {
       Rng rng(options.seed, i);
       const double radius = sample_size(options.grading, rng.uniform()) / 2.0;
-      const GrowthParams params{.alpha = shape.alpha,
-                                .radius = radius,
-                                .edge_length = shape.edge_length > 0.0
-                                                   ? shape.edge_length
-                                                   : shape.edge_length_ratio * radius,
-                                .max_vertices = shape.max_vertices};
-      return std::make_pair(grow_aggregate(params, rng), radius);
+      return std::make_pair(grow_aggregate(growth_params(shape, radius), rng), radius);
     });
   }
   RunEstimate estimate;
@@ -226,12 +216,10 @@ RunEstimate estimate_run(const RandomPackOptions& options) {
 }
 
 RunEstimate estimate_run(const LatticeOptions& options, double sites) {
-  const GrowthParams params{.alpha = options.alpha,
-                            .radius = options.radius,
-                            .edge_length = options.edge_length,
-                            .max_vertices = options.max_vertices};
-  const int count = sample_size_for(estimated_vertex_count(options.radius, options.edge_length),
-                                    static_cast<std::uint64_t>(std::max(1.0, sites)));
+  const GrowthParams params = growth_params(options);
+  const int count = sample_size_for(
+      estimated_vertex_count(options.radius, options.edge_length, options.form.growth),
+      static_cast<std::uint64_t>(std::max(1.0, sites)));
   const ShapeSample sample = sample_shapes(count, [&](std::uint64_t i) {
     Rng rng(options.seed, i);
     return std::make_pair(grow_aggregate(params, rng), options.radius);

@@ -105,6 +105,11 @@ SummaryStatistics RunningSummary::result() const {
   return stats;
 }
 
+double enclosed_volume_ratio(const ShapeDescriptors& descriptors) {
+  const double r = descriptors.enclosing_radius;
+  return r > 0.0 ? descriptors.volume / (4.0 / 3.0 * std::numbers::pi * r * r * r) : 0.0;
+}
+
 const std::vector<DescriptorColumn>& descriptor_columns() {
   static const std::vector<DescriptorColumn> columns = {
       {"volume", "m^3", [](const ShapeDescriptors& d) { return d.volume; }},
@@ -125,6 +130,7 @@ const std::vector<DescriptorColumn>& descriptor_columns() {
       {"enclosing_radius", "m", [](const ShapeDescriptors& d) { return d.enclosing_radius; }},
       {"equivalent_diameter", "m", [](const ShapeDescriptors& d) { return d.equivalent_diameter; }},
       {"longest_edge", "m", [](const ShapeDescriptors& d) { return d.longest_edge; }},
+      {"volume_ratio", "-", [](const ShapeDescriptors& d) { return enclosed_volume_ratio(d); }},
   };
   return columns;
 }

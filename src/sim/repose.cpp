@@ -209,6 +209,7 @@ LatticeOptions repose_fill_options(const ReposeOptions& options) {
   lattice.alpha = options.alpha;
   lattice.radius = options.radius;
   lattice.edge_length = options.edge_length;
+  lattice.form = options.form;
   lattice.seed = options.seed;
   return lattice;
 }
@@ -229,6 +230,7 @@ void validate(const ReposeOptions& options) {
   require_in_range("repose.alpha", options.alpha, 0.0, 1.0);
   require_positive("repose.radius", options.radius);
   require_positive("repose.edge_length", options.edge_length);
+  validate(options.form, "repose.");
   require_positive("repose.fill_height", options.fill_height);
   require_in_range("repose.bin_width", options.bin_width, 0.0, options.trough_length);
   require_in_range("repose.fit_upper", options.fit_upper, 1e-6, 1.0);

@@ -200,6 +200,8 @@ TEST(DescriptorColumns, NamedUniquelyWithUnitsAndReadTheRightField) {
       {"enclosing_radius", std::sqrt(5.25)},  // a box: the centred sphere is the smallest
       {"equivalent_diameter", std::cbrt(48.0 / kPi)},
       {"longest_edge", std::sqrt(20.0)},
+      // V over the enclosing sphere's volume, 4/3 pi 5.25^(3/2)
+      {"volume_ratio", 8.0 / (4.0 / 3.0 * kPi * std::pow(5.25, 1.5))},
   };
   for (const auto& column : columns) {
     const auto known = expected.find(column.name);

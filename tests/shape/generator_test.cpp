@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numbers>
 #include <string>
 #include <thread>
 #include <vector>
@@ -58,9 +59,10 @@ TEST(Eq3Distance, EndsOfTheRangeAndLinearInU) {
   }
 }
 
-// Issue 2 item 7: >= 10,000 seeds spread over alpha in [0, 1] and L/r in [0.3, 2], at three
-// length scales. Every result must be a closed, convex, outward 2-manifold with V - E + F = 2,
-// every edge <= L and every vertex within r of the growth centre.
+// >= 10,000 seeds spread over alpha in [0, 1] and L/r in [0.3, 2], at three length scales, both
+// growth rules, control spheres and turned control ellipsoids. Every result must be a closed,
+// convex, outward 2-manifold with V - E + F = 2, every edge <= L and every vertex within its
+// control surface.
 TEST(GrowAggregate, InvariantsOverTenThousandSeeds) {
   constexpr int kCount = 10000;
   const double scales[] = {1e-3, 0.1, 20.0};
@@ -70,8 +72,14 @@ TEST(GrowAggregate, InvariantsOverTenThousandSeeds) {
     const double alpha = static_cast<double>(i % 101) / 100.0;
     const double edge_over_radius = 0.3 + 1.7 * static_cast<double>((i * 7919) % 1000) / 999.0;
     const double radius = scales[i % 3];
-    const GrowthParams params{
-        .alpha = alpha, .radius = radius, .edge_length = edge_over_radius * radius};
+    GrowthParams params{.alpha = alpha, .radius = radius, .edge_length = edge_over_radius * radius};
+    params.form.growth = i % 2 == 0 ? Growth::kHull : Growth::kMidpoint;
+    params.form.min_edge_ratio = 0.05 * static_cast<double>(i % 11);  // 0 .. 0.5
+    if (i % 4 >= 2) {                                                 // a control ellipsoid, turned
+      params.form.elongation = std::min(1.0, 0.2 + 0.8 * static_cast<double>((i * 31) % 97) / 96.0);
+      params.form.flatness = std::min(1.0, 0.2 + 0.8 * static_cast<double>((i * 17) % 89) / 88.0);
+      params.axes = Quat(Eigen::AngleAxisd(0.1 * i, Vec3(1, 2, 3).normalized()));
+    }
     Rng rng(12345, static_cast<std::uint64_t>(i));
     const ConvexPolyhedron body = grow_aggregate(params, rng);
     SCOPED_TRACE("particle " + std::to_string(i) + " alpha " + std::to_string(alpha) + " L/r " +
@@ -95,7 +103,8 @@ TEST(GrowAggregate, InvariantsOverTenThousandSeeds) {
       ASSERT_LE(length, params.edge_length * (1 + kLengthTolerance));
     }
     for (const auto& vertex : body.vertices()) {
-      ASSERT_LE(vertex.norm(), radius * (1 + kLengthTolerance));
+      ASSERT_LE(vertex.norm(),
+                control_radius_along(params, vertex.normalized()) * (1 + kLengthTolerance));
     }
     ASSERT_EQ(locate_point(body, Vec3::Zero(), 1e-12 * radius * radius * radius),
               PointLocation::kInside);
@@ -109,6 +118,7 @@ TEST(GrowAggregate, InvariantsOverTenThousandSeeds) {
 
 // The six base vertices stay at indices 0..5 on the half-axes +x, -x, +y, -y, +z, -z (growth
 // only adds vertices), so Eq. 3 can be checked on every particle.
+// (The midpoint rule keeps them; the hull rule may drop a base vertex that ends up inside.)
 TEST(GrowAggregate, BaseVerticesFollowEq3Range) {
   const double r = 0.1;
   for (const double alpha : {0.0, 0.2, 0.5, 0.8}) {
@@ -119,7 +129,11 @@ TEST(GrowAggregate, BaseVerticesFollowEq3Range) {
     int count = 0;
     for (std::uint64_t i = 0; i < 1000; ++i) {
       Rng rng(99, i);
-      const auto body = grow_aggregate({.alpha = alpha, .radius = r, .edge_length = 0.6 * r}, rng);
+      const auto body = grow_aggregate({.alpha = alpha,
+                                        .radius = r,
+                                        .edge_length = 0.6 * r,
+                                        .form = {.growth = Growth::kMidpoint}},
+                                       rng);
       for (int k = 0; k < 6; ++k) {
         const Vec3& v = body.vertices()[static_cast<std::size_t>(k)];
         const int axis = k / 2;
@@ -170,7 +184,9 @@ TEST(GrowAggregate, AlphaOneWithoutGrowthIsTheRegularOctahedron) {
 TEST(GrowAggregate, AlphaOneGrownKeepsRegularBase) {
   const double r = 0.1;
   Rng rng(5, 3);
-  const auto body = grow_aggregate({.alpha = 1.0, .radius = r, .edge_length = 0.4 * r}, rng);
+  const auto body = grow_aggregate(
+      {.alpha = 1.0, .radius = r, .edge_length = 0.4 * r, .form = {.growth = Growth::kMidpoint}},
+      rng);
   ASSERT_GT(body.vertex_count(), 6u);
   for (std::size_t k = 0; k < 6; ++k) EXPECT_DOUBLE_EQ(body.vertices()[k].norm(), r);
   // With alpha = 1 every draw is r; a vertex only comes in closer where the convexity clamp
@@ -184,41 +200,67 @@ TEST(GrowAggregate, AlphaOneGrownKeepsRegularBase) {
   EXPECT_GT(on_sphere, 6u);
 }
 
-// A limit that always answers s_lo puts every new vertex on the midpoint of the edge it splits:
-// growth then only subdivides the base octahedron, so the volume is exactly the base's.
-TEST(GrowAggregate, GrowthLimitIsHonoured) {
-  int calls = 0;
-  const GrowthLimit flat = [&calls](const Vec3& direction, double s_lo, double s_hi) {
-    ++calls;
-    EXPECT_NEAR(direction.norm(), 1.0, 1e-14);
-    EXPECT_LE(s_lo, s_hi * (1 + 1e-12));
-    return s_lo;
-  };
-  const GrowthParams params{.alpha = 0.3, .radius = 0.1, .edge_length = 0.04};
-  Rng rng(8, 1);
-  const auto body = grow_aggregate(params, rng, flat);
-  Rng replay(8, 1);
-  std::array<double, 6> distances{};
-  for (auto& d : distances) d = eq3_distance(params.alpha, params.radius, replay.uniform());
-  const auto base = mass_properties(make_octahedron(distances));
-  EXPECT_EQ(static_cast<std::size_t>(calls), body.vertex_count() - 6);
-  EXPECT_NEAR(mass_properties(body).volume, base.volume, 1e-12 * base.volume);
-  EXPECT_LE(body.longest_edge(), params.edge_length * (1 + kLengthTolerance));
-  EXPECT_TRUE(check_closed_manifold(body).is_ok);
-  EXPECT_TRUE(check_convex(body, 1e-12).is_ok);
+// Hull rule at alpha = 1: every draw is the control radius and every point of an edge lies inside
+// the sphere, so every new vertex bulges out onto the sphere; the random points make every
+// particle different (only the midpoint rule's alpha = 1 particles are all alike).
+TEST(GrowAggregate, HullAlphaOneVerticesOnTheSphereAndParticlesDiffer) {
+  const double r = 0.1;
+  std::vector<double> volumes;
+  for (std::uint64_t i = 0; i < 50; ++i) {
+    Rng rng(5, i);
+    const auto body = grow_aggregate({.alpha = 1.0, .radius = r, .edge_length = 0.5 * r}, rng);
+    ASSERT_GT(body.vertex_count(), 30u);
+    for (const auto& v : body.vertices()) ASSERT_NEAR(v.norm(), r, 1e-14);
+    volumes.push_back(mass_properties(body).volume);
+  }
+  const auto stats = summarize(volumes);
+  EXPECT_GT(stats.standard_deviation, 1e-3 * stats.mean);
+  // A polyhedron inscribed in the sphere with edges <= r / 2: between 85 % and 100 % of it.
+  EXPECT_GT(stats.minimum, 0.85 * 4.0 / 3.0 * std::numbers::pi * r * r * r);
+  EXPECT_LT(stats.maximum, 4.0 / 3.0 * std::numbers::pi * r * r * r);
+}
 
-  // A limit halfway into the feasible interval: a smaller body, still convex and within L.
-  const GrowthParams full_params{.alpha = 1.0, .radius = 0.1, .edge_length = 0.05};
-  const GrowthLimit halfway = [](const Vec3&, double s_lo, double s_hi) {
-    return s_lo + 0.5 * (s_hi - s_lo);
-  };
-  Rng rng2(8, 2);
-  const auto capped = grow_aggregate(full_params, rng2, halfway);
-  Rng rng3(8, 2);
-  const auto full = grow_aggregate(full_params, rng3);
-  EXPECT_LT(mass_properties(capped).volume, 0.99 * mass_properties(full).volume);
-  EXPECT_TRUE(check_convex(capped, 1e-12).is_ok);
-  EXPECT_LE(capped.longest_edge(), full_params.edge_length * (1 + kLengthTolerance));
+// A limit that always answers s_lo puts every new vertex on the edge it splits (the midpoint
+// rule: its midpoint; the hull rule: its random point): growth then only subdivides the base
+// octahedron, so the volume is exactly the base's.
+TEST(GrowAggregate, GrowthLimitIsHonoured) {
+  for (const Growth growth : {Growth::kMidpoint, Growth::kHull}) {
+    SCOPED_TRACE(growth_name(growth));
+    int calls = 0;
+    const GrowthLimit flat = [&calls](const Vec3& direction, double s_lo, double s_hi) {
+      ++calls;
+      EXPECT_NEAR(direction.norm(), 1.0, 1e-14);
+      EXPECT_LE(s_lo, s_hi * (1 + 1e-12));
+      return s_lo;
+    };
+    const GrowthParams params{
+        .alpha = 0.3, .radius = 0.1, .edge_length = 0.04, .form = {.growth = growth}};
+    Rng rng(8, 1);
+    const auto body = grow_aggregate(params, rng, flat);
+    Rng replay(8, 1);
+    std::array<double, 6> distances{};
+    for (auto& d : distances) d = eq3_distance(params.alpha, params.radius, replay.uniform());
+    const auto base = mass_properties(make_octahedron(distances));
+    EXPECT_EQ(static_cast<std::size_t>(calls), body.vertex_count() - 6);
+    EXPECT_NEAR(mass_properties(body).volume, base.volume, 1e-12 * base.volume);
+    EXPECT_LE(body.longest_edge(), params.edge_length * (1 + kLengthTolerance));
+    EXPECT_TRUE(check_closed_manifold(body).is_ok);
+    EXPECT_TRUE(check_convex(body, 1e-12).is_ok);
+
+    // A limit halfway into the feasible interval: a smaller body, still convex and within L.
+    const GrowthParams full_params{
+        .alpha = 1.0, .radius = 0.1, .edge_length = 0.05, .form = {.growth = growth}};
+    const GrowthLimit halfway = [](const Vec3&, double s_lo, double s_hi) {
+      return s_lo + 0.5 * (s_hi - s_lo);
+    };
+    Rng rng2(8, 2);
+    const auto capped = grow_aggregate(full_params, rng2, halfway);
+    Rng rng3(8, 2);
+    const auto full = grow_aggregate(full_params, rng3);
+    EXPECT_LT(mass_properties(capped).volume, 0.99 * mass_properties(full).volume);
+    EXPECT_TRUE(check_convex(capped, 1e-12).is_ok);
+    EXPECT_LE(capped.longest_edge(), full_params.edge_length * (1 + kLengthTolerance));
+  }
 }
 
 // The measured alpha (Eq. 2) is a different number from the input alpha (Eq. 3), but fuller
@@ -233,9 +275,13 @@ TEST(GrowAggregate, MeasuredAlphaRisesWithInputAlpha) {
   auto mean_measured = [](double alpha) {
     std::vector<double> measured;
     for (std::uint64_t i = 0; i < 400; ++i) {
-      const auto particle = generate_particle(
-          {.alpha = alpha, .radius_min = 0.1, .radius_max = 0.1, .edge_length = 0.05, .seed = 3},
-          i);
+      const auto particle = generate_particle({.alpha = alpha,
+                                               .radius_min = 0.1,
+                                               .radius_max = 0.1,
+                                               .edge_length = 0.05,
+                                               .seed = 3,
+                                               .form = {.growth = Growth::kMidpoint}},
+                                              i);
       measured.push_back(describe(particle.body).measured_alpha);
     }
     return summarize(measured);
@@ -333,8 +379,12 @@ TEST(GenerateParticle, GoldenHashOfFiveHundredParticles) {
 #else
   std::uint64_t hash = 0xcbf29ce484222325ULL;
   for (const double alpha : {0.0, 0.5, 1.0}) {
-    const GeneratorOptions options{
-        .alpha = alpha, .radius_min = 0.05, .radius_max = 0.1, .edge_length = 0.035, .seed = 1};
+    const GeneratorOptions options{.alpha = alpha,
+                                   .radius_min = 0.05,
+                                   .radius_max = 0.1,
+                                   .edge_length = 0.035,
+                                   .seed = 1,
+                                   .form = {.growth = Growth::kMidpoint}};
     for (std::uint64_t i = 0; i < 500; ++i) {
       const auto particle = generate_particle(options, i);
       hash = fnv1a(hash, &particle.control_radius, sizeof(double));
@@ -462,8 +512,8 @@ TEST(GrowAggregate, CapAtTheEstimateIsEnough) {
       const double radius = 0.1;
       GrowthParams params{
           .alpha = alpha, .radius = radius, .edge_length = edge_over_radius * radius};
-      params.max_vertices =
-          static_cast<std::uint32_t>(std::ceil(estimated_vertex_count(radius, params.edge_length)));
+      params.max_vertices = static_cast<std::uint32_t>(
+          std::ceil(estimated_vertex_count(radius, params.edge_length, params.form.growth)));
       ASSERT_NO_THROW(validate(params));
       const int count = edge_over_radius < 0.1 ? 5 : 60;
       for (int i = 0; i < count; ++i) {
@@ -477,6 +527,67 @@ TEST(GrowAggregate, CapAtTheEstimateIsEnough) {
     }
   }
   EXPECT_EQ(grown, 5 * 5 + 6 * 5 * 60);
+}
+
+// The hull rule's bits, pinned as the midpoint rule's above (every new input below draws: the
+// random point, the control ellipsoid, the minimum edge ratio).
+TEST(GenerateParticle, GoldenHashOfHullGrowth) {
+#if !defined(__x86_64__)
+  GTEST_SKIP() << "golden bits recorded on x86-64";
+#else
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  for (const double alpha : {0.0, 0.5, 1.0}) {
+    const GeneratorOptions options{.alpha = alpha,
+                                   .radius_min = 0.05,
+                                   .radius_max = 0.1,
+                                   .edge_length = 0.05,
+                                   .seed = 1,
+                                   .form = {.elongation = 0.7, .flatness = 0.8}};
+    for (std::uint64_t i = 0; i < 300; ++i) {
+      const auto particle = generate_particle(options, i);
+      hash = fnv1a(hash, &particle.control_radius, sizeof(double));
+      hash = hash_body(hash, particle.body);
+    }
+  }
+  EXPECT_EQ(hash, 0x201ae80419def24cULL) << std::hex << "0x" << hash;
+#endif
+}
+
+TEST(Validate, GrowthFormFieldsNamed) {
+  auto field_of = [](const GrowthForm& form) -> std::string {
+    try {
+      validate(form, "particle.");
+    } catch (const InvalidInput& error) {
+      return error.field();
+    }
+    return "";
+  };
+  EXPECT_EQ(field_of({}), "");
+  EXPECT_EQ(field_of({.elongation = 0.05}), "particle.elongation");
+  EXPECT_EQ(field_of({.elongation = 1.2}), "particle.elongation");
+  EXPECT_EQ(field_of({.flatness = std::nan("")}), "particle.flatness");
+  EXPECT_EQ(field_of({.min_edge_ratio = 0.6}), "particle.min_edge_ratio");
+  EXPECT_EQ(field_of({.min_edge_ratio = -0.1}), "particle.min_edge_ratio");
+  EXPECT_EQ(find_growth("hull"), Growth::kHull);
+  EXPECT_EQ(find_growth("midpoint"), Growth::kMidpoint);
+  EXPECT_FALSE(find_growth("Hull").has_value());
+  EXPECT_STREQ(growth_name(Growth::kMidpoint), "midpoint");
+}
+
+// The control ellipsoid's radius: the semi-axes along its turned axes, 1 / sqrt(sum (u_i/a_i)^2)
+// between them.
+TEST(ControlRadius, EllipsoidSemiAxesAndBetween) {
+  GrowthParams params{.radius = 2.0, .form = {.elongation = 0.5, .flatness = 0.25}};
+  EXPECT_DOUBLE_EQ(control_radius_along(params, Vec3(1, 0, 0)), 2.0);
+  EXPECT_DOUBLE_EQ(control_radius_along(params, Vec3(0, -1, 0)), 1.0);
+  EXPECT_DOUBLE_EQ(control_radius_along(params, Vec3(0, 0, 1)), 0.25);
+  const Vec3 u = Vec3(1, 1, 0).normalized();
+  EXPECT_NEAR(control_radius_along(params, u), 1.0 / std::sqrt(0.5 / 4.0 + 0.5 / 1.0), 1e-15);
+  params.axes = Quat(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3::UnitZ()));  // x -> y
+  EXPECT_NEAR(control_radius_along(params, Vec3(0, 1, 0)), 2.0, 1e-14);
+  EXPECT_NEAR(control_radius_along(params, Vec3(1, 0, 0)), 1.0, 1e-14);
+  GrowthParams sphere{.radius = 0.3};
+  EXPECT_EQ(control_radius_along(sphere, u), 0.3);
 }
 
 }  // namespace

@@ -31,11 +31,15 @@ class InvalidInput : public Error {
   InvalidInput(const std::string& field, const std::string& value, const std::string& allowed)
       : Error(ErrorKind::kInvalidInput,
               "invalid " + field + " = " + value + " (allowed: " + allowed + ")"),
-        field_(field) {}
+        field_(field),
+        allowed_(allowed) {}
   [[nodiscard]] const std::string& field() const { return field_; }
+  /// The allowed text, for a front end that names the field in the user's words.
+  [[nodiscard]] const std::string& allowed() const { return allowed_; }
 
  private:
   std::string field_;
+  std::string allowed_;
 };
 
 /// A file that cannot be opened, created or renamed.

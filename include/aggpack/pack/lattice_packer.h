@@ -8,6 +8,7 @@
 
 #include "aggpack/pack/packing.h"
 #include "aggpack/pack/progress.h"
+#include "aggpack/shape/generator.h"
 
 namespace aggpack {
 
@@ -29,7 +30,13 @@ struct LatticeOptions {
   double spacing = 0.0;
   std::uint32_t max_vertices = 20000;  ///< vertex cap per particle, [6, 10^6]
   std::uint64_t seed = 1;              ///< master seed; site i draws from Rng(seed, i)
+  /// Growth rule and control-surface axis ratios. A control ellipsoid is turned at random at each
+  /// site (from its own stream, Rng(seed ^ salt, i), so spheres draw exactly as without it).
+  GrowthForm form{};
 };
+
+/// The growth controls of every site (the control ellipsoid unturned).
+GrowthParams growth_params(const LatticeOptions& options);
 
 /// Throws InvalidInput naming the field ("lattice.radius", "lattice.spacing",
 /// "container.length", ...) unless the options are usable, and LimitExceeded if the vertex cap is

@@ -7,6 +7,7 @@
 #include "aggpack/pack/grading.h"
 #include "aggpack/pack/packing.h"
 #include "aggpack/pack/progress.h"
+#include "aggpack/shape/generator.h"
 
 namespace aggpack {
 
@@ -23,7 +24,11 @@ struct ShapeOptions {
   /// radius and reused, scaled to each particle's size and randomly oriented (Particle::scale);
   /// needed for ~10^6 particles (memory and time). Requires edge_length == 0. [0, 10^6]
   std::uint32_t library_size = 0;
+  GrowthForm form{};  ///< growth rule and control-surface axis ratios
 };
+
+/// The growth controls of a particle of control radius `radius` (m): L absolute or relative.
+GrowthParams growth_params(const ShapeOptions& shape, double radius);
 
 /// What the random packer aims for.
 enum class PackTarget {

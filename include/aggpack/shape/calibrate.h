@@ -1,24 +1,28 @@
 #pragma once
-// Particles to a measured target (issue 15, item 1): find the generator's Eq. 3 alpha whose
-// particles match a measured mean descriptor (V / V_circumscribed-sphere as the paper's Table 1,
-// the Eq. 2 measured alpha, or the Eq. 1 sphericity) at a fixed edge-length ratio L / R.
+// Particles to measured targets: find the generator inputs (the Eq. 3 alpha, L / r and, when an
+// elongation or flatness is asked for, the control ellipsoid's axis ratios) whose particles match
+// up to three measured mean descriptors at once (V / V_circumscribed-sphere as the paper's
+// Table 1, the Eq. 2 alpha, the Eq. 1 sphericity, elongation, flatness).
 //
-// Search: a grid of alpha in [0, 1] (every point generates `samples` particles, seed `seed`,
-// indices 0..samples-1, so the same particles up to alpha: common random numbers), then
-// bisection inside the first bracket (from alpha = 1 down) whose ends straddle the target. The
-// descriptor need not be monotone in alpha (the Eq. 2 alpha is not); the grid's smallest and
-// largest means are the reachable range reported when a target lies outside it.
+// Search: every evaluation grows `samples` particles with seed `seed`, indices 0..samples-1, so
+// the same particles up to the inputs (common random numbers: the means are smooth in the
+// inputs). A grid of three values per searched input (ends and middle of its range) picks the
+// start of a Nelder-Mead descent on the sum of squared relative misses; every evaluated point
+// is kept, and their smallest and largest means are the reachable range reported for a target
+// that cannot be met. Deterministic at any thread count.
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "aggpack/shape/descriptors.h"
+#include "aggpack/shape/generator.h"
 
 namespace aggpack {
 
-/// The descriptor a calibration matches.
+/// A descriptor a calibration matches.
 enum class CalibrationTarget {
   kVolumeRatio,  ///< V / (pi/6 D^3), D = 2 r the control sphere's diameter
   /// V / volume of the particle's smallest enclosing sphere: Table 1's V / V_circumscribed as a
@@ -43,59 +47,80 @@ const char* calibration_target_name(CalibrationTarget target);
 double calibration_value(CalibrationTarget target, const ShapeDescriptors& descriptors,
                          double control_radius);
 
-struct CalibrationOptions {
-  CalibrationTarget target = CalibrationTarget::kVolumeRatio;
+/// One mean descriptor to match.
+struct CalibrationGoal {
+  CalibrationTarget target = CalibrationTarget::kEnclosedVolumeRatio;
   double value = 0.5;  ///< target mean, in (0, 1]
-  /// Circumscribed diameter D (m), > 0: of the control sphere (D = 2 r), or, for
-  /// kEnclosedVolumeRatio, the mean diameter of the particles' smallest enclosing spheres (the
-  /// control radius is then scaled to give it).
+};
+
+/// The generator inputs a calibration sets.
+struct CalibrationInputs {
+  double alpha = 0.5;       ///< Eq. 3 input
+  double edge_ratio = 1.0;  ///< L / r
+  double elongation = 1.0;  ///< control ellipsoid's intermediate / long semi-axis
+  double flatness = 1.0;    ///< control ellipsoid's short / intermediate semi-axis
+};
+
+/// The ranges searched: alpha [0, 1], L / r [kMinSearchedEdgeRatio, kMaxSearchedEdgeRatio],
+/// axis ratios [kMinSearchedAxisRatio, 1].
+constexpr double kMinSearchedEdgeRatio = 0.25;
+constexpr double kMaxSearchedEdgeRatio = 1.4;
+constexpr double kMinSearchedAxisRatio = 0.15;
+
+struct CalibrationOptions {
+  /// 1 to 3 goals, each descriptor at most once.
+  std::vector<CalibrationGoal> goals = {{}};
+  /// Circumscribed diameter D (m), > 0: of the control sphere (D = 2 r), or, with a
+  /// kEnclosedVolumeRatio goal, the mean diameter of the particles' smallest enclosing spheres
+  /// (the control radius is then scaled to give it).
   double diameter = 0.01;
-  double edge_ratio = 1.0;             ///< L / r, in [0.05, 1.5] (fixed, not searched)
+  /// Growth rule and minimum edge ratio. Its axis ratios are searched when an elongation or
+  /// flatness goal is given (each with its own goal), else kept as given.
+  GrowthForm form{};
+  /// L / r kept fixed, in [0.05, 1.5]; unset = searched.
+  std::optional<double> edge_ratio;
   std::size_t samples = 200;           ///< particles per evaluation, [2, 100000]
   std::uint64_t seed = 1;              ///< particle i of every evaluation uses stream (seed, i)
-  std::size_t grid_points = 11;        ///< alpha grid 0, 1/(n-1), ..., 1; [3, 101]
-  double tolerance = 0.005;            ///< relative |mean - value| / value to stop at, (0, 0.02]
+  double tolerance = 0.02;             ///< relative miss accepted per goal, (0, 0.2]
+  std::size_t max_evaluations = 250;   ///< grid + descent, [10, 10000]
   std::uint32_t max_vertices = 20000;  ///< vertex cap per particle
 };
 
 /// Throws InvalidInput naming the field unless the options are usable.
 void validate(const CalibrationOptions& options);
 
-/// One evaluated generator input.
+/// One evaluated set of inputs: the mean and spread of every target descriptor, in
+/// kCalibrationTargets order.
 struct CalibrationPoint {
-  double alpha = 0;
-  SummaryStatistics achieved;  ///< of the target descriptor over the samples
+  CalibrationInputs inputs;
+  std::vector<SummaryStatistics> descriptors;
 };
 
 struct CalibrationResult {
-  double alpha = 0;            ///< the Eq. 3 input found
-  double radius = 0;           ///< control radius r = D / 2 (m)
-  double edge_length = 0;      ///< L = edge_ratio * r (m)
-  SummaryStatistics achieved;  ///< target descriptor at `alpha`
-  SummaryStatistics volume;    ///< particle volume at `alpha` and `radius` (m^3)
-  /// Radius of each particle's smallest enclosing sphere at `alpha` and `radius` (m).
-  SummaryStatistics enclosing_radius;
-  /// Every target descriptor at `alpha`, in kCalibrationTargets order (the other measures of
-  /// the particles found: e.g. the Eq. 2 alpha of a volume-ratio match).
-  std::vector<SummaryStatistics> all_descriptors;
-  double reachable_minimum = 0;             ///< smallest grid mean
-  double reachable_maximum = 0;             ///< largest grid mean
-  bool within_tolerance = false;            ///< |achieved.mean - value| <= tolerance * value
-  std::vector<CalibrationPoint> evaluated;  ///< every point evaluated, sorted by alpha
+  CalibrationInputs inputs;                        ///< found
+  double radius = 0;                               ///< control radius r (m)
+  double edge_length = 0;                          ///< L = edge_ratio * r (m)
+  std::vector<SummaryStatistics> achieved;         ///< per goal, at `inputs` and `radius`
+  std::vector<SummaryStatistics> all_descriptors;  ///< kCalibrationTargets order
+  SummaryStatistics volume;                        ///< particle volume (m^3)
+  SummaryStatistics enclosing_radius;  ///< radius of each particle's smallest enclosing sphere (m)
+  bool within_tolerance = false;       ///< every goal's relative miss <= tolerance
+  std::vector<CalibrationPoint> evaluated;  ///< every point, in the order evaluated
 };
 
-/// Mean and spread of the target descriptor over `options.samples` particles grown with Eq. 3
-/// input `alpha` and control radius diameter / 2; when given, `volume` gets the volume's,
-/// `enclosing` the smallest enclosing sphere radius' and `all` every target descriptor's (in
-/// kCalibrationTargets order). Deterministic at any thread count.
-SummaryStatistics evaluate_calibration(const CalibrationOptions& options, double alpha,
-                                       SummaryStatistics* volume = nullptr,
-                                       std::vector<SummaryStatistics>* all = nullptr,
-                                       SummaryStatistics* enclosing = nullptr);
+/// The particles of `inputs` at control radius diameter / 2 (or `radius` when > 0), measured:
+/// every target descriptor, and when given the volume's and the enclosing radius' statistics.
+CalibrationPoint evaluate_calibration(const CalibrationOptions& options,
+                                      const CalibrationInputs& inputs, double radius = 0,
+                                      SummaryStatistics* volume = nullptr,
+                                      SummaryStatistics* enclosing = nullptr);
 
-/// Finds the alpha whose particles' mean descriptor is `options.value`.
-/// \throw InvalidInput naming the descriptor, the value and the reachable range when the target
-/// lies outside what alpha in [0, 1] reaches at this L / r.
+/// The mean of `target` in a point.
+double mean_of(const CalibrationPoint& point, CalibrationTarget target);
+
+/// Finds the inputs whose particles' mean descriptors meet every goal.
+/// \throw InvalidInput naming the goal missed by most, its value, the range of means reached and
+/// the closest inputs, when the goals cannot be met together within the tolerance.
 CalibrationResult calibrate(const CalibrationOptions& options);
 
 }  // namespace aggpack

@@ -74,6 +74,10 @@ class RunningSummary {
   double squares_ = 0.0;  // sum of squared deviations from the running mean
 };
 
+/// V / V_circumscribed: the volume over that of the particle's smallest enclosing sphere (the
+/// paper's Table 1 ratio as measured on a real particle); 0 for an empty body.
+double enclosed_volume_ratio(const ShapeDescriptors& descriptors);
+
 /// Names and accessors of the numeric descriptors, in CSV column order.
 struct DescriptorColumn {
   const char* name;

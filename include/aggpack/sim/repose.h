@@ -49,6 +49,7 @@ struct ReposeOptions {
   double alpha = 0.5;        ///< Eq. 3 shape control, [0, 1]
   double radius = 0.1;       ///< control radius R (m), > 0; lattice spacing 2R
   double edge_length = 0.1;  ///< L (m), > 0
+  GrowthForm form{};         ///< growth rule and control-surface axis ratios
   double fill_height = 2.8;  ///< m, height of the lattice region (14 layers of 2R = 0.2 m)
   std::uint64_t seed = 1;    ///< master seed; particle i draws from Rng(seed, i)
   /// Turn each particle by a uniformly random rotation about its lattice site (stream
