@@ -1,7 +1,8 @@
-// Random aggregate generator throughput (issue 2 item 8): particles per second for
-// alpha in {0.2, 0.5, 0.9} x L/r in {1, 0.5, 0.25}, one thread. Target: >= 100,000 particles/s
-// per core at L/r = 0.5. Also the cost of measuring a particle (describe) and of the two
-// structural checks, so `aggpack shapes` timings can be split into their parts.
+// Random aggregate generator throughput (issue 2 item 8): particles per second and time per final
+// vertex for alpha in {0.2, 0.5, 0.9} x L/r in {1, 0.5, 0.25} x both growth rules, one thread.
+// Target: >= 100,000 particles/s per core at L/r = 0.5. Also the cost of measuring a particle
+// (describe) and of the two structural checks, so `aggpack shapes` timings can be split into their
+// parts.
 //
 //   build-gen/generator_bench --benchmark_min_time=1
 
@@ -17,18 +18,23 @@
 
 namespace {
 
-// Benchmark arguments are integers: alpha in percent and L/r in percent.
+// Benchmark arguments are integers: alpha in percent, L/r in percent and the growth rule
+// (0 = hull, the default; 1 = midpoint, aggpack 0.1's).
 aggpack::GrowthParams params_from(const benchmark::State& state) {
   const double radius = 0.1;
   return {.alpha = static_cast<double>(state.range(0)) / 100.0,
           .radius = radius,
-          .edge_length = radius * static_cast<double>(state.range(1)) / 100.0};
+          .edge_length = radius * static_cast<double>(state.range(1)) / 100.0,
+          .form = {.growth =
+                       state.range(2) == 0 ? aggpack::Growth::kHull : aggpack::Growth::kMidpoint}};
 }
 
 void grid(benchmark::internal::Benchmark* bench) {
-  bench->ArgNames({"alpha%", "L/r%"});
-  for (const std::int64_t alpha : {20, 50, 90}) {
-    for (const std::int64_t edge : {100, 50, 25}) bench->Args({alpha, edge});
+  bench->ArgNames({"alpha%", "L/r%", "midpoint"});
+  for (const std::int64_t growth : {0, 1}) {
+    for (const std::int64_t alpha : {20, 50, 90}) {
+      for (const std::int64_t edge : {100, 50, 25}) bench->Args({alpha, edge, growth});
+    }
   }
 }
 
@@ -46,6 +52,8 @@ void BM_GrowAggregate(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
   state.counters["vertices/particle"] =
       static_cast<double>(vertices) / static_cast<double>(state.iterations());
+  state.counters["s/vertex"] = benchmark::Counter(
+      static_cast<double>(vertices), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["particles/s"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }

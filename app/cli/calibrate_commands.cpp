@@ -69,6 +69,7 @@ void resolve_goals(CalibrateFlags& flags, const CLI::App& command) {
     flags.goal_flags.emplace_back(flag);
   };
   add("--volume", volume_target, flags.volume, flags.volume / sphere, sphere);
+  if (command.count("--volume") > 0) o.volume = flags.volume;
   add("--volume-ratio", volume_target, flags.volume_ratio, flags.volume_ratio, 1.0);
   add("--alpha", CalibrationTarget::kMeasuredAlpha, flags.alpha, flags.alpha, 1.0);
   add("--sphericity", CalibrationTarget::kSphericity, flags.sphericity, flags.sphericity, 1.0);
@@ -189,7 +190,8 @@ void register_calibrate(CLI::App& app) {
   command->add_option("--volume-ratio", flags->volume_ratio,
                       "target mean V / V_circumscribed-sphere, (0, 1]");
   command->add_option("--volume", flags->volume,
-                      "target mean particle volume (m^3) at --diameter (= a volume ratio)");
+                      "target mean particle volume (m^3) at --diameter (= a volume ratio; the "
+                      "particles are sized to this mean volume)");
   command->add_option("--alpha", flags->alpha, "target mean Eq. 2 measured alpha, (0, 1]");
   command->add_option("--sphericity", flags->sphericity, "target mean Eq. 1 sphericity, (0, 1]");
   command->add_option("--elongation", flags->elongation,
@@ -246,7 +248,14 @@ void register_calibrate(CLI::App& app) {
                            : flag == "--sphericity"   ? flags->sphericity
                            : flag == "--elongation"   ? flags->elongation
                                                       : flags->flatness;
-      throw InvalidInput(flag, format_value(typed), error.allowed());
+      const double sphere =
+          std::numbers::pi / 6.0 * std::pow(flags->options.diameter, 3);  // for --volume
+      throw InvalidInput(
+          flag,
+          format_value(typed) + (flag == "--volume"
+                                     ? " m^3, i.e. V / V_circ = " + format_value(typed / sphere)
+                                     : std::string()),
+          error.allowed());
     }
     print_result(*flags, result);
     if (!flags->table.empty()) {

@@ -104,6 +104,7 @@ class Search {
       : options_(options), space_(space) {}
 
   double objective(const std::vector<double>& u) {
+    coordinates.push_back(u);
     CalibrationPoint point = evaluate_calibration(options_, space_.inputs(u));
     double sum = 0.0;
     double worst = 0.0;
@@ -122,11 +123,12 @@ class Search {
   }
   [[nodiscard]] bool is_done() const {
     // Well inside the tolerance, so that the full evaluation stays inside it too.
-    return (!evaluated.empty() && best_worst_ <= 0.25 * options_.tolerance) ||
+    return (!evaluated.empty() && best_worst_ <= 0.5 * options_.tolerance) ||
            evaluated.size() >= options_.max_evaluations;
   }
 
   std::vector<CalibrationPoint> evaluated;
+  std::vector<std::vector<double>> coordinates;  // of each evaluated point, in [0, 1]^k
   std::size_t best = 0;
 
  private:
@@ -167,7 +169,7 @@ void nelder_mead(Search& search, std::vector<double> start, double step) {
         size = std::max(size, std::abs(simplex[order[i]][d] - simplex[order[0]][d]));
       }
     }
-    if (size < 1e-4) return;
+    if (size < 1e-3) return;
     std::vector<double> centre(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t d = 0; d < n; ++d)
@@ -271,6 +273,7 @@ void validate(const CalibrationOptions& options) {
     }
   }
   require_positive("diameter", options.diameter);
+  if (options.volume) require_positive("volume", *options.volume);
   if (options.edge_ratio) require_in_range("edge_ratio", *options.edge_ratio, 0.05, 1.5);
   if (options.samples < 2 || options.samples > 100000) {
     throw InvalidInput("samples", std::to_string(options.samples), "[2, 100000]");
@@ -344,13 +347,22 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
     search.objective(u);
     if (search.best != before || index == 0) start = u;
   }
-  nelder_mead(search, start, 0.25);
+  // Restarts from the best point with a smaller simplex while the goals are not met: a descent
+  // on a noisy (finite-sample) objective can stall on a face of the cube.
+  for (double step = 0.25; step > 0.01 && !search.is_done(); step *= 0.5) {
+    nelder_mead(search, search.evaluated.empty() ? start : search.coordinates[search.best], step);
+  }
 
   CalibrationResult result;
   const CalibrationPoint& best = search.evaluated[search.best];
   result.inputs = best.inputs;
   result.radius = 0.5 * options.diameter;
-  if (has_goal(options, CalibrationTarget::kEnclosedVolumeRatio)) {
+  if (options.volume) {
+    // The measured volume itself: scale so that the mean volume is met (volume ~ r^3).
+    SummaryStatistics volume;
+    evaluate_calibration(options, best.inputs, 0.0, &volume);
+    result.radius = 0.5 * options.diameter * std::cbrt(*options.volume / volume.mean);
+  } else if (has_goal(options, CalibrationTarget::kEnclosedVolumeRatio)) {
     // Ratios do not depend on the scale: size the control sphere so that the mean enclosing
     // diameter is D.
     SummaryStatistics enclosing;

@@ -117,7 +117,10 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const Grow
   const auto expected = static_cast<std::size_t>(
       std::min(estimated_vertex_count(params.radius, params.edge_length, params.form.growth) + 16.0,
                static_cast<double>(params.max_vertices) + 1.0));
-  detail::GrowingMesh mesh(base, params.edge_length, expected);
+  detail::GrowingMesh mesh(
+      base, params.edge_length,
+      params.form.growth == Growth::kHull ? params.form.min_edge_ratio * params.edge_length : 0.0,
+      expected);
   const detail::DrawDistance draw = [&](const Vec3& direction) {
     return eq3_distance(params.alpha, control_radius_along(params, direction), rng.uniform());
   };

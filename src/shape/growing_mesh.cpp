@@ -81,8 +81,9 @@ constexpr double kRelativeTolerance = 1e-12;
 }  // namespace
 
 GrowingMesh::GrowingMesh(const std::array<Vec3, 6>& base, double edge_length,
-                         std::size_t expected_vertices)
-    : limit_squared_(edge_length * edge_length) {
+                         double min_edge_length, std::size_t expected_vertices)
+    : limit_squared_(edge_length * edge_length),
+      min_edge_squared_(min_edge_length * min_edge_length) {
   const std::size_t expected_faces = 2 * expected_vertices;
   vertices_.reserve(expected_vertices);
   triangles_.reserve(expected_faces);
@@ -281,8 +282,14 @@ void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistan
     }
     half = half_edge(face, k);
   } while (half != first);
-  if (!is_disk || loop.size() != border_count) {  // rounding made the patch other than a disk:
-    for (const std::uint32_t h : loop) is_dead_vertex_[from_of(h)] = 0;  // split instead
+  // The minimum edge length: a new vertex that would come closer than it to a vertex it joins
+  // (a short edge, thin triangles around it) splits the edge instead.
+  const bool is_too_close = std::any_of(loop.begin(), loop.end(), [&](std::uint32_t h) {
+    return (vertices_[from_of(h)] - point).squaredNorm() < min_edge_squared_;
+  });
+  // Rounding can make the patch other than a disk; then, too, the vertex splits the edge.
+  if (!is_disk || loop.size() != border_count || is_too_close) {
+    for (const std::uint32_t h : loop) is_dead_vertex_[from_of(h)] = 0;
     for (const std::uint32_t face : visible_) is_visible_[face] = 0;
     split_at(ab, on_edge);
     return;

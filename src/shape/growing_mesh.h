@@ -45,8 +45,11 @@ using DrawDistance = std::function<double(const Vec3& direction)>;
 class GrowingMesh {
  public:
   // The base octahedron (make_octahedron's vertex and triangle order) with the given six
-  // vertices (+x, -x, +y, -y, +z, -z directions).
-  GrowingMesh(const std::array<Vec3, 6>& base, double edge_length, std::size_t expected_vertices);
+  // vertices (+x, -x, +y, -y, +z, -z directions). Growth stops when every edge is <= edge_length;
+  // the hull rule makes no edge shorter than min_edge_length to the new vertex (it splits the
+  // edge instead).
+  GrowingMesh(const std::array<Vec3, 6>& base, double edge_length, double min_edge_length,
+              std::size_t expected_vertices);
 
   [[nodiscard]] std::size_t vertex_count() const { return live_vertices_; }
 
@@ -81,6 +84,7 @@ class GrowingMesh {
   void pop();
 
   double limit_squared_;
+  double min_edge_squared_;
   std::vector<Vec3> vertices_;
   std::vector<Triangle> triangles_;
   std::vector<Twins> twins_;

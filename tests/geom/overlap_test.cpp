@@ -486,7 +486,7 @@ TEST(Overlap, AgreesWithBruteForceOnRandomPairs) {
     if (category <= 1) {
       pose_a = {Vec3(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)),
                 random_rotation(rng)};
-      pose_b = {pose_a.position + rng.uniform(0, 1.05 * scale) * random_unit(rng),
+      pose_b = {pose_a.position + rng.uniform(0, 1.6 * scale) * random_unit(rng),
                 random_rotation(rng)};
     } else {
       const Contact contact = touching_pair(a, b, rng);

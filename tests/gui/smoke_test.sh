@@ -186,6 +186,6 @@ xvfb-run -a -s "-screen 0 1000x700x24" bash -c '
   wait $pid' _ "$gui" "$here/../../examples/dense-box.toml" "$out/dense-cancel" ||
   { cat "$out/dense-cancel.txt"; exit 1; }
 cat "$out/dense-cancel.txt"
-grep -q "status: Cancelled: 1055 particles" "$out/dense-cancel.txt"
+grep -q "status: Cancelled: 576 particles" "$out/dense-cancel.txt"
 grep -q "^Warning: cancelled; the packing holds the last verified state" "$out/dense-cancel.txt"
 python3 "$here/check_screenshot.py" "$out/dense-cancel.png" 1000 700

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <set>
 #include <string>
@@ -159,11 +160,18 @@ double min_dihedral_degrees(const Vec3& a, const Vec3& b, const Vec3& c, const V
   return smallest;
 }
 
-TEST(TetGenQuality, FewSliversAndExactSurfaceOverGeneratedShapes) {
+// TetGen keeps each particle's surface, so a surface triangle's small angles bound the
+// tetrahedra beside it. Measured (300 particles, L = r = 0.1 m): midpoint growth 11,145
+// tetrahedra, 4 below 10 degrees (0.036 %; without the angle switches, q ratio only, 163 of
+// 11,702, 1.4 %); hull growth, whose random points leave thin surface triangles (0.5 % of the
+// surface angles below 10 degrees at L = r, none under the midpoint rule), more: the bound below.
+// Shapes TetGen fails on (5 of 300 here) are the fallback's business, tested above.
+void expect_few_slivers(Growth growth, double max_fraction) {
   std::vector<ConvexPolyhedron> bodies;
   for (const double alpha : {0.3, 0.5, 0.8}) {
     for (std::uint64_t index = 0; index < 100; ++index) {
-      bodies.push_back(generate_particle({.alpha = alpha, .seed = 17}, index).body);
+      bodies.push_back(
+          generate_particle({.alpha = alpha, .seed = 17, .form = {.growth = growth}}, index).body);
     }
   }
   std::vector<const ConvexPolyhedron*> pointers;
@@ -191,15 +199,18 @@ TEST(TetGenQuality, FewSliversAndExactSurfaceOverGeneratedShapes) {
     tetrahedra += mesh.tetrahedra.size();
   }
   const double fraction = static_cast<double>(slivers) / static_cast<double>(tetrahedra);
-  RecordProperty("tetrahedra", static_cast<int>(tetrahedra));
-  RecordProperty("below_10_degrees", static_cast<int>(slivers));
-  RecordProperty("smallest_dihedral_degrees", std::to_string(smallest));
-  // Measured: 11,145 tetrahedra, 4 below 10 degrees (0.036 %); without the angle switches
-  // (q ratio only) 163 of 11,702 (1.4 %). Shapes TetGen fails on (5 of 300 here) are the fallback's
-  // business, tested above.
+  std::printf(
+      "%s growth: %zu tetrahedra, %zu below 10 degrees (%.3f %%), smallest %.2f deg, "
+      "%zu of %zu shapes fell back\n",
+      growth_name(growth), tetrahedra, slivers, 100.0 * fraction, smallest, failed, bodies.size());
   EXPECT_LE(failed, bodies.size() / 50);
   EXPECT_GT(tetrahedra, 10000U);
-  EXPECT_LT(fraction, 0.001) << slivers << " of " << tetrahedra << " below 10 degrees";
+  EXPECT_LT(fraction, max_fraction) << slivers << " of " << tetrahedra << " below 10 degrees";
+}
+
+TEST(TetGenQuality, FewSliversAndExactSurfaceOverGeneratedShapes) {
+  expect_few_slivers(Growth::kMidpoint, 0.001);
+  expect_few_slivers(Growth::kHull, 0.025);
 }
 
 #endif

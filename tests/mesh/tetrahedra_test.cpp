@@ -181,7 +181,7 @@ TEST(TetGen, SmallerVolumeBoundGivesMoreTetrahedra) {
   const TetOptions coarse_options{
       .method = TetMethod::kTetGen, .max_volume = volume / 5, .is_surface_kept = false};
   TetOptions fine_options = coarse_options;
-  fine_options.max_volume = volume / 200;
+  fine_options.max_volume = volume / 1000;
   const TetMesh coarse = tetgen_mesh(body, coarse_options);
   const TetMesh fine = tetgen_mesh(body, fine_options);
   EXPECT_GT(fine.tetrahedra.size(), 3 * coarse.tetrahedra.size());

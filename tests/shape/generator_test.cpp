@@ -208,7 +208,9 @@ TEST(GrowAggregate, HullAlphaOneVerticesOnTheSphereAndParticlesDiffer) {
   std::vector<double> volumes;
   for (std::uint64_t i = 0; i < 50; ++i) {
     Rng rng(5, i);
-    const auto body = grow_aggregate({.alpha = 1.0, .radius = r, .edge_length = 0.5 * r}, rng);
+    // No minimum edge (which would make some new vertices split their edge instead).
+    const auto body = grow_aggregate(
+        {.alpha = 1.0, .radius = r, .edge_length = 0.5 * r, .form = {.min_edge_ratio = 0.0}}, rng);
     ASSERT_GT(body.vertex_count(), 30u);
     for (const auto& v : body.vertices()) ASSERT_NEAR(v.norm(), r, 1e-14);
     volumes.push_back(mass_properties(body).volume);
@@ -549,7 +551,7 @@ TEST(GenerateParticle, GoldenHashOfHullGrowth) {
       hash = hash_body(hash, particle.body);
     }
   }
-  EXPECT_EQ(hash, 0x201ae80419def24cULL) << std::hex << "0x" << hash;
+  EXPECT_EQ(hash, 0xdd8038b068615436ULL) << std::hex << "0x" << hash;
 #endif
 }
 

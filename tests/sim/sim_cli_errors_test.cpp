@@ -54,7 +54,7 @@ class SimCliErrors : public ::testing::Test {
 TEST_F(SimCliErrors, ReposeRejectsBeforeCreatingItsFolder) {
   // The lattice fill's vertex cap, found before any simulation: the user's key, exit 2, no folder.
   const std::string expected_start =
-      "aggpack: error: limit exceeded for particles.edge_length = 0.0065073 (allowed: >= about";
+      "aggpack: error: limit exceeded for particles.edge_length = 0.00661463 (allowed: >= about";
   const auto run = aggpack("repose " + kExample + " --set particles.radius=0.5 -o " + path("rr"));
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_EQ(run.output.rfind(expected_start, 0), 0U) << run.output;

@@ -34,8 +34,13 @@ using test::box_container;
 Packing gas(std::uint64_t seed, int per_axis, double depth) {
   Packing packing = box_container(1.0, 1.0, depth);
   Rng rng(seed, 0);
-  const GeneratorOptions generator{
-      .alpha = 0.4, .radius_min = 0.08, .radius_max = 0.08, .edge_length = 0.08, .seed = 7};
+  // aggpack 0.1's particles (midpoint growth), on which the solver checks below were set.
+  const GeneratorOptions generator{.alpha = 0.4,
+                                   .radius_min = 0.08,
+                                   .radius_max = 0.08,
+                                   .edge_length = 0.08,
+                                   .seed = 7,
+                                   .form = {.growth = Growth::kMidpoint}};
   const double spacing = 1.0 / per_axis;
   for (int index = 0; index < per_axis * per_axis * per_axis; ++index) {
     const ConvexPolyhedron body = generate_particle(generator, index).body;

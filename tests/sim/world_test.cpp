@@ -24,9 +24,14 @@ ConvexPolyhedron centred(const ConvexPolyhedron& body) {
   return body.translated(-mass_properties(body).centroid);
 }
 
+// aggpack 0.1's particles (midpoint growth), on which the physics checks below were set.
 ConvexPolyhedron aggregate(std::uint64_t index, double alpha = 0.5, double radius = 0.1) {
-  const GeneratorOptions options{
-      .alpha = alpha, .radius_min = radius, .radius_max = radius, .edge_length = radius, .seed = 7};
+  const GeneratorOptions options{.alpha = alpha,
+                                 .radius_min = radius,
+                                 .radius_max = radius,
+                                 .edge_length = radius,
+                                 .seed = 7,
+                                 .form = {.growth = Growth::kMidpoint}};
   return centred(generate_particle(options, index).body);
 }
 

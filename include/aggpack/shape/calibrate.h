@@ -79,6 +79,10 @@ struct CalibrationOptions {
   GrowthForm form{};
   /// L / r kept fixed, in [0.05, 1.5]; unset = searched.
   std::optional<double> edge_ratio;
+  /// Mean particle volume (m^3) to size the particles to, > 0: the control radius is scaled so
+  /// that the particles' mean volume is this (the ratios do not depend on the scale). Unset =
+  /// sized by `diameter`.
+  std::optional<double> volume;
   std::size_t samples = 200;           ///< particles per evaluation, [2, 100000]
   std::uint64_t seed = 1;              ///< particle i of every evaluation uses stream (seed, i)
   double tolerance = 0.02;             ///< relative miss accepted per goal, (0, 0.2]
