@@ -24,13 +24,18 @@ namespace aggpack::test {
 /// nx * ny * nz particles (radius 0.1 m, alpha 0.5, L = 0.1 m), one shape each, randomly rotated,
 /// on a grid of pitch 0.25 m starting at z = 0.1, so no two overlap. Particle i has size class
 /// i % 3. With `share_shapes`, particles reuse 3 shapes and odd ones get a library scale 0.8.
+/// `growth`: the particles' growth rule.
 inline Packing grid_packing(int nx, int ny, int nz, std::uint64_t seed = 1,
-                            bool share_shapes = false) {
+                            bool share_shapes = false, Growth growth = Growth::kHull) {
   Packing packing;
   packing.provenance.packer = "test-grid";
   packing.provenance.seed = seed;
-  const GeneratorOptions generator{
-      .alpha = 0.5, .radius_min = 0.1, .radius_max = 0.1, .edge_length = 0.1, .seed = seed};
+  const GeneratorOptions generator{.alpha = 0.5,
+                                   .radius_min = 0.1,
+                                   .radius_max = 0.1,
+                                   .edge_length = 0.1,
+                                   .seed = seed,
+                                   .form = {.growth = growth}};
   const int count = nx * ny * nz;
   const int shape_count = share_shapes ? std::min(3, count) : count;
   for (int s = 0; s < shape_count; ++s) {
