@@ -13,6 +13,8 @@ packages=(
   # meshing, physics, rendering, GUI
   libtet1.5-dev libbullet-dev libosmesa6-dev libegl-dev libgl-dev libglfw3-dev libimgui-dev
   libstb-dev
+  # convex hulls of imported particle shapes (particle.library)
+  libqhull-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev clang-format
   # naming and bugprone checks (scripts/tidy.sh, .clang-tidy)

@@ -18,7 +18,11 @@ StlMesh read_stl(const std::string& path) {
     throw IoError("cannot read " + path + ": it is a folder");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open " + path);
-  std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parse_stl(content, path);
+}
+
+StlMesh parse_stl(const std::string& content, const std::string& path) {
   StlMesh mesh;
   // Binary when the size matches the facet count; ASCII files start with "solid" and do not.
   if (content.size() >= 84) {
@@ -26,6 +30,8 @@ StlMesh read_stl(const std::string& path) {
     std::memcpy(&count, content.data() + 80, 4);
     if (content.size() == 84 + 50ULL * count) {
       const char* cursor = content.data() + 84;
+      mesh.normals.reserve(count);  // the size check above bounds the count by the file
+      mesh.triangles.reserve(count);
       auto get = [&cursor]() {
         float f = 0;
         std::memcpy(&f, cursor, 4);

@@ -23,4 +23,8 @@ struct StlMesh {
 /// Reads binary or ASCII STL. \throw IoError, FormatError (truncated or malformed file).
 StlMesh read_stl(const std::string& path);
 
+/// Parses an STL file's whole content (binary when its size is 84 + 50 x the facet count, else
+/// ASCII); `path` only names the file in messages. \throw FormatError.
+StlMesh parse_stl(const std::string& content, const std::string& path);
+
 }  // namespace aggpack

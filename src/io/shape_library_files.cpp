@@ -1,0 +1,128 @@
+// Loading a shape library: list the folder, then read, hash and import each file in parallel.
+
+#include "aggpack/io/shape_library_files.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
+#include "aggpack/core/text.h"
+#include "aggpack/io/mesh_read.h"
+
+namespace aggpack {
+
+namespace {
+
+constexpr std::size_t kMaxFiles = 1000000;
+
+// The files to import: (full path, name) in name order.
+std::vector<std::pair<std::string, std::string>> list_files(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const auto status = fs::status(path, error);
+  std::vector<std::pair<std::string, std::string>> files;
+  MeshFileFormat format{};
+  if (!error && fs::is_directory(status)) {
+    for (fs::directory_iterator it(path, error), end; !error && it != end; it.increment(error)) {
+      const auto& entry = *it;
+      std::error_code entry_error;
+      if (!entry.is_regular_file(entry_error)) continue;
+      const std::string name = entry.path().filename().string();
+      if (!mesh_file_format(name, format)) continue;
+      if (files.size() >= kMaxFiles) {
+        throw LimitExceeded("particle.library", aggpack::quoted(path), "at most 10^6 mesh files");
+      }
+      files.emplace_back(entry.path().string(), name);
+    }
+    if (error) throw IoError("cannot list " + path + ": " + error.message());
+    if (files.empty()) {
+      throw InvalidInput("particle.library", aggpack::quoted(path),
+                         "a folder holding .stl, .obj or .ply files (it holds none)");
+    }
+  } else if (!error && fs::is_regular_file(status)) {
+    if (!mesh_file_format(path, format)) {
+      throw InvalidInput("particle.library", aggpack::quoted(path),
+                         "a folder, or a file ending in .stl, .obj or .ply");
+    }
+    files.emplace_back(path, fs::path(path).filename().string());
+  } else {
+    throw InvalidInput("particle.library", aggpack::quoted(path),
+                       "an existing folder, or a .stl, .obj or .ply file");
+  }
+  std::sort(files.begin(), files.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  return files;
+}
+
+struct Outcome {
+  std::optional<LibraryShape> shape;
+  ErrorKind kind = ErrorKind::kFormatError;
+  std::string message;  // without the file name
+};
+
+Outcome import_file(const std::string& path, const std::string& name,
+                    const ShapeImportOptions& options) {
+  Outcome outcome;
+  try {
+    const std::string content = read_file_bytes(path, kMaxMeshFileBytes);
+    MeshFileFormat format{};
+    mesh_file_format(name, format);
+    std::string hash = content_hash(content);
+    const TriangleMesh mesh = parse_mesh(content, format, path);
+    outcome.shape = import_shape(mesh, options, name, std::move(hash));
+  } catch (const Error& error) {
+    outcome.kind = error.kind();
+    std::string message = error.what();
+    // Reader messages start with the path already; the others get it below.
+    if (message.rfind(path, 0) == 0) message = message.substr(path.size());
+    if (message.rfind(": ", 0) == 0 || message.rfind(":", 0) == 0) {
+      message = message.substr(message[1] == ' ' ? 2 : 1);
+    }
+    outcome.message = message;
+  } catch (const std::bad_alloc&) {
+    outcome.kind = ErrorKind::kLimitExceeded;
+    outcome.message = "out of memory while reading it";
+  }
+  return outcome;
+}
+
+}  // namespace
+
+ShapeLibrary load_shape_library(const ShapeLibraryOptions& options) {
+  validate(options.import);
+  if (options.path.empty()) {
+    throw InvalidInput("particle.library", "\"\"", "a folder or a .stl, .obj or .ply file");
+  }
+  const auto files = list_files(options.path);
+  std::vector<Outcome> outcomes(files.size());
+  parallel_for_index(0, files.size(), [&](std::size_t i) {
+    outcomes[i] = import_file(files[i].first, files[i].second, options.import);
+  });
+  ShapeLibrary library;
+  library.source = options.path;
+  library.units = options.import.units;
+  library.shapes.reserve(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    Outcome& outcome = outcomes[i];
+    if (outcome.shape) {
+      library.shapes.push_back(std::move(*outcome.shape));
+      continue;
+    }
+    if (!options.is_skipping_bad) {
+      throw Error(outcome.kind, files[i].first + ": " + outcome.message);
+    }
+    library.skipped.push_back(files[i].second + ": " + outcome.message);
+  }
+  if (library.shapes.empty()) {
+    throw InvalidInput("particle.library", aggpack::quoted(options.path),
+                       "at least one usable mesh (all " + std::to_string(files.size()) +
+                           " were skipped; first: " + clipped(library.skipped.front(), 160) + ")");
+  }
+  return library;
+}
+
+}  // namespace aggpack

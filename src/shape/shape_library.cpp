@@ -1,0 +1,86 @@
+// Importing a particle mesh made elsewhere: checks, convex hull, excess limit, vertex budget,
+// centroid and unit size.
+
+#include "aggpack/shape/shape_library.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "aggpack/core/error.h"
+#include "aggpack/geom/convex_hull_3d.h"
+#include "aggpack/geom/enclosing_sphere.h"
+#include "aggpack/geom/mass_properties.h"
+
+namespace aggpack {
+
+std::string_view length_unit_name(LengthUnit unit) {
+  return unit == LengthUnit::kMillimetre ? "mm" : "m";
+}
+
+double metres_per_unit(LengthUnit unit) { return unit == LengthUnit::kMillimetre ? 1e-3 : 1.0; }
+
+void validate(const ShapeImportOptions& options) {
+  require_in_range("particle.library_max_hull_excess", options.max_hull_excess, 0.0, 100.0);
+  if (options.max_vertices < 4 || options.max_vertices > 1000000) {
+    throw InvalidInput("particle.library_max_vertices", std::to_string(options.max_vertices),
+                       "[4, 1000000]");
+  }
+}
+
+std::string ShapeLibrary::provenance() const {
+  std::string text = "library " + source + " (units " + std::string(length_unit_name(units)) +
+                     ", " + std::to_string(shapes.size()) + " shapes, " +
+                     std::to_string(skipped.size()) + " skipped)\n";
+  char line[64];
+  for (const LibraryShape& shape : shapes) {
+    std::snprintf(line, sizeof line, "\t%.6g\t%.6g\n", shape.hull_excess(),
+                  shape.simplification_change());
+    text += shape.name + "\t" + shape.hash + line;
+  }
+  return text;
+}
+
+LibraryShape import_shape(const TriangleMesh& mesh, const ShapeImportOptions& options,
+                          std::string name, std::string hash) {
+  const CheckResult check = check_particle_mesh(mesh);
+  if (!check.is_ok) throw FormatError("mesh " + check.message);
+  const double unit = metres_per_unit(options.units);
+  LibraryShape shape;
+  shape.name = std::move(name);
+  shape.hash = std::move(hash);
+  shape.mesh_vertices = mesh.vertices.size();
+  shape.mesh_triangles = mesh.triangles.size();
+  // Inward-facing files (every triangle turned) are the same solid: the magnitude counts.
+  shape.mesh_volume = std::abs(mesh_volume(mesh)) * unit * unit * unit;
+  std::vector<Vec3> points(mesh.vertices.size());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = mesh.vertices[i] * unit;
+  ConvexPolyhedron hull;
+  try {
+    hull = convex_hull(points);
+  } catch (const InvalidInput& error) {
+    throw FormatError(std::string("mesh has no convex hull: ") + error.what());
+  }
+  shape.hull_vertices = hull.vertex_count();
+  shape.hull_volume = mass_properties(hull).volume;
+  if (options.max_hull_excess > 0.0 && shape.hull_excess() > options.max_hull_excess) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "its convex hull adds %.3g %% to its volume, above "
+                  "particle.library_max_hull_excess = %.6g",
+                  100.0 * shape.hull_excess(), options.max_hull_excess);
+    throw Error(ErrorKind::kLimitExceeded, text);
+  }
+  ConvexPolyhedron body = simplify_hull(hull, options.max_vertices);
+  const MassProperties mass = mass_properties(body);
+  shape.volume = mass.volume;
+  body = body.translated(-mass.centroid);
+  const Sphere sphere = minimal_enclosing_sphere(body.vertices());
+  shape.size = 2.0 * sphere.radius;
+  const double to_unit = 1.0 / sphere.radius;
+  shape.body = body.scaled(to_unit);
+  shape.enclosing_centre = sphere.centre * to_unit;
+  return shape;
+}
+
+}  // namespace aggpack
