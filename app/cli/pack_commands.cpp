@@ -281,6 +281,30 @@ void run_pack(const PackFlags& flags) {
   }
 }
 
+// particle.library's provenance (Provenance::shape_library): the header line, then the files and
+// their content hashes (the first 20; shape k of the file is line k).
+void print_shape_library(const std::string& text) {
+  std::size_t start = 0;
+  std::size_t line = 0;
+  constexpr std::size_t kListed = 20;
+  std::size_t total = 0;
+  for (const char c : text) total += c == '\n' ? 1 : 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string row = text.substr(start, end - start);
+    std::replace(row.begin(), row.end(), '\t', ' ');
+    if (line == 0) {
+      fmt::print("shape library   {}\n", row);
+    } else if (line <= kListed) {
+      fmt::print("  shape {:<6} {}\n", line - 1, row);
+    }
+    start = end + 1;
+    ++line;
+  }
+  if (total > kListed + 1) fmt::print("  ... and {} more\n", total - kListed - 1);
+}
+
 void run_info(const std::string& path, bool is_json, int bins, bool has_descriptors) {
   require_in_range("--bins", bins, 1, 10000);
   const Packing packing = read_packing(path);
@@ -313,6 +337,7 @@ void run_info(const std::string& path, bool is_json, int bins, bool has_descript
              kNativeFormatVersion, p.aggpack_version);
   fmt::print("packer          {}, seed {}\n", p.packer.empty() ? "(unknown)" : p.packer, p.seed);
   fmt::print("container       {}\n", describe_container(packing.container));
+  if (!p.shape_library.empty()) print_shape_library(p.shape_library);
   if (!has_config && !p.config_toml.empty()) {
     fmt::print(
         "note            stored configuration not readable ({}); no target grading\n",

@@ -11,6 +11,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
 #include "aggpack/io/export.h"
+#include "aggpack/io/shape_library_files.h"
 #include "aggpack/shape/descriptors.h"
 #include "aggpack/shape/generator.h"
 #include "commands.h"
@@ -117,6 +118,95 @@ void print_descriptors(const ShapeDescriptors& d, double control_radius) {
   }
 }
 
+// Where `shapes --library` reads from and how.
+struct LibraryFlags {
+  std::string path;
+  std::string units = "mm";
+  bool is_skipping_bad = false;
+  double max_hull_excess = 0.0;
+  std::uint32_t max_vertices = 1000;
+};
+
+void print_summary(const std::vector<RunningSummary>& summaries) {
+  const auto& columns = descriptor_columns();
+  fmt::print("{:<22}{:>14}{:>14}{:>14}{:>14}\n", "descriptor", "mean", "std", "min", "max");
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const auto s = summaries[c].result();
+    fmt::print("{:<22}{:>14.6g}{:>14.6g}{:>14.6g}{:>14.6g}\n", columns[c].name, s.mean,
+               s.standard_deviation, s.minimum, s.maximum);
+  }
+}
+
+// `aggpack shapes --library DIR`: every library shape at its file size, one CSV row each (the
+// generated particles' columns, then the file, its hash and what the hull and the vertex budget
+// changed), then the import summary and the descriptors' summary.
+void run_library(const LibraryFlags& flags, const std::string& output, Overwrite overwrite) {
+  if (flags.units != "mm" && flags.units != "m") {
+    throw InvalidInput("--units", flags.units, "mm or m");
+  }
+  ShapeLibraryOptions options{
+      .path = flags.path,
+      .import = {.units = flags.units == "m" ? LengthUnit::kMetre : LengthUnit::kMillimetre,
+                 .max_hull_excess = flags.max_hull_excess,
+                 .max_vertices = flags.max_vertices},
+      .is_skipping_bad = flags.is_skipping_bad};
+  require_in_range("--max-hull-excess", flags.max_hull_excess, 0.0, 100.0);
+  if (flags.max_vertices < 4 || flags.max_vertices > 1000000) {
+    throw InvalidInput("--max-hull-vertices", std::to_string(flags.max_vertices), "[4, 1000000]");
+  }
+  if (!output.empty()) check_writable(output, overwrite);
+  const ShapeLibrary library = load_shape_library(options);
+  const auto& columns = descriptor_columns();
+  std::vector<ShapeDescriptors> descriptors(library.shapes.size());
+  parallel_for_index(0, library.shapes.size(), [&](std::size_t k) {
+    const LibraryShape& shape = library.shapes[k];
+    descriptors[k] = describe(shape.body.scaled(shape.size / 2.0));
+  });
+  std::string csv = "index,control_radius";
+  for (const auto& column : columns) csv += "," + std::string(column.name);
+  csv += ",file,hash,mesh_volume,hull_volume,hull_excess,simplification_change\n";
+  std::vector<RunningSummary> summaries(columns.size());
+  double mesh_total = 0.0;
+  double hull_total = 0.0;
+  double kept_total = 0.0;
+  std::size_t simplified = 0;
+  for (std::size_t k = 0; k < library.shapes.size(); ++k) {
+    const LibraryShape& shape = library.shapes[k];
+    csv += fmt::format("{},{:.17g}", k, shape.size / 2.0);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const double value = columns[c].get(descriptors[k]);
+      summaries[c].add(value);
+      csv += fmt::format(",{:.17g}", value);
+    }
+    csv += fmt::format(",{},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", shape.name, shape.hash,
+                       shape.mesh_volume, shape.hull_volume, shape.hull_excess(),
+                       shape.simplification_change());
+    mesh_total += shape.mesh_volume;
+    hull_total += shape.hull_volume;
+    kept_total += shape.volume;
+    simplified += shape.volume != shape.hull_volume ? 1 : 0;
+  }
+  if (output.empty()) {
+    fmt::print("{}", csv);
+  } else {
+    AtomicFile file(output, overwrite, std::ios::out);
+    file.stream() << csv;
+    file.commit();
+    fmt::print("wrote {} ({} shapes)\n", output, library.shapes.size());
+  }
+  fmt::print("library         {} ({} shapes, {} skipped, units {})\n", library.source,
+             library.shapes.size(), library.skipped.size(), length_unit_name(library.units));
+  for (const std::string& line : library.skipped) fmt::print("skipped         {}\n", line);
+  fmt::print("convex hulls    add {:.6g} m^3 to {:.6g} m^3 of meshes ({:+.3f} %)\n",
+             hull_total - mesh_total, mesh_total, 100.0 * (hull_total / mesh_total - 1.0));
+  fmt::print(
+      "vertex budget   {} of {} hulls simplified to <= {} vertices ({:+.3f} % of hull "
+      "volume)\n",
+      simplified, library.shapes.size(), flags.max_vertices,
+      100.0 * (kept_total / hull_total - 1.0));
+  print_summary(summaries);
+}
+
 }  // namespace
 
 void set_thread_count(int threads) {
@@ -183,8 +273,31 @@ void register_shapes(CLI::App& app) {
   command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
       ->capture_default_str();
   command->add_flag("-f,--force", *is_forced, "replace an existing output file");
+  auto library = std::make_shared<LibraryFlags>();
+  command->add_option("--library", library->path,
+                      "measure a shape library instead of growing particles: a folder of .stl, "
+                      ".obj, .ply meshes (or one file); each as its convex hull at file size");
+  command->add_option("--units", library->units, "--library: unit of the files (mm or m)")
+      ->capture_default_str();
+  command->add_flag("--skip-bad", library->is_skipping_bad,
+                    "--library: skip and count bad meshes instead of stopping at the first");
+  command
+      ->add_option("--max-hull-excess", library->max_hull_excess,
+                   "--library: refuse a shape whose hull adds more than this fraction of its "
+                   "volume, [0, 100] (0 = no limit)")
+      ->capture_default_str();
+  command
+      ->add_option("--max-hull-vertices", library->max_vertices,
+                   "--library: simplify hulls to at most this many vertices, [4, 1000000]")
+      ->check(kNotNegative)
+      ->capture_default_str();
   command->callback([=, &app]() {
     const auto* self = app.get_subcommand("shapes");
+    if (!library->path.empty()) {
+      set_thread_count(flags->threads);
+      run_library(*library, *output, *is_forced ? Overwrite::kAllow : Overwrite::kForbid);
+      return;
+    }
     resolve_radius(*flags, *self);
     if (*count < 1 || *count > 100000000ULL) {
       throw InvalidInput("--count", std::to_string(*count), "[1, 100000000]");
@@ -235,12 +348,7 @@ void register_shapes(CLI::App& app) {
       file->commit();
       fmt::print("wrote {} ({} particles)\n", *output, n);
     }
-    fmt::print("{:<22}{:>14}{:>14}{:>14}{:>14}\n", "descriptor", "mean", "std", "min", "max");
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      const auto s = summaries[c].result();
-      fmt::print("{:<22}{:>14.6g}{:>14.6g}{:>14.6g}{:>14.6g}\n", columns[c].name, s.mean,
-                 s.standard_deviation, s.minimum, s.maximum);
-    }
+    print_summary(summaries);
   });
 }
 

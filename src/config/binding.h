@@ -10,6 +10,7 @@
 
 #include "aggpack/config/schema.h"
 #include "aggpack/shape/generator.h"
+#include "aggpack/shape/shape_library.h"
 
 namespace aggpack::config_detail {
 
@@ -19,6 +20,8 @@ Value to_value(const X& x) {
     return x;
   } else if constexpr (std::is_same_v<X, Growth>) {
     return std::string(growth_name(x));
+  } else if constexpr (std::is_same_v<X, LengthUnit>) {
+    return std::string(length_unit_name(x));
   } else if constexpr (std::is_integral_v<X>) {
     return static_cast<std::int64_t>(x);
   } else {
@@ -32,6 +35,8 @@ X from_value(const Value& value) {
     return std::get<X>(value);
   } else if constexpr (std::is_same_v<X, Growth>) {  // a word the schema has checked
     return find_growth(std::get<std::string>(value)).value_or(Growth::kHull);
+  } else if constexpr (std::is_same_v<X, LengthUnit>) {  // a word the schema has checked
+    return std::get<std::string>(value) == "m" ? LengthUnit::kMetre : LengthUnit::kMillimetre;
   } else if constexpr (std::is_integral_v<X>) {
     return static_cast<X>(std::get<std::int64_t>(value));
   } else {

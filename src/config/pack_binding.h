@@ -71,4 +71,7 @@ Binding<PackConfig> bind(First first, Rest... rest) {
 /// The dense kind's keys: the [densify] table (src/config/densify_schema.cpp).
 std::vector<Key<PackConfig>> densify_keys();
 
+/// particle.library and its options (src/config/library_schema.cpp).
+std::vector<Key<PackConfig>> library_keys();
+
 }  // namespace aggpack::config_detail

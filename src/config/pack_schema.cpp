@@ -518,8 +518,8 @@ const Schema<PackConfig>& pack_schema() {
     s.tables = {{.name = "container"}, {.name = "particle"},
                 {.name = "grading"},   {.name = "packer"},
                 {.name = "densify"},   {.name = "output", .member_word = "output format"}};
-    for (auto part : {container_keys(), particle_keys(), grading_keys(), packer_keys(),
-                      densify_keys(), output_keys()}) {
+    for (auto part : {container_keys(), particle_keys(), config_detail::library_keys(),
+                      grading_keys(), packer_keys(), densify_keys(), output_keys()}) {
       for (auto& key : part) s.keys.push_back(std::move(key));
     }
     config_detail::fill_defaults(s, PackConfig{});

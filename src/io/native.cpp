@@ -226,6 +226,10 @@ void write_hdf5(const std::string& file_path, const std::string& display_path,
     writer.write_attribute_string(group.get(), "config_toml", p.config_toml);
     writer.write_attribute_string(group.get(), "packer", p.packer);
     writer.write_attribute_number(group.get(), "seed", H5T_STD_U64LE, H5T_NATIVE_UINT64, p.seed);
+    // Only for a packing of library shapes: earlier readers never see it, files stay the same.
+    if (!p.shape_library.empty()) {
+      writer.write_attribute_string(group.get(), "shape_library", p.shape_library);
+    }
   }
 
   if (options.write_xdmf) {

@@ -533,6 +533,9 @@ Packing read_hdf5(const std::string& path) {
     p.config_toml = reader.read_attribute_string(group.get(), "/provenance", "config_toml");
     p.packer = reader.read_attribute_string(group.get(), "/provenance", "packer");
     p.seed = reader.read_attribute_unsigned(group.get(), "/provenance", "seed");
+    if (reader.exists(H5Aexists(group.get(), "shape_library"), "/provenance/shape_library")) {
+      p.shape_library = reader.read_attribute_string(group.get(), "/provenance", "shape_library");
+    }
   }
   native_detail::check_container_values(*container_kind, container_values, path);
   validate_packing(packing, path);

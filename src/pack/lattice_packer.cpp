@@ -14,6 +14,7 @@
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/resources.h"
 #include "aggpack/shape/generator.h"
+#include "lattice_sites.h"
 #include "shape_util.h"
 
 namespace aggpack {
@@ -28,17 +29,13 @@ constexpr double kRadiusSlack = 1e-12;
 // Streams of the control ellipsoids' random orientations (one per site).
 constexpr std::uint64_t kAxesSalt = 0x2545F4914F6CDD1DULL;
 
+}  // namespace
+
+namespace lattice_detail {
+
 double effective_spacing(const LatticeOptions& options) {
   return options.spacing > 0.0 ? options.spacing : 2.0 * options.radius + options.gap;
 }
-
-// One lattice: grid coordinates -> site index (-1 where a cylinder drops the site), site centres.
-struct Lattice {
-  std::array<std::uint32_t, 3> counts{};
-  std::vector<Vec3> sites;
-  std::vector<std::int64_t> index;  // over counts[0] * counts[1] * counts[2] grid points
-  std::vector<std::array<std::int64_t, 3>> coordinates;  // per site
-};
 
 std::array<std::uint32_t, 3> axis_counts(const LatticeOptions& options) {
   const double spacing = effective_spacing(options);
@@ -93,6 +90,12 @@ Lattice make_lattice(const LatticeOptions& options) {
   }
   return lattice;
 }
+
+}  // namespace lattice_detail
+
+namespace {
+
+using namespace lattice_detail;  // NOLINT(google-build-using-namespace)
 
 // A grown particle in its growth frame (origin = its lattice site).
 struct Grown {
@@ -154,6 +157,10 @@ GrowthParams growth_params(const LatticeOptions& options) {
 
 void validate(const LatticeOptions& options) {
   validate(options.container);
+  if (options.files.is_used() && !options.files.loaded) {
+    throw InvalidInput("particle.library", options.files.options.path,
+                       "a library loaded by the pipeline (pack()) before the packer runs");
+  }
   const GrowthParams params = growth_params(options);
   require_in_range("lattice.alpha", options.alpha, 0.0, 1.0);
   require_positive("lattice.radius", options.radius);
@@ -204,6 +211,7 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
     throw InvalidInput("lattice.radius", format_value(options.radius),
                        "small enough that at least one site fits in the container");
   }
+  if (options.files.is_used()) return pack_lattice_files(options, lattice, control);
   const std::size_t site_count = lattice.sites.size();
   const double spacing = effective_spacing(options);
   const bool is_contact_mode = spacing < 2.0 * options.radius + options.gap;

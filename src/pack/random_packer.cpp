@@ -53,11 +53,17 @@ struct Draw {
   StoredShape shape;  // unique mode only
 };
 
-Draw make_draw(const RandomPackOptions& options, std::uint64_t index) {
+Draw make_draw(const RandomPackOptions& options, std::uint64_t index,
+               const std::vector<std::uint32_t>& use_once) {
   Rng rng(options.seed, index);
   Draw draw;
   draw.size = sample_size(options.grading, rng.uniform());
   const double radius = draw.size / 2.0;
+  if (const ShapeLibrary* files = options.shape.files.loaded.get()) {
+    draw.library_index =
+        use_once.empty() ? detail::library_slot(rng, files->shapes.size()) : use_once[index];
+    return draw;
+  }
   if (options.shape.library_size > 0) {
     draw.library_index = static_cast<std::uint32_t>(std::min<double>(
         std::floor(rng.uniform() * options.shape.library_size), options.shape.library_size - 1));
@@ -114,8 +120,18 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   // --- 1. The size list and the shapes ----------------------------------------------------------
   const auto shape_start = Clock::now();
   std::vector<StoredShape> shapes;
-  const bool is_library = options.shape.library_size > 0;
-  if (is_library) {
+  const ShapeLibrary* files = options.shape.files.loaded.get();
+  const bool is_library = options.shape.library_size > 0 || files != nullptr;
+  std::vector<std::uint32_t> use_once;
+  if (files != nullptr) {
+    // Unit-size shapes from mesh files (enclosing radius 1): scale = sieve size / 2, as grown.
+    shapes.resize(files->shapes.size());
+    parallel_for_index(0, shapes.size(),
+                       [&](std::size_t k) { shapes[k] = make_stored(files->shapes[k].body); });
+    if (options.shape.files.options.is_use_once) {
+      use_once = detail::use_once_order(shapes.size(), options.seed);
+    }
+  } else if (is_library) {
     shapes.resize(options.shape.library_size);
     parallel_for_index(0, shapes.size(), [&](std::size_t k) {
       Rng rng(options.seed ^ kLibrarySalt, k);
@@ -128,7 +144,8 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   {
     // Draws are made in batches (in parallel) and accepted in draw order, so the list is the same
     // for any thread count; a volume target stops at the first draw that reaches it.
-    const std::uint64_t wanted = is_by_volume ? kMaxParticles : options.count;
+    std::uint64_t wanted = is_by_volume ? kMaxParticles : options.count;
+    if (!use_once.empty()) wanted = std::min<std::uint64_t>(wanted, use_once.size());
     const std::uint64_t batch_size = is_library ? 65536 : 4096;
     std::vector<Draw> batch;
     for (std::uint64_t begin = 0; begin < wanted;) {
@@ -138,8 +155,8 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
       }
       const std::uint64_t count = std::min(batch_size, wanted - begin);
       batch.assign(count, Draw{});
-      parallel_for_index(0, count,
-                         [&](std::size_t k) { batch[k] = make_draw(options, begin + k); });
+      parallel_for_index(
+          0, count, [&](std::size_t k) { batch[k] = make_draw(options, begin + k, use_once); });
       bool is_done = false;
       for (std::uint64_t k = 0; k < count && !is_done; ++k) {
         Draw& draw = batch[k];
@@ -180,6 +197,13 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
       progress.report({.stage = PackStage::kShapes, .fraction = fraction, .total = items.size()},
                       false);
       if (is_done) break;
+    }
+    if (is_by_volume && !is_cancelled && list_volume < target_volume && !use_once.empty()) {
+      throw LimitExceeded("particle.library_use_once", "true",
+                          "a library whose " + std::to_string(use_once.size()) +
+                              " shapes, each used once, reach random.volume_fraction = " +
+                              format_value(options.volume_fraction) + " (they reach " +
+                              format_value(list_volume / container_volume) + ")");
     }
     if (is_by_volume && !is_cancelled && list_volume < target_volume) {
       throw LimitExceeded("random.volume_fraction", format_value(options.volume_fraction),

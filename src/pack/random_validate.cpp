@@ -36,6 +36,17 @@ void validate_shape(const ShapeOptions& shape, double largest_radius) {
                        "0 when shape.edge_length > 0 (a library rescales shapes, so L must be "
                        "relative: set shape.edge_length = 0 and use shape.edge_length_ratio)");
   }
+  if (shape.files.is_used()) {
+    if (shape.library_size > 0) {
+      throw InvalidInput("shape.library_size", std::to_string(shape.library_size),
+                         "0 when particle.library is given (shapes come from the files)");
+    }
+    if (!shape.files.loaded) {
+      throw InvalidInput("particle.library", shape.files.options.path,
+                         "a library loaded by the pipeline (pack()) before the packer runs");
+    }
+    return;  // the growth options do not apply
+  }
   const double estimate =
       shape.edge_length > 0.0
           ? estimated_vertex_count(largest_radius, shape.edge_length, shape.form.growth)
@@ -59,6 +70,12 @@ void validate(const RandomPackOptions& options) {
   if (options.target == PackTarget::kCount) {
     if (options.count < 1 || options.count > kMaxParticles) {
       throw InvalidInput("random.count", std::to_string(options.count), "[1, 100000000]");
+    }
+    const ShapeFiles& files = options.shape.files;
+    if (files.loaded && files.options.is_use_once && options.count > files.loaded->shapes.size()) {
+      throw LimitExceeded("random.count", std::to_string(options.count),
+                          "at most the library's " + std::to_string(files.loaded->shapes.size()) +
+                              " shapes when particle.library_use_once = true");
     }
   } else if (options.target == PackTarget::kVolumeFraction) {
     if (!std::isfinite(options.volume_fraction) || options.volume_fraction <= 0.0 ||

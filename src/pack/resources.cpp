@@ -174,15 +174,21 @@ std::string format_bytes(double bytes) {
 
 RunEstimate estimate_run(const RandomPackOptions& options) {
   const ShapeOptions& shape = options.shape;
-  const bool is_library = shape.library_size > 0;
+  // A file library (particle.library) is sampled from its loaded shapes, not grown.
+  const ShapeLibrary* files = shape.files.loaded.get();
+  const std::uint64_t library_count = files != nullptr ? files->shapes.size() : shape.library_size;
+  const bool is_library = library_count > 0;
   const double largest_radius = largest_size(options.grading) / 2.0;
   const double largest_edge =
       shape.edge_length > 0.0 ? shape.edge_length : shape.edge_length_ratio * largest_radius;
   const int count =
       sample_size_for(estimated_vertex_count(largest_radius, largest_edge, shape.form.growth),
-                      is_library ? shape.library_size : std::numeric_limits<std::uint64_t>::max());
+                      is_library ? library_count : std::numeric_limits<std::uint64_t>::max());
   ShapeSample sample;
-  if (is_library) {
+  if (files != nullptr) {
+    sample = sample_shapes(
+        count, [&](std::uint64_t k) { return std::make_pair(files->shapes[k].body, 1.0); });
+  } else if (is_library) {
     sample = sample_shapes(count, [&](std::uint64_t k) {
       Rng rng(options.seed ^ kSampleSalt, k);
       return std::make_pair(grow_aggregate(growth_params(shape, 1.0), rng), 1.0);
@@ -207,7 +213,7 @@ RunEstimate estimate_run(const RandomPackOptions& options) {
   if (is_library) {
     estimate.bytes_per_particle = kRandomLibraryBytesPerItem;
     estimate.bytes = estimate.particles * estimate.bytes_per_particle +
-                     static_cast<double>(shape.library_size) * (sample.mean_bytes + 72.0);
+                     static_cast<double>(library_count) * (sample.mean_bytes + 72.0);
   } else {
     estimate.bytes_per_particle = kRandomBytesPerItem + sample.mean_bytes;
     estimate.bytes = estimate.particles * estimate.bytes_per_particle;
@@ -220,10 +226,19 @@ RunEstimate estimate_run(const LatticeOptions& options, double sites) {
   const int count = sample_size_for(
       estimated_vertex_count(options.radius, options.edge_length, options.form.growth),
       static_cast<std::uint64_t>(std::max(1.0, sites)));
-  const ShapeSample sample = sample_shapes(count, [&](std::uint64_t i) {
-    Rng rng(options.seed, i);
-    return std::make_pair(grow_aggregate(params, rng), options.radius);
-  });
+  const ShapeLibrary* files = options.files.loaded.get();
+  const ShapeSample sample =
+      files != nullptr
+          ? sample_shapes(std::min<int>(count, static_cast<int>(std::min<std::size_t>(
+                                                   files->shapes.size(), 1000))),
+                          [&](std::uint64_t k) {
+                            return std::make_pair(files->shapes[k].body.scaled(options.radius),
+                                                  options.radius);
+                          })
+          : sample_shapes(count, [&](std::uint64_t i) {
+              Rng rng(options.seed, i);
+              return std::make_pair(grow_aggregate(params, rng), options.radius);
+            });
   RunEstimate estimate;
   const double container_volume = options.container.volume();
   estimate.particles = sites;
@@ -231,8 +246,14 @@ RunEstimate estimate_run(const LatticeOptions& options, double sites) {
       sample.volume_ratio * 4.0 / 3.0 * std::numbers::pi * std::pow(options.radius, 3);
   estimate.solid_fraction = sites * estimate.mean_volume / container_volume;
   estimate.capacity = kMaxSolidFraction * container_volume / estimate.mean_volume;
-  estimate.bytes_per_particle = kLatticeBytesPerSite + sample.mean_bytes;
-  estimate.bytes = sites * estimate.bytes_per_particle;
+  if (files != nullptr) {  // one stored copy per library shape, not per site
+    estimate.bytes_per_particle = kRandomLibraryBytesPerItem;
+    estimate.bytes = sites * estimate.bytes_per_particle +
+                     static_cast<double>(files->shapes.size()) * (sample.mean_bytes + 72.0);
+  } else {
+    estimate.bytes_per_particle = kLatticeBytesPerSite + sample.mean_bytes;
+    estimate.bytes = sites * estimate.bytes_per_particle;
+  }
   return estimate;
 }
 

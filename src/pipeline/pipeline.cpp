@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/io/shape_library_files.h"
 #include "aggpack/pack/container.h"
 
 namespace aggpack {
@@ -127,11 +129,26 @@ std::variant<RandomPackOptions, LatticeOptions> dense_fill_options(
 }
 
 PipelineResult pack(const PackerOptions& options, const PackControl& control) {
+  // particle.library: the mesh files are read once here, for whichever options hold them (a
+  // dense kind's fill too), and shared read-only by the packer.
+  PackerOptions run_options = options;
+  ShapeFiles* files = nullptr;
+  if (auto* random = find_options<RandomPackOptions>(run_options)) {
+    files = &random->shape.files;
+  } else if (auto* lattice = find_options<LatticeOptions>(run_options)) {
+    files = &lattice->files;
+  }
+  if (files != nullptr && files->is_used() && !files->loaded) {
+    files->loaded = std::make_shared<const ShapeLibrary>(load_shape_library(files->options));
+  }
   // Every packer validates its options first (the key named in the error).
   PipelineResult result = std::visit(
       [&](const auto& o) { return PackerRun<std::decay_t<decltype(o)>>::run(o, control); },
-      options);
+      run_options);
   stamp_provenance(result.packing, packer_kind_name(options), packer_seed(options), {});
+  if (files != nullptr && files->loaded) {
+    result.packing.provenance.shape_library = files->loaded->provenance();
+  }
   return result;
 }
 

@@ -32,12 +32,7 @@ std::string ShapeLibrary::provenance() const {
   std::string text = "library " + source + " (units " + std::string(length_unit_name(units)) +
                      ", " + std::to_string(shapes.size()) + " shapes, " +
                      std::to_string(skipped.size()) + " skipped)\n";
-  char line[64];
-  for (const LibraryShape& shape : shapes) {
-    std::snprintf(line, sizeof line, "\t%.6g\t%.6g\n", shape.hull_excess(),
-                  shape.simplification_change());
-    text += shape.name + "\t" + shape.hash + line;
-  }
+  for (const LibraryShape& shape : shapes) text += shape.name + "\t" + shape.hash + "\n";
   return text;
 }
 

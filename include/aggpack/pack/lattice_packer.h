@@ -9,6 +9,7 @@
 #include "aggpack/pack/packing.h"
 #include "aggpack/pack/progress.h"
 #include "aggpack/shape/generator.h"
+#include "aggpack/shape/shape_library.h"
 
 namespace aggpack {
 
@@ -33,6 +34,10 @@ struct LatticeOptions {
   /// Growth rule and control-surface axis ratios. A control ellipsoid is turned at random at each
   /// site (from its own stream, Rng(seed ^ salt, i), so spheres draw exactly as without it).
   GrowthForm form{};
+  /// Shapes from mesh files (particle.library): each site holds a library shape drawn from its
+  /// stream (or, use-once, a seeded permutation), randomly oriented, scaled so that its smallest
+  /// enclosing sphere (radius R) is centred on the site. The pipeline loads `files.loaded`.
+  ShapeFiles files{};
 };
 
 /// The growth controls of every site (the control ellipsoid unturned).

@@ -64,6 +64,10 @@ struct Provenance {
   std::string config_toml{};  ///< the full, resolved configuration
   std::uint64_t seed = 1;
   std::string packer{};  ///< "lattice", "random", "settled", ...
+  /// particle.library's files (ShapeLibrary::provenance(): a header line, then one line per
+  /// shape: file name, TAB, content hash); empty when the
+  /// particles were grown. Shape k of the packing is the library's line k.
+  std::string shape_library{};
 };
 
 struct Packing {

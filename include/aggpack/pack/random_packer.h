@@ -8,6 +8,7 @@
 #include "aggpack/pack/packing.h"
 #include "aggpack/pack/progress.h"
 #include "aggpack/shape/generator.h"
+#include "aggpack/shape/shape_library.h"
 
 namespace aggpack {
 
@@ -25,6 +26,11 @@ struct ShapeOptions {
   /// needed for ~10^6 particles (memory and time). Requires edge_length == 0. [0, 10^6]
   std::uint32_t library_size = 0;
   GrowthForm form{};  ///< growth rule and control-surface axis ratios
+  /// Shapes from mesh files (particle.library) instead of grown ones: each particle is a library
+  /// shape drawn from its stream (or, use-once, a seeded permutation), scaled so that its
+  /// enclosing diameter is the drawn sieve size, randomly oriented. The pipeline loads
+  /// `files.loaded` from `files.options.path`; the alpha, L and growth options do not apply.
+  ShapeFiles files{};
 };
 
 /// The growth controls of a particle of control radius `radius` (m): L absolute or relative.

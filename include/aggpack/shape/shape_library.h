@@ -70,7 +70,7 @@ struct ShapeLibrary {
   std::vector<std::string> skipped;  ///< one line per skipped file: "name: reason"
 
   /// Provenance text stored in the native file: a header line, then one line per shape
-  /// ("name<TAB>hash<TAB>hull excess<TAB>simplification change").
+  /// ("name<TAB>hash"), shape k on line k + 1.
   [[nodiscard]] std::string provenance() const;
 };
 

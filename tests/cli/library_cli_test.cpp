@@ -1,0 +1,101 @@
+// `aggpack shapes --library` and `aggpack pack` / `info` with particle.library, end to end: the
+// rows and summary printed, the exact hull numbers of a dented cube, the provenance in the
+// native file, and one-line errors with exit 2.
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/cli_test.h"
+#include "support/mesh_files.h"
+
+namespace aggpack {
+namespace {
+
+using test::CliRun;
+
+class LibraryCli : public test::CliTest {
+ protected:
+  void write_library() const {
+    std::filesystem::create_directories(path("rocks"));
+    test::write_file(path("rocks/cube.stl"), test::stl_binary(test::dented_cube(10, 3)));
+    test::write_file(path("rocks/rock.obj"),
+                     test::obj_text(test::dented_icosahedron(6, 0.7, Vec3(1, 1, 1))));
+    test::write_file(
+        path("rocks/rock.ply"),
+        test::ply_bytes(test::dented_icosahedron(8, 0.5, Vec3::Zero()), test::PlyEncoding::kBig));
+  }
+};
+
+TEST_F(LibraryCli, ShapesPrintsEachShapeAndTheSummary) {
+  write_library();
+  const CliRun run = this->run("shapes --library rocks --units mm");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.out.find("index,control_radius,volume,"), std::string::npos);
+  // The dented cube (file order: cube.stl first): hull = 1000 mm^3, mesh 1000 - 100 mm^3.
+  EXPECT_NE(run.out.find(",cube.stl,fnv1a64:"), std::string::npos);
+  const auto at = run.out.find(",cube.stl,");
+  ASSERT_NE(at, std::string::npos) << run.out;
+  const auto begin = run.out.rfind('\n', at) + 1;
+  std::vector<std::string> fields;
+  std::stringstream row(run.out.substr(begin, run.out.find('\n', at) - begin));
+  for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+  ASSERT_GE(fields.size(), 6u);
+  const std::size_t n = fields.size();
+  EXPECT_NEAR(std::stod(fields[n - 4]), 900e-9, 1e-18);   // mesh: 1000 - 10^2 x 3 / 3 mm^3
+  EXPECT_NEAR(std::stod(fields[n - 3]), 1000e-9, 1e-18);  // hull: the cube
+  EXPECT_NEAR(std::stod(fields[n - 2]), 1.0 / 9.0, 1e-12);
+  EXPECT_EQ(std::stod(fields[n - 1]), 0.0);  // 8 vertices: within the budget
+  EXPECT_NE(run.out.find("library         rocks (3 shapes, 0 skipped, units mm)"),
+            std::string::npos);
+  EXPECT_NE(run.out.find("descriptor                      mean"), std::string::npos);
+  EXPECT_NE(run.out.find("sphericity"), std::string::npos);
+}
+
+TEST_F(LibraryCli, PackStoresTheLibraryOnceAndInfoShowsIt) {
+  write_library();
+  test::write_file(path("rocks.toml"),
+                   "[container]\nkind = \"box\"\nlength = 0.2\nwidth = 0.2\ndepth = 0.2\n"
+                   "[particle]\nlibrary = \"rocks\"\nradius_min = 0.015\nradius_max = 0.025\n"
+                   "[packer]\nkind = \"random\"\ntarget_fraction = 0.15\nseed = 2\n");
+  const CliRun pack = run("pack rocks.toml -o rocks.h5");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  const CliRun info = run("info rocks.h5");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("shape library   library rocks (units mm, 3 shapes, 0 skipped)"),
+            std::string::npos)
+      << info.out;
+  EXPECT_NE(info.out.find("  shape 0      cube.stl fnv1a64:"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("(3 distinct shapes)"), std::string::npos) << info.out;
+  // Exports take the packing unchanged.
+  const CliRun exported = run("export rocks.h5 -o rocks.stl");
+  EXPECT_EQ(exported.exit_code, 0) << exported.err;
+}
+
+TEST_F(LibraryCli, BadMeshesAreOneLineErrorsOrSkipped) {
+  write_library();
+  TriangleMesh open = test::dented_cube(10, 3);
+  open.triangles.pop_back();
+  test::write_file(path("rocks/open.stl"), test::stl_ascii(open));
+  const CliRun run = this->run("shapes --library rocks");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.err.rfind("aggpack: error: rocks/open.stl: mesh is open: edge (", 0), 0u)
+      << run.err;
+  EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+  const CliRun skipped = this->run("shapes --library rocks --skip-bad");
+  ASSERT_EQ(skipped.exit_code, 0) << skipped.err;
+  EXPECT_NE(skipped.out.find("(3 shapes, 1 skipped, units mm)"), std::string::npos);
+  EXPECT_NE(skipped.out.find("skipped         open.stl: mesh is open"), std::string::npos);
+  const CliRun limit = this->run("shapes --library rocks/cube.stl --max-hull-excess 0.05");
+  EXPECT_EQ(limit.exit_code, 2);
+  EXPECT_NE(limit.err.find("its convex hull adds 11.1 % to its volume"), std::string::npos)
+      << limit.err;
+  const CliRun none = this->run("pack --set particle.library=nowhere --set packer.kind=random");
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("particle.library = \"nowhere\""), std::string::npos) << none.err;
+}
+
+}  // namespace
+}  // namespace aggpack
