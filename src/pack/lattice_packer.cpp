@@ -157,10 +157,7 @@ GrowthParams growth_params(const LatticeOptions& options) {
 
 void validate(const LatticeOptions& options) {
   validate(options.container);
-  if (options.files.is_used() && !options.files.loaded) {
-    throw InvalidInput("particle.library", options.files.options.path,
-                       "a library loaded by the pipeline (pack()) before the packer runs");
-  }
+
   const GrowthParams params = growth_params(options);
   require_in_range("lattice.alpha", options.alpha, 0.0, 1.0);
   require_positive("lattice.radius", options.radius);
@@ -211,7 +208,13 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
     throw InvalidInput("lattice.radius", format_value(options.radius),
                        "small enough that at least one site fits in the container");
   }
-  if (options.files.is_used()) return pack_lattice_files(options, lattice, control);
+  if (options.files.is_used()) {
+    if (!options.files.loaded) {
+      throw InvalidInput("particle.library", options.files.options.path,
+                         "a library loaded by the pipeline (pack()) before the packer runs");
+    }
+    return pack_lattice_files(options, lattice, control);
+  }
   const std::size_t site_count = lattice.sites.size();
   const double spacing = effective_spacing(options);
   const bool is_contact_mode = spacing < 2.0 * options.radius + options.gap;

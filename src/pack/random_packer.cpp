@@ -108,6 +108,10 @@ GrowthParams growth_params(const ShapeOptions& shape, double radius) {
 
 PackResult pack_random(const RandomPackOptions& options, const PackControl& control) {
   validate(options);
+  if (options.shape.files.is_used() && !options.shape.files.loaded) {
+    throw InvalidInput("particle.library", options.shape.files.options.path,
+                       "a library loaded by the pipeline (pack()) before the packer runs");
+  }
   ProgressReporter progress(control);
   PackResult result;
   PackReport& report = result.report;

@@ -41,11 +41,7 @@ void validate_shape(const ShapeOptions& shape, double largest_radius) {
       throw InvalidInput("shape.library_size", std::to_string(shape.library_size),
                          "0 when particle.library is given (shapes come from the files)");
     }
-    if (!shape.files.loaded) {
-      throw InvalidInput("particle.library", shape.files.options.path,
-                         "a library loaded by the pipeline (pack()) before the packer runs");
-    }
-    return;  // the growth options do not apply
+    return;  // the growth options do not apply (the pipeline loads the files before a run)
   }
   const double estimate =
       shape.edge_length > 0.0
