@@ -1,6 +1,7 @@
 #include "growing_mesh.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "aggpack/core/error.h"
@@ -78,21 +79,37 @@ constexpr std::array<std::uint32_t, 3> kPrev = {2, 0, 1};
 // visibility test (rounding of a plane through three vertices).
 constexpr double kRelativeTolerance = 1e-12;
 
+// Insertions are stamped 2 s and 2 s + 1 on faces: s starts again below 2^31.
+constexpr std::uint32_t kLastStamp = 0x7FFFFFF0U;
+
 }  // namespace
 
-GrowingMesh::GrowingMesh(const std::array<Vec3, 6>& base, double edge_length,
-                         double min_edge_length, std::size_t expected_vertices)
-    : limit_squared_(edge_length * edge_length),
-      min_edge_squared_(min_edge_length * min_edge_length) {
+void GrowingMesh::reset(const std::array<Vec3, 6>& base, double edge_length, double min_edge_length,
+                        std::size_t expected_vertices) {
+  limit_squared_ = edge_length * edge_length;
+  min_edge_squared_ = min_edge_length * min_edge_length;
   const std::size_t expected_faces = 2 * expected_vertices;
   vertices_.reserve(expected_vertices);
   triangles_.reserve(expected_faces);
   twins_.reserve(expected_faces);
+  planes_.reserve(expected_faces);
   corner_faces_.reserve(expected_vertices);
   heap_.reserve(expected_faces);
+  heap_.clear();
+  is_dead_vertex_.clear();
+  is_free_face_.clear();
+  free_faces_.clear();
+  live_vertices_ = 6;
+  top_half_ = kNone;
+  if (stamp_ > kLastStamp) {  // the stamps start again (stale ones must not match)
+    std::fill(face_stamps_.begin(), face_stamps_.end(), 0);
+    std::fill(vertex_stamps_.begin(), vertex_stamps_.end(), 0);
+    stamp_ = 0;
+  }
   vertices_.assign(base.begin(), base.end());
   triangles_.assign(kBase.triangles.begin(), kBase.triangles.end());
   twins_.assign(kBase.twins.begin(), kBase.twins.end());
+  planes_.assign(kBase.triangles.size(), Plane{Vec3::Zero(), -1.0});
   corner_faces_.assign(kBase.corner_faces.begin(), kBase.corner_faces.end());
   for (const auto& t : kBase.triangles) {
     for (std::uint32_t k = 0; k < 3; ++k) {
@@ -100,29 +117,49 @@ GrowingMesh::GrowingMesh(const std::array<Vec3, 6>& base, double edge_length,
       const std::uint32_t to = t[kNext[k]];
       if (from > to) continue;  // each edge once
       const double length_squared = (vertices_[from] - vertices_[to]).squaredNorm();
-      if (length_squared > limit_squared_) insert({length_squared, from, to});
+      if (length_squared > limit_squared_) insert(key_of({length_squared, from, to}));
     }
   }
 }
 
+GrowingMesh::Key GrowingMesh::key_of(const EdgeEntry& entry) {
+  const auto pair = (static_cast<std::uint64_t>(~entry.from) << 32U) | (~entry.to);
+  return (static_cast<Key>(std::bit_cast<std::uint64_t>(entry.length_squared)) << 64U) | pair;
+}
+
+EdgeEntry GrowingMesh::entry_of(Key key) {
+  const auto pair = static_cast<std::uint64_t>(key);
+  return {std::bit_cast<double>(static_cast<std::uint64_t>(key >> 64U)),
+          ~static_cast<std::uint32_t>(pair >> 32U), ~static_cast<std::uint32_t>(pair)};
+}
+
 bool GrowingMesh::longest_edge(EdgeEntry& entry) {
   while (!heap_.empty()) {
-    entry = heap_.front();
+    entry = entry_of(heap_.front());
     // Only the hull rule removes edges; a removed edge's entry is dropped here.
-    if (is_dead_vertex_.empty() ||
-        (is_dead_vertex_[entry.from] == 0 && is_dead_vertex_[entry.to] == 0 &&
-         find_outgoing(entry.from, entry.to) != kNone)) {
+    if (is_dead_vertex_.empty()) {
+      top_half_ = kNone;
       return true;
+    }
+    if (is_dead_vertex_[entry.from] == 0 && is_dead_vertex_[entry.to] == 0) {
+      top_half_ = find_outgoing(entry.from, entry.to);
+      if (top_half_ != kNone) return true;
     }
     pop();
   }
   return false;
 }
 
+std::uint32_t GrowingMesh::top_half(const EdgeEntry& entry) {
+  const std::uint32_t half = top_half_ != kNone ? top_half_ : find_outgoing(entry.from, entry.to);
+  if (half == kNone) broken();
+  top_half_ = kNone;
+  return half;
+}
+
 void GrowingMesh::split_midpoint(const EdgeEntry& entry, const DrawDistance& draw,
                                  const GrowthLimit& limit) {
-  const std::uint32_t ab = find_outgoing(entry.from, entry.to);
-  if (ab == kNone) broken();
+  const std::uint32_t ab = top_half(entry);
   const std::uint32_t f1 = face_of(ab);
   const std::uint32_t k1 = local_of(ab);
   const std::uint32_t f2 = face_of(twins_[f1][k1]);
@@ -139,11 +176,12 @@ void GrowingMesh::split_midpoint(const EdgeEntry& entry, const DrawDistance& dra
   // other face as long as it stays behind the four faces across the patch's border.
   double distance = std::max(draw(direction), midpoint_distance);
   for (const std::uint32_t half : across) {
-    const auto& t = triangles_[face_of(half)];
-    const Vec3 normal =
-        (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
+    const std::uint32_t face = face_of(half);
+    const Vec3& normal = plane_of(face).normal;
     const double approach = normal.dot(direction);
-    if (approach > 0.0) distance = std::min(distance, normal.dot(vertices_[t[0]]) / approach);
+    if (approach > 0.0) {
+      distance = std::min(distance, normal.dot(vertices_[triangles_[face][0]]) / approach);
+    }
   }
   if (limit) distance = std::min(distance, limit(direction, midpoint_distance, distance));
   distance = std::max(distance, midpoint_distance);
@@ -171,10 +209,10 @@ void GrowingMesh::split_at(std::uint32_t ab, const Vec3& point) {
   const std::uint32_t p = add_vertex(point);
   const auto f3 = new_face();
   const auto f4 = new_face();
-  triangles_[f1] = {a, p, c};
-  triangles_[f3] = {p, b, c};
-  triangles_[f2] = {b, p, d};
-  triangles_[f4] = {p, a, d};
+  write_face(f1, {a, p, c});
+  write_face(f3, {p, b, c});
+  write_face(f2, {b, p, d});
+  write_face(f4, {p, a, d});
   twins_[f1] = {half_edge(f4, 0), half_edge(f3, 2), across_ca};
   twins_[f3] = {half_edge(f2, 0), across_bc, half_edge(f1, 1)};
   twins_[f2] = {half_edge(f3, 0), half_edge(f4, 2), across_db};
@@ -196,8 +234,7 @@ void GrowingMesh::split_at(std::uint32_t ab, const Vec3& point) {
 
 void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistance& draw,
                               const GrowthLimit& limit) {
-  const std::uint32_t ab = find_outgoing(entry.from, entry.to);
-  if (ab == kNone) broken();
+  const std::uint32_t ab = top_half(entry);
   pop();
   const Vec3 on_edge = vertices_[entry.from] + t * (vertices_[entry.to] - vertices_[entry.from]);
   const double on_edge_distance = on_edge.norm();
@@ -213,128 +250,143 @@ void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistan
     split_at(ab, on_edge);
     return;
   }
-
-  // The faces the new vertex sees: a connected patch (the body is convex) that holds the edge's
-  // two faces; found by a walk from them across edges.
-  if (is_dead_vertex_.empty()) is_dead_vertex_.assign(vertices_.size(), 0);
-  is_visible_.resize(triangles_.size(), 0);
-  is_free_face_.resize(triangles_.size(), 0);
   // In front of a face's plane by more than the tolerance (compared squared: no square root).
   const double tolerance_squared = kRelativeTolerance * kRelativeTolerance * distance * distance;
-  const auto sees = [&](std::uint32_t face) {
-    const Triangle& tri = triangles_[face];
-    const Vec3 normal =
-        (vertices_[tri[1]] - vertices_[tri[0]]).cross(vertices_[tri[2]] - vertices_[tri[0]]);
-    const double height = normal.dot(point - vertices_[tri[0]]);
-    return height > 0.0 && height * height > tolerance_squared * normal.squaredNorm();
-  };
-  visible_.clear();
-  for (const std::uint32_t face : {face_of(ab), face_of(twins_[face_of(ab)][local_of(ab)])}) {
-    if (!sees(face)) {  // the vertex lies in the face's plane after rounding: split instead
-      split_at(ab, on_edge);
-      return;
-    }
-    is_visible_[face] = 1;
-    visible_.push_back(face);
-  }
-  for (std::size_t i = 0; i < visible_.size(); ++i) {
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t next = face_of(twins_[visible_[i]][k]);
-      if (is_visible_[next] == 0 && sees(next)) {
-        is_visible_[next] = 1;
-        visible_.push_back(next);
-      }
-    }
-  }
-  // Its border (half-edges of visible faces whose twin is not visible), walked as one loop: the
-  // next border half-edge leaves the current one's end, found by turning about that vertex inside
-  // the patch. Border vertices are marked 2 in is_dead_vertex_ (kept; reset below).
-  const auto from_of = [&](std::uint32_t half) {
-    return triangles_[face_of(half)][local_of(half)];
-  };
-  std::size_t border_count = 0;
-  std::uint32_t first = kNone;
-  for (const std::uint32_t face : visible_) {
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      if (is_visible_[face_of(twins_[face][k])] != 0) continue;
-      ++border_count;
-      if (first == kNone) first = half_edge(face, k);
-    }
-  }
-  std::vector<std::uint32_t>& loop = loop_;
-  loop.clear();
-  bool is_disk = true;
-  std::uint32_t half = first;
-  do {
-    const std::uint32_t from = from_of(half);
-    if (is_dead_vertex_[from] == 2 || loop.size() == border_count) {
-      is_disk = false;  // a vertex met twice (a pinched patch), or more than one loop
-      break;
-    }
-    is_dead_vertex_[from] = 2;
-    loop.push_back(half);
-    std::uint32_t face = face_of(half);
-    std::uint32_t k = kNext[local_of(half)];
-    while (is_visible_[face_of(twins_[face][k])] != 0) {
-      const std::uint32_t twin = twins_[face][k];
-      face = face_of(twin);
-      k = kNext[local_of(twin)];
-    }
-    half = half_edge(face, k);
-  } while (half != first);
-  // The minimum edge length: a new vertex that would come closer than it to a vertex it joins
-  // (a short edge, thin triangles around it) splits the edge instead.
-  const bool is_too_close = std::any_of(loop.begin(), loop.end(), [&](std::uint32_t h) {
-    return (vertices_[from_of(h)] - point).squaredNorm() < min_edge_squared_;
-  });
-  // Rounding can make the patch other than a disk; then, too, the vertex splits the edge.
-  if (!is_disk || loop.size() != border_count || is_too_close) {
-    for (const std::uint32_t h : loop) is_dead_vertex_[from_of(h)] = 0;
-    for (const std::uint32_t face : visible_) is_visible_[face] = 0;
+  if (is_dead_vertex_.empty()) is_dead_vertex_.assign(vertices_.size(), 0);
+  // Rounding can make the patch other than a disk (or the vertex lie in the plane of one of the
+  // edge's faces); then, too, the vertex splits the edge.
+  if (!find_visible(ab, point, tolerance_squared) || !chain_border()) {
     split_at(ab, on_edge);
     return;
   }
+  // The minimum edge length: a new vertex that would come closer than it to a vertex it joins
+  // (a short edge, thin triangles around it) splits the edge instead.
+  for (const std::uint32_t h : loop_) {
+    if ((vertices_[triangles_[face_of(h)][local_of(h)]] - point).squaredNorm() <
+        min_edge_squared_) {
+      split_at(ab, on_edge);
+      return;
+    }
+  }
+  replace_patch(point);
+}
 
-  // Replace the patch: its inner vertices are dropped, its faces freed, and a fan of new faces
-  // joins the new vertex to the loop.
-  std::vector<Border>& border = border_;
-  border.clear();
-  for (const std::uint32_t h : loop) {
+bool GrowingMesh::find_visible(std::uint32_t ab, const Vec3& point, double tolerance_squared) {
+  // The faces the new vertex sees: a connected patch (the body is convex) that holds the edge's
+  // two faces; found by a walk from them across edges, each face tested once.
+  stamp_ += 1;
+  const std::uint32_t seen = 2 * stamp_ + 1;
+  const std::uint32_t unseen = 2 * stamp_;
+  face_stamps_.resize(triangles_.size(), 0);
+  const auto sees = [&](std::uint32_t face) {
+    const Plane& plane = plane_of(face);
+    const double height = plane.normal.dot(point - vertices_[triangles_[face][0]]);
+    return height > 0.0 && height * height > tolerance_squared * plane.norm_squared;
+  };
+  visible_.clear();
+  border_.clear();
+  for (const std::uint32_t face : {face_of(ab), face_of(twins_[face_of(ab)][local_of(ab)])}) {
+    if (!sees(face)) return false;  // the vertex lies in the face's plane after rounding
+    face_stamps_[face] = seen;
+    visible_.push_back(face);
+  }
+  // The patch's border: half-edges of visible faces whose twin is not visible, in the order of
+  // the walk.
+  for (std::size_t i = 0; i < visible_.size(); ++i) {
+    const std::uint32_t face = visible_[i];
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t next = face_of(twins_[face][k]);
+      const std::uint32_t stamp = face_stamps_[next];
+      if (stamp == seen) continue;
+      if (stamp != unseen) {
+        if (sees(next)) {
+          face_stamps_[next] = seen;
+          visible_.push_back(next);
+          continue;
+        }
+        face_stamps_[next] = unseen;
+      }
+      border_.push_back(half_edge(face, k));
+    }
+  }
+  return true;
+}
+
+bool GrowingMesh::chain_border() {
+  // The border as one loop from its first half-edge: each border vertex must have exactly one
+  // border half-edge leaving it (else the patch is pinched there), and the loop must use them all
+  // (else there is more than one).
+  vertex_stamps_.resize(vertices_.size(), 0);
+  border_next_.resize(vertices_.size());
+  for (const std::uint32_t half : border_) {
+    const std::uint32_t from = triangles_[face_of(half)][local_of(half)];
+    if (vertex_stamps_[from] == stamp_) return false;
+    vertex_stamps_[from] = stamp_;
+    border_next_[from] = half;
+  }
+  loop_.clear();
+  std::uint32_t half = border_.front();
+  do {
+    loop_.push_back(half);
+    half = border_next_[triangles_[face_of(half)][kNext[local_of(half)]]];
+  } while (half != border_.front() && loop_.size() < border_.size());
+  return half == border_.front() && loop_.size() == border_.size();
+}
+
+void GrowingMesh::replace_patch(const Vec3& point) {
+  // The patch's inner vertices are dropped (the border's are stamped), its faces freed, and a fan
+  // of new faces joins the new vertex to the loop.
+  sides_.clear();
+  for (const std::uint32_t h : loop_) {
     const Triangle& tri = triangles_[face_of(h)];
-    border.push_back({tri[local_of(h)], tri[kNext[local_of(h)]], twins_[face_of(h)][local_of(h)]});
+    sides_.push_back({tri[local_of(h)], tri[kNext[local_of(h)]], twins_[face_of(h)][local_of(h)]});
   }
   for (const std::uint32_t face : visible_) {
     for (const std::uint32_t v : triangles_[face]) {
-      if (is_dead_vertex_[v] == 0) {
+      if (vertex_stamps_[v] != stamp_) {
+        vertex_stamps_[v] = stamp_;
         is_dead_vertex_[v] = 1;
         --live_vertices_;
       }
     }
   }
-  for (const Border& side : border) is_dead_vertex_[side.from] = 0;
+  is_free_face_.resize(triangles_.size(), 0);
   for (const std::uint32_t face : visible_) {
-    is_visible_[face] = 0;
     is_free_face_[face] = 1;
     free_faces_.push_back(face);
   }
   const std::uint32_t p = add_vertex(point);
-  const std::size_t n = border.size();
-  std::vector<std::uint32_t>& fan = fan_;
-  fan.resize(n);
-  for (std::size_t i = 0; i < n; ++i) fan[i] = new_face();
+  const std::size_t n = sides_.size();
+  fan_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) fan_[i] = new_face();
   for (std::size_t i = 0; i < n; ++i) {
-    const Border& side = border[i];
-    const std::uint32_t face = fan[i];
-    triangles_[face] = {side.from, side.to, p};
+    const Side& side = sides_[i];
+    const std::uint32_t face = fan_[i];
+    write_face(face, {side.from, side.to, p});
     // Edge 1 (to -> p) meets the next fan face's edge 2 (p -> its from = this to).
-    twins_[face] = {side.across, half_edge(fan[(i + 1) % n], 2),
-                    half_edge(fan[(i + n - 1) % n], 1)};
+    twins_[face] = {side.across, half_edge(fan_[i + 1 == n ? 0 : i + 1], 2),
+                    half_edge(fan_[i == 0 ? n - 1 : i - 1], 1)};
     set_twin(side.across, half_edge(face, 0));
     corner_faces_[side.from] = face;
   }
-  corner_faces_[p] = fan[0];
-  for (std::size_t i = 0; i < n; ++i) loop[i] = border[i].from;  // the new vertex's neighbours
-  push_edges_of(p, loop.data(), n);
+  corner_faces_[p] = fan_[0];
+  for (std::size_t i = 0; i < n; ++i) loop_[i] = sides_[i].from;  // the new vertex's neighbours
+  push_edges_of(p, loop_.data(), n);
+}
+
+const GrowingMesh::Plane& GrowingMesh::plane_of(std::uint32_t face) {
+  Plane& plane = planes_[face];
+  if (plane.norm_squared < 0.0) {
+    const Triangle& t = triangles_[face];
+    plane.normal = (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
+    plane.norm_squared = plane.normal.squaredNorm();
+  }
+  return plane;
+}
+
+void GrowingMesh::write_face(std::uint32_t face, const Triangle& triangle) {
+  triangles_[face] = triangle;
+  planes_[face].norm_squared = -1.0;
 }
 
 ConvexPolyhedron GrowingMesh::release() {
@@ -344,7 +396,8 @@ ConvexPolyhedron GrowingMesh::release() {
             std::vector<Triangle>(triangles_.begin(), triangles_.end())};
   }
   is_dead_vertex_.resize(vertices_.size(), 0);
-  std::vector<std::uint32_t> index(vertices_.size(), kNone);
+  std::vector<std::uint32_t>& index = border_next_;  // scratch: the kept vertices' new indices
+  index.resize(vertices_.size());
   std::vector<Vec3> vertices;
   vertices.reserve(live_vertices_);
   for (std::size_t v = 0; v < vertices_.size(); ++v) {
@@ -406,6 +459,7 @@ std::uint32_t GrowingMesh::new_face() {
   const auto face = static_cast<std::uint32_t>(triangles_.size());
   triangles_.emplace_back();
   twins_.emplace_back();
+  planes_.push_back({Vec3::Zero(), -1.0});
   return face;
 }
 
@@ -415,37 +469,41 @@ void GrowingMesh::push_edges_of(std::uint32_t vertex, const std::uint32_t* neigh
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t v = neighbours[i];
     const double length_squared = (vertices_[v] - point).squaredNorm();
-    if (length_squared > limit_squared_) insert({length_squared, v, vertex});
+    if (length_squared > limit_squared_) insert(key_of({length_squared, v, vertex}));
   }
 }
 
-void GrowingMesh::insert(const EdgeEntry& entry) {
+void GrowingMesh::insert(Key key) {
   // A binary max-heap, sifted up by hand (as std::push_heap does).
   std::size_t hole = heap_.size();
-  heap_.push_back(entry);
+  heap_.push_back(key);
   while (hole > 0) {
     const std::size_t parent = (hole - 1) / 2;
-    if (!(heap_[parent] < entry)) break;
+    if (!(heap_[parent] < key)) break;
     heap_[hole] = heap_[parent];
     hole = parent;
   }
-  heap_[hole] = entry;
+  heap_[hole] = key;
 }
 
 void GrowingMesh::pop() {
-  // The last entry sifts down from the root.
-  const EdgeEntry last = heap_.back();
+  // The root's hole goes down to a leaf along the larger children, then the last key sifts up
+  // from there (it nearly always belongs near the bottom: fewer comparisons than sifting it down).
+  const Key last = heap_.back();
   heap_.pop_back();
   const std::size_t size = heap_.size();
   if (size == 0) return;
   std::size_t hole = 0;
-  for (;;) {
-    std::size_t child = 2 * hole + 1;
-    if (child >= size) break;
+  for (std::size_t child = 1; child < size; child = 2 * hole + 1) {
     if (child + 1 < size && heap_[child] < heap_[child + 1]) ++child;
-    if (!(last < heap_[child])) break;
     heap_[hole] = heap_[child];
     hole = child;
+  }
+  while (hole > 0) {
+    const std::size_t parent = (hole - 1) / 2;
+    if (!(heap_[parent] < last)) break;
+    heap_[hole] = heap_[parent];
+    hole = parent;
   }
   heap_[hole] = last;
 }
