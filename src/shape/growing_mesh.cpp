@@ -96,11 +96,10 @@ void GrowingMesh::reset(const std::array<Vec3, 6>& base, double edge_length, dou
   corner_faces_.reserve(expected_vertices);
   heap_.reserve(expected_faces);
   heap_.clear();
-  is_dead_vertex_.clear();
-  is_free_face_.clear();
   free_faces_.clear();
   live_vertices_ = 6;
   top_half_ = kNone;
+  may_be_stale_ = false;
   if (stamp_ > kLastStamp) {  // the stamps start again (stale ones must not match)
     std::fill(face_stamps_.begin(), face_stamps_.end(), 0);
     std::fill(vertex_stamps_.begin(), vertex_stamps_.end(), 0);
@@ -111,6 +110,14 @@ void GrowingMesh::reset(const std::array<Vec3, 6>& base, double edge_length, dou
   twins_.assign(kBase.twins.begin(), kBase.twins.end());
   planes_.assign(kBase.triangles.size(), Plane{Vec3::Zero(), -1.0});
   corner_faces_.assign(kBase.corner_faces.begin(), kBase.corner_faces.end());
+  is_dead_vertex_.assign(vertices_.size(), 0);
+  is_free_face_.assign(triangles_.size(), 0);
+  // Stamps of faces and vertices are kept (older stamps never match), only grown.
+  face_stamps_.resize(triangles_.size(), 0);
+  if (vertex_stamps_.size() < vertices_.size()) {
+    vertex_stamps_.resize(vertices_.size(), 0);
+    border_next_.resize(vertices_.size());
+  }
   for (const auto& t : kBase.triangles) {
     for (std::uint32_t k = 0; k < 3; ++k) {
       const std::uint32_t from = t[k];
@@ -137,7 +144,7 @@ bool GrowingMesh::longest_edge(EdgeEntry& entry) {
   while (!heap_.empty()) {
     entry = entry_of(heap_.front());
     // Only the hull rule removes edges; a removed edge's entry is dropped here.
-    if (is_dead_vertex_.empty()) {
+    if (!may_be_stale_) {
       top_half_ = kNone;
       return true;
     }
@@ -252,7 +259,6 @@ void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistan
   }
   // In front of a face's plane by more than the tolerance (compared squared: no square root).
   const double tolerance_squared = kRelativeTolerance * kRelativeTolerance * distance * distance;
-  if (is_dead_vertex_.empty()) is_dead_vertex_.assign(vertices_.size(), 0);
   // Rounding can make the patch other than a disk (or the vertex lie in the plane of one of the
   // edge's faces); then, too, the vertex splits the edge.
   if (!find_visible(ab, point, tolerance_squared) || !chain_border()) {
@@ -261,9 +267,8 @@ void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistan
   }
   // The minimum edge length: a new vertex that would come closer than it to a vertex it joins
   // (a short edge, thin triangles around it) splits the edge instead.
-  for (const std::uint32_t h : loop_) {
-    if ((vertices_[triangles_[face_of(h)][local_of(h)]] - point).squaredNorm() <
-        min_edge_squared_) {
+  for (std::size_t i = 0; i < border_count_; ++i) {
+    if ((vertices_[sides_[i].from] - point).squaredNorm() < min_edge_squared_) {
       split_at(ab, on_edge);
       return;
     }
@@ -277,101 +282,146 @@ bool GrowingMesh::find_visible(std::uint32_t ab, const Vec3& point, double toler
   stamp_ += 1;
   const std::uint32_t seen = 2 * stamp_ + 1;
   const std::uint32_t unseen = 2 * stamp_;
-  face_stamps_.resize(triangles_.size(), 0);
+  const std::size_t faces = triangles_.size();
+  if (visible_.size() < faces) {
+    visible_.resize(faces);
+    border_.resize(3 * faces);
+  }
+  const Triangle* triangles = triangles_.data();
+  const Twins* twins = twins_.data();
+  const Vec3* vertices = vertices_.data();
+  Plane* planes = planes_.data();
+  std::uint32_t* stamps = face_stamps_.data();
+  std::uint32_t* visible = visible_.data();
+  std::uint32_t* border = border_.data();
   const auto sees = [&](std::uint32_t face) {
-    const Plane& plane = plane_of(face);
-    const double height = plane.normal.dot(point - vertices_[triangles_[face][0]]);
+    const Triangle& tri = triangles[face];
+    Plane& plane = planes[face];
+    if (plane.norm_squared < 0.0) {
+      plane.normal =
+          (vertices[tri[1]] - vertices[tri[0]]).cross(vertices[tri[2]] - vertices[tri[0]]);
+      plane.norm_squared = plane.normal.squaredNorm();
+    }
+    const double height = plane.normal.dot(point - vertices[tri[0]]);
     return height > 0.0 && height * height > tolerance_squared * plane.norm_squared;
   };
-  visible_.clear();
-  border_.clear();
-  for (const std::uint32_t face : {face_of(ab), face_of(twins_[face_of(ab)][local_of(ab)])}) {
+  std::size_t visible_count = 0;
+  for (const std::uint32_t face : {face_of(ab), face_of(twins[face_of(ab)][local_of(ab)])}) {
     if (!sees(face)) return false;  // the vertex lies in the face's plane after rounding
-    face_stamps_[face] = seen;
-    visible_.push_back(face);
+    stamps[face] = seen;
+    visible[visible_count++] = face;
   }
   // The patch's border: half-edges of visible faces whose twin is not visible, in the order of
   // the walk.
-  for (std::size_t i = 0; i < visible_.size(); ++i) {
-    const std::uint32_t face = visible_[i];
+  std::size_t border_count = 0;
+  for (std::size_t i = 0; i < visible_count; ++i) {
+    const std::uint32_t face = visible[i];
     for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t next = face_of(twins_[face][k]);
-      const std::uint32_t stamp = face_stamps_[next];
+      const std::uint32_t next = face_of(twins[face][k]);
+      const std::uint32_t stamp = stamps[next];
       if (stamp == seen) continue;
       if (stamp != unseen) {
         if (sees(next)) {
-          face_stamps_[next] = seen;
-          visible_.push_back(next);
+          stamps[next] = seen;
+          visible[visible_count++] = next;
           continue;
         }
-        face_stamps_[next] = unseen;
+        stamps[next] = unseen;
       }
-      border_.push_back(half_edge(face, k));
+      border[border_count++] = half_edge(face, k);
     }
   }
+  visible_count_ = visible_count;
+  border_count_ = border_count;
   return true;
 }
 
 bool GrowingMesh::chain_border() {
   // The border as one loop from its first half-edge: each border vertex must have exactly one
   // border half-edge leaving it (else the patch is pinched there), and the loop must use them all
-  // (else there is more than one).
-  vertex_stamps_.resize(vertices_.size(), 0);
-  border_next_.resize(vertices_.size());
-  for (const std::uint32_t half : border_) {
-    const std::uint32_t from = triangles_[face_of(half)][local_of(half)];
-    if (vertex_stamps_[from] == stamp_) return false;
-    vertex_stamps_[from] = stamp_;
-    border_next_[from] = half;
+  // (else there is more than one). The loop goes to sides_ (ends and outer twin of each step).
+  const Triangle* triangles = triangles_.data();
+  const Twins* twins = twins_.data();
+  const std::uint32_t* border = border_.data();
+  std::uint32_t* stamps = vertex_stamps_.data();
+  std::uint32_t* next = border_next_.data();
+  const std::size_t count = border_count_;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t half = border[i];
+    const std::uint32_t from = triangles[face_of(half)][local_of(half)];
+    if (stamps[from] == stamp_) return false;
+    stamps[from] = stamp_;
+    next[from] = half;
   }
-  loop_.clear();
-  std::uint32_t half = border_.front();
+  if (sides_.size() < count) sides_.resize(count);
+  Side* sides = sides_.data();
+  const std::uint32_t first = border[0];
+  std::uint32_t half = first;
+  std::size_t length = 0;
   do {
-    loop_.push_back(half);
-    half = border_next_[triangles_[face_of(half)][kNext[local_of(half)]]];
-  } while (half != border_.front() && loop_.size() < border_.size());
-  return half == border_.front() && loop_.size() == border_.size();
+    const Triangle& tri = triangles[face_of(half)];
+    const std::uint32_t to = tri[kNext[local_of(half)]];
+    sides[length++] = {tri[local_of(half)], to, twins[face_of(half)][local_of(half)]};
+    half = next[to];
+  } while (half != first && length < count);
+  return half == first && length == count;
 }
 
 void GrowingMesh::replace_patch(const Vec3& point) {
   // The patch's inner vertices are dropped (the border's are stamped), its faces freed, and a fan
-  // of new faces joins the new vertex to the loop.
-  sides_.clear();
-  for (const std::uint32_t h : loop_) {
-    const Triangle& tri = triangles_[face_of(h)];
-    sides_.push_back({tri[local_of(h)], tri[kNext[local_of(h)]], twins_[face_of(h)][local_of(h)]});
-  }
-  for (const std::uint32_t face : visible_) {
-    for (const std::uint32_t v : triangles_[face]) {
-      if (vertex_stamps_[v] != stamp_) {
-        vertex_stamps_[v] = stamp_;
-        is_dead_vertex_[v] = 1;
-        --live_vertices_;
+  // of new faces joins the new vertex to the loop. Freed faces are taken back last in, first out:
+  // the fan takes the patch's faces from its last, then older free faces, then new ones.
+  const std::uint32_t* visible = visible_.data();
+  const std::size_t m = visible_count_;
+  {
+    const Triangle* triangles = triangles_.data();
+    std::uint32_t* stamps = vertex_stamps_.data();
+    for (std::size_t i = 0; i < m; ++i) {
+      for (const std::uint32_t v : triangles[visible[i]]) {
+        if (stamps[v] != stamp_) {
+          stamps[v] = stamp_;
+          is_dead_vertex_[v] = 1;
+          --live_vertices_;
+        }
       }
     }
   }
-  is_free_face_.resize(triangles_.size(), 0);
-  for (const std::uint32_t face : visible_) {
-    is_free_face_[face] = 1;
-    free_faces_.push_back(face);
-  }
+  may_be_stale_ = true;
+  const std::size_t n = border_count_;
   const std::uint32_t p = add_vertex(point);
-  const std::size_t n = sides_.size();
-  fan_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) fan_[i] = new_face();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Side& side = sides_[i];
-    const std::uint32_t face = fan_[i];
-    write_face(face, {side.from, side.to, p});
-    // Edge 1 (to -> p) meets the next fan face's edge 2 (p -> its from = this to).
-    twins_[face] = {side.across, half_edge(fan_[i + 1 == n ? 0 : i + 1], 2),
-                    half_edge(fan_[i == 0 ? n - 1 : i - 1], 1)};
-    set_twin(side.across, half_edge(face, 0));
-    corner_faces_[side.from] = face;
+  if (fan_.size() < n) fan_.resize(n);
+  std::uint32_t* fan = fan_.data();
+  const std::size_t reused = std::min(m, n);
+  for (std::size_t i = 0; i < reused; ++i) fan[i] = visible[m - 1 - i];
+  for (std::size_t i = 0; i + reused < m; ++i) {
+    is_free_face_[visible[i]] = 1;
+    free_faces_.push_back(visible[i]);
   }
-  corner_faces_[p] = fan_[0];
-  for (std::size_t i = 0; i < n; ++i) loop_[i] = sides_[i].from;  // the new vertex's neighbours
-  push_edges_of(p, loop_.data(), n);
+  for (std::size_t i = reused; i < n; ++i) fan[i] = new_face();
+  const Side* sides = sides_.data();
+  Triangle* triangles = triangles_.data();
+  Twins* twins = twins_.data();
+  Plane* planes = planes_.data();
+  std::uint32_t* corners = corner_faces_.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Side& side = sides[i];
+    const std::uint32_t face = fan[i];
+    triangles[face] = {side.from, side.to, p};
+    planes[face].norm_squared = -1.0;
+    // Edge 1 (to -> p) meets the next fan face's edge 2 (p -> its from = this to).
+    twins[face] = {side.across, half_edge(fan[i + 1 == n ? 0 : i + 1], 2),
+                   half_edge(fan[i == 0 ? n - 1 : i - 1], 1)};
+    twins[face_of(side.across)][local_of(side.across)] = half_edge(face, 0);
+    corners[side.from] = face;
+  }
+  corners[p] = fan[0];
+  // The new vertex's edges to the loop.
+  const Vec3& apex = vertices_[p];
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t v = sides[i].from;
+    const double length_squared = (vertices_[v] - apex).squaredNorm();
+    if (length_squared > limit_squared_) insert(key_of({length_squared, v, p}));
+  }
 }
 
 const GrowingMesh::Plane& GrowingMesh::plane_of(std::uint32_t face) {
@@ -390,14 +440,12 @@ void GrowingMesh::write_face(std::uint32_t face, const Triangle& triangle) {
 }
 
 ConvexPolyhedron GrowingMesh::release() {
-  if (is_dead_vertex_.empty() && free_faces_.empty()) {
+  if (!may_be_stale_ && free_faces_.empty()) {
     // Exactly sized copies: the working vectors were reserved from an estimate.
     return {std::vector<Vec3>(vertices_.begin(), vertices_.end()),
             std::vector<Triangle>(triangles_.begin(), triangles_.end())};
   }
-  is_dead_vertex_.resize(vertices_.size(), 0);
-  std::vector<std::uint32_t>& index = border_next_;  // scratch: the kept vertices' new indices
-  index.resize(vertices_.size());
+  std::uint32_t* index = border_next_.data();  // scratch: the kept vertices' new indices
   std::vector<Vec3> vertices;
   vertices.reserve(live_vertices_);
   for (std::size_t v = 0; v < vertices_.size(); ++v) {
@@ -405,7 +453,6 @@ ConvexPolyhedron GrowingMesh::release() {
     index[v] = static_cast<std::uint32_t>(vertices.size());
     vertices.push_back(vertices_[v]);
   }
-  is_free_face_.resize(triangles_.size(), 0);
   std::vector<Triangle> triangles;
   triangles.reserve(triangles_.size() - free_faces_.size());
   for (std::size_t f = 0; f < triangles_.size(); ++f) {
@@ -444,7 +491,11 @@ std::uint32_t GrowingMesh::add_vertex(const Vec3& point) {
   const auto p = static_cast<std::uint32_t>(vertices_.size());
   vertices_.push_back(point);
   corner_faces_.push_back(0);
-  if (!is_dead_vertex_.empty()) is_dead_vertex_.push_back(0);
+  is_dead_vertex_.push_back(0);
+  if (vertex_stamps_.size() <= p) {
+    vertex_stamps_.resize(2 * static_cast<std::size_t>(p), 0);
+    border_next_.resize(2 * static_cast<std::size_t>(p));
+  }
   ++live_vertices_;
   return p;
 }
@@ -460,6 +511,8 @@ std::uint32_t GrowingMesh::new_face() {
   triangles_.emplace_back();
   twins_.emplace_back();
   planes_.push_back({Vec3::Zero(), -1.0});
+  face_stamps_.push_back(0);
+  is_free_face_.push_back(0);
   return face;
 }
 

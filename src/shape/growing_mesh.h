@@ -93,7 +93,7 @@ class GrowingMesh {
   // The faces `point` sees, from the edge's two faces (visible_) and the patch's border
   // (border_, in walk order); false when one of the edge's faces does not see it.
   bool find_visible(std::uint32_t ab, const Vec3& point, double tolerance_squared);
-  // Chains border_ into loop_ from its first half-edge; false unless the patch is a disk.
+  // Chains border_ into sides_ from its first half-edge; false unless the patch is a disk.
   bool chain_border();
   // Replaces the visible patch by a fan from the new vertex `point` to its border loop.
   void replace_patch(const Vec3& point);
@@ -119,20 +119,23 @@ class GrowingMesh {
   std::vector<std::uint32_t> free_faces_;
   std::size_t live_vertices_ = 6;
   std::uint32_t top_half_ = 0xFFFFFFFFU;  // the half-edge of the heap's top, when known
+  bool may_be_stale_ = false;             // a patch was replaced: heap entries may be stale
   // Scratch of insert_hull, kept between calls (an insertion allocates nothing). Faces and
   // vertices are stamped with the insertion's number: a face stamped 2 s + 1 sees the new vertex,
   // 2 s was tested and does not; a vertex stamped s is on the border or inside the patch.
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> face_stamps_;
   std::vector<std::uint32_t> vertex_stamps_;
-  std::vector<std::uint32_t> border_next_;  // per vertex: the border half-edge leaving it
-  std::vector<std::uint32_t> visible_;
-  std::vector<std::uint32_t> border_;
-  std::vector<std::uint32_t> loop_;
+  std::vector<std::uint32_t> border_next_;  // per vertex (as many as vertex_stamps_): the border
+                                            // half-edge leaving it
+  std::vector<std::uint32_t> visible_;      // the patch's faces (the first visible_count_)
+  std::vector<std::uint32_t> border_;       // its border half-edges (the first border_count_)
+  std::size_t visible_count_ = 0;
+  std::size_t border_count_ = 0;
   struct Side {
     std::uint32_t from, to, across;  // a border half-edge's ends and its twin (outside the patch)
   };
-  std::vector<Side> sides_;
+  std::vector<Side> sides_;  // the border as a loop (the first border_count_)
   std::vector<std::uint32_t> fan_;
 };
 
