@@ -183,12 +183,11 @@ void GrowingMesh::split_midpoint(const EdgeEntry& entry, const DrawDistance& dra
   // other face as long as it stays behind the four faces across the patch's border.
   double distance = std::max(draw(direction), midpoint_distance);
   for (const std::uint32_t half : across) {
-    const std::uint32_t face = face_of(half);
-    const Vec3& normal = plane_of(face).normal;
+    const auto& t = triangles_[face_of(half)];
+    const Vec3 normal =
+        (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
     const double approach = normal.dot(direction);
-    if (approach > 0.0) {
-      distance = std::min(distance, normal.dot(vertices_[triangles_[face][0]]) / approach);
-    }
+    if (approach > 0.0) distance = std::min(distance, normal.dot(vertices_[t[0]]) / approach);
   }
   if (limit) distance = std::min(distance, limit(direction, midpoint_distance, distance));
   distance = std::max(distance, midpoint_distance);
@@ -424,16 +423,6 @@ void GrowingMesh::replace_patch(const Vec3& point) {
   }
 }
 
-const GrowingMesh::Plane& GrowingMesh::plane_of(std::uint32_t face) {
-  Plane& plane = planes_[face];
-  if (plane.norm_squared < 0.0) {
-    const Triangle& t = triangles_[face];
-    plane.normal = (vertices_[t[1]] - vertices_[t[0]]).cross(vertices_[t[2]] - vertices_[t[0]]);
-    plane.norm_squared = plane.normal.squaredNorm();
-  }
-  return plane;
-}
-
 void GrowingMesh::write_face(std::uint32_t face, const Triangle& triangle) {
   triangles_[face] = triangle;
   planes_[face].norm_squared = -1.0;
@@ -526,39 +515,57 @@ void GrowingMesh::push_edges_of(std::uint32_t vertex, const std::uint32_t* neigh
   }
 }
 
+// The heap is 4-ary (children of i: 4 i + 1 .. 4 i + 4): half the depth of a binary heap, and the
+// largest of four children is found without unpredictable branches. The order in which live
+// edges come out depends only on their keys, not on the heap's shape.
 void GrowingMesh::insert(Key key) {
-  // A binary max-heap, sifted up by hand (as std::push_heap does).
   std::size_t hole = heap_.size();
   heap_.push_back(key);
+  Key* heap = heap_.data();
   while (hole > 0) {
-    const std::size_t parent = (hole - 1) / 2;
-    if (!(heap_[parent] < key)) break;
-    heap_[hole] = heap_[parent];
+    const std::size_t parent = (hole - 1) / 4;
+    if (!(heap[parent] < key)) break;
+    heap[hole] = heap[parent];
     hole = parent;
   }
-  heap_[hole] = key;
+  heap[hole] = key;
 }
 
 void GrowingMesh::pop() {
-  // The root's hole goes down to a leaf along the larger children, then the last key sifts up
+  // The root's hole goes down to a leaf along the largest children, then the last key sifts up
   // from there (it nearly always belongs near the bottom: fewer comparisons than sifting it down).
   const Key last = heap_.back();
   heap_.pop_back();
   const std::size_t size = heap_.size();
   if (size == 0) return;
+  Key* heap = heap_.data();
   std::size_t hole = 0;
-  for (std::size_t child = 1; child < size; child = 2 * hole + 1) {
-    if (child + 1 < size && heap_[child] < heap_[child + 1]) ++child;
-    heap_[hole] = heap_[child];
+  for (;;) {
+    const std::size_t first = 4 * hole + 1;
+    if (first + 4 <= size) {
+      const std::size_t a = first + static_cast<std::size_t>(heap[first] < heap[first + 1]);
+      const std::size_t b = first + 2 + static_cast<std::size_t>(heap[first + 2] < heap[first + 3]);
+      const std::size_t child = heap[a] < heap[b] ? b : a;
+      heap[hole] = heap[child];
+      hole = child;
+      continue;
+    }
+    if (first >= size) break;
+    std::size_t child = first;
+    for (std::size_t c = first + 1; c < size; ++c) {
+      if (heap[child] < heap[c]) child = c;
+    }
+    heap[hole] = heap[child];
     hole = child;
+    break;
   }
   while (hole > 0) {
-    const std::size_t parent = (hole - 1) / 2;
-    if (!(heap_[parent] < last)) break;
-    heap_[hole] = heap_[parent];
+    const std::size_t parent = (hole - 1) / 4;
+    if (!(heap[parent] < last)) break;
+    heap[hole] = heap[parent];
     hole = parent;
   }
-  heap_[hole] = last;
+  heap[hole] = last;
 }
 
 }  // namespace aggpack::detail

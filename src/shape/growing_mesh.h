@@ -31,8 +31,8 @@ using DrawDistance = std::function<double(const Vec3& direction)>;
 // Speed (bench/RESULTS.md, "Generator" and "Hull growth vs the midpoint rule"): storage is
 // reserved from the expected vertex count rather than the cap; adjacency is kept as twin
 // half-edges, so an insertion rewires its neighbours without searching; the heap holds only edges
-// longer than L (shorter ones can never be chosen), one 128-bit key per edge (squared length,
-// then the vertex pair: compared in one instruction pair), so an insertion pushes only its new
+// longer than L (shorter ones can never be chosen), as a 4-ary heap of 128-bit keys (squared
+// length, then the vertex pair: one integer comparison), so an insertion pushes only its new
 // edges. Under the midpoint rule no entry ever goes stale (an edge leaves the mesh only by being
 // split, which pops it); under the hull rule an edge can vanish inside the replaced patch, and
 // its entry is dropped when it reaches the top (vertices never move, so a live entry's length is
@@ -97,7 +97,6 @@ class GrowingMesh {
   bool chain_border();
   // Replaces the visible patch by a fan from the new vertex `point` to its border loop.
   void replace_patch(const Vec3& point);
-  const Plane& plane_of(std::uint32_t face);
   void write_face(std::uint32_t face, const Triangle& triangle);
   std::uint32_t add_vertex(const Vec3& point);
   std::uint32_t new_face();
