@@ -91,9 +91,6 @@ void GrowingMesh::reset(const std::array<Vec3, 6>& base, double edge_length, dou
   const std::size_t expected_faces = 2 * expected_vertices;
   vertices_.reserve(expected_vertices);
   triangles_.reserve(expected_faces);
-  twins_.reserve(expected_faces);
-  planes_.reserve(expected_faces);
-  corner_faces_.reserve(expected_vertices);
   heap_.reserve(expected_faces);
   heap_.clear();
   free_faces_.clear();
@@ -107,17 +104,13 @@ void GrowingMesh::reset(const std::array<Vec3, 6>& base, double edge_length, dou
   }
   vertices_.assign(base.begin(), base.end());
   triangles_.assign(kBase.triangles.begin(), kBase.triangles.end());
-  twins_.assign(kBase.twins.begin(), kBase.twins.end());
-  planes_.assign(kBase.triangles.size(), Plane{Vec3::Zero(), -1.0});
-  corner_faces_.assign(kBase.corner_faces.begin(), kBase.corner_faces.end());
-  is_dead_vertex_.assign(vertices_.size(), 0);
-  is_free_face_.assign(triangles_.size(), 0);
-  // Stamps of faces and vertices are kept (older stamps never match), only grown.
-  face_stamps_.resize(triangles_.size(), 0);
-  if (vertex_stamps_.size() < vertices_.size()) {
-    vertex_stamps_.resize(vertices_.size(), 0);
-    border_next_.resize(vertices_.size());
-  }
+  grow_vertex_arrays(std::max(expected_vertices, vertices_.size()));
+  grow_face_arrays(std::max(expected_faces, triangles_.size()));
+  std::copy(kBase.twins.begin(), kBase.twins.end(), twins_.begin());
+  std::copy(kBase.corner_faces.begin(), kBase.corner_faces.end(), corner_faces_.begin());
+  std::fill_n(is_dead_vertex_.begin(), vertices_.size(), 0);
+  std::fill_n(is_free_face_.begin(), triangles_.size(), 0);
+  for (std::size_t f = 0; f < triangles_.size(); ++f) planes_[f].norm_squared = -1.0;
   for (const auto& t : kBase.triangles) {
     for (std::uint32_t k = 0; k < 3; ++k) {
       const std::uint32_t from = t[k];
@@ -479,12 +472,9 @@ std::uint32_t GrowingMesh::find_outgoing(std::uint32_t from, std::uint32_t to) c
 std::uint32_t GrowingMesh::add_vertex(const Vec3& point) {
   const auto p = static_cast<std::uint32_t>(vertices_.size());
   vertices_.push_back(point);
-  corner_faces_.push_back(0);
-  is_dead_vertex_.push_back(0);
-  if (vertex_stamps_.size() <= p) {
-    vertex_stamps_.resize(2 * static_cast<std::size_t>(p), 0);
-    border_next_.resize(2 * static_cast<std::size_t>(p));
-  }
+  if (p >= corner_faces_.size()) grow_vertex_arrays(2 * static_cast<std::size_t>(p));
+  corner_faces_[p] = 0;
+  is_dead_vertex_[p] = 0;
   ++live_vertices_;
   return p;
 }
@@ -498,11 +488,26 @@ std::uint32_t GrowingMesh::new_face() {
   }
   const auto face = static_cast<std::uint32_t>(triangles_.size());
   triangles_.emplace_back();
-  twins_.emplace_back();
-  planes_.push_back({Vec3::Zero(), -1.0});
-  face_stamps_.push_back(0);
-  is_free_face_.push_back(0);
+  if (face >= twins_.size()) grow_face_arrays(2 * static_cast<std::size_t>(face));
+  planes_[face].norm_squared = -1.0;
+  is_free_face_[face] = 0;
   return face;
+}
+
+void GrowingMesh::grow_vertex_arrays(std::size_t count) {
+  if (corner_faces_.size() >= count) return;
+  corner_faces_.resize(count);
+  is_dead_vertex_.resize(count);
+  vertex_stamps_.resize(count, 0);
+  border_next_.resize(count);
+}
+
+void GrowingMesh::grow_face_arrays(std::size_t count) {
+  if (twins_.size() >= count) return;
+  twins_.resize(count);
+  planes_.resize(count, Plane{Vec3::Zero(), -1.0});
+  face_stamps_.resize(count, 0);
+  is_free_face_.resize(count);
 }
 
 void GrowingMesh::push_edges_of(std::uint32_t vertex, const std::uint32_t* neighbours,

@@ -100,6 +100,10 @@ class GrowingMesh {
   void write_face(std::uint32_t face, const Triangle& triangle);
   std::uint32_t add_vertex(const Vec3& point);
   std::uint32_t new_face();
+  // The per-vertex and per-face arrays other than vertices_ and triangles_ are kept at least as
+  // long as those (grown by doubling, never shrunk: a slot is set when its vertex or face is made).
+  void grow_vertex_arrays(std::size_t count);
+  void grow_face_arrays(std::size_t count);
   // Heap entries for the new vertex's edges to `neighbours` that are longer than L.
   void push_edges_of(std::uint32_t vertex, const std::uint32_t* neighbours, std::size_t count);
   void insert(Key key);
