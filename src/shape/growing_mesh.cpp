@@ -208,10 +208,11 @@ void GrowingMesh::split_at(std::uint32_t ab, const Vec3& point) {
   const std::uint32_t p = add_vertex(point);
   const auto f3 = new_face();
   const auto f4 = new_face();
-  write_face(f1, {a, p, c});
-  write_face(f3, {p, b, c});
-  write_face(f2, {b, p, d});
-  write_face(f4, {p, a, d});
+  triangles_[f1] = {a, p, c};
+  triangles_[f3] = {p, b, c};
+  triangles_[f2] = {b, p, d};
+  triangles_[f4] = {p, a, d};
+  for (const std::uint32_t face : {f1, f2, f3, f4}) planes_[face].norm_squared = -1.0;
   twins_[f1] = {half_edge(f4, 0), half_edge(f3, 2), across_ca};
   twins_[f3] = {half_edge(f2, 0), across_bc, half_edge(f1, 1)};
   twins_[f2] = {half_edge(f3, 0), half_edge(f4, 2), across_db};
@@ -414,11 +415,6 @@ void GrowingMesh::replace_patch(const Vec3& point) {
     const double length_squared = (vertices_[v] - apex).squaredNorm();
     if (length_squared > limit_squared_) insert(key_of({length_squared, v, p}));
   }
-}
-
-void GrowingMesh::write_face(std::uint32_t face, const Triangle& triangle) {
-  triangles_[face] = triangle;
-  planes_[face].norm_squared = -1.0;
 }
 
 ConvexPolyhedron GrowingMesh::release() {

@@ -97,7 +97,6 @@ class GrowingMesh {
   bool chain_border();
   // Replaces the visible patch by a fan from the new vertex `point` to its border loop.
   void replace_patch(const Vec3& point);
-  void write_face(std::uint32_t face, const Triangle& triangle);
   std::uint32_t add_vertex(const Vec3& point);
   std::uint32_t new_face();
   // The per-vertex and per-face arrays other than vertices_ and triangles_ are kept at least as
