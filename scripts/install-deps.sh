@@ -15,6 +15,8 @@ packages=(
   # meshing, physics, rendering, GUI
   libtet1.5-dev libbullet-dev libosmesa6-dev libegl-dev libgl-dev libglfw3-dev libimgui-dev
   libstb-dev
+  # aggpack-gui in Chinese: a CJK font found at run time (Noto Sans CJK SC; ~50 MB installed)
+  fonts-noto-cjk
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev clang-format
   # naming and bugprone checks (scripts/tidy.sh, .clang-tidy)
