@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <map>
@@ -37,10 +38,19 @@ const char* key_doc(const Key<PackConfig>& key) {
   return chinese != nullptr ? chinese : key.doc.c_str();
 }
 
-// A word value as the list shows it: in Chinese its words and the word ("长方体 (box)").
-std::string shown_word(const std::string& word) {
-  const char* chinese = language() == Language::kChinese ? word_chinese(word) : nullptr;
-  return chinese != nullptr ? fmt::format("{} ({})", chinese, word) : word;
+// A word value as the list shows it: in Chinese its words and the word ("长方体 (box)"). Made
+// once per language and word, so drawing a list allocates nothing (the window's thread only).
+const std::string& shown_word(const std::string& word) {
+  static std::array<std::map<std::string, std::string, std::less<>>, 2> cache;
+  const bool is_chinese = language() == Language::kChinese;
+  auto& shown = cache[is_chinese ? 1 : 0];
+  auto found = shown.find(word);
+  if (found == shown.end()) {
+    const char* chinese = is_chinese ? word_chinese(word) : nullptr;
+    found = shown.emplace(word, chinese != nullptr ? fmt::format("{} ({})", chinese, word) : word)
+                .first;
+  }
+  return found->second;
 }
 
 void key_tooltip(const Key<PackConfig>& key, const KeyView& view) {
@@ -147,8 +157,9 @@ void GuiApp::draw_key_input(const Key<PackConfig>& key, const KeyView& view,
       auto& word = std::get<std::string>(value);
       if (ImGui::BeginCombo(label.c_str(), shown_word(word).c_str())) {
         for (const auto& choice : key.words) {
-          const std::string id = shown_word(choice) + "##" + choice;
-          if (ImGui::Selectable(id.c_str(), choice == word)) word = choice;
+          ImGui::PushID(choice.c_str());
+          if (ImGui::Selectable(shown_word(choice).c_str(), choice == word)) word = choice;
+          ImGui::PopID();
         }
         ImGui::EndCombo();
       }
