@@ -60,5 +60,7 @@ if(TARGET aggpack_python)
 python3 (<< ${python_major}.${python_next}), python3-numpy")
 endif()
 # Readers and solvers the exports and commands can hand their files to.
+# aggpack-gui shows Chinese (zh_* locales, View > Language) with a CJK font, else English.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "fonts-noto-cjk | fonts-wqy-microhei")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "calculix-ccx, gmsh, yade, paraview, gnuplot-nox")
 include(CPack)
