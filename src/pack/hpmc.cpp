@@ -308,8 +308,9 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
   // further out of the container. The partners (the neighbours it overlaps, exact test) are
   // found once and updated after an accepted push.
   //
-  // Flagging a new partner k from i's move is race-free and independent of the thread count: k
-  // is within i's reach, so in an adjacent cell of another colour, not moved at the same time.
+  // Flagging a new partner k from i's move is independent of the thread count: k is within i's
+  // reach, so in an adjacent cell of another colour, not moved at the same time (and only ever
+  // set to 1 by others, atomically).
   constexpr int kTries = 8;
   constexpr int kMaxPartners = 64;
   const Body& body = bodies_[body_of_[i]];
@@ -389,7 +390,9 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
     count = kept;
     for (int f = 0; f < fresh_count; ++f) {
       partners[count++] = fresh[f];
-      flagged_[fresh[f]] = 1;
+      // Two particles moved at once (cells two apart) may both flag one between them: the
+      // same value either way, stored atomically.
+      std::atomic_ref<std::uint8_t>(flagged_[fresh[f]]).store(1, std::memory_order_relaxed);
     }
   }
   if (count == 0 && was_inside) flagged_[i] = 0;
