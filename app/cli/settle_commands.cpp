@@ -16,6 +16,7 @@
 #include "aggpack/io/native.h"
 #include "aggpack/sim/settle.h"
 #include "commands.h"
+#include "output_flags.h"
 #include "progress.h"
 
 namespace aggpack::cli {
@@ -75,6 +76,7 @@ struct SettleFlags {
 };
 
 void run_settle_command(const SettleFlags& flags) {
+  check_output_file_flag("-o/--output", flags.output);
   SettleOptions options = flags.options;
   if (flags.wall_friction) options.physics.wall_friction = *flags.wall_friction;
   with_user_names(settle_flag_names(), [&] {
