@@ -156,7 +156,7 @@ const std::map<std::string, std::string>& export_flag_names() {
       {"quadratic", "--quadratic"},
       {"xdmf", "--xdmf"},
       {"cells", "--cells"},
-      {"output extension", "-o/--output"},
+      {"output extension", "-o/--output extension"},
   };
   return names;
 }

@@ -89,7 +89,8 @@ TEST_F(RunawayCliTest, ShapeLibraryFarAboveTheTargetIsRefused) {
 }
 
 // A valid run that will take minutes and gigabytes says so in one line before it starts, even
-// with --progress none; stopped with Ctrl-C once the line is there, it leaves nothing.
+// with --progress none; stopped (SIGTERM: a background job of a shell ignores SIGINT) once the
+// line is there, it leaves nothing.
 TEST_F(RunawayCliTest, HeavyRunIsAnnouncedBeforeItStarts) {
   const std::string err = folder_.string() + ".heavy.err";
   const std::string command =
@@ -98,7 +99,7 @@ TEST_F(RunawayCliTest, HeavyRunIsAnnouncedBeforeItStarts) {
       "/examples/triaxial-cylinder.toml' --set container.radius=1.0 --progress none -o t.h5 "
       ">/dev/null 2>'" +
       err + "' & pid=$!; for i in $(seq 1200); do grep -q 'large run' '" + err +
-      "' && break; sleep 0.1; done; kill -INT $pid; wait $pid)";
+      "' && break; sleep 0.1; done; kill -TERM $pid; wait $pid)";
   const int status = std::system(command.c_str());
   EXPECT_NE(status, -1);
   const std::string text = test::file_text(err);

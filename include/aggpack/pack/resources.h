@@ -43,8 +43,9 @@ struct RunEstimate {
   double capacity = 0.0;            ///< particles the container holds at kMaxSolidFraction
   double bytes_per_particle = 0.0;  ///< its shape (unless shared) plus the packer's bookkeeping
   double bytes = 0.0;               ///< peak memory of the run
-  /// Rough wall time (s): the sample's growth time per shape for every shape grown, on the
-  /// allowed threads, plus a fixed placement cost per particle. Measured, so not reproducible.
+  /// Rough wall time (s) on an otherwise idle machine: the sample's CPU time per shape for every
+  /// shape grown, on the allowed threads, plus a fixed placement cost per particle. Measured, so
+  /// not reproducible.
   double seconds = 0.0;
 };
 
