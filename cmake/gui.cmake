@@ -35,6 +35,11 @@ if(AGGPACK_BUILD_GUI)
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/smoke_test.sh $<TARGET_FILE:aggpack-gui>
                      ${CMAKE_CURRENT_BINARY_DIR}/gui_smoke $<TARGET_FILE:aggpack>)
     set_tests_properties(gui_smoke PROPERTIES TIMEOUT 300)
+    # Open refuses every bad native file of tests/io/fixtures/bad-inputs.
+    add_test(NAME gui_bad_open
+             COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/bad_open_test.sh $<TARGET_FILE:aggpack-gui>
+                     ${CMAKE_CURRENT_BINARY_DIR}/gui_bad_open)
+    set_tests_properties(gui_bad_open PROPERTIES TIMEOUT 300)
     # Screenshot tests of the layout, the out-of-date result and a field's error (issue 18).
     add_test(NAME gui_ui
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/ui_test.sh $<TARGET_FILE:aggpack-gui>

@@ -18,6 +18,7 @@
 #include "aggpack/shape/calibrate.h"
 #include "calibrate_plot.h"
 #include "commands.h"
+#include "output_flags.h"
 
 namespace aggpack::cli {
 
@@ -232,6 +233,8 @@ void register_calibrate(CLI::App& app) {
     const auto* self = app.get_subcommand("calibrate");
     resolve_goals(*flags, *self);
     set_thread_count(flags->threads);
+    if (self->count("--table") > 0) check_output_file_flag("--table", flags->table);
+    if (self->count("--plot") > 0) check_output_file_flag("--plot", flags->plot);
     const Overwrite overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!flags->table.empty()) check_writable(flags->table, overwrite);
     if (!flags->plot.empty()) check_writable(flags->plot, overwrite);

@@ -11,10 +11,12 @@
 #include <string>
 #include <string_view>
 
+#include "aggpack/config/schema.h"
 #include "aggpack/core/error.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "commands.h"
+#include "output_flags.h"
 
 namespace aggpack::cli {
 
@@ -124,6 +126,39 @@ std::string tetgen_report(const ExportSummary& summary) {
       "tetgen: {} of {} shapes fell back to the centroid fan (shape{} {}; {} particle{} {}{})",
       fallbacks.size(), summary.tetgen_shapes, fallbacks.size() == 1 ? "" : "s", shapes,
       particle_count, particle_count == 1 ? "" : "s", particles, reasons);
+}
+
+// The library's names of the values these flags set (export.h, mesh/tetrahedra.h); messages
+// name the flag typed.
+const std::map<std::string, std::string>& export_flag_names() {
+  static const std::map<std::string, std::string> names = {
+      {"scale", "--scale"},
+      {"compression", "--compression"},
+      {"max tetrahedron volume", "--max-volume"},
+      {"radius-edge ratio", "--radius-edge"},
+      {"TetGen time limit (s)", "--tet-time-limit"},
+      {"material name", "--material-name"},
+      {"density", "--density"},
+      {"youngs modulus", "--youngs-modulus"},
+      {"poisson ratio", "--poisson-ratio"},
+      {"friction", "--friction"},
+      {"gravity", "--gravity"},
+      {"baffle position", "--baffle-position"},
+      {"trough length", "--trough-length"},
+      {"baffle speed", "--baffle-speed"},
+      {"settle time", "--settle-time"},
+      {"rest time", "--rest-time"},
+      {"contact distance", "--contact-distance"},
+      {"time step", "--time-step"},
+      {"deck", "--deck"},
+      {"per-particle", "--per-particle"},
+      {"inp layout", "--inp-layout"},
+      {"quadratic", "--quadratic"},
+      {"xdmf", "--xdmf"},
+      {"cells", "--cells"},
+      {"output extension", "-o/--output extension"},
+  };
+  return names;
 }
 
 }  // namespace
@@ -288,13 +323,22 @@ void register_export(CLI::App& app) {
     options.abaqus_layout = parse_abaqus_layout(flags->inp_layout, "--inp-layout");
     options.deck.kind = parse_deck_kind(flags->deck);
     // Check options and the destination before the (possibly long) read of the input.
-    options.format = resolve_format(flags->output, options);
-    validate(options, options.format);
+    if (options.is_per_particle) {
+      check_output_folder_flag("-o/--output", flags->output);
+    } else {
+      check_output_file_flag("-o/--output", flags->output);
+    }
+    with_key_names({}, export_flag_names(), [&] {
+      options.format = resolve_format(flags->output, options);
+      validate(options, options.format);
+    });
     if (!options.is_per_particle) check_writable(flags->output, options.overwrite);
 
     const auto start = std::chrono::steady_clock::now();
     const Packing packing = read_packing(flags->input);
-    const ExportSummary summary = write(packing, flags->output, options);
+    ExportSummary summary;
+    with_key_names({}, export_flag_names(),
+                   [&] { summary = write(packing, flags->output, options); });
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     fmt::print("wrote {} ({}): {} particles, {} nodes, {} elements, {} file{} in {:.2f} s\n",

@@ -10,6 +10,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
@@ -20,6 +21,7 @@
 #include "aggpack/mesh/mesomodel.h"
 #include "aggpack/mesh/voxels.h"
 #include "commands.h"
+#include "output_flags.h"
 
 namespace aggpack::cli {
 
@@ -166,7 +168,17 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   flags.file.has_particle_sets = !flags.has_no_particle_sets;
   flags.file.units = flags.units == "m" ? MesoUnits::kMetre : MesoUnits::kMillimetre;
   flags.file.overwrite = overwrite;
-  validate(flags.file);
+  // The file options come from --strain and --material NAME=E,NU,RHO.
+  std::map<std::string, std::string> file_flags = {{"step.strain", "--strain"}};
+  for (const char* phase : {"aggregate", "itz", "mortar"}) {
+    for (const auto& [field, what] : {std::pair<const char*, const char*>{"youngs_modulus", "E"},
+                                      {"poisson_ratio", "NU"},
+                                      {"density", "RHO"}}) {
+      file_flags.emplace(std::string("materials.") + phase + "." + field,
+                         std::string("--material ") + phase + " " + what);
+    }
+  }
+  with_key_names({}, file_flags, [&] { validate(flags.file); });
   (void)mesomodel_format(flags.output);  // refuse a wrong extension before the work
   check_writable(flags.output, overwrite);
   const auto start = std::chrono::steady_clock::now();
@@ -267,6 +279,7 @@ void register_mesomodel(CLI::App& app) {
   command->add_flag("-f,--force", flags->is_forced, "replace existing output files");
   command->callback([flags]() {
     set_thread_count(flags->threads);
+    check_output_file_flag("-o/--output", flags->output);
     if (!(flags->itz >= 0.0) || !std::isfinite(flags->itz)) {
       throw InvalidInput("--itz", format_value(flags->itz), ">= 0 (m)");
     }

@@ -11,11 +11,13 @@
 #include <optional>
 #include <string>
 
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/io/native.h"
 #include "aggpack/sim/settle.h"
 #include "commands.h"
+#include "output_flags.h"
 #include "progress.h"
 
 namespace aggpack::cli {
@@ -41,30 +43,6 @@ const std::map<std::string, std::string>& settle_flag_names() {
   return names;
 }
 
-// Runs `check`; an InvalidInput or LimitExceeded about a field in `names` is rethrown naming
-// the user's flag instead.
-template <typename Check>
-void with_user_names(const std::map<std::string, std::string>& names, Check&& check) {
-  try {
-    check();
-  } catch (const Error& error) {
-    if (error.kind() != ErrorKind::kInvalidInput && error.kind() != ErrorKind::kLimitExceeded) {
-      throw;
-    }
-    const std::string message = error.what();
-    for (const char* lead : {"invalid ", "limit exceeded for "}) {
-      if (message.rfind(lead, 0) != 0) continue;
-      const std::size_t start = std::string(lead).size();
-      const std::size_t end = message.find(" = ", start);
-      if (end == std::string::npos) continue;
-      const auto found = names.find(message.substr(start, end - start));
-      if (found == names.end()) continue;
-      throw Error(error.kind(), lead + found->second + message.substr(end));
-    }
-    throw;
-  }
-}
-
 struct SettleFlags {
   std::string input;
   std::string output;
@@ -75,9 +53,10 @@ struct SettleFlags {
 };
 
 void run_settle_command(const SettleFlags& flags) {
+  check_output_file_flag("-o/--output", flags.output);
   SettleOptions options = flags.options;
   if (flags.wall_friction) options.physics.wall_friction = *flags.wall_friction;
-  with_user_names(settle_flag_names(), [&] {
+  with_key_names({}, settle_flag_names(), [&] {
     validate(options.physics);
     validate(options.rest);
   });
@@ -89,7 +68,7 @@ void run_settle_command(const SettleFlags& flags) {
   double last_print = -1.0;
   SettleResult result;
   try {
-    with_user_names(settle_flag_names(), [&] {
+    with_key_names({}, settle_flag_names(), [&] {
       result = settle(packing, options, [&](double time, double energy, double threshold) {
         if (style == ProgressStyle::kNone || time - last_print < 0.5) return;
         last_print = time;

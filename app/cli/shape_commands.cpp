@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
@@ -14,6 +15,7 @@
 #include "aggpack/shape/descriptors.h"
 #include "aggpack/shape/generator.h"
 #include "commands.h"
+#include "output_flags.h"
 
 namespace aggpack::cli {
 
@@ -106,7 +108,8 @@ void resolve_radius(ShapeFlags& flags, const CLI::App& command) {
   require_in_range("--elongation", g.form.elongation, 0.1, 1.0);
   require_in_range("--flatness", g.form.flatness, 0.1, 1.0);
   require_in_range("--min-edge-ratio", g.form.min_edge_ratio, 0.0, 0.5);
-  validate(g);
+  with_key_names({}, {{"max_vertices", "--max-vertices"}, {"edge_length", "--edge-length"}},
+                 [&] { validate(g); });
 }
 
 void print_descriptors(const ShapeDescriptors& d, double control_radius) {
@@ -147,6 +150,7 @@ void register_particle(CLI::App& app) {
   command->callback([=, &app]() {
     const auto* self = app.get_subcommand("particle");
     resolve_radius(*flags, *self);
+    if (self->count("--output") > 0) check_output_file_flag("-o/--output", *output);
     require_positive("--scale", *scale);
     const Overwrite overwrite = *is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!output->empty()) check_writable(*output, overwrite);
@@ -186,6 +190,7 @@ void register_shapes(CLI::App& app) {
   command->callback([=, &app]() {
     const auto* self = app.get_subcommand("shapes");
     resolve_radius(*flags, *self);
+    if (self->count("--output") > 0) check_output_file_flag("-o/--output", *output);
     if (*count < 1 || *count > 100000000ULL) {
       throw InvalidInput("--count", std::to_string(*count), "[1, 100000000]");
     }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "aggpack/config/repose_config.h"
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
@@ -28,6 +29,7 @@
 #include "aggpack/sim/sweep.h"
 #include "commands.h"
 #include "mpi_world.h"
+#include "output_flags.h"
 #include "progress.h"
 #include "sim_summary.h"
 
@@ -82,9 +84,17 @@ struct ReposeFlags {
 };
 
 SweepOptions resolve(const ReposeFlags& flags) {
+  check_output_folder_flag("-o/--output", flags.output);
   SweepOptions options = load_sweep_config(flags.config_path, flags.overrides);
   if (flags.friction) options.base.physics.friction = *flags.friction;
   if (flags.alpha) options.base.alpha = *flags.alpha;
+  if (flags.friction || flags.alpha) {
+    // --mu and --alpha stand for keys but were typed as flags: their messages name the flags.
+    std::map<std::string, std::string> flag_names;
+    if (flags.friction) flag_names.emplace("physics.friction", "--mu");
+    if (flags.alpha) flag_names.emplace("particles.alpha", "--alpha");
+    with_key_names({}, flag_names, [&] { with_sweep_key_names([&] { validate(options.base); }); });
+  }
   if (flags.seed) {
     options.base.seed = *flags.seed;
     options.seeds.clear();  // --seed: one run at that seed, whatever ensemble.seeds says

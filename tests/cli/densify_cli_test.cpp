@@ -164,12 +164,12 @@ TEST_F(DensifyCliTest, BadOptionsFailWithOneLineAndNoOutput) {
     const char* names;
   } cases[] = {
       {"--mode heap", "--mode"},
-      {"--target-fraction 0.99", "densify.target_fraction"},
-      {"--sweeps 0", "densify.max_sweeps"},
-      {"--max-time -1", "densify.max_seconds"},
-      {"--gap -0.1", "densify.gap"},
+      {"--target-fraction 0.99", "invalid --target-fraction = 0.99"},
+      {"--sweeps 0", "invalid --sweeps = 0"},
+      {"--max-time -1", "invalid --max-time = -1"},
+      {"--gap -0.1", "invalid --gap = -0.1"},
       {"--target-container 0.3,0.3", "--target-container"},
-      {"--target-container 0.5,0.4,0.4", "densify.target_container.length"},
+      {"--target-container 0.5,0.4,0.4", "invalid --target-container (length) = 0.5"},
       {"--progress loud", "--progress"},
   };
   for (const auto& bad : cases) {
