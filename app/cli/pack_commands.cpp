@@ -60,8 +60,11 @@ std::string nest_json(const std::string& json, int indent) {
 std::string describe_container(const Container& c) {
   const ContainerKindInfo& kind = container_kind_info(c);
   fmt::dynamic_format_arg_store<fmt::format_context> values;
-  for (const ContainerParam& param : kind.params) values.push_back(param.get(c));
-  return fmt::vformat(kind.summary, values) + fmt::format(", wall gap {} m", c.wall_gap);
+  // 6 significant digits: a typed 0.1 stays 0.1, a computed (enlarged, compressed) extent does
+  // not print as 0.16913516956955746.
+  const auto rounded = [](double value) { return std::stod(fmt::format("{:.6g}", value)); };
+  for (const ContainerParam& param : kind.params) values.push_back(rounded(param.get(c)));
+  return fmt::vformat(kind.summary, values) + fmt::format(", wall gap {} m", rounded(c.wall_gap));
 }
 
 std::string container_json(const Container& c) {
@@ -256,16 +259,18 @@ void run_pack(const PackFlags& flags) {
                written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
   } else if (result.fill) {
     print_dense_summary(result, grading);
-    fmt::print("time            {:.2f} s shapes + {:.2f} s placement{}\n", report.shape_seconds,
-               report.placement_seconds,
-               result.densify ? fmt::format(" + {:.2f} s densify", result.densify->seconds) : "");
+    fmt::print("time            {} s shapes + {} s placement{}\n",
+               format_seconds(report.shape_seconds), format_seconds(report.placement_seconds),
+               result.densify
+                   ? fmt::format(" + {} s densify", format_seconds(result.densify->seconds))
+                   : "");
   } else {
     fmt::print("{}\n", report.summary());
     fmt::print("particles       {}\n", report.placed);
     fmt::print("solid volume    {:.6g} m^3\n", report.solid_volume);
     fmt::print("solid fraction  {:.4f}\n", report.solid_fraction);
-    fmt::print("time            {:.2f} s shapes + {:.2f} s placement\n", report.shape_seconds,
-               report.placement_seconds);
+    fmt::print("time            {} s shapes + {} s placement\n",
+               format_seconds(report.shape_seconds), format_seconds(report.placement_seconds));
   }
   if (!flags.is_json) {
     fmt::print("wrote {}{}\n", output,
