@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -185,15 +186,22 @@ void run_pack(const PackFlags& flags) {
   }
   std::unique_ptr<ProgressBar> bar;
   std::optional<PackStage> stage;
+  // A stage's work begins when the previous one last reported (or the run starts): its display's
+  // time counts from there, so it agrees with the summary's "s shapes + s placement".
+  auto stage_start = std::chrono::steady_clock::now();
+  auto last_report = stage_start;
   PackControl control;
   control.on_progress = [&](const PackProgress& progress) {
     if (!stage || *stage != progress.stage) {
       bar.reset();  // finishes the previous stage's display
+      if (stage) stage_start = last_report;
       stage = progress.stage;
       bar = std::make_unique<ProgressBar>(
           stage_label(progress.stage),
           progress.stage == PackStage::kDensify ? "sweeps" : "particles", style);
+      bar->set_start(stage_start);
     }
+    last_report = std::chrono::steady_clock::now();
     if (progress.stage == PackStage::kShapes) {
       // While shapes grow, `total` is the number grown so far; the final count is not known yet.
       bar->update(progress.fraction, progress.total, 0);

@@ -90,6 +90,11 @@ void ProgressBar::stop_thread() {
   if (ticker_.joinable()) ticker_.join();
 }
 
+void ProgressBar::set_start(std::chrono::steady_clock::time_point start) {
+  const std::lock_guard lock(mutex_);
+  start_ = start;
+}
+
 void ProgressBar::set_eta_is_bound(bool is_bound) {
   const std::lock_guard lock(mutex_);
   is_eta_bound_ = is_bound;

@@ -43,6 +43,9 @@ class ProgressBar {
   ProgressBar& operator=(const ProgressBar&) = delete;
   ~ProgressBar();
 
+  /// Counts the display's time (its final "in T s") from `start` instead of its construction: a
+  /// stage's display is made at the stage's first report, its work began before.
+  void set_start(std::chrono::steady_clock::time_point start);
   /// Reports progress: `fraction` of the work in [0, 1] (drives the bar and the ETA), `done` of
   /// `total` items (drives the rate, items per second; total 0 = unknown), `extra` appended
   /// ("solid 31.2 %"). Rate and ETA are measured from the first update, so a display created
