@@ -8,15 +8,18 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "aggpack/config/schema.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/text.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "commands.h"
 #include "output_flags.h"
+#include "progress.h"
 
 namespace aggpack::cli {
 
@@ -35,6 +38,7 @@ struct ExportFlags {
   std::string inp_layout = "sets";
   std::string deck = "none";
   int threads = 0;
+  std::string progress = "auto";
 };
 
 // The names (or titles) of the formats whose row `has` something, joined by `separator`.
@@ -310,6 +314,11 @@ void register_export(CLI::App& app) {
       ->capture_default_str();
   command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
       ->capture_default_str();
+  command
+      ->add_option("--progress", flags->progress,
+                   "tetgen: elapsed time while the shapes are meshed, on stderr: auto (redrawn "
+                   "on a terminal, else a line every 2 s), bar, lines, none")
+      ->capture_default_str();
 
   command->callback([flags]() {
     ExportOptions options = flags->options;
@@ -335,15 +344,23 @@ void register_export(CLI::App& app) {
     if (!options.is_per_particle) check_writable(flags->output, options.overwrite);
 
     const auto start = std::chrono::steady_clock::now();
+    const ProgressStyle style = parse_progress_style("--progress", flags->progress);
     const Packing packing = read_packing(flags->input);
     ExportSummary summary;
-    with_key_names({}, export_flag_names(),
-                   [&] { summary = write(packing, flags->output, options); });
+    {
+      // TetGen meshes the shapes in worker processes and reports nothing until all are done.
+      const bool is_tetgen = options.tetrahedra.method == TetMethod::kTetGen;
+      std::optional<StageTimer> timer;
+      if (is_tetgen) timer.emplace("meshing shapes (TetGen)", style);
+      with_key_names({}, export_flag_names(),
+                     [&] { summary = write(packing, flags->output, options); });
+    }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    fmt::print("wrote {} ({}): {} particles, {} nodes, {} elements, {} file{} in {:.2f} s\n",
+    fmt::print("wrote {} ({}): {} particles, {} nodes, {} elements, {} file{} in {} s\n",
                flags->output, format_name(summary.format), summary.particles, summary.nodes,
-               summary.elements, summary.files, summary.files == 1 ? "" : "s", seconds);
+               summary.elements, summary.files, summary.files == 1 ? "" : "s",
+               format_seconds(seconds));
     if (summary.quality.tetrahedra > 0) {
       fmt::print("tetrahedron quality: {}\n", describe_quality(summary.quality));
     }

@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -89,8 +90,11 @@ std::string nest_json(const std::string& json, int indent) {
 std::string describe_container(const Container& c) {
   const ContainerKindInfo& kind = container_kind_info(c);
   fmt::dynamic_format_arg_store<fmt::format_context> values;
-  for (const ContainerParam& param : kind.params) values.push_back(param.get(c));
-  return fmt::vformat(kind.summary, values) + fmt::format(", wall gap {} m", c.wall_gap);
+  // 6 significant digits: a typed 0.1 stays 0.1, a computed (enlarged, compressed) extent does
+  // not print as 0.16913516956955746.
+  const auto rounded = [](double value) { return std::stod(fmt::format("{:.6g}", value)); };
+  for (const ContainerParam& param : kind.params) values.push_back(rounded(param.get(c)));
+  return fmt::vformat(kind.summary, values) + fmt::format(", wall gap {} m", rounded(c.wall_gap));
 }
 
 std::string container_json(const Container& c) {
@@ -245,15 +249,22 @@ void run_pack(const PackFlags& flags) {
   }
   std::unique_ptr<ProgressBar> bar;
   std::optional<PackStage> stage;
+  // A stage's work begins when the previous one last reported (or the run starts): its display's
+  // time counts from there, so it agrees with the summary's "s shapes + s placement".
+  auto stage_start = std::chrono::steady_clock::now();
+  auto last_report = stage_start;
   PackControl control;
   control.on_progress = [&](const PackProgress& progress) {
     if (!stage || *stage != progress.stage) {
       bar.reset();  // finishes the previous stage's display
+      if (stage) stage_start = last_report;
       stage = progress.stage;
       bar = std::make_unique<ProgressBar>(
           stage_label(progress.stage),
           progress.stage == PackStage::kDensify ? "sweeps" : "particles", style);
+      bar->set_start(stage_start);
     }
+    last_report = std::chrono::steady_clock::now();
     if (progress.stage == PackStage::kShapes) {
       // While shapes grow, `total` is the number grown so far; the final count is not known yet.
       bar->update(progress.fraction, progress.total, 0);
@@ -319,16 +330,18 @@ void run_pack(const PackFlags& flags) {
                written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
   } else if (result.fill) {
     print_dense_summary(result, grading);
-    fmt::print("time            {:.2f} s shapes + {:.2f} s placement{}\n", report.shape_seconds,
-               report.placement_seconds,
-               result.densify ? fmt::format(" + {:.2f} s densify", result.densify->seconds) : "");
+    fmt::print("time            {} s shapes + {} s placement{}\n",
+               format_seconds(report.shape_seconds), format_seconds(report.placement_seconds),
+               result.densify
+                   ? fmt::format(" + {} s densify", format_seconds(result.densify->seconds))
+                   : "");
   } else {
     fmt::print("{}\n", report.summary());
     fmt::print("particles       {}\n", report.placed);
     fmt::print("solid volume    {:.6g} m^3\n", report.solid_volume);
     fmt::print("solid fraction  {:.4f}\n", report.solid_fraction);
-    fmt::print("time            {:.2f} s shapes + {:.2f} s placement\n", report.shape_seconds,
-               report.placement_seconds);
+    fmt::print("time            {} s shapes + {} s placement\n",
+               format_seconds(report.shape_seconds), format_seconds(report.placement_seconds));
   }
   if (!flags.is_json) {
     fmt::print("wrote {}{}\n", output,

@@ -28,16 +28,6 @@ struct ShapeFlags {
   int threads = 0;
 };
 
-// Unsigned options: CLI11 would wrap "-1" to 2^64-1, so negative text is rejected first (CLI11's
-// NonNegativeNumber would print DBL_MAX as the range).
-const CLI::Validator kNotNegative(
-    [](std::string& text) {
-      const auto first = text.find_first_not_of(" \t");
-      if (first != std::string::npos && text[first] == '-') return "must be >= 0, got " + text;
-      return std::string();
-    },
-    "");
-
 void add_generator_options(CLI::App& command, ShapeFlags& flags) {
   auto& g = flags.generator;
   command.add_option("--alpha", g.alpha, "Eq. 3 shape control alpha, in [0, 1]")

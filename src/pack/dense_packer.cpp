@@ -105,8 +105,7 @@ std::string DensifyReport::summary() const {
   out.precision(4);
   out << start_fraction << " -> " << solid_fraction << " solid";
   if (bulk_fraction > 0.0) out << " (bulk " << bulk_fraction << ")";
-  out.precision(1);
-  out << " in " << sweeps << " sweeps (" << seconds << " s), " << to_string(stop);
+  out << " in " << sweeps << " sweeps (" << format_seconds(seconds) << " s), " << to_string(stop);
   return out.str();
 }
 
