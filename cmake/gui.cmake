@@ -35,6 +35,11 @@ if(AGGPACK_BUILD_GUI)
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/smoke_test.sh $<TARGET_FILE:aggpack-gui>
                      ${CMAKE_CURRENT_BINARY_DIR}/gui_smoke $<TARGET_FILE:aggpack>)
     set_tests_properties(gui_smoke PROPERTIES TIMEOUT 300)
+    # Open refuses every bad native file of tests/io/fixtures/bad-inputs.
+    add_test(NAME gui_bad_open
+             COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/bad_open_test.sh $<TARGET_FILE:aggpack-gui>
+                     ${CMAKE_CURRENT_BINARY_DIR}/gui_bad_open)
+    set_tests_properties(gui_bad_open PROPERTIES TIMEOUT 300)
     # Screenshot tests of the layout, the out-of-date result and a field's error (issue 18).
     add_test(NAME gui_ui
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/ui_test.sh $<TARGET_FILE:aggpack-gui>
@@ -46,5 +51,22 @@ if(AGGPACK_BUILD_GUI)
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/frame_time_test.sh
                      $<TARGET_FILE:aggpack-gui> ${CMAKE_CURRENT_BINARY_DIR}/gui_frame_time)
     set_tests_properties(gui_frame_time PROPERTIES TIMEOUT 900 RUN_SERIAL TRUE)
+  endif()
+  # The catalogues: every text, key and word in Chinese with the English placeholders; and no
+  # GUI source hands a widget English words of its own (tests/gui/check_literals.py).
+  find_package(GTest QUIET)
+  if(AGGPACK_BUILD_TESTS AND TARGET GTest::gtest_main)
+    include(GoogleTest)
+    add_executable(test_gui_i18n ${PROJECT_SOURCE_DIR}/tests/gui/i18n_test.cpp
+                                 ${PROJECT_SOURCE_DIR}/app/gui/i18n.cpp)
+    target_include_directories(test_gui_i18n PRIVATE ${PROJECT_SOURCE_DIR}/app/gui)
+    target_link_libraries(test_gui_i18n PRIVATE aggpack_config aggpack_core fmt::fmt
+                          GTest::gtest_main)
+    gtest_discover_tests(test_gui_i18n DISCOVERY_TIMEOUT 60)
+  endif()
+  if(AGGPACK_BUILD_TESTS AND Python3_Interpreter_FOUND)
+    add_test(NAME gui_literals
+             COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/gui/check_literals.py
+                     ${PROJECT_SOURCE_DIR}/app/gui)
   endif()
 endif()

@@ -17,6 +17,10 @@
 #include "aggpack/pack/progress.h"
 #include "aggpack/shape/descriptors.h"
 
+namespace aggpack {
+struct PackConfig;
+}  // namespace aggpack
+
 namespace aggpack::python {
 
 namespace py = pybind11;
@@ -67,6 +71,10 @@ py::dict descriptor_dict(const std::vector<ShapeDescriptors>& descriptors);
 
 /// The container as a dict: kind, its sizes (m), wall_gap (m), volume (m^3).
 py::dict container_dict(const Container& container);
+
+// A PackConfig from what pack() takes: a PackConfig, a dict of keys (PackConfig.from_dict) or the
+// path of a TOML file (str or os.PathLike); anything else is InvalidInput naming `config`.
+PackConfig to_pack_config(const py::object& source);
 
 void register_errors(py::module_& m);
 void register_particles(py::module_& m);

@@ -110,6 +110,19 @@ std::string dict_to_toml(const py::dict& config) {
 
 }  // namespace
 
+PackConfig to_pack_config(const py::object& source) {
+  if (py::isinstance<PackConfig>(source)) return source.cast<PackConfig>();
+  if (py::isinstance<py::dict>(source)) {
+    return parse_pack_config(dict_to_toml(source.cast<py::dict>()), "config dict", {});
+  }
+  const py::module_ os = py::module_::import("os");
+  if (py::isinstance<py::str>(source) || py::isinstance(source, os.attr("PathLike"))) {
+    return load_pack_config(os.attr("fspath")(source).cast<std::string>(), {});
+  }
+  throw InvalidInput("config", py::repr(source).cast<std::string>(),
+                     "a PackConfig, a dict or the path of a TOML file (TOML text: pack_config())");
+}
+
 void register_config(py::module_& m) {
   py::class_<PackConfig>(m, "PackConfig", R"doc(A resolved, validated pack configuration: what
 `aggpack pack CONFIG.toml --set ...` runs. Keys and defaults: docs/config.md (an empty

@@ -61,7 +61,13 @@ py::handle class_of(ErrorKind kind) {
 
 // Raises `type(message)` with the attributes kind (and field or key when given).
 void raise(py::handle type, const Error& error, const char* attribute, const std::string& value) {
-  py::object instance = type(py::str(error.what()));
+  // The CLI's advice in Python's words: the keyword is force=True, not the flag --force.
+  std::string message = error.what();
+  const std::string flag_advice = "(use --force to replace it)";
+  if (const auto at = message.find(flag_advice); at != std::string::npos) {
+    message.replace(at, flag_advice.size(), "(pass force=True to replace it)");
+  }
+  py::object instance = type(py::str(message));
   instance.attr("kind") = kind_text(error.kind());
   if (attribute != nullptr) instance.attr(attribute) = value;
   PyErr_SetObject(type.ptr(), instance.ptr());

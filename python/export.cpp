@@ -37,9 +37,9 @@ const std::map<std::string, Setter>& setters() {
        [](ExportOptions& o, const py::handle& v) {
          if (!v.is_none()) o.format = parse_export_format(as<std::string>(v, "format"));
        }},
-      {"overwrite",
+      {"force",
        [](ExportOptions& o, const py::handle& v) {
-         o.overwrite = as<bool>(v, "overwrite") ? Overwrite::kAllow : Overwrite::kForbid;
+         o.overwrite = as<bool>(v, "force") ? Overwrite::kAllow : Overwrite::kForbid;
        }},
       {"scale", [](ExportOptions& o, const py::handle& v) { o.scale = as<double>(v, "scale"); }},
       {"per_particle",
@@ -177,7 +177,7 @@ void register_export(py::module_& m) {
       "export",
       [](const PyPacking& p, const std::string& path, const py::kwargs& keywords) {
         ExportOptions options;
-        options.overwrite = Overwrite::kAllow;
+        options.overwrite = Overwrite::kForbid;  // as the CLI without -f
         for (const auto& [key, value] : keywords) {
           const std::string name = key.cast<std::string>();
           const auto found = setters().find(name);
@@ -201,8 +201,8 @@ same bytes for the same options). The format comes from `format` or the extensio
 dat (rock.dat), inp (Abaqus/CalculiX), vtu, msh (Gmsh), k (LS-DYNA), mac (ANSYS APDL), obj, py
 (YADE), h5 (native). Layouts: docs/formats.md. Particles are numbered P1, P2, ...
 
-Keywords (the CLI flags, '-' written '_'; defaults as the CLI's except overwrite): format;
-overwrite=True (False: IoError if the file exists); scale=1.0 (1000 writes mm); per_particle=False
+Keywords (the CLI flags, '-' written '_'; defaults as the CLI's): format; force=False (as the
+CLI's -f: an existing file raises IoError unless force=True); scale=1.0 (1000 writes mm); per_particle=False
 (stl/obj: one file per particle in the folder path); ascii=False (stl); cells='default' |
 'surface' | 'tetrahedra' (vtu, msh); tet_method='fan' | 'tetgen'; max_volume, radius_edge,
 tet_time_limit, split_surface (tetgen); quadratic=False (inp: C3D10); inp_layout='sets' | 'parts';

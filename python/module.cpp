@@ -8,10 +8,17 @@ PYBIND11_MODULE(aggpack, m) {
   m.doc() = R"doc(aggpack: irregular convex particles (the ARP paper's random aggregate growth),
 packed into containers and exported.
 
-  config = aggpack.pack_config({"packer": {"kind": "random"}})   # or TOML text, or None
-  packing = aggpack.pack(config, progress=print)
+  packing = aggpack.pack({"packer": {"kind": "random"}}, progress=print)  # or "run.toml"
   packing.positions, packing.rotations, packing.descriptors(), packing.statistics()
   packing.write("run.h5"); packing.export("run.vtu"); packing.render("run.png")
+
+Main calls:
+  pack(config, progress=None)        pack particles (config: PackConfig, dict or TOML path)
+  pack_config(source, overrides)     a validated configuration (None = the paper's case)
+  read(path)                         a saved packing (.h5)
+  generate_particle(...), generate_particles(...)   grown particles and their descriptors
+  repose(...), sweep(...)            the angle-of-repose test and its alpha x mu_s sweep
+  Packing.write / export / render / statistics / descriptors   (help(aggpack.Packing))
 
 Units are SI (metres). Errors are aggpack.Error subclasses with the CLI's one-line messages.
 Reference: docs/python.md.)doc";

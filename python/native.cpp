@@ -32,18 +32,18 @@ FormatError ("<path>: <dataset>: <reason>" for a file that is not a valid packin
   auto packing = m.attr("Packing").cast<py::class_<PyPacking, std::shared_ptr<PyPacking>>>();
   packing.def(
       "write",
-      [](const PyPacking& p, const std::string& path, bool overwrite, int compression, bool xdmf) {
+      [](const PyPacking& p, const std::string& path, bool force, int compression, bool xdmf) {
         const py::gil_scoped_release release;
         write_packing(p.packing, path,
-                      {.overwrite = overwrite ? Overwrite::kAllow : Overwrite::kForbid,
+                      {.overwrite = force ? Overwrite::kAllow : Overwrite::kForbid,
                        .compression = compression,
                        .write_xdmf = xdmf});
       },
-      py::arg("path"), py::kw_only(), py::arg("overwrite") = true, py::arg("compression") = 0,
+      py::arg("path"), py::kw_only(), py::arg("force") = false, py::arg("compression") = 0,
       py::arg("xdmf") = false,
       R"doc(Writes the native packing file (.h5) atomically: the same bytes `aggpack pack -o
-PATH` writes for the same configuration and seed. overwrite (default True): replace an existing
-file (False: IoError if it exists, like the CLI without -f); compression: deflate level 0 (none,
+PATH` writes for the same configuration and seed. force (default False): replace an existing
+file (without it an existing file raises IoError, as the CLI without -f); compression: deflate level 0 (none,
 default) .. 9; xdmf: also store world-coordinate surfaces and write PATH with extension .xdmf for
 ParaView. Raises InvalidInput, IoError.)doc");
 }

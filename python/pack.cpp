@@ -105,7 +105,8 @@ py::dict report_dict(const PackReport& report) {
 void register_pack(py::module_& m) {
   m.def(
       "pack",
-      [](const PackConfig& config, const py::object& progress, double progress_interval) {
+      [](const py::object& source, const py::object& progress, double progress_interval) {
+        const PackConfig config = to_pack_config(source);
         require_in_range("progress_interval", progress_interval, 0.0, 3600.0);
         CallbackBridge bridge;
         bridge.callback = progress;
@@ -140,8 +141,10 @@ void register_pack(py::module_& m) {
       },
       py::arg("config"), py::kw_only(), py::arg("progress") = py::none(),
       py::arg("progress_interval") = 0.1,
-      R"doc(Packs particles as `aggpack pack` does with the same configuration (a PackConfig from
-pack_config()): the same packing, byte for byte once written. Releases the GIL while it runs.
+      R"doc(Packs particles as `aggpack pack` does with the same configuration: the same packing,
+byte for byte once written. config: a PackConfig (pack_config()), a dict of keys (nested tables
+or dotted keys, as PackConfig.from_dict) or the path of a TOML file (str or pathlib.Path, as
+`aggpack pack FILE`). Releases the GIL while it runs.
 
 progress: None or a callable progress(dict) called at most every progress_interval seconds
 (default 0.1, [0, 3600]) and once at the end (holding the GIL only then), with stage ('shapes',

@@ -24,7 +24,7 @@ void register_render(py::module_& m) {
       "render",
       [](const PyPacking& p, const std::optional<std::string>& path, int width, int height,
          const std::string& view, const std::string& color, bool wireframe, bool ortho,
-         bool container, int samples, double coarse_below, bool overwrite) {
+         bool container, int samples, double coarse_below, bool force) {
         RenderImageOptions options;
         options.width = width;
         options.height = height;
@@ -39,9 +39,9 @@ void register_render(py::module_& m) {
         Image image;
         {
           const py::gil_scoped_release release;
-          if (path) check_writable(*path, overwrite ? Overwrite::kAllow : Overwrite::kForbid);
+          if (path) check_writable(*path, force ? Overwrite::kAllow : Overwrite::kForbid);
           image = render_image(p.packing, options);
-          if (path) write_png(image, *path, overwrite ? Overwrite::kAllow : Overwrite::kForbid);
+          if (path) write_png(image, *path, force ? Overwrite::kAllow : Overwrite::kForbid);
         }
         const int rows = image.height;
         const int columns = image.width;
@@ -51,10 +51,10 @@ void register_render(py::module_& m) {
       py::arg("path") = py::none(), py::kw_only(), py::arg("width") = 1600,
       py::arg("height") = 1000, py::arg("view") = "iso", py::arg("color") = "id",
       py::arg("wireframe") = false, py::arg("ortho") = false, py::arg("container") = true,
-      py::arg("samples") = 4, py::arg("coarse_below") = 0.0, py::arg("overwrite") = true,
+      py::arg("samples") = 4, py::arg("coarse_below") = 0.0, py::arg("force") = false,
       R"doc(Renders the packing headless (EGL, no display; Mesa's llvmpipe without a GPU), as
 `aggpack render`. Returns the image as uint8 (height, width, 4) RGBA, rows top to bottom; with
-path, also writes it as PNG (overwrite=True replaces an existing file).
+path, also writes it as PNG (an existing file raises IoError unless force=True, as the CLI without -f).
 
 Keywords (defaults): width 1600, height 1000 (pixels, [16, 8192]); view 'iso' | 'front' | 'side'
 | 'top'; color 'id' (one hue per particle) | 'size' | 'alpha'; wireframe False; ortho False;

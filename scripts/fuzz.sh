@@ -5,8 +5,10 @@
 #   scripts/fuzz.sh [SECONDS] [extra cmake arguments...]
 #   AGGPACK_FUZZ_TARGETS="native_reader"  run only some targets (default: all)
 #   AGGPACK_FUZZ_IGNORE="timeout"  report these kinds of finding without failing (default: none)
+# Targets: native_reader (the .h5 reader), config_reader (pack TOML + --set), repose_config (the
+# repose / sweep TOML + --set; needs Bullet, as the simulation module does).
 # Seeds (read only): tests/io/fixtures/bad-inputs/ (the native files and configs of issue 12),
-# examples/*.toml and tests/fuzz/corpus/config_reader/ (TOML + --set strings); new inputs go to
+# examples/*.toml and tests/fuzz/corpus/<target>/ (TOML + --set strings); new inputs go to
 # build-fuzz/corpus/<target>/.
 # Findings (crash-*, leak-*, oom-*, timeout-*, slow-unit-*) are saved in build-fuzz/artifacts/
 # <target>/ and make the script fail; reproduce one with build-fuzz/tests/fuzz/fuzz_<target> FILE.
@@ -14,20 +16,21 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-90}
 shift || true
-targets=${AGGPACK_FUZZ_TARGETS:-native_reader config_reader}
+targets=${AGGPACK_FUZZ_TARGETS:-native_reader config_reader repose_config}
 build=build-fuzz
 CC=${CC_FUZZ:-clang-14} CXX=${CXX_FUZZ:-clang++-14} cmake -S . -B "$build" -G Ninja \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAGGPACK_BUILD_FUZZ=ON -DAGGPACK_BUILD_TESTS=OFF \
   -DAGGPACK_BUILD_BENCH=OFF -DAGGPACK_BUILD_GUI=OFF -DAGGPACK_BUILD_RENDER=OFF \
-  -DAGGPACK_BUILD_SIM=OFF -DAGGPACK_BUILD_PYTHON=OFF "$@" >/dev/null
+  -DAGGPACK_BUILD_SIM=ON -DAGGPACK_BUILD_PYTHON=OFF "$@" >/dev/null
 cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $targets)
 
 # max_len: the native seeds are up to ~24 KB; a config is a few hundred bytes. malloc_limit_mb:
 # reading a file of at most 64 KB must never need a 256 MB block (issue 12: memory within a
 # small multiple of the file size).
-declare -A max_len=([native_reader]=65536 [config_reader]=8192)
+declare -A max_len=([native_reader]=65536 [config_reader]=8192 [repose_config]=8192)
 declare -A seeds=([native_reader]="tests/io/fixtures/bad-inputs"
-  [config_reader]="tests/fuzz/corpus/config_reader examples tests/io/fixtures/bad-inputs")
+  [config_reader]="tests/fuzz/corpus/config_reader examples tests/io/fixtures/bad-inputs"
+  [repose_config]="tests/fuzz/corpus/repose_config examples")
 # Leaks inside Debian's HDF5 on corrupted headers are not ours: tests/fuzz/lsan-suppressions.txt.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/fuzz/lsan-suppressions.txt}

@@ -7,6 +7,8 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   # compiler cache shared by every build folder and clone (cmake/ccache.cmake)
   ccache
+  # the Debian package (scripts/package.sh): Depends from the linked libraries, man pages
+  dpkg-dev help2man desktop-file-utils
   # core + io libraries
   libeigen3-dev libtbb-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libfmt-dev
   libhdf5-dev
@@ -15,6 +17,8 @@ packages=(
   libstb-dev
   # convex hulls of imported particle shapes (particle.library)
   libqhull-dev
+  # aggpack-gui in Chinese: a CJK font found at run time (Noto Sans CJK SC; ~50 MB installed)
+  fonts-noto-cjk
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev clang-format
   # naming and bugprone checks (scripts/tidy.sh, .clang-tidy)

@@ -18,6 +18,7 @@
 #include "aggpack/shape/calibrate.h"
 #include "calibrate_plot.h"
 #include "commands.h"
+#include "output_flags.h"
 
 namespace aggpack::cli {
 
@@ -103,6 +104,47 @@ std::string flag_of(const CalibrateFlags& flags, const std::string& target_name)
     }
   }
   return target_name;
+}
+
+// The value typed for a goal's flag.
+double typed_value(const CalibrateFlags& flags, const std::string& flag) {
+  return flag == "--volume"         ? flags.volume
+         : flag == "--volume-ratio" ? flags.volume_ratio
+         : flag == "--alpha"        ? flags.alpha
+         : flag == "--sphericity"   ? flags.sphericity
+         : flag == "--elongation"   ? flags.elongation
+                                    : flags.flatness;
+}
+
+// calibrate()'s refusal in the user's words: the flag typed, what that flag can reach (for
+// --volume in m^3 at the --diameter given), and the closest reachable input with what the
+// closest generator inputs achieve.
+InvalidInput unreached_in_user_words(const CalibrateFlags& flags,
+                                     const CalibrationUnreached& error) {
+  const std::string flag = flag_of(flags, error.field());
+  if (flag == error.field()) return error;
+  const double typed = typed_value(flags, flag);
+  const bool is_volume = flag == "--volume";
+  // --volume V at --diameter D is the ratio V / (pi/6 D^3): its span is the ratio's times that.
+  const double scale =
+      is_volume ? std::numbers::pi / 6.0 * std::pow(flags.options.diameter, 3) : 1.0;
+  const auto shown = [&](double ratio) { return fmt::format("{:.4g}", ratio * scale); };
+  const double nearest =
+      std::clamp(typed / scale, error.lowest(), error.highest());  // the closest reachable
+  const std::string unit = is_volume ? " m^3" : "";
+  const std::string where =
+      is_volume ? fmt::format(" at --diameter {}", format_value(flags.options.diameter)) : "";
+  // With other targets the typed value may lie inside the span and still not be met with them:
+  // then no single closest input of this flag can be named.
+  const bool is_inside = typed / scale >= error.lowest() && typed / scale <= error.highest();
+  const std::string allowed = fmt::format(
+      "{} from {} to {}{}{} (the means the searched inputs reach{}){}; the closest inputs found "
+      "({}) give {}{}",
+      flag, shown(error.lowest()), shown(error.highest()), unit, where,
+      flags.options.goals.size() > 1 ? " one at a time; not together with the other targets" : "",
+      is_inside ? std::string() : fmt::format("; closest reachable: {} {}", flag, shown(nearest)),
+      error.closest_inputs(), shown(error.closest()), unit);
+  return InvalidInput(flag, format_value(typed) + unit, allowed);
 }
 
 void write_table(const std::string& path, const CalibrationOptions& options,
@@ -219,8 +261,11 @@ void register_calibrate(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--samples", flags->samples, "particles per evaluation, [2, 100000]")
       ->capture_default_str();
-  command->add_option("--seed", flags->seed, "seed of every evaluation's particles, >= 0")
-      ->check(CLI::NonNegativeNumber)
+  command
+      ->add_option("--seed", flags->seed,
+                   "seed of every evaluation's particles, [0, 2^64-1]; particle i uses stream "
+                   "(seed, i)")
+      ->check(kNotNegative)
       ->capture_default_str();
   command->add_option("--table", flags->table,
                       "CSV of the search: inputs and each target's mean, sd per evaluation");
@@ -232,30 +277,16 @@ void register_calibrate(CLI::App& app) {
     const auto* self = app.get_subcommand("calibrate");
     resolve_goals(*flags, *self);
     set_thread_count(flags->threads);
+    if (self->count("--table") > 0) check_output_file_flag("--table", flags->table);
+    if (self->count("--plot") > 0) check_output_file_flag("--plot", flags->plot);
     const Overwrite overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!flags->table.empty()) check_writable(flags->table, overwrite);
     if (!flags->plot.empty()) check_writable(flags->plot, overwrite);
     CalibrationResult result;
     try {
       result = calibrate(flags->options);
-    } catch (const InvalidInput& error) {
-      // Name the target in the user's words: the flag typed, not the descriptor's name.
-      const std::string flag = flag_of(*flags, error.field());
-      if (flag == error.field()) throw;
-      const double typed = flag == "--volume"         ? flags->volume
-                           : flag == "--volume-ratio" ? flags->volume_ratio
-                           : flag == "--alpha"        ? flags->alpha
-                           : flag == "--sphericity"   ? flags->sphericity
-                           : flag == "--elongation"   ? flags->elongation
-                                                      : flags->flatness;
-      const double sphere =
-          std::numbers::pi / 6.0 * std::pow(flags->options.diameter, 3);  // for --volume
-      throw InvalidInput(
-          flag,
-          format_value(typed) + (flag == "--volume"
-                                     ? " m^3, i.e. V / V_circ = " + format_value(typed / sphere)
-                                     : std::string()),
-          error.allowed());
+    } catch (const CalibrationUnreached& error) {
+      throw unreached_in_user_words(*flags, error);
     }
     print_result(*flags, result);
     if (!flags->table.empty()) {

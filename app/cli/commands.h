@@ -10,6 +10,16 @@
 
 namespace aggpack::cli {
 
+// Unsigned options: CLI11 would wrap "-1" to 2^64-1, so negative text is rejected first (CLI11's
+// NonNegativeNumber would print DBL_MAX as the range).
+inline const CLI::Validator kNotNegative(
+    [](std::string& text) {
+      const auto first = text.find_first_not_of(" \t");
+      if (first != std::string::npos && text[first] == '-') return "must be >= 0, got " + text;
+      return std::string();
+    },
+    "");
+
 void register_particle(CLI::App& app);
 void register_shapes(CLI::App& app);
 void register_calibrate(CLI::App& app);  // calibrate_commands.cpp

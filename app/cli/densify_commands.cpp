@@ -7,12 +7,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "aggpack/config/config.h"
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/io/native.h"
@@ -22,6 +25,7 @@
 #include "aggpack/pack/statistics.h"
 #include "aggpack/pipeline/pipeline.h"
 #include "commands.h"
+#include "output_flags.h"
 #include "progress.h"
 
 namespace aggpack::cli {
@@ -130,9 +134,32 @@ std::string provenance_lines(const DensifyFlags& flags, const DensifyOptions& op
   return text;
 }
 
+// densify takes flags: the library's option names (densify.max_sweeps, ...) become the flags.
+std::map<std::string, std::string> densify_flag_names() {
+  std::map<std::string, std::string> names = {
+      {"densify.target_fraction", "--target-fraction"},
+      {"densify.target_container", "--target-container"},
+      {"densify.target_container.wall_gap", "--target-container (wall gap)"},
+      {"densify.gap", "--gap"},
+      {"densify.max_sweeps", "--sweeps"},
+      {"densify.max_seconds", "--max-time"},
+      {"densify.bed_temperature", "--bed-temperature"},
+      {"densify.bed_cooling", "--bed-cooling"},
+  };
+  for (const ContainerKindInfo& kind : container_kinds()) {
+    for (const ContainerParam& param : kind.params) {
+      names.emplace(std::string("densify.target_container.") + param.name,
+                    std::string("--target-container (") + param.name + ")");
+    }
+  }
+  return names;
+}
+
 void run_densify(const DensifyFlags& flags) {
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   if (flags.threads < 0) throw InvalidInput("-j/--threads", std::to_string(flags.threads), ">= 0");
+  check_output_file_flag("-o/--output", flags.output);
+  if (!flags.trace.empty()) check_output_file_flag("--trace", flags.trace);
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   check_writable(flags.output, overwrite);
   Packing start = read_packing(flags.input);
@@ -149,7 +176,8 @@ void run_densify(const DensifyFlags& flags) {
   options.max_seconds = flags.max_time;
   options.bed_temperature = flags.bed_temperature;
   options.bed_cooling = flags.bed_cooling;
-  validate(options);
+  const std::map<std::string, std::string> flag_names = densify_flag_names();
+  with_key_names({}, flag_names, [&] { validate(options); });
   set_thread_count(flags.threads);
 
   fmt::print("aggpack densify: {} mode, {} particles, gap {} m, seed {}\n", to_string(options.mode),
@@ -161,7 +189,7 @@ void run_densify(const DensifyFlags& flags) {
     check_writable(flags.trace, Overwrite::kAllow);
     trace.reset(std::fopen(flags.trace.c_str(), "w"));
     if (!trace) throw IoError("cannot write " + flags.trace);
-    std::fprintf(trace.get(), "# seconds sweeps solid_fraction\n");
+    std::fprintf(trace.get(), "# seconds sweeps solid_fraction cpu_seconds\n");
   }
   const auto began = std::chrono::steady_clock::now();
   PackControl control;
@@ -169,15 +197,19 @@ void run_densify(const DensifyFlags& flags) {
     if (trace) {
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
-      std::fprintf(trace.get(), "%.3f %llu %.6f\n", seconds,
-                   static_cast<unsigned long long>(progress.placed), progress.solid_fraction);
+      // CPU time of the whole process (every thread): the fair clock on a shared machine.
+      const double cpu = static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+      std::fprintf(trace.get(), "%.3f %llu %.6f %.3f\n", seconds,
+                   static_cast<unsigned long long>(progress.placed), progress.solid_fraction, cpu);
     }
     if (!bar) bar = std::make_unique<ProgressBar>("densify", "sweeps", style);
     bar->update(progress.fraction, progress.placed, progress.total,
                 fmt::format("solid {:.2f} %", 100.0 * progress.solid_fraction));
   };
-  PipelineResult result =
-      densify_packing(std::move(start), options, provenance_lines(flags, options), control);
+  PipelineResult result;
+  with_key_names({}, flag_names, [&] {
+    result = densify_packing(std::move(start), options, provenance_lines(flags, options), control);
+  });
   bar.reset();
   write_packing(result.packing, flags.output, {.overwrite = overwrite});
   const DensifyReport& report = *result.densify;

@@ -8,13 +8,18 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
+#include "aggpack/config/schema.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/text.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "commands.h"
+#include "output_flags.h"
+#include "progress.h"
 
 namespace aggpack::cli {
 
@@ -33,6 +38,7 @@ struct ExportFlags {
   std::string inp_layout = "sets";
   std::string deck = "none";
   int threads = 0;
+  std::string progress = "auto";
 };
 
 // The names (or titles) of the formats whose row `has` something, joined by `separator`.
@@ -124,6 +130,39 @@ std::string tetgen_report(const ExportSummary& summary) {
       "tetgen: {} of {} shapes fell back to the centroid fan (shape{} {}; {} particle{} {}{})",
       fallbacks.size(), summary.tetgen_shapes, fallbacks.size() == 1 ? "" : "s", shapes,
       particle_count, particle_count == 1 ? "" : "s", particles, reasons);
+}
+
+// The library's names of the values these flags set (export.h, mesh/tetrahedra.h); messages
+// name the flag typed.
+const std::map<std::string, std::string>& export_flag_names() {
+  static const std::map<std::string, std::string> names = {
+      {"scale", "--scale"},
+      {"compression", "--compression"},
+      {"max tetrahedron volume", "--max-volume"},
+      {"radius-edge ratio", "--radius-edge"},
+      {"TetGen time limit (s)", "--tet-time-limit"},
+      {"material name", "--material-name"},
+      {"density", "--density"},
+      {"youngs modulus", "--youngs-modulus"},
+      {"poisson ratio", "--poisson-ratio"},
+      {"friction", "--friction"},
+      {"gravity", "--gravity"},
+      {"baffle position", "--baffle-position"},
+      {"trough length", "--trough-length"},
+      {"baffle speed", "--baffle-speed"},
+      {"settle time", "--settle-time"},
+      {"rest time", "--rest-time"},
+      {"contact distance", "--contact-distance"},
+      {"time step", "--time-step"},
+      {"deck", "--deck"},
+      {"per-particle", "--per-particle"},
+      {"inp layout", "--inp-layout"},
+      {"quadratic", "--quadratic"},
+      {"xdmf", "--xdmf"},
+      {"cells", "--cells"},
+      {"output extension", "-o/--output extension"},
+  };
+  return names;
 }
 
 }  // namespace
@@ -275,6 +314,11 @@ void register_export(CLI::App& app) {
       ->capture_default_str();
   command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
       ->capture_default_str();
+  command
+      ->add_option("--progress", flags->progress,
+                   "tetgen: elapsed time while the shapes are meshed, on stderr: auto (redrawn "
+                   "on a terminal, else a line every 2 s), bar, lines, none")
+      ->capture_default_str();
 
   command->callback([flags]() {
     ExportOptions options = flags->options;
@@ -288,18 +332,35 @@ void register_export(CLI::App& app) {
     options.abaqus_layout = parse_abaqus_layout(flags->inp_layout, "--inp-layout");
     options.deck.kind = parse_deck_kind(flags->deck);
     // Check options and the destination before the (possibly long) read of the input.
-    options.format = resolve_format(flags->output, options);
-    validate(options, options.format);
+    if (options.is_per_particle) {
+      check_output_folder_flag("-o/--output", flags->output);
+    } else {
+      check_output_file_flag("-o/--output", flags->output);
+    }
+    with_key_names({}, export_flag_names(), [&] {
+      options.format = resolve_format(flags->output, options);
+      validate(options, options.format);
+    });
     if (!options.is_per_particle) check_writable(flags->output, options.overwrite);
 
     const auto start = std::chrono::steady_clock::now();
+    const ProgressStyle style = parse_progress_style("--progress", flags->progress);
     const Packing packing = read_packing(flags->input);
-    const ExportSummary summary = write(packing, flags->output, options);
+    ExportSummary summary;
+    {
+      // TetGen meshes the shapes in worker processes and reports nothing until all are done.
+      const bool is_tetgen = options.tetrahedra.method == TetMethod::kTetGen;
+      std::optional<StageTimer> timer;
+      if (is_tetgen) timer.emplace("meshing shapes (TetGen)", style);
+      with_key_names({}, export_flag_names(),
+                     [&] { summary = write(packing, flags->output, options); });
+    }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    fmt::print("wrote {} ({}): {} particles, {} nodes, {} elements, {} file{} in {:.2f} s\n",
+    fmt::print("wrote {} ({}): {} particles, {} nodes, {} elements, {} file{} in {} s\n",
                flags->output, format_name(summary.format), summary.particles, summary.nodes,
-               summary.elements, summary.files, summary.files == 1 ? "" : "s", seconds);
+               summary.elements, summary.files, summary.files == 1 ? "" : "s",
+               format_seconds(seconds));
     if (summary.quality.tetrahedra > 0) {
       fmt::print("tetrahedron quality: {}\n", describe_quality(summary.quality));
     }

@@ -18,6 +18,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/sim/distributed.h"
 #include "commands.h"
+#include "output_flags.h"
 #include "sim_summary.h"
 
 extern char** environ;
@@ -216,7 +217,8 @@ void register_merge(CLI::App& app) {
                       "ensemble.png width in pixels, [64, 16384] (default: the workers' --width)");
   command->add_flag("--no-plot", flags->is_without_plot, "sweep: do not run gnuplot");
   command->add_flag("-f,--force", flags->is_forced, "replace an existing summary");
-  command->callback([flags]() {
+  command->callback([flags, command]() {
+    if (command->count("--output") > 0) check_output_folder_flag("-o/--output", flags->output);
     merge_run_folder(flags->folder, flags->output, flags->image_width, flags->is_without_plot,
                      flags->is_forced);
   });

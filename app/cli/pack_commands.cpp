@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -14,16 +15,20 @@
 #include <vector>
 
 #include "aggpack/config/config.h"
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/overloaded.h"
 #include "aggpack/core/text.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "aggpack/io/packing_stats_json.h"
 #include "aggpack/pack/container.h"
+#include "aggpack/pack/resources.h"
 #include "aggpack/pack/statistics.h"
 #include "aggpack/pipeline/pipeline.h"
 #include "commands.h"
+#include "output_flags.h"
 #include "progress.h"
 
 namespace aggpack::cli {
@@ -33,7 +38,7 @@ namespace {
 struct PackFlags {
   std::string config_path;
   std::vector<std::string> overrides;
-  std::string output;
+  std::optional<std::string> output;
   std::optional<std::uint64_t> seed;
   std::optional<int> threads;
   bool is_forced = false;
@@ -43,6 +48,31 @@ struct PackFlags {
   bool is_print_config = false;
   bool is_json = false;
 };
+
+// What the packer is about to do (the dense kind: its fill), for heavy_run_note.
+RunEstimate estimate_of(const PackerOptions& packer) {
+  const auto fill = Overloaded{
+      [](const RandomPackOptions& options) { return estimate_run(options); },
+      [](const LatticeOptions& options) {
+        const auto counts = lattice_counts(options);
+        return estimate_run(options, static_cast<double>(counts[0]) * counts[1] * counts[2]);
+      }};
+  return std::visit(
+      Overloaded{fill, [&](const DensePackOptions& dense) { return std::visit(fill, dense.fill); }},
+      packer);
+}
+
+// An output path of the run: a problem with it names where it came from (`key`: "-o/--output",
+// "output.stl"; "" for the default name).
+void check_output(const std::string& key, const std::string& path, Overwrite overwrite) {
+  try {
+    if (!key.empty() && key.front() != '-') check_output_file_flag(key, path);
+    check_writable(path, overwrite);
+  } catch (const IoError& error) {
+    if (key.empty() || key.front() == '-') throw;
+    throw IoError(key + ": " + error.what());
+  }
+}
 
 // Re-indents a pretty-printed JSON value so it can sit at `indent` inside another object.
 std::string nest_json(const std::string& json, int indent) {
@@ -60,8 +90,11 @@ std::string nest_json(const std::string& json, int indent) {
 std::string describe_container(const Container& c) {
   const ContainerKindInfo& kind = container_kind_info(c);
   fmt::dynamic_format_arg_store<fmt::format_context> values;
-  for (const ContainerParam& param : kind.params) values.push_back(param.get(c));
-  return fmt::vformat(kind.summary, values) + fmt::format(", wall gap {} m", c.wall_gap);
+  // 6 significant digits: a typed 0.1 stays 0.1, a computed (enlarged, compressed) extent does
+  // not print as 0.16913516956955746.
+  const auto rounded = [](double value) { return std::stod(fmt::format("{:.6g}", value)); };
+  for (const ContainerParam& param : kind.params) values.push_back(rounded(param.get(c)));
+  return fmt::vformat(kind.summary, values) + fmt::format(", wall gap {} m", rounded(c.wall_gap));
 }
 
 std::string container_json(const Container& c) {
@@ -120,27 +153,54 @@ void run_pack(const PackFlags& flags) {
   std::vector<std::string> overrides = flags.overrides;
   // --seed and --threads are shortcuts for --set and win over it.
   if (flags.seed) overrides.push_back("packer.seed=" + std::to_string(*flags.seed));
-  if (flags.threads) overrides.push_back("packer.threads=" + std::to_string(*flags.threads));
-  const PackConfig config = flags.config_path.empty()
-                                ? parse_pack_config("", "defaults", overrides)
-                                : load_pack_config(flags.config_path, overrides);
+  const std::string threads_override =
+      flags.threads ? "packer.threads=" + std::to_string(*flags.threads) : std::string();
+  if (flags.threads) overrides.push_back(threads_override);
+  const PackConfig config = [&] {
+    try {
+      return flags.config_path.empty() ? parse_pack_config("", "defaults", overrides)
+                                       : load_pack_config(flags.config_path, overrides);
+    } catch (const ConfigError& error) {
+      // -j/--threads is typed as a flag: the message names it, not the --set it stands for.
+      const std::string origin = "--set " + threads_override + ": ";
+      const std::string message = error.what();
+      if (!flags.threads || message.rfind(origin, 0) != 0) throw;
+      throw ConfigError(error.key(), to_key_names({}, {{"packer.threads", "-j/--threads"}},
+                                                  message.substr(origin.size())));
+    }
+  }();
   require_in_range("--compression", flags.compression, 0, 9);
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   for (const auto& text : config.warnings) warn(text);
 
-  std::string output = flags.output;
-  if (output.empty()) {
-    const auto native = config.outputs.find("native");
-    output = native != config.outputs.end() ? native->second
-                                            : fmt::format("aggpack-seed{}.h5", config.seed());
-  }
+  // -o "" is refused like in every command (not taken as "no -o").
+  if (flags.output) check_output_file_flag("-o/--output", *flags.output);
+  const auto native = config.outputs.find("native");
+  const std::string output_key = flags.output                     ? "-o/--output"
+                                 : native != config.outputs.end() ? "output.native"
+                                                                  : "";
+  const std::string output = flags.output ? *flags.output
+                             : native != config.outputs.end()
+                                 ? native->second
+                                 : fmt::format("aggpack-seed{}.h5", config.seed());
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   // output.<format> = path: written with the exporters' defaults after the native file (for
   // other options, e.g. mm or C3D10, use `aggpack export` on the native file).
   std::vector<std::pair<std::string, ExportOptions>> exports;
+  std::vector<std::string> export_keys;  // "output.stl", for messages
   // Spelled differently ("./run.h5", "run.h5") is still the same file.
+  // A path the file system cannot resolve (a name over 255 bytes) is compared as written; the
+  // write check below names its problem.
   auto same_file = [](const std::string& a, const std::string& b) {
-    return std::filesystem::weakly_canonical(a) == std::filesystem::weakly_canonical(b);
+    std::error_code error_a;
+    std::error_code error_b;
+    const auto canonical_a = std::filesystem::weakly_canonical(a, error_a);
+    const auto canonical_b = std::filesystem::weakly_canonical(b, error_b);
+    if (error_a || error_b) {
+      return std::filesystem::path(a).lexically_normal() ==
+             std::filesystem::path(b).lexically_normal();
+    }
+    return canonical_a == canonical_b;
   };
   for (const auto& [format, path] : config.outputs) {
     if (format == "native") continue;
@@ -156,6 +216,7 @@ void run_pack(const PackFlags& flags) {
     }
     validate(options, options.format);
     exports.emplace_back(path, options);
+    export_keys.push_back("output." + format);
   }
   // --print-config shows only what a run would accept (the checks above), without touching files.
   if (flags.is_print_config) {
@@ -164,10 +225,16 @@ void run_pack(const PackFlags& flags) {
   }
   // Fail before the (possibly long) run, not after it: every output path, a file really created
   // in every output folder.
-  check_writable(output, overwrite);
-  if (flags.has_xdmf) check_writable(xdmf_path_for(output), overwrite);
-  for (const auto& entry : exports) check_writable(entry.first, overwrite);
+  check_output(output_key, output, overwrite);
+  if (flags.has_xdmf) check_output(output_key, xdmf_path_for(output), overwrite);
+  for (std::size_t i = 0; i < exports.size(); ++i) {
+    check_output(export_keys[i], exports[i].first, overwrite);
+  }
   set_thread_count(config.threads);
+  // A run estimated above ~10 s or 1 GB says so at once, whatever --progress says.
+  if (const std::string note = heavy_run_note(estimate_of(config.packer)); !note.empty()) {
+    std::fprintf(stderr, "aggpack: %s\n", note.c_str());
+  }
   // All or nothing: if an [output] export fails after the native file was written, the files this
   // run created are removed and the ones it replaced (--force) are put back.
   OutputTransaction outputs;
@@ -182,15 +249,22 @@ void run_pack(const PackFlags& flags) {
   }
   std::unique_ptr<ProgressBar> bar;
   std::optional<PackStage> stage;
+  // A stage's work begins when the previous one last reported (or the run starts): its display's
+  // time counts from there, so it agrees with the summary's "s shapes + s placement".
+  auto stage_start = std::chrono::steady_clock::now();
+  auto last_report = stage_start;
   PackControl control;
   control.on_progress = [&](const PackProgress& progress) {
     if (!stage || *stage != progress.stage) {
       bar.reset();  // finishes the previous stage's display
+      if (stage) stage_start = last_report;
       stage = progress.stage;
       bar = std::make_unique<ProgressBar>(
           stage_label(progress.stage),
           progress.stage == PackStage::kDensify ? "sweeps" : "particles", style);
+      bar->set_start(stage_start);
     }
+    last_report = std::chrono::steady_clock::now();
     if (progress.stage == PackStage::kShapes) {
       // While shapes grow, `total` is the number grown so far; the final count is not known yet.
       bar->update(progress.fraction, progress.total, 0);
@@ -256,16 +330,18 @@ void run_pack(const PackFlags& flags) {
                written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
   } else if (result.fill) {
     print_dense_summary(result, grading);
-    fmt::print("time            {:.2f} s shapes + {:.2f} s placement{}\n", report.shape_seconds,
-               report.placement_seconds,
-               result.densify ? fmt::format(" + {:.2f} s densify", result.densify->seconds) : "");
+    fmt::print("time            {} s shapes + {} s placement{}\n",
+               format_seconds(report.shape_seconds), format_seconds(report.placement_seconds),
+               result.densify
+                   ? fmt::format(" + {} s densify", format_seconds(result.densify->seconds))
+                   : "");
   } else {
     fmt::print("{}\n", report.summary());
     fmt::print("particles       {}\n", report.placed);
     fmt::print("solid volume    {:.6g} m^3\n", report.solid_volume);
     fmt::print("solid fraction  {:.4f}\n", report.solid_fraction);
-    fmt::print("time            {:.2f} s shapes + {:.2f} s placement\n", report.shape_seconds,
-               report.placement_seconds);
+    fmt::print("time            {} s shapes + {} s placement\n",
+               format_seconds(report.shape_seconds), format_seconds(report.placement_seconds));
   }
   if (!flags.is_json) {
     fmt::print("wrote {}{}\n", output,

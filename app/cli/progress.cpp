@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <fmt/core.h>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/text.h"
 
 namespace aggpack::cli {
 
@@ -49,18 +51,54 @@ std::string format_duration(double seconds) {
 }
 
 ProgressBar::ProgressBar(std::string label, std::string unit, ProgressStyle style,
-                         std::FILE* stream)
+                         std::FILE* stream, Clock clock)
     : label_(std::move(label)),
       unit_(std::move(unit)),
       style_(style),
       stream_(stream),
+      clock_(std::move(clock)),
       start_(std::chrono::steady_clock::now()) {
   if (style_ == ProgressStyle::kAuto) {
     style_ = ::isatty(::fileno(stream_)) != 0 ? ProgressStyle::kBar : ProgressStyle::kLines;
   }
+  if (style_ == ProgressStyle::kNone || clock_) return;
+  ticker_ = std::thread([this] {
+    std::unique_lock lock(mutex_);
+    while (!is_stopping_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(250));
+      if (is_stopping_) break;
+      lock.unlock();
+      heartbeat();
+      lock.lock();
+    }
+  });
 }
 
 ProgressBar::~ProgressBar() { finish(); }
+
+double ProgressBar::now() const {
+  if (clock_) return clock_();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void ProgressBar::stop_thread() {
+  {
+    const std::lock_guard lock(mutex_);
+    is_stopping_ = true;
+  }
+  wake_.notify_all();
+  if (ticker_.joinable()) ticker_.join();
+}
+
+void ProgressBar::set_start(std::chrono::steady_clock::time_point start) {
+  const std::lock_guard lock(mutex_);
+  start_ = start;
+}
+
+void ProgressBar::set_eta_is_bound(bool is_bound) {
+  const std::lock_guard lock(mutex_);
+  is_eta_bound_ = is_bound;
+}
 
 std::string ProgressBar::count_text() const {
   if (total_ == 0) return fmt::format("{} {}", done_, unit_);
@@ -68,31 +106,56 @@ std::string ProgressBar::count_text() const {
 }
 
 std::string ProgressBar::status_text(double elapsed) const {
-  const double span = first_time_ >= 0 ? elapsed - first_time_ : 0.0;
-  // Below 0.2 s a rate is noise (one callback may cover a large jump).
-  const double rate = span > 0.2 ? static_cast<double>(done_ - first_done_) / span : 0.0;
-  double eta = -1;
-  if (fraction_ >= 1) {
-    eta = 0;
-  } else if (span > 0.2 && fraction_ > first_fraction_) {
-    eta = span * (1 - fraction_) / (fraction_ - first_fraction_);
+  const double span = first_time_ >= 0 ? last_update_ - first_time_ : 0.0;
+  std::string text = fmt::format("{:5.1f}%  {}", 100.0 * fraction_, count_text());
+  // Below 0.2 s a rate is noise (one callback may cover a large jump): left out until known.
+  if (span > 0.2) {
+    text += fmt::format("  {}/s", format_rate(static_cast<double>(done_ - first_done_) / span));
+    if (fraction_ > first_fraction_ && fraction_ < 1) {
+      // The estimate at the latest update, counted down since (a heartbeat between updates).
+      const double at_update = span * (1 - fraction_) / (fraction_ - first_fraction_);
+      const double eta = std::max(0.0, at_update - (elapsed - last_update_));
+      text += fmt::format("  ETA {}{}", is_eta_bound_ ? "<= " : "", format_duration(eta));
+    }
   }
-  std::string text = fmt::format("{:5.1f}%  {}  {}/s  ETA {}", 100.0 * fraction_, count_text(),
-                                 format_rate(rate), format_duration(eta));
   if (!extra_.empty()) text += "  " + extra_;
   return text;
 }
 
+void ProgressBar::draw(double elapsed) {
+  last_output_ = elapsed;
+  const std::string status = status_text(elapsed);
+  if (style_ == ProgressStyle::kLines) {
+    std::fprintf(stream_, "%s: %s\n", label_.c_str(), status.c_str());
+    std::fflush(stream_);
+    return;
+  }
+  const int width = terminal_width(stream_);
+  // A fixed bar width (a quarter of the terminal) so the bar does not jump as the text changes;
+  // the status text is cut at the right edge instead.
+  const int bar_width = std::clamp(width / 4, 10, 30);
+  const int filled = static_cast<int>(std::floor(fraction_ * bar_width));
+  const std::string bar = "[" + std::string(static_cast<std::size_t>(filled), '#') +
+                          std::string(static_cast<std::size_t>(bar_width - filled), '.') + "] ";
+  std::string line = label_ + " " + bar + status;
+  if (static_cast<int>(line.size()) > width - 1) line.resize(static_cast<std::size_t>(width - 1));
+  // \r + erase-line: redraw in place.
+  std::fprintf(stream_, "\r\033[K%s", line.c_str());
+  std::fflush(stream_);
+}
+
 void ProgressBar::update(double fraction, std::uint64_t done, std::uint64_t total,
                          const std::string& extra) {
-  if (style_ == ProgressStyle::kNone || is_finished_) return;
+  if (style_ == ProgressStyle::kNone) return;
+  const std::lock_guard lock(mutex_);
+  if (is_finished_) return;
   fraction_ = std::clamp(std::isfinite(fraction) ? fraction : 0.0, 0.0, 1.0);
   done_ = done;
   total_ = total;
   extra_ = extra;
   has_update_ = true;
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double elapsed = now();
+  last_update_ = elapsed;
   if (first_time_ < 0) {
     first_time_ = elapsed;
     first_fraction_ = fraction_;
@@ -100,41 +163,39 @@ void ProgressBar::update(double fraction, std::uint64_t done, std::uint64_t tota
   }
   if (style_ == ProgressStyle::kBar) {
     if (last_output_ >= 0 && elapsed - last_output_ < 0.1 && fraction_ < 1) return;
-    last_output_ = elapsed;
-    const std::string status = status_text(elapsed);
-    const int width = terminal_width(stream_);
-    // A fixed bar width (a quarter of the terminal) so the bar does not jump as the text changes;
-    // the status text is cut at the right edge instead.
-    const int bar_width = std::clamp(width / 4, 10, 30);
-    const int filled = static_cast<int>(std::floor(fraction_ * bar_width));
-    const std::string bar = "[" + std::string(static_cast<std::size_t>(filled), '#') +
-                            std::string(static_cast<std::size_t>(bar_width - filled), '.') + "] ";
-    std::string line = label_ + " " + bar + status;
-    if (static_cast<int>(line.size()) > width - 1) line.resize(static_cast<std::size_t>(width - 1));
-    // \r + erase-line: redraw in place.
-    std::fprintf(stream_, "\r\033[K%s", line.c_str());
-    std::fflush(stream_);
+    draw(elapsed);
     return;
   }
-  // Plain lines: one per further 10 % of the work, and at least every 10 s.
+  // Plain lines: one per further 10 % of the work, and at least every kProgressHeartbeat s.
   const bool is_step = fraction_ >= next_line_fraction_ && fraction_ < 1;
-  const bool is_due = last_output_ < 0 ? elapsed >= 10 : elapsed - last_output_ >= 10;
+  const bool is_due =
+      (last_output_ < 0 ? elapsed - first_time_ : elapsed - last_output_) >= kProgressHeartbeat;
   if (!is_step && !is_due) return;
   while (next_line_fraction_ <= fraction_) next_line_fraction_ += 0.1;
-  last_output_ = elapsed;
-  std::fprintf(stream_, "%s: %s\n", label_.c_str(), status_text(elapsed).c_str());
-  std::fflush(stream_);
+  draw(elapsed);
+}
+
+void ProgressBar::heartbeat() {
+  if (style_ == ProgressStyle::kNone) return;
+  const std::lock_guard lock(mutex_);
+  if (is_finished_ || !has_update_) return;
+  const double elapsed = now();
+  const double since = last_output_ < 0 ? elapsed - first_time_ : elapsed - last_output_;
+  if (since >= (style_ == ProgressStyle::kBar ? 1.0 : kProgressHeartbeat)) draw(elapsed);
 }
 
 void ProgressBar::finish() {
+  if (style_ != ProgressStyle::kNone && !clock_) stop_thread();
+  const std::lock_guard lock(mutex_);
   if (is_finished_) return;
   is_finished_ = true;
   if (style_ == ProgressStyle::kNone || !has_update_) return;
-  const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  // A finished display reports the time to its last update: it may be ended later (a stage's
+  // display ends when the next stage first reports).
+  const double elapsed = fraction_ >= 1 ? last_update_ : now();
   const double span = elapsed - first_time_;
-  std::string line =
-      fmt::format("{}: {:.1f}%  {} in {:.2f} s", label_, 100.0 * fraction_, count_text(), elapsed);
+  std::string line = fmt::format("{}: {:.1f}%  {} in {} s", label_, 100.0 * fraction_, count_text(),
+                                 format_seconds(elapsed));
   if (span > 0.2) {
     line += fmt::format(" ({}/s)", format_rate(static_cast<double>(done_ - first_done_) / span));
   }
@@ -142,6 +203,61 @@ void ProgressBar::finish() {
   if (style_ == ProgressStyle::kBar) std::fprintf(stream_, "\r\033[K");
   std::fprintf(stream_, "%s\n", line.c_str());
   std::fflush(stream_);
+}
+
+StageTimer::StageTimer(std::string label, ProgressStyle style, double limit_seconds,
+                       std::FILE* stream)
+    : label_(std::move(label)),
+      style_(style),
+      limit_(limit_seconds),
+      stream_(stream),
+      start_(std::chrono::steady_clock::now()) {
+  if (style_ == ProgressStyle::kAuto) {
+    style_ = ::isatty(::fileno(stream_)) != 0 ? ProgressStyle::kBar : ProgressStyle::kLines;
+  }
+  if (style_ == ProgressStyle::kNone) return;
+  ticker_ = std::thread([this] {
+    const double interval = style_ == ProgressStyle::kBar ? 1.0 : kProgressHeartbeat;
+    std::unique_lock lock(mutex_);
+    for (int tick = 1; !is_stopping_; ++tick) {
+      // Quiet for the first interval: a step that ends at once prints nothing.
+      wake_.wait_until(lock, start_ + std::chrono::duration<double>(tick * interval));
+      if (is_stopping_) break;
+      draw(tick * interval, false);
+    }
+  });
+}
+
+StageTimer::~StageTimer() { finish(); }
+
+void StageTimer::draw(double elapsed, bool is_final) {
+  std::string text = is_final ? fmt::format("{}: done in {} s", label_, format_seconds(elapsed))
+                              : fmt::format("{}: {} elapsed", label_, format_duration(elapsed));
+  if (!is_final && limit_ > 0) {
+    text += fmt::format(" (stops at the time limit, {} from now at most)",
+                        format_duration(std::max(0.0, limit_ - elapsed)));
+  }
+  if (style_ == ProgressStyle::kBar) {
+    std::fprintf(stream_, "\r\033[K%s%s", text.c_str(), is_final ? "\n" : "");
+  } else {
+    std::fprintf(stream_, "%s\n", text.c_str());
+  }
+  std::fflush(stream_);
+  has_output_ = true;
+}
+
+void StageTimer::finish() {
+  {
+    const std::lock_guard lock(mutex_);
+    if (is_finished_) return;
+    is_finished_ = true;
+    is_stopping_ = true;
+  }
+  wake_.notify_all();
+  if (ticker_.joinable()) ticker_.join();
+  const std::lock_guard lock(mutex_);
+  if (!has_output_) return;
+  draw(std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(), true);
 }
 
 }  // namespace aggpack::cli

@@ -11,12 +11,14 @@
 #include <memory>
 #include <string>
 
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/io/native.h"
 #include "aggpack/mesh/mesomodel.h"
 #include "aggpack/render/headless.h"
 #include "commands.h"
+#include "output_flags.h"
 
 namespace aggpack::cli {
 
@@ -55,7 +57,9 @@ void parse_size(const std::string& text, RenderImageOptions& options) {
   }
 }
 
-void run_render(const RenderFlags& flags) {
+void run_render(const RenderFlags& flags, bool has_output) {
+  // -o "" is refused like in every command (not taken as "no -o").
+  if (has_output) check_output_file_flag("-o/--output", flags.output);
   RenderImageOptions options;
   parse_size(flags.size, options);
   if (!flags.mesomodel_cut.empty()) {
@@ -76,7 +80,8 @@ void run_render(const RenderFlags& flags) {
   options.style.coarse_below_pixels = flags.coarse_below_pixels;
   options.is_orthographic = flags.is_orthographic;
   options.samples = flags.samples;
-  validate(options);
+  with_key_names({}, {{"samples", "--samples"}, {"style.coarse_below_pixels", "--coarse-below"}},
+                 [&] { validate(options); });
   const std::string output =
       flags.output.empty() ? std::filesystem::path(flags.input).replace_extension(".png").string()
                            : flags.output;
@@ -148,7 +153,7 @@ void register_render(CLI::App& app) {
   command->add_flag("--no-tint", flags->is_untinted,
                     "with --mesomodel-cut: one grey for every aggregate");
   command->add_flag("-f,--force", flags->is_forced, "replace an existing output file");
-  command->callback([flags] { run_render(*flags); });
+  command->callback([flags, command] { run_render(*flags, command->count("--output") > 0); });
 }
 
 }  // namespace aggpack::cli

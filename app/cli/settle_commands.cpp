@@ -5,17 +5,21 @@
 
 #include <fmt/core.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/text.h"
 #include "aggpack/io/native.h"
 #include "aggpack/sim/settle.h"
 #include "commands.h"
+#include "output_flags.h"
 #include "progress.h"
 
 namespace aggpack::cli {
@@ -41,30 +45,6 @@ const std::map<std::string, std::string>& settle_flag_names() {
   return names;
 }
 
-// Runs `check`; an InvalidInput or LimitExceeded about a field in `names` is rethrown naming
-// the user's flag instead.
-template <typename Check>
-void with_user_names(const std::map<std::string, std::string>& names, Check&& check) {
-  try {
-    check();
-  } catch (const Error& error) {
-    if (error.kind() != ErrorKind::kInvalidInput && error.kind() != ErrorKind::kLimitExceeded) {
-      throw;
-    }
-    const std::string message = error.what();
-    for (const char* lead : {"invalid ", "limit exceeded for "}) {
-      if (message.rfind(lead, 0) != 0) continue;
-      const std::size_t start = std::string(lead).size();
-      const std::size_t end = message.find(" = ", start);
-      if (end == std::string::npos) continue;
-      const auto found = names.find(message.substr(start, end - start));
-      if (found == names.end()) continue;
-      throw Error(error.kind(), lead + found->second + message.substr(end));
-    }
-    throw;
-  }
-}
-
 struct SettleFlags {
   std::string input;
   std::string output;
@@ -75,9 +55,10 @@ struct SettleFlags {
 };
 
 void run_settle_command(const SettleFlags& flags) {
+  check_output_file_flag("-o/--output", flags.output);
   SettleOptions options = flags.options;
   if (flags.wall_friction) options.physics.wall_friction = *flags.wall_friction;
-  with_user_names(settle_flag_names(), [&] {
+  with_key_names({}, settle_flag_names(), [&] {
     validate(options.physics);
     validate(options.rest);
   });
@@ -85,16 +66,23 @@ void run_settle_command(const SettleFlags& flags) {
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   check_writable(flags.output, overwrite);
   const Packing packing = read_packing(flags.input);
-  fmt::print("settling {} particles from {}\n", packing.particles.size(), flags.input);
-  double last_print = -1.0;
+  fmt::print(
+      "settling {} particles from {} until at rest (kinetic energy below --energy-ratio for "
+      "--quiet-time), at most {} s simulated (--max-time)\n",
+      packing.particles.size(), flags.input, format_value(options.rest.max_time));
+  std::fflush(stdout);
   SettleResult result;
   try {
-    with_user_names(settle_flag_names(), [&] {
+    // Simulated milliseconds as the counted unit: the rate is simulated time per wall second,
+    // the ETA an upper bound (the run ends at rest, usually long before --max-time).
+    ProgressBar bar("settling", "ms simulated", style);
+    bar.set_eta_is_bound(true);
+    with_key_names({}, settle_flag_names(), [&] {
       result = settle(packing, options, [&](double time, double energy, double threshold) {
-        if (style == ProgressStyle::kNone || time - last_print < 0.5) return;
-        last_print = time;
-        std::fprintf(stderr, "t = %6.2f s  kinetic energy %.3g J (rest < %.3g)\n", time, energy,
-                     threshold);
+        bar.update(
+            time / options.rest.max_time, static_cast<std::uint64_t>(time * 1e3 + 0.5),
+            static_cast<std::uint64_t>(options.rest.max_time * 1e3 + 0.5),
+            fmt::format("kinetic energy {:.2g} J (at rest below {:.2g} J)", energy, threshold));
       });
     });
   } catch (const Error& error) {
@@ -104,9 +92,9 @@ void run_settle_command(const SettleFlags& flags) {
   }
   const SettleReport& r = result.report;
   write_packing(result.packing, flags.output, {.overwrite = overwrite});
-  fmt::print("{} after {:.2f} s simulated ({} steps of {:.4g} s, {:.1f} s wall)\n",
+  fmt::print("{} after {:.2f} s simulated ({} steps of {:.4g} s, {} s wall)\n",
              r.is_at_rest ? "at rest" : "NOT at rest (max time reached)", r.simulated_time, r.steps,
-             r.time_step, r.wall_seconds);
+             r.time_step, format_seconds(r.wall_seconds));
   fmt::print(
       "solid fraction       {:.4f} -> {:.4f} (bulk: solid {:.4g} m^3 / footprint x height "
       "{:.4g} -> {:.4g} m)\n",

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
@@ -15,6 +16,7 @@
 #include "aggpack/shape/descriptors.h"
 #include "aggpack/shape/generator.h"
 #include "commands.h"
+#include "output_flags.h"
 
 namespace aggpack::cli {
 
@@ -26,16 +28,6 @@ struct ShapeFlags {
   double radius = 0;  // --radius sets both ends of the range
   int threads = 0;
 };
-
-// Unsigned options: CLI11 would wrap "-1" to 2^64-1, so negative text is rejected first (CLI11's
-// NonNegativeNumber would print DBL_MAX as the range).
-const CLI::Validator kNotNegative(
-    [](std::string& text) {
-      const auto first = text.find_first_not_of(" \t");
-      if (first != std::string::npos && text[first] == '-') return "must be >= 0, got " + text;
-      return std::string();
-    },
-    "");
 
 void add_generator_options(CLI::App& command, ShapeFlags& flags) {
   auto& g = flags.generator;
@@ -107,7 +99,8 @@ void resolve_radius(ShapeFlags& flags, const CLI::App& command) {
   require_in_range("--elongation", g.form.elongation, 0.1, 1.0);
   require_in_range("--flatness", g.form.flatness, 0.1, 1.0);
   require_in_range("--min-edge-ratio", g.form.min_edge_ratio, 0.0, 0.5);
-  validate(g);
+  with_key_names({}, {{"max_vertices", "--max-vertices"}, {"edge_length", "--edge-length"}},
+                 [&] { validate(g); });
 }
 
 void print_descriptors(const ShapeDescriptors& d, double control_radius) {
@@ -237,6 +230,7 @@ void register_particle(CLI::App& app) {
   command->callback([=, &app]() {
     const auto* self = app.get_subcommand("particle");
     resolve_radius(*flags, *self);
+    if (self->count("--output") > 0) check_output_file_flag("-o/--output", *output);
     require_positive("--scale", *scale);
     const Overwrite overwrite = *is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!output->empty()) check_writable(*output, overwrite);
@@ -299,6 +293,7 @@ void register_shapes(CLI::App& app) {
       return;
     }
     resolve_radius(*flags, *self);
+    if (self->count("--output") > 0) check_output_file_flag("-o/--output", *output);
     if (*count < 1 || *count > 100000000ULL) {
       throw InvalidInput("--count", std::to_string(*count), "[1, 100000000]");
     }

@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "aggpack/config/repose_config.h"
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
@@ -28,6 +30,7 @@
 #include "aggpack/sim/sweep.h"
 #include "commands.h"
 #include "mpi_world.h"
+#include "output_flags.h"
 #include "progress.h"
 #include "sim_summary.h"
 
@@ -82,9 +85,17 @@ struct ReposeFlags {
 };
 
 SweepOptions resolve(const ReposeFlags& flags) {
+  check_output_folder_flag("-o/--output", flags.output);
   SweepOptions options = load_sweep_config(flags.config_path, flags.overrides);
   if (flags.friction) options.base.physics.friction = *flags.friction;
   if (flags.alpha) options.base.alpha = *flags.alpha;
+  if (flags.friction || flags.alpha) {
+    // --mu and --alpha stand for keys but were typed as flags: their messages name the flags.
+    std::map<std::string, std::string> flag_names;
+    if (flags.friction) flag_names.emplace("physics.friction", "--mu");
+    if (flags.alpha) flag_names.emplace("particles.alpha", "--alpha");
+    with_key_names({}, flag_names, [&] { with_sweep_key_names([&] { validate(options.base); }); });
+  }
   if (flags.seed) {
     options.base.seed = *flags.seed;
     options.seeds.clear();  // --seed: one run at that seed, whatever ensemble.seeds says
@@ -145,13 +156,13 @@ void print_result(const ReposeResult& r) {
   fmt::print("particles            {} (mean measured alpha {:.3f}), solid {:.4g} m^3\n",
              r.particle_count, r.mean_measured_alpha, r.solid_volume);
   fmt::print("time step            {:.4g} s (d_min {:.4g} m)\n", r.time_step, r.smallest_size);
-  fmt::print("stage 1 (settle)     {:.2f} s simulated, {}, pile height {:.3f} m, {:.1f} s wall\n",
+  fmt::print("stage 1 (settle)     {:.2f} s simulated, {}, pile height {:.3f} m, {} s wall\n",
              r.stage1_time, r.is_stage1_at_rest ? "at rest" : "NOT at rest (max_time)",
-             r.stage1_height, r.stage1_seconds);
+             r.stage1_height, format_seconds(r.stage1_seconds));
   fmt::print(
-      "stage 2 (baffle)     {:.2f} s simulated, baffle moved {:.3f} m ({}), {}, {:.1f} s wall\n",
+      "stage 2 (baffle)     {:.2f} s simulated, baffle moved {:.3f} m ({}), {}, {} s wall\n",
       r.stage2_time, r.baffle_travel, r.is_baffle_removed ? "then removed" : "to the far wall",
-      r.is_stage2_at_rest ? "stable" : "NOT stable (max_time)", r.stage2_seconds);
+      r.is_stage2_at_rest ? "stable" : "NOT stable (max_time)", format_seconds(r.stage2_seconds));
   fmt::print(
       "final pile           max overlap {:.3f}% of d_min, max contact penetration {:.3f}%, "
       "{} particles outside\n",
@@ -346,24 +357,32 @@ void run_repose_command(const ReposeFlags& flags) {
   std::vector<std::string> names = {"repose.json", "profile.csv", "side.png"};
   names.push_back("final.h5");
   const std::string folder = prepare_folder(flags.output, flags.is_forced, names);
-  double last_print = -1.0;
+  // One display per stage, counted in simulated milliseconds (rate: simulated time per wall
+  // second); each stage is bounded by rest.max_time, so the ETA is an upper bound.
+  const double max_time = options.base.rest.max_time;
+  std::unique_ptr<ProgressBar> bar;
   int last_stage = 0;
   ReposeResult result;
   with_sweep_key_names([&] {
-    result = run_repose(options.base, repose_fill(options.base),
-                        [&](int stage, double time, double energy, double threshold) {
-                          if (style == ProgressStyle::kNone) return;
-                          if (stage != last_stage || time - last_print >= 0.5) {
-                            last_stage = stage;
-                            last_print = time;
-                            std::fprintf(stderr, "stage %d  t = %6.2f s  kinetic energy %.3g J%s\n",
-                                         stage, time, energy,
-                                         threshold > 0.0
-                                             ? fmt::format(" (rest < {:.3g})", threshold).c_str()
-                                             : "  (baffle moving)");
-                          }
-                        });
+    result = run_repose(
+        options.base, repose_fill(options.base),
+        [&](int stage, double time, double energy, double threshold) {
+          if (stage != last_stage) {
+            bar.reset();  // ends the previous stage's display
+            last_stage = stage;
+            bar = std::make_unique<ProgressBar>(
+                stage == 1 ? "stage 1 (settle)" : "stage 2 (baffle)", "ms simulated", style);
+            bar->set_eta_is_bound(true);
+          }
+          bar->update(time / max_time, static_cast<std::uint64_t>(time * 1e3 + 0.5),
+                      static_cast<std::uint64_t>(max_time * 1e3 + 0.5),
+                      threshold > 0.0
+                          ? fmt::format("kinetic energy {:.2g} J (at rest below {:.2g} J)", energy,
+                                        threshold)
+                          : fmt::format("kinetic energy {:.2g} J, baffle moving", energy));
+        });
   });
+  bar.reset();
   print_result(result);
   // All or nothing, as `pack`: a failed write (disk full) removes the files of this run.
   OutputTransaction outputs;

@@ -1,11 +1,14 @@
 // The configuration sections of the panel, drawn from the schema: one widget per key that applies
 // to the current choices, labelled with the key, its tooltip the key's doc line, allowed range
-// and default (aggpack/config/schema.h). Only the sieve table has a widget of its own.
+// and default (aggpack/config/schema.h). Only the sieve table has a widget of its own. In
+// Chinese the labels, doc lines and word values come from i18n/keys_zh_CN.h (the key's name
+// stays in the tooltip: it is what a TOML file or `--set` takes).
 
 #include <fmt/core.h>
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <map>
@@ -13,6 +16,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/pack/grading.h"
 #include "gui_app.h"
+#include "i18n.h"
 
 namespace aggpack::gui {
 
@@ -28,20 +32,36 @@ double step_for(double value) {
   return std::pow(10.0, std::floor(std::log10(std::abs(value))) - 1.0);
 }
 
-// Said of input alpha beside its doc line: why the measured alpha of the result differs.
-constexpr const char* kAlphaNote =
-    "\n\nThis is the input alpha (the paper's Eq. 3), a control of the growth. The alpha\n"
-    "measured on the finished particles (Eq. 2, sphericity^1.5; 'Colour by alpha') is a\n"
-    "different quantity: grown particles are rounder than the control suggests, so the\n"
-    "measured value is usually higher (about 0.68-0.89 for an input of 0.3).";
+// A key's doc line in the current language (the schema's own in English).
+const char* key_doc(const Key<PackConfig>& key) {
+  const char* chinese = language() == Language::kChinese ? key_doc_chinese(key.name) : nullptr;
+  return chinese != nullptr ? chinese : key.doc.c_str();
+}
+
+// A word value as the list shows it: in Chinese its words and the word ("长方体 (box)"). Made
+// once per language and word, so drawing a list allocates nothing (the window's thread only).
+const std::string& shown_word(const std::string& word) {
+  static std::array<std::map<std::string, std::string, std::less<>>, 2> cache;
+  const bool is_chinese = language() == Language::kChinese;
+  auto& shown = cache[is_chinese ? 1 : 0];
+  auto found = shown.find(word);
+  if (found == shown.end()) {
+    const char* chinese = is_chinese ? word_chinese(word) : nullptr;
+    found = shown.emplace(word, chinese != nullptr ? fmt::format("{} ({})", chinese, word) : word)
+                .first;
+  }
+  return found->second;
+}
 
 void key_tooltip(const Key<PackConfig>& key, const KeyView& view) {
   if (!ImGui::IsItemHovered()) return;
-  ImGui::SetTooltip(
-      "%s\n%s: %s%s%s; default %s%s", key.doc.c_str(), key.name.c_str(), allowed_text(view).c_str(),
-      key.unit.empty() || key.unit == "-" ? "" : " ", key.unit == "-" ? "" : key.unit.c_str(),
-      default_text(view, *key.default_value, key.default_from, key.default_text).c_str(),
-      key.name == "particle.alpha" ? kAlphaNote : "");
+  // Said of input alpha beside its doc line: why the measured alpha of the result differs.
+  const std::string unit = key.unit.empty() || key.unit == "-" ? "" : " " + key.unit;
+  ImGui::SetTooltip("%s",
+                    trf(Text::kKeyTooltip, key_doc(key), key.name, allowed_text(view), unit,
+                        default_text(view, *key.default_value, key.default_from, key.default_text),
+                        key.name == "particle.alpha" ? tr(Text::kAlphaNote) : "")
+                        .c_str());
 }
 
 // Typed values beyond a closed end of the range are clamped to it (an open end cannot be
@@ -85,12 +105,23 @@ void GuiApp::draw_config_section(const char* title, const std::vector<std::strin
 void GuiApp::draw_key(const Key<PackConfig>& key, const KeyView& view) {
   // The key without its table ("radius"), or the whole key where another table has a key of that
   // name ("container.kind", "grading.kind").
-  const std::string short_name = key.name.substr(key.name.find('.') + 1);
+  // In Chinese: the catalogue's label. Made once per language (key_labels_), not per frame.
   const auto& keys = pack_schema().keys;
-  const bool is_ambiguous = std::count_if(keys.begin(), keys.end(), [&](const auto& other) {
-                              return other.name.substr(other.name.find('.') + 1) == short_name;
-                            }) > 1;
-  const std::string label = (is_ambiguous ? key.name : short_name) + "##" + key.name;
+  if (key_labels_.empty()) {
+    for (const auto& each : keys) {
+      const std::string short_name = each.name.substr(each.name.find('.') + 1);
+      const bool is_ambiguous = std::count_if(keys.begin(), keys.end(), [&](const auto& other) {
+                                  return other.name.substr(other.name.find('.') + 1) == short_name;
+                                }) > 1;
+      const char* chinese =
+          language() == Language::kChinese ? key_label_chinese(each.name) : nullptr;
+      const std::string shown = chinese != nullptr ? std::string(chinese)
+                                : is_ambiguous     ? each.name
+                                                   : short_name;
+      key_labels_.push_back(shown + "##" + each.name);
+    }
+  }
+  const std::string& label = key_labels_[static_cast<std::size_t>(&key - keys.data())];
   Value& value = fields_.value(key.name);
   // The field's error in plain words, right under it.
   struct ErrorLine {
@@ -109,7 +140,7 @@ void GuiApp::draw_key(const Key<PackConfig>& key, const KeyView& view) {
   if (key.presence == Presence::kOptional && key.type != ValueType::kSieve) {
     bool is_on = fields_.is_on(key.name);
     if (ImGui::Checkbox(("##on" + key.name).c_str(), &is_on)) fields_.set_on(key.name, is_on);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("give %s", key.name.c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", trf(Text::kGiveKey, key.name).c_str());
     ImGui::SameLine();
     if (!is_on) ImGui::BeginDisabled();
     draw_key_input(key, view, label, value);
@@ -124,9 +155,11 @@ void GuiApp::draw_key_input(const Key<PackConfig>& key, const KeyView& view,
   switch (key.type) {
     case ValueType::kWord: {
       auto& word = std::get<std::string>(value);
-      if (ImGui::BeginCombo(label.c_str(), word.c_str())) {
+      if (ImGui::BeginCombo(label.c_str(), shown_word(word).c_str())) {
         for (const auto& choice : key.words) {
-          if (ImGui::Selectable(choice.c_str(), choice == word)) word = choice;
+          ImGui::PushID(choice.c_str());
+          if (ImGui::Selectable(shown_word(choice).c_str(), choice == word)) word = choice;
+          ImGui::PopID();
         }
         ImGui::EndCombo();
       }
@@ -183,15 +216,15 @@ void GuiApp::draw_sieve_table(std::vector<SieveRow>& rows) {
   } catch (const Error& other) {
     error = other.what();
   }
-  ImGui::TextUnformatted("sieve table by volume; d = control diameter");
+  ImGui::TextUnformatted(tr(Text::kSieveTitle));
   int insert_after = -1, remove = -1;
   const float button_width = ImGui::GetFrameHeight();
   constexpr ImGuiTableFlags kTableFlags =
       ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp;
-  if (ImGui::BeginTable("sieve", 4, kTableFlags)) {
+  if (ImGui::BeginTable("##sieve", 4, kTableFlags)) {
     ImGui::TableSetupColumn("#", ImGuiTableColumnFlags_WidthFixed);
-    ImGui::TableSetupColumn("size d", ImGuiTableColumnFlags_WidthStretch, 1.0f);
-    ImGui::TableSetupColumn("% passing", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn(tr(Text::kSieveSize), ImGuiTableColumnFlags_WidthStretch, 1.0f);
+    ImGui::TableSetupColumn(tr(Text::kSievePassing), ImGuiTableColumnFlags_WidthStretch, 1.0f);
     ImGui::TableSetupColumn("##rows", ImGuiTableColumnFlags_WidthFixed,
                             2.0f * button_width + ImGui::GetStyle().ItemSpacing.x);
     ImGui::TableHeadersRow();
@@ -203,9 +236,9 @@ void GuiApp::draw_sieve_table(std::vector<SieveRow>& rows) {
       ImGui::TableNextColumn();
       ImGui::AlignTextToFramePadding();
       ImGui::Text("%d", k);
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Sieve %d (grading.sieve[%d])", k, k);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", trf(Text::kSieveRow, k, k).c_str());
       auto cell = [&error_field, &error](const std::string& name, const char* id, double* value,
-                                         const char* format, const std::string& tooltip) {
+                                         const char* format, const char* tooltip) {
         ImGui::TableNextColumn();
         const bool is_bad = error_field == name;
         if (is_bad) ImGui::PushStyleColor(ImGuiCol_FrameBg, kErrorFrame);
@@ -213,26 +246,22 @@ void GuiApp::draw_sieve_table(std::vector<SieveRow>& rows) {
         ImGui::InputDouble(id, value, 0.0, 0.0, format);
         if (is_bad) ImGui::PopStyleColor();
         if (ImGui::IsItemHovered()) {
-          ImGui::SetTooltip("%s\n%s%s%s", tooltip.c_str(), name.c_str(), is_bad ? "\n\n" : "",
+          ImGui::SetTooltip("%s\n%s%s%s", tooltip, name.c_str(), is_bad ? "\n\n" : "",
                             is_bad ? error.c_str() : "");
         }
       };
-      cell(field + ".size", "##size", &row.size, "%.4g m",
-           "Sieve opening d (m), the control diameter of the particles: > 0, larger than the row "
-           "above.");
+      cell(field + ".size", "##size", &row.size, tr(Text::kSieveCellFormat),
+           tr(Text::kSieveSizeTooltip));
       cell(field + ".percent_passing", "##percent", &row.percent_passing, "%.4g",
-           "Percent by volume passing this sieve, [0, 100]: not less than the row above; the "
-           "first row below 100, the last row 100.");
+           tr(Text::kSievePassingTooltip));
       ImGui::TableNextColumn();
       if (ImGui::Button("+", ImVec2(button_width, 0))) insert_after = k;
-      if (ImGui::IsItemHovered()) {
-        ImGui::SetTooltip("Insert a row after this one (midway: the grading stays the same)");
-      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kSieveInsert));
       ImGui::SameLine();
       ImGui::BeginDisabled(rows.size() <= 2);  // a table needs two sieves
       if (ImGui::Button("-", ImVec2(button_width, 0))) remove = k;
       ImGui::EndDisabled();
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("Remove this row");
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kSieveRemove));
       ImGui::PopID();
     }
     ImGui::EndTable();
@@ -259,13 +288,11 @@ void GuiApp::draw_sieve_table(std::vector<SieveRow>& rows) {
     ImGui::PopStyleColor();
   } else {
     const Grading grading{.kind = GradingKind::kSieve, .sieve = rows};
-    const std::string fines =
-        rows.front().percent_passing > 0.0
-            ? fmt::format("; the {:.4g} % passing the smallest sieve (fines) is not packed",
-                          rows.front().percent_passing)
-            : std::string();
-    ImGui::TextDisabled("d %.4g to %.4g m%s", smallest_size(grading), largest_size(grading),
-                        fines.c_str());
+    const std::string fines = rows.front().percent_passing > 0.0
+                                  ? trs(Text::kSieveFines, rows.front().percent_passing)
+                                  : std::string();
+    ImGui::TextDisabled(
+        "%s", trf(Text::kSieveRange, smallest_size(grading), largest_size(grading), fines).c_str());
   }
   ImGui::PopTextWrapPos();
 }

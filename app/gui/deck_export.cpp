@@ -13,6 +13,7 @@
 #include "aggpack/io/export.h"
 #include "file_dialog.h"
 #include "gui_app.h"
+#include "i18n.h"
 
 namespace aggpack::gui {
 
@@ -52,10 +53,10 @@ std::string deck_title(DeckKind deck) {
       solver = "YADE";
       break;
     case DeckKind::kNone:
-      return "mesh only";
+      return tr(Text::kMeshOnly);
   }
   for (const DeckInfo& info : deck_kinds()) {
-    if (info.kind == deck) return fmt::format("{} deck (.{})", solver, format_name(info.format));
+    if (info.kind == deck) return trs(Text::kDeckTitle, solver, format_name(info.format));
   }
   return solver;
 }
@@ -63,14 +64,13 @@ std::string deck_title(DeckKind deck) {
 const char* deck_run_hint(DeckKind deck) {
   switch (deck) {
     case DeckKind::kAbaqus:
-      return "rigid walls, a moving rigid baffle, general contact; run: abaqus job=NAME";
+      return tr(Text::kHintAbaqus);
     case DeckKind::kCalculix:
-      return "fixed floor and walls, a moving baffle, contact pairs between neighbours; run: "
-             "ccx -i NAME";
+      return tr(Text::kHintCalculix);
     case DeckKind::kLsDyna:
-      return "rigid walls, a rigid moving baffle, automatic contact; run: lsdyna i=NAME.k";
+      return tr(Text::kHintLsDyna);
     case DeckKind::kYade:
-      return "walls, a moving baffle wall, polyhedra engines; run: yade -n -x NAME.py";
+      return tr(Text::kHintYade);
     case DeckKind::kNone:
       break;
   }
@@ -84,9 +84,9 @@ const ImVec4 kErrorFrame(0.55f, 0.15f, 0.12f, 1.0f);
 
 // One field of the deck table: `field` is the name the library's check gives it.
 struct DeckField {
-  const char* label;
+  Text label;
   const char* field;
-  const char* tooltip;
+  Text tooltip;
   double* value;
 };
 
@@ -101,7 +101,7 @@ std::string plain_words(const InvalidInput& invalid) {
   }
   const std::string value = message.substr(equals + 3, allowed - equals - 3);
   const std::string range = message.substr(allowed + 11, message.size() - allowed - 12);
-  return fmt::format("{}: {} is not allowed; allowed: {}.", invalid.field(), value, range);
+  return trs(Text::kNotAllowed, invalid.field(), value, range);
 }
 
 }  // namespace
@@ -125,59 +125,41 @@ std::string GuiApp::draw_deck_fields(DeckKind deck) {
     error = plain_error(other.what());
   }
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-  ImGui::TextWrapped("The paper's trough test: %s.", deck_run_hint(deck));
+  ImGui::TextWrapped("%s", trf(Text::kTroughTest, deck_run_hint(deck)).c_str());
   ImGui::PopStyleColor();
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(
-        "Settle under gravity (baffle still), then the baffle moves toward +x to the trough's "
-        "end, then rest.\nThe deck's header lists what it assumes. SI units (m, s, kg, Pa).");
-  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kTroughTooltip));
   DeckOptions& d = deck_options_;
   std::vector<DeckField> fields = {
-      {"friction mu", "friction",
-       "Coulomb friction mu_s, particle-particle and particle-wall, "
-       "[0, 10]",
-       &d.friction},
-      {"gravity m/s2", "gravity", "Gravity along -z (m/s^2), > 0", &d.gravity},
-      {"baffle m/s", "baffle speed", "Speed of the baffle toward +x (m/s), > 0", &d.baffle_speed},
-      {"baffle x m", "baffle position",
-       "x of the baffle (m), at or beyond the particles' largest x; 0 = the container's end",
+      {Text::kDeckFriction, "friction", Text::kDeckFrictionTooltip, &d.friction},
+      {Text::kDeckGravity, "gravity", Text::kDeckGravityTooltip, &d.gravity},
+      {Text::kDeckBaffleSpeed, "baffle speed", Text::kDeckBaffleSpeedTooltip, &d.baffle_speed},
+      {Text::kDeckBafflePosition, "baffle position", Text::kDeckBafflePositionTooltip,
        &d.baffle_position},
-      {"trough m", "trough length",
-       "Trough length (m) from its start; 0 = twice the start-to-baffle length (the paper's "
-       "baffle at the middle)",
-       &d.trough_length},
-      {"settle s", "settle time",
-       "Step SETTLE (s), baffle still; 0 = twice the free fall of the highest particle",
-       &d.settle_time},
-      {"rest s", "rest time", "Step REST after the baffle (s), >= 0", &d.rest_time},
-      {"density kg/m3", "density", "Density of the aggregate (kg/m^3), > 0",
-       &deck_material_.density},
-      {"E Pa", "youngs modulus", "Young's modulus of the aggregate (Pa), > 0",
+      {Text::kDeckTroughLength, "trough length", Text::kDeckTroughLengthTooltip, &d.trough_length},
+      {Text::kDeckSettle, "settle time", Text::kDeckSettleTooltip, &d.settle_time},
+      {Text::kDeckRest, "rest time", Text::kDeckRestTooltip, &d.rest_time},
+      {Text::kDeckDensity, "density", Text::kDeckDensityTooltip, &deck_material_.density},
+      {Text::kDeckYoungs, "youngs modulus", Text::kDeckYoungsTooltip,
        &deck_material_.youngs_modulus},
-      {"Poisson nu", "poisson ratio", "Poisson's ratio of the aggregate, in (-1, 0.5)",
+      {Text::kDeckPoisson, "poisson ratio", Text::kDeckPoissonTooltip,
        &deck_material_.poisson_ratio},
   };
   if (deck == DeckKind::kCalculix) {
-    fields.push_back({"contact m", "contact distance",
-                      "Contact pairs between particles (and walls) closer than this (m); 0 = half "
-                      "the largest particle radius",
-                      &d.contact_distance});
+    fields.push_back(
+        {Text::kDeckContact, "contact distance", Text::kDeckContactTooltip, &d.contact_distance});
   }
   if (deck == DeckKind::kYade) {
-    fields.push_back({"time step s", "time step",
-                      "Time step (s); 0 = from the particles' mass and contact stiffness",
-                      &d.time_step});
+    fields.push_back({Text::kDeckTimeStep, "time step", Text::kDeckTimeStepTooltip, &d.time_step});
   }
-  if (ImGui::BeginTable("deck", 2, ImGuiTableFlags_SizingStretchSame)) {
+  if (ImGui::BeginTable("##deck", 2, ImGuiTableFlags_SizingStretchSame)) {
     for (const DeckField& field : fields) {
       ImGui::TableNextColumn();
       const bool is_bad = error_field == field.field;
       if (is_bad) ImGui::PushStyleColor(ImGuiCol_FrameBg, kErrorFrame);
       ImGui::SetNextItemWidth(-110.0f);
-      ImGui::InputDouble(field.label, field.value, 0.0, 0.0, "%.6g");
+      ImGui::InputDouble(tr(field.label), field.value, 0.0, 0.0, "%.6g");
       if (is_bad) ImGui::PopStyleColor();
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", field.tooltip);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(field.tooltip));
     }
     ImGui::EndTable();
   }

@@ -15,6 +15,7 @@
 
 #include "aggpack/io/export.h"
 #include "gui_app.h"
+#include "i18n.h"
 
 namespace aggpack::gui {
 
@@ -26,7 +27,7 @@ void FileDialog::list() {
   std::vector<std::string> new_folders, new_files;
   fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, code);
   if (code) {
-    error = fmt::format("Cannot read the folder {}: {}.", dir.string(), code.message());
+    error = trs(Text::kCannotReadFolder, dir.string(), code.message());
     return;
   }
   const std::string wanted = extension();
@@ -87,7 +88,8 @@ namespace {
 
 // A button of the dialog's width share.
 bool dialog_button(const char* label) {
-  const float width = ImGui::CalcTextSize(label).x + 2.0f * ImGui::GetStyle().FramePadding.x;
+  const float width =
+      ImGui::CalcTextSize(label, nullptr, true).x + 2.0f * ImGui::GetStyle().FramePadding.x;
   return ImGui::Button(label, ImVec2(std::max(170.0f, width), 0.0f));
 }
 
@@ -96,7 +98,7 @@ bool dialog_button(const char* label) {
 void GuiApp::draw_file_dialog() {
   if (dialog_.kind == FileDialog::Kind::kNone) return;
   const bool is_open = dialog_.kind == FileDialog::Kind::kOpen;
-  const char* title = is_open ? "Open a packing###file" : "Export###file";
+  const char* title = tr(is_open ? Text::kDialogOpenTitle : Text::kDialogExportTitle);
   if (dialog_.is_open_requested) {
     ImGui::OpenPopup(title);
     dialog_.is_open_requested = false;
@@ -133,37 +135,34 @@ void GuiApp::draw_file_dialog() {
   };
   if (dialog_.stage == FileDialog::Stage::kAskStale) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-    ImGui::TextWrapped("The shown packing is out of date.");
+    ImGui::TextWrapped("%s", tr(Text::kStaleTitle));
     ImGui::PopStyleColor();
     std::string keys;
     for (const std::string& key : changed_keys()) keys += (keys.empty() ? "" : ", ") + key;
-    ImGui::TextWrapped(
-        "The panel's parameters changed after it was made (%s). Export writes the shown, older "
-        "packing, not one made with the new parameters.",
-        keys.c_str());
+    ImGui::TextWrapped("%s", trf(Text::kStaleText, keys).c_str());
     ImGui::Spacing();
-    if (dialog_button("Export the shown packing") || is_yes) {
+    if (dialog_button(tr(Text::kExportShown)) || is_yes) {
       dialog_.stage = FileDialog::Stage::kBrowse;
     }
     ImGui::SameLine();
-    if (dialog_button("Pack again first")) {
+    if (dialog_button(tr(Text::kPackAgainFirst))) {
       close();
       start_pack();
     }
     ImGui::SameLine();
-    if (dialog_button("Cancel") || is_no) close();
+    if (dialog_button(tr(Text::kDialogCancel)) || is_no) close();
     ImGui::EndPopup();
     return;
   }
   if (dialog_.stage == FileDialog::Stage::kAskOverwrite) {
-    ImGui::TextWrapped("%s already exists in %s.", dialog_.name.c_str(), dialog_.folder.c_str());
-    ImGui::TextWrapped("Replace it?");
+    ImGui::TextWrapped("%s", trf(Text::kAlreadyExists, dialog_.name, dialog_.folder).c_str());
+    ImGui::TextWrapped("%s", tr(Text::kReplaceQuestion));
     ImGui::Spacing();
-    if (dialog_button("Replace") || is_yes) write_now();
+    if (dialog_button(tr(Text::kReplace)) || is_yes) write_now();
     ImGui::SameLine();
-    if (dialog_button("Back")) dialog_.stage = FileDialog::Stage::kBrowse;
+    if (dialog_button(tr(Text::kBack))) dialog_.stage = FileDialog::Stage::kBrowse;
     ImGui::SameLine();
-    if (dialog_button("Cancel") || is_no) close();
+    if (dialog_button(tr(Text::kDialogCancel)) || is_no) close();
     ImGui::EndPopup();
     return;
   }
@@ -189,16 +188,18 @@ void GuiApp::draw_file_dialog() {
     const std::string shown =
         dialog_.deck != DeckKind::kNone ? deck_title(dialog_.deck) : dialog_.format;
     ImGui::SetNextItemWidth(260.0f);
-    if (ImGui::BeginCombo("format", shown.c_str(), ImGuiComboFlags_HeightLargest)) {
+    if (ImGui::BeginCombo(tr(Text::kFormat), shown.c_str(), ImGuiComboFlags_HeightLargest)) {
       for (const FormatInfo& info : export_formats()) {
         const std::string name(info.name);
-        if (ImGui::Selectable(fmt::format("{} ({})", info.title, name).c_str(),
+        const std::string format_title =
+            name == "h5" ? std::string(tr(Text::kNativeFormat)) : std::string(info.title);
+        if (ImGui::Selectable(fmt::format("{} ({})", format_title, name).c_str(),
                               name == dialog_.format && dialog_.deck == DeckKind::kNone)) {
           choose(name, DeckKind::kNone);
         }
       }
       ImGui::Separator();
-      ImGui::TextDisabled("Complete solver models of the trough test");
+      ImGui::TextDisabled("%s", tr(Text::kSolverModels));
       for (const DeckInfo& info : deck_kinds()) {
         if (ImGui::Selectable(deck_title(info.kind).c_str(), info.kind == dialog_.deck)) {
           choose(format_name(info.format), info.kind);
@@ -213,27 +214,27 @@ void GuiApp::draw_file_dialog() {
       ImGui::SetWindowPos(ImVec2(centre.x - 0.5f * size.x, centre.y - 0.5f * size.y));
     }
     if (ImGui::IsItemHovered()) {
-      ImGui::SetTooltip(
-          "the file format to write: the particles' mesh, or a complete solver deck around it");
+      ImGui::SetTooltip("%s", tr(Text::kFormatTooltip));
     }
   }
   char buffer[1024];
   std::snprintf(buffer, sizeof(buffer), "%s", dialog_.folder.c_str());
-  if (ImGui::Button("Up")) {
+  if (ImGui::Button(tr(Text::kUp))) {
     dialog_.folder = fs::path(dialog_.folder).parent_path().string();
     dialog_.list();
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the folder above");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kUpTooltip));
   ImGui::SameLine();
   ImGui::SetNextItemWidth(-60.0f);
-  if (ImGui::InputText("folder", buffer, sizeof(buffer), ImGuiInputTextFlags_EnterReturnsTrue)) {
+  if (ImGui::InputText(tr(Text::kFolder), buffer, sizeof(buffer),
+                       ImGuiInputTextFlags_EnterReturnsTrue)) {
     dialog_.folder = buffer;
     dialog_.list();
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("type a folder and press Enter, or browse below");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kFolderTooltip));
   const bool has_deck = !is_open && dialog_.deck != DeckKind::kNone;
   const float footer = (has_deck ? 11.0f : 3.0f) * ImGui::GetFrameHeightWithSpacing();
-  if (ImGui::BeginChild("entries", ImVec2(0.0f, -footer), true)) {
+  if (ImGui::BeginChild("##entries", ImVec2(0.0f, -footer), true)) {
     std::string enter;
     for (const std::string& sub : dialog_.folders) {
       if (ImGui::Selectable((sub + "/").c_str(), false, ImGuiSelectableFlags_AllowDoubleClick)) {
@@ -247,7 +248,7 @@ void GuiApp::draw_file_dialog() {
       }
     }
     if (dialog_.folders.empty() && dialog_.files.empty()) {
-      ImGui::TextDisabled("(no folders or %s files here)", dialog_.extension().c_str());
+      ImGui::TextDisabled("%s", trf(Text::kNoEntries, dialog_.extension()).c_str());
     }
     if (!enter.empty()) {
       dialog_.folder = (fs::path(dialog_.folder) / enter).string();
@@ -257,8 +258,8 @@ void GuiApp::draw_file_dialog() {
   ImGui::EndChild();
   std::snprintf(buffer, sizeof(buffer), "%s", dialog_.name.c_str());
   ImGui::SetNextItemWidth(-60.0f);
-  if (ImGui::InputText("name", buffer, sizeof(buffer))) dialog_.name = buffer;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the file's name in the folder above");
+  if (ImGui::InputText(tr(Text::kName), buffer, sizeof(buffer))) dialog_.name = buffer;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kNameTooltip));
   if (!dialog_.error.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.3f, 1.0f));
     ImGui::TextWrapped("%s", dialog_.error.c_str());
@@ -268,7 +269,8 @@ void GuiApp::draw_file_dialog() {
   const std::string deck_error = has_deck ? draw_deck_fields(dialog_.deck) : std::string();
   const bool has_name = !dialog_.name.empty() && deck_error.empty();
   ImGui::BeginDisabled(!has_name);
-  if (dialog_button(is_open ? "Open" : "Export") || (is_yes && has_name)) {
+  if (dialog_button(tr(is_open ? Text::kDialogOpen : Text::kDialogExport)) ||
+      (is_yes && has_name)) {
     std::error_code code;
     if (is_open) {
       settings_.folder = dialog_.folder;
@@ -284,11 +286,11 @@ void GuiApp::draw_file_dialog() {
   }
   ImGui::EndDisabled();
   if (is_yes && !has_name) {  // scripted: nothing to press; say why, as the dialog shows it
-    set_status(deck_error.empty() ? "Export: no file name." : deck_error, true);
+    set_status(deck_error.empty() ? std::string(tr(Text::kNoFileName)) : deck_error, true);
     close();
   }
   ImGui::SameLine();
-  if (dialog_button("Cancel") || is_no) close();
+  if (dialog_button(tr(Text::kDialogCancel)) || is_no) close();
   ImGui::EndPopup();
 }
 

@@ -24,6 +24,7 @@
 #include "aggpack/pack/random_packer.h"
 #include "aggpack/pipeline/pipeline.h"
 #include "aggpack/shape/generator.h"
+#include "i18n.h"
 
 namespace aggpack::gui {
 
@@ -31,47 +32,36 @@ namespace {
 
 constexpr float kPanelWidth = 360.0f;
 
-// The last item's tooltip.
-void item_tooltip(const char* text) {
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", text);
-}
-
-// Colour bar for the scale colour modes.
-void draw_legend(const ParticleColors& colors) {
-  ImDrawList* draw = ImGui::GetWindowDrawList();
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const float width = ImGui::GetContentRegionAvail().x;
-  const float height = 12.0f;
-  constexpr int kSteps = 48;
-  for (int k = 0; k < kSteps; ++k) {
-    const Rgb c = scale_color((k + 0.5) / kSteps);
-    const float x0 = origin.x + width * static_cast<float>(k) / kSteps;
-    const float x1 = origin.x + width * static_cast<float>(k + 1) / kSteps;
-    draw->AddRectFilled(ImVec2(x0, origin.y), ImVec2(x1, origin.y + height),
-                        IM_COL32(c.r, c.g, c.b, 255));
-  }
-  ImGui::Dummy(ImVec2(width, height));
-  ImGui::Text("%.4g", colors.minimum);
-  ImGui::SameLine(width - ImGui::CalcTextSize(fmt::format("{:.4g}", colors.maximum).c_str()).x);
-  ImGui::Text("%.4g", colors.maximum);
-  ImGui::TextDisabled("%s", colors.quantity.c_str());
-}
-
 // Builds the job's packing's scene on the worker (the window uploads it in pieces).
 void build_scene(BackgroundJob& job, JobResult& out) {
-  job.set_name("Building the scene");
+  job.set_name(tr(Text::kJobBuildingScene));
   job.set_progress(0.0);
-  job.set_detail(fmt::format("{} particles", out.packing->particles.size()));
+  job.set_detail(trs(Text::kJobParticles, out.packing->particles.size()));
   out.scene = prepare_scene(*out.packing, [&job](double fraction) { job.set_progress(fraction); });
 }
 
-// "ETA 12 s" from the time taken so far and the fraction done ("" too early to say).
-std::string eta_text(double elapsed, double fraction) {
-  if (fraction < 0.02 || elapsed < 1.0 || fraction >= 1.0) return "";
-  const double left = elapsed * (1.0 - fraction) / fraction;
-  if (left < 60.0) return fmt::format(", about {:.0f} s left", left);
-  return fmt::format(", about {:.0f} min {:02.0f} s left", std::floor(left / 60.0),
-                     std::fmod(left, 60.0));
+// The packer's report line in the window's language (in English, PackReport::summary()'s).
+std::string report_summary(const PackReport& report) {
+  Text reason = Text::kStopTarget;
+  switch (report.stop_reason) {
+    case StopReason::kTargetReached:
+      break;
+    case StopReason::kAttemptBudget:
+      reason = Text::kStopBudget;
+      break;
+    case StopReason::kConsecutiveFailures:
+      reason = Text::kStopFailures;
+      break;
+    case StopReason::kSizeListExhausted:
+      reason = Text::kStopSizeList;
+      break;
+    case StopReason::kCancelled:
+      reason = Text::kStopCancelled;
+      break;
+  }
+  return trs(Text::kReportSummary, report.placed, report.requested, report.rejected,
+             report.solid_volume, report.container_volume, 100.0 * report.solid_fraction,
+             tr(reason));
 }
 
 }  // namespace
@@ -99,7 +89,7 @@ std::string plain_error(std::string message) {
     std::string rest = message.substr(allowed + 11);
     const auto close = rest.rfind(')');
     if (close != std::string::npos) rest.erase(close, 1);
-    return key + ": " + value + " is not allowed; allowed: " + rest;
+    return trs(Text::kNotAllowed, key, value, rest);
   }
   return message;
 }
@@ -112,6 +102,7 @@ GuiApp::GuiApp(GLFWwindow* window, GuiOptions options)
                                 : parse_pack_config("", "defaults", options_.overrides);
   fields_ = ConfigFields::from_config(config);
   settings_ = GuiSettings::load(GuiSettings::folder_of(options_.settings_dir));
+  choose_language();
   style_ = options_.style;
   if (style_.color == ColorMode::kParticle) style_.color = static_cast<ColorMode>(settings_.color);
   style_.show_container = settings_.show_container;
@@ -219,39 +210,42 @@ void GuiApp::start_pack() {
     if (is_waiting_for_first_job_) exit_code_ = 2;
     return;
   }
-  set_status("Packing...", false);
+  set_status(tr(Text::kStatusPacking), false);
   job_entries_ = fields_.set_entries();
   job_kind_ = "pack";
-  job_.start("Packing", [config](BackgroundJob& job) {
+  job_.start(tr(Text::kJobPacking), [config](BackgroundJob& job) {
     PackControl control;
     control.cancel = job.cancel_flag();
     control.progress_interval = 0.05;
     control.on_progress = [&job](const PackProgress& progress) {
       job.set_progress(progress.fraction);
       // The lattice kind measures the volume at the end only: no live solid fraction.
-      const std::string solid =
-          progress.solid_fraction > 0.0
-              ? fmt::format(", solid {:.1f} %", 100.0 * progress.solid_fraction)
-              : std::string();
-      job.set_detail(fmt::format(
-          "{} {} of {}{}", progress.stage == PackStage::kDensify ? "densify: sweep" : "placed",
-          progress.placed, progress.total, solid));
+      const std::string solid = progress.solid_fraction > 0.0
+                                    ? trs(Text::kProgressSolid, 100.0 * progress.solid_fraction)
+                                    : std::string();
+      job.set_detail(
+          trs(progress.stage == PackStage::kDensify ? Text::kProgressSweep : Text::kProgressPlaced,
+              progress.placed, progress.total, solid));
     };
     PipelineResult result = pack(config, control);
     JobResult out;
     const bool is_cancelled = result.report.stop_reason == StopReason::kCancelled;
     out.is_ok = true;
-    out.message = fmt::format(
-        "{} {} particles, solid fraction {:.2f} %.\n{}",
-        is_cancelled ? "Cancelled:" : "Packing finished!", result.packing.particles.size(),
-        100.0 * result.report.solid_fraction,
-        result.fill ? "fill: " + result.fill->report.summary() : result.report.summary());
+    // The densifier's summary and the shortfall warnings are the library's words (English).
+    out.message = trs(is_cancelled ? Text::kPackCancelled : Text::kPackFinished,
+                      result.packing.particles.size(), 100.0 * result.report.solid_fraction) +
+                  "\n" +
+                  (result.fill ? tr(Text::kFillPrefix) + report_summary(result.fill->report)
+                               : report_summary(result.report));
     // The dense kind: the densifier, the asked fraction, and what fell short of it.
-    if (result.densify) out.message += "\ndensify: " + result.densify->summary();
+    if (result.densify)
+      out.message += "\n" + (tr(Text::kDensifyPrefix) + result.densify->summary());
     if (result.fill && result.fill->asked_fraction > 0) {
-      out.message += fmt::format(" (asked {:.2f} %)", 100.0 * result.fill->asked_fraction);
+      out.message += trs(Text::kAskedFraction, 100.0 * result.fill->asked_fraction);
     }
-    for (const std::string& line : dense_shortfalls(result)) out.message += "\nWarning: " + line;
+    for (const std::string& line : dense_shortfalls(result)) {
+      out.message += "\n" + (tr(Text::kWarningPrefix) + line);
+    }
     out.packing = std::make_shared<const Packing>(std::move(result.packing));
     build_scene(job, out);
     return out;
@@ -260,9 +254,9 @@ void GuiApp::start_pack() {
 
 void GuiApp::start_open(const std::string& path) {
   if (job_.is_running()) return;
-  set_status("Opening " + path + "...", false);
+  set_status(trs(Text::kStatusOpening, path), false);
   job_kind_ = "open";
-  job_.start("Opening", [path](BackgroundJob& job) {
+  job_.start(tr(Text::kJobOpening), [path](BackgroundJob& job) {
     JobResult out;
     auto packing = std::make_shared<const Packing>(read_packing(path));
     out.is_ok = true;
@@ -271,8 +265,8 @@ void GuiApp::start_open(const std::string& path) {
       solid += mass_properties(packing->local_body(i)).volume;
     }
     const double volume = packing->container.volume();
-    out.message = fmt::format("Opened {}: {} particles, solid fraction {:.2f} %.", path,
-                              packing->particles.size(), volume > 0 ? 100.0 * solid / volume : 0.0);
+    out.message = trs(Text::kOpened, path, packing->particles.size(),
+                      volume > 0 ? 100.0 * solid / volume : 0.0);
     out.config_toml = packing->provenance.config_toml;
     out.packing = std::move(packing);
     build_scene(job, out);
@@ -294,13 +288,13 @@ void GuiApp::start_export(const std::string& format, DeckKind deck, const std::s
     set_status(plain_error(error.what()), true);
     return;
   }
-  set_status("Writing " + path + "...", false);
-  const std::string what = deck == DeckKind::kNone ? std::string() : deck_title(deck) + ", ";
-  job_.start("Exporting", [packing = packing_, options, path, what](BackgroundJob&) {
+  set_status(trs(Text::kStatusWriting, path), false);
+  const std::string what =
+      deck == DeckKind::kNone ? std::string() : deck_title(deck) + tr(Text::kListSeparator);
+  job_.start(tr(Text::kJobExporting), [packing = packing_, options, path, what](BackgroundJob&) {
     JobResult out;
     const ExportSummary summary = write(*packing, path, options);
-    out.message = fmt::format("Wrote {}: {}{} particles, {} nodes, {} elements.", path, what,
-                              summary.particles, summary.nodes, summary.elements);
+    out.message = trs(Text::kWrote, path, what, summary.particles, summary.nodes, summary.elements);
     out.is_ok = true;
     return out;
   });
@@ -372,9 +366,9 @@ void GuiApp::poll_job() {
     // An opened file: its stored configuration fills the panel, so Pack repeats or varies it.
     try {
       fields_ = ConfigFields::from_config(parse_pack_config(result.config_toml, "stored config"));
-      message += " The panel shows its configuration.";
+      message += tr(Text::kOpenedConfig);
     } catch (const Error&) {
-      message += " Its stored configuration is not readable; the panel is unchanged.";
+      message += tr(Text::kOpenedConfigBad);
     }
   }
   if (result.packing && job_kind_ == "open") entries = fields_.set_entries();
@@ -584,318 +578,6 @@ void GuiApp::note_frame_end() {
                 renderer_->is_upload_pending() ? " (uploading)" : "");
   }
   ++timed_frames_;
-}
-
-bool GuiApp::is_result_stale() const {
-  return packing_ != nullptr && !pending_packing_ && last_entries_ != packing_entries_;
-}
-
-std::vector<std::string> GuiApp::changed_keys() const {
-  auto as_map = [](const std::vector<std::string>& entries) {
-    std::map<std::string, std::string> map;
-    for (const std::string& entry : entries) {
-      const auto equals = entry.find('=');
-      map[entry.substr(0, equals)] = equals == std::string::npos ? "" : entry.substr(equals + 1);
-    }
-    return map;
-  };
-  const auto now = as_map(last_entries_), then = as_map(packing_entries_);
-  std::vector<std::string> keys;
-  for (const auto& [key, value] : now) {
-    const auto found = then.find(key);
-    if (found == then.end() || found->second != value) keys.push_back(key);
-  }
-  for (const auto& [key, value] : then) {
-    if (now.count(key) == 0) keys.push_back(key);
-  }
-  return keys;
-}
-
-void GuiApp::update_field_errors() {
-  std::vector<std::string> entries = fields_.set_entries();
-  if (entries == last_entries_ && !last_entries_.empty()) return;
-  last_entries_ = std::move(entries);
-  field_errors_.clear();
-  form_error_.clear();
-  // Each shown number against its range, in plain words next to the field.
-  const auto& schema = pack_schema();
-  const auto views = key_views(schema);
-  const PackConfig draft = fields_.draft();
-  for (std::size_t i = 0; i < schema.keys.size(); ++i) {
-    const auto& key = schema.keys[i];
-    if (!ConfigFields::is_editable(key) || !key.scope(draft)) continue;
-    if (key.presence == Presence::kOptional && !fields_.is_on(key.name)) continue;
-    const Value& value = fields_.value(key.name);
-    double number = 0.0;
-    if (key.type == ValueType::kFloat) {
-      number = std::get<double>(value);
-    } else if (key.type == ValueType::kInteger) {
-      number = static_cast<double>(std::get<std::int64_t>(value));
-    } else {
-      continue;
-    }
-    if (key.range.contains(number)) continue;
-    const std::string unit = key.unit.empty() || key.unit == "-" ? "" : " " + key.unit;
-    field_errors_[key.name] = fmt::format("{} is outside the allowed range {}{}.",
-                                          format_value(number), allowed_text(views[i]), unit);
-  }
-  if (!field_errors_.empty()) return;
-  // Then the rules between fields, with the configuration's own message for the field it names.
-  try {
-    (void)fields_.build();
-  } catch (const ConfigError& error) {
-    std::string message = plain_error(error.what());
-    const std::string prefix = error.key() + ": ";
-    if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
-    if (error.key().empty() || !fields_.has(error.key())) {
-      form_error_ = plain_error(error.what());
-    } else {
-      field_errors_[error.key()] = message;
-    }
-  } catch (const Error& error) {
-    form_error_ = plain_error(error.what());
-  }
-}
-
-void GuiApp::apply_edits() {
-  const auto& keys = pack_schema().keys;
-  for (const std::string& edit : options_.edits) {
-    const auto equals = edit.find('=');
-    const std::string name = edit.substr(0, equals);
-    const std::string text = equals == std::string::npos ? "" : edit.substr(equals + 1);
-    const auto key =
-        std::find_if(keys.begin(), keys.end(), [&](const auto& k) { return k.name == name; });
-    if (key == keys.end() || !fields_.has(name) || equals == std::string::npos) {
-      std::fprintf(stderr, "aggpack-gui: error: --edit %s: no such field in the panel\n",
-                   edit.c_str());
-      exit_code_ = 2;
-      continue;
-    }
-    Value& value = fields_.value(name);
-    try {
-      switch (key->type) {
-        case ValueType::kFloat:
-          value = std::stod(text);
-          break;
-        case ValueType::kInteger:
-          value = static_cast<std::int64_t>(std::stoll(text));
-          break;
-        case ValueType::kBool:
-          value = text == "true";
-          break;
-        case ValueType::kWord: {
-          std::string word = text;
-          if (word.size() >= 2 && word.front() == '"' && word.back() == '"') {
-            word = word.substr(1, word.size() - 2);
-          }
-          value = word;
-          break;
-        }
-        default:
-          throw InvalidInput("--edit", edit, "a number, word or true/false field");
-      }
-      if (key->presence == Presence::kOptional) fields_.set_on(name, true);
-    } catch (const std::exception&) {
-      std::fprintf(stderr, "aggpack-gui: error: --edit %s: not a value for this field\n",
-                   edit.c_str());
-      exit_code_ = 2;
-    }
-  }
-  update_field_errors();
-}
-
-void GuiApp::draw_panel() {
-  int width = 0, height = 0;
-  glfwGetWindowSize(window_, &width, &height);
-  ImGui::SetNextWindowPos(ImVec2(0, menu_height_));
-  ImGui::SetNextWindowSize(
-      ImVec2(static_cast<float>(panel_width()),
-             std::max(1.0f, static_cast<float>(height) - menu_height_ - status_height_)));
-  ImGui::Begin("aggpack", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoSavedSettings);
-  // Pack / Cancel, the progress and the result's state first, in a fixed height: always in view
-  // and never moving what is below; the sections scroll beneath it.
-  draw_job_section();
-  ImGui::BeginChild("##sections", ImVec2(0.0f, 0.0f), false);
-  ImGui::PushItemWidth(-150.0f);
-  draw_config_section("Container", {"container"});
-  draw_config_section("Particle shape", {"particle"});
-  draw_config_section("Packer and grading", {"packer", "grading", "densify"});
-  ImGui::PopItemWidth();
-  if (!form_error_.empty()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.95f, 0.35f, 0.3f, 1.0f));
-    ImGui::TextWrapped("%s", form_error_.c_str());
-    ImGui::PopStyleColor();
-  }
-  draw_file_section();
-  draw_view_section();
-  ImGui::EndChild();
-  ImGui::End();
-}
-
-void GuiApp::draw_job_section() {
-  const float line = ImGui::GetFrameHeightWithSpacing();
-  ImGui::BeginChild("##job", ImVec2(0.0f, 3.0f * line + 4.0f), false, ImGuiWindowFlags_NoScrollbar);
-  const bool is_running = job_.is_running();
-  ImGui::BeginDisabled(is_running);
-  if (ImGui::Button("Pack", ImVec2(120, 0))) start_pack();
-  ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("Pack with the parameters below (Enter)");
-  }
-  ImGui::SameLine();
-  ImGui::BeginDisabled(!is_running);
-  if (ImGui::Button("Cancel", ImVec2(-1, 0))) job_.request_cancel();
-  ImGui::EndDisabled();
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("Stop the job under way (Esc); a packing keeps what it placed");
-  }
-  // The progress bar line: the job, the scene upload, or empty.
-  if (is_running) {
-    const double fraction = job_.progress();
-    const std::string overlay = fmt::format("{} {:.0f} %{}", job_.name(), 100.0 * fraction,
-                                            eta_text(job_.elapsed_seconds(), fraction));
-    ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1, 0), overlay.c_str());
-    const std::string detail = job_.detail();
-    ImGui::TextUnformatted(detail.c_str());
-  } else if (renderer_->is_upload_pending()) {
-    const std::string overlay =
-        fmt::format("Showing the packing {:.0f} %", 100.0 * renderer_->upload_progress());
-    ImGui::ProgressBar(static_cast<float>(renderer_->upload_progress()), ImVec2(-1, 0),
-                       overlay.c_str());
-  } else if (is_result_stale()) {
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.75f, 0.3f, 1.0f));
-    ImGui::TextUnformatted("Out of date: parameters changed.");
-    ImGui::TextUnformatted("Pack again (Enter) to see them.");
-    ImGui::PopStyleColor();
-    if (ImGui::IsItemHovered()) {
-      std::string keys;
-      for (const std::string& key : changed_keys()) keys += "\n  " + key;
-      ImGui::SetTooltip("The view shows a packing made before these changed:%s", keys.c_str());
-    }
-  } else if (packing_) {
-    ImGui::TextDisabled("The view shows the panel's parameters.");
-  }
-  ImGui::EndChild();
-  ImGui::Separator();
-}
-
-void GuiApp::draw_file_section() {
-  if (!ImGui::CollapsingHeader("Open and export", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  const bool is_idle = !job_.is_running();
-  ImGui::BeginDisabled(!is_idle);
-  if (ImGui::Button("Open...", ImVec2(110, 0))) open_dialog(FileDialog::Kind::kOpen);
-  ImGui::EndDisabled();
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("Open a packing made by aggpack (.h5) (Ctrl+O)");
-  const bool can_export = packing_ != nullptr && is_idle && !pending_packing_;
-  ImGui::BeginDisabled(!can_export);
-  ImGui::SameLine();
-  if (ImGui::Button("Export...", ImVec2(110, 0))) open_dialog(FileDialog::Kind::kExport);
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("Write the shown packing in a chosen format (Ctrl+S)");
-  }
-  ImGui::SameLine();
-  if (ImGui::Button("rock.dat...", ImVec2(-1, 0))) open_dialog(FileDialog::Kind::kExport, "dat");
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("Write the paper's rock.dat (nodes and tetrahedra) (Ctrl+E)");
-  }
-  ImGui::EndDisabled();
-  draw_mesomodel_export(can_export);
-}
-
-void GuiApp::draw_view_section() {
-  if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  bool is_changed = false;
-  int color = static_cast<int>(style_.color);
-  ImGui::Text("Colour by");
-  ImGui::SameLine();
-  is_changed |= ImGui::RadioButton("particle", &color, 0);
-  item_tooltip("A colour of its own for each particle");
-  ImGui::SameLine();
-  is_changed |= ImGui::RadioButton("size", &color, 1);
-  item_tooltip("Colour by volume-equivalent diameter (legend below)");
-  ImGui::SameLine();
-  is_changed |= ImGui::RadioButton("alpha", &color, 2);
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(
-        "Colour by the measured alpha of each particle (the paper's Eq. 2, sphericity^1.5).\n"
-        "It is not the input alpha of the panel (Eq. 3, the growth's shape control): the\n"
-        "grown particles are rounder than the control suggests, so measured alpha is usually\n"
-        "higher (0.68-0.89 for input 0.3).");
-  }
-  style_.color = static_cast<ColorMode>(color);
-  is_changed |= ImGui::Checkbox("wireframe", &style_.is_wireframe);
-  item_tooltip("Draw the triangle edges only");
-  ImGui::SameLine();
-  is_changed |= ImGui::Checkbox("container", &style_.show_container);
-  item_tooltip("Draw the container's outline");
-  ImGui::SameLine();
-  bool is_orthographic = camera_.is_orthographic();
-  if (ImGui::Checkbox("ortho", &is_orthographic)) {
-    camera_.set_orthographic(is_orthographic);
-    reset_view();
-  }
-  item_tooltip("Orthographic projection (no perspective)");
-  const ViewPreset presets[] = {ViewPreset::kIso, ViewPreset::kFront, ViewPreset::kSide,
-                                ViewPreset::kTop};
-  for (int k = 0; k < 4; ++k) {
-    if (k > 0) ImGui::SameLine();
-    if (ImGui::Button(view_preset_name(presets[k]))) {
-      view_ = presets[k];
-      reset_view();
-    }
-    item_tooltip("Look at the scene from this side");
-  }
-  ImGui::SameLine();
-  if (ImGui::Button("Reset View (R)")) reset_view();
-  item_tooltip("Fit the whole scene in the view again (R)");
-  float coarse = static_cast<float>(style_.coarse_below_pixels);
-  ImGui::SetNextItemWidth(-130.0f);
-  if (ImGui::SliderFloat("coarse below", &coarse, 0.0f, 64.0f, "%.0f px",
-                         ImGuiSliderFlags_AlwaysClamp)) {
-    style_.coarse_below_pixels = coarse;
-    is_changed = true;
-  }
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip("Particles smaller than this on screen are drawn with a 24-triangle shape");
-  }
-  int budget = static_cast<int>(style_.triangle_budget / 1000);
-  ImGui::SetNextItemWidth(-130.0f);
-  if (ImGui::SliderInt("triangle budget", &budget, 0, 5000, budget == 0 ? "no limit" : "%d k",
-                       ImGuiSliderFlags_AlwaysClamp)) {
-    style_.triangle_budget = static_cast<std::size_t>(budget) * 1000;
-    is_scene_dirty_ = true;
-  }
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(
-        "Most triangles per picture (thousands); beyond it the smallest particles are drawn as "
-        "shaded discs. 0 = no limit");
-  }
-  if (style_.color != ColorMode::kParticle && renderer_->particle_count() > 0) {
-    draw_legend(renderer_->colors(style_.color));
-  }
-  ImGui::PushTextWrapPos(0.0f);
-  ImGui::TextDisabled("%zu particles, %zu distinct shapes (%zu drawn as scaled copies)",
-                      renderer_->particle_count(), renderer_->shape_count(),
-                      renderer_->merged_shape_count());
-  ImGui::TextDisabled("in view %zu, drawn %zu (%zu coarse, %zu as discs), %.2f M triangles",
-                      last_stats_.particles_in_frustum, last_stats_.particles_drawn,
-                      last_stats_.coarse_particles, last_stats_.point_particles,
-                      last_stats_.triangles / 1e6);
-  if (needs_light_frames_) {
-    const DetailLevel level = detail_.level();
-    ImGui::TextDisabled(
-        "While the view moves (a full picture takes %.0f ms): %zu k triangles, %.0f %% "
-        "resolution, %s particles",
-        1e3 * last_picture_latency_, level.triangle_budget / 1000, 100.0 * level.resolution_scale,
-        level.max_particles == 0 ? "all" : fmt::format("{} k", level.max_particles / 1000).c_str());
-  } else {
-    ImGui::TextDisabled("Full detail while the view moves (a picture takes %.0f ms)",
-                        1e3 * last_picture_latency_);
-  }
-  ImGui::PopTextWrapPos();
-  if (is_changed) is_scene_dirty_ = true;
 }
 
 }  // namespace aggpack::gui

@@ -20,6 +20,7 @@
 #include "config_fields.h"
 #include "file_dialog.h"
 #include "gui_settings.h"
+#include "i18n.h"
 
 struct GLFWwindow;
 
@@ -102,6 +103,10 @@ class GuiApp {
   void draw_status_bar();
   void draw_help_window();
   void draw_view_overlays();
+  // View > Language; the language at start (the kept choice, else the locale's) and a change.
+  void draw_language_menu();
+  void choose_language();
+  void set_gui_language(Language language);
   // file_dialog.cpp: the Open and Export dialogs (folder browsing, overwrite, stale result).
   void open_dialog(FileDialog::Kind kind, const std::string& format = "",
                    DeckKind deck = DeckKind::kNone);
@@ -208,7 +213,10 @@ class GuiApp {
   double last_frame_start_ = -1.0;
   bool was_light_frame_ = false;  // the last frame redrew the scene as a light frame
 
-  std::string status_ = "Set the parameters and press Pack.";
+  std::string status_;  // set by choose_language() (the start's words in its language)
+  // The panel's field labels ("radius##particle.radius") by schema key, in the current language:
+  // made once when it is empty (at start and after a language change), not per frame.
+  std::vector<std::string> key_labels_;
   bool is_status_error_ = false;
   std::string open_path_ = "run.h5";
   std::string export_base_;

@@ -10,28 +10,37 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include "aggpack/io/export.h"
 #include "gui_app.h"
+#include "gui_fonts.h"
+#include "i18n.h"
 
 namespace aggpack::gui {
 
 namespace {
 
 // The shortcuts, as the Help window and the menus list them.
-constexpr std::array<std::array<const char*, 2>, 12> kShortcuts = {{
-    {"Enter", "Pack with the panel's parameters"},
-    {"Esc", "Cancel the job under way"},
-    {"Ctrl+O", "Open a packing (.h5)"},
-    {"Ctrl+S", "Export the shown packing (last format used)"},
-    {"Ctrl+E", "Export the shown packing as rock.dat"},
-    {"R", "Reset the view"},
-    {"F12", "Save the window as a PNG screenshot"},
-    {"F1", "This help"},
-    {"left drag", "Rotate the view"},
-    {"right drag", "Pan the view"},
-    {"wheel", "Zoom"},
-    {"Ctrl+Q", "Quit"},
+// (A key's name, or its Text when the name is words; the action.)
+struct Shortcut {
+  const char* key;
+  Text key_words;
+  Text action;
+};
+constexpr std::array<Shortcut, 12> kShortcuts = {{
+    {"Enter", Text::kCount, Text::kShortcutPack},
+    {"Esc", Text::kCount, Text::kShortcutCancel},
+    {"Ctrl+O", Text::kCount, Text::kShortcutOpen},
+    {"Ctrl+S", Text::kCount, Text::kShortcutExport},
+    {"Ctrl+E", Text::kCount, Text::kShortcutRockDat},
+    {"R", Text::kCount, Text::kShortcutReset},
+    {"F12", Text::kCount, Text::kShortcutScreenshot},
+    {"F1", Text::kCount, Text::kShortcutHelp},
+    {nullptr, Text::kKeyLeftDrag, Text::kShortcutRotate},
+    {nullptr, Text::kKeyRightDrag, Text::kShortcutPan},
+    {nullptr, Text::kKeyWheel, Text::kShortcutZoom},
+    {"Ctrl+Q", Text::kCount, Text::kShortcutQuit},
 }};
 
 // 1, 2 or 5 times a power of ten, the largest not above `value` (> 0).
@@ -50,25 +59,28 @@ void GuiApp::draw_menu_bar() {
   menu_height_ = ImGui::GetWindowSize().y;
   const bool is_idle = !job_.is_running();
   const bool can_export = is_idle && packing_ != nullptr && !pending_packing_;
-  if (ImGui::BeginMenu("File")) {
-    if (ImGui::MenuItem("Open...", "Ctrl+O", false, is_idle)) {
+  if (ImGui::BeginMenu(tr(Text::kMenuFile))) {
+    if (ImGui::MenuItem(tr(Text::kMenuOpen), "Ctrl+O", false, is_idle)) {
       open_dialog(FileDialog::Kind::kOpen);
     }
-    if (ImGui::MenuItem("Export...", "Ctrl+S", false, can_export)) {
+    if (ImGui::MenuItem(tr(Text::kMenuExport), "Ctrl+S", false, can_export)) {
       open_dialog(FileDialog::Kind::kExport);
     }
-    if (ImGui::MenuItem("Export rock.dat...", "Ctrl+E", false, can_export)) {
+    if (ImGui::MenuItem(tr(Text::kMenuExportRockDat), "Ctrl+E", false, can_export)) {
       open_dialog(FileDialog::Kind::kExport, "dat");
     }
-    if (ImGui::BeginMenu("Export as", can_export)) {
+    if (ImGui::BeginMenu(tr(Text::kMenuExportAs), can_export)) {
       for (const FormatInfo& info : export_formats()) {
-        if (ImGui::MenuItem(std::string(info.title).c_str())) {
+        // The formats' titles are their programs' names ("Abaqus .inp"), the native one's words.
+        const std::string title =
+            info.name == "h5" ? std::string(tr(Text::kNativeFormat)) : std::string(info.title);
+        if (ImGui::MenuItem(title.c_str())) {
           open_dialog(FileDialog::Kind::kExport, std::string(info.name));
         }
       }
       ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Export solver deck", can_export)) {
+    if (ImGui::BeginMenu(tr(Text::kMenuExportDeck), can_export)) {
       for (const DeckInfo& deck : deck_kinds()) {
         if (ImGui::MenuItem(deck_title(deck.kind).c_str())) {
           open_dialog(FileDialog::Kind::kExport, format_name(deck.format), deck.kind);
@@ -77,35 +89,76 @@ void GuiApp::draw_menu_bar() {
       }
       ImGui::EndMenu();
     }
-    if (ImGui::BeginMenu("Export mesomodel", can_export)) {
+    if (ImGui::BeginMenu(tr(Text::kMenuExportMesomodel), can_export)) {
       for (const char* extension : {".inp", ".msh", ".vtu"}) {
         if (ImGui::MenuItem(extension)) start_mesomodel_export(extension);
       }
       ImGui::EndMenu();
     }
     ImGui::Separator();
-    if (ImGui::MenuItem("Save screenshot", "F12")) is_screenshot_requested_ = true;
-    if (ImGui::MenuItem("Quit", "Ctrl+Q")) should_quit_ = true;
+    if (ImGui::MenuItem(tr(Text::kMenuScreenshot), "F12")) is_screenshot_requested_ = true;
+    if (ImGui::MenuItem(tr(Text::kMenuQuit), "Ctrl+Q")) should_quit_ = true;
     ImGui::EndMenu();
   }
-  if (ImGui::BeginMenu("Pack")) {
-    if (ImGui::MenuItem("Pack", "Enter", false, is_idle)) start_pack();
-    if (ImGui::MenuItem("Cancel", "Esc", false, !is_idle)) job_.request_cancel();
+  if (ImGui::BeginMenu(tr(Text::kMenuPack))) {
+    if (ImGui::MenuItem(tr(Text::kMenuPackNow), "Enter", false, is_idle)) start_pack();
+    if (ImGui::MenuItem(tr(Text::kMenuCancel), "Esc", false, !is_idle)) job_.request_cancel();
     ImGui::EndMenu();
   }
-  if (ImGui::BeginMenu("View")) {
-    if (ImGui::MenuItem("Reset view", "R")) reset_view();
-    if (ImGui::MenuItem("Container outline", nullptr, &style_.show_container)) {
+  if (ImGui::BeginMenu(tr(Text::kMenuView))) {
+    if (ImGui::MenuItem(tr(Text::kMenuResetView), "R")) reset_view();
+    if (ImGui::MenuItem(tr(Text::kMenuContainer), nullptr, &style_.show_container)) {
       is_scene_dirty_ = true;
     }
-    ImGui::MenuItem("Frame rate", nullptr, &show_fps_);
+    ImGui::MenuItem(tr(Text::kMenuFrameRate), nullptr, &show_fps_);
+    draw_language_menu();
     ImGui::EndMenu();
   }
-  if (ImGui::BeginMenu("Help")) {
-    if (ImGui::MenuItem("Keyboard shortcuts", "F1")) show_help_ = true;
+  if (ImGui::BeginMenu(tr(Text::kMenuHelp))) {
+    if (ImGui::MenuItem(tr(Text::kMenuShortcuts), "F1")) show_help_ = true;
     ImGui::EndMenu();
   }
   ImGui::EndMainMenuBar();
+}
+
+void GuiApp::draw_language_menu() {
+  if (!ImGui::BeginMenu(tr(Text::kMenuLanguage))) return;
+  const Language now = language();
+  if (ImGui::MenuItem(tr(Text::kLanguageEnglish), nullptr, now == Language::kEnglish)) {
+    settings_.language = language_code(Language::kEnglish);
+    set_gui_language(Language::kEnglish);
+  }
+  if (ImGui::MenuItem(tr(Text::kLanguageChinese), nullptr, now == Language::kChinese,
+                      has_chinese_font())) {
+    settings_.language = language_code(Language::kChinese);
+    set_gui_language(Language::kChinese);
+  }
+  if (!has_chinese_font() && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
+    ImGui::SetTooltip("%s", tr(Text::kNoChineseFont));
+  }
+  ImGui::EndMenu();
+}
+
+void GuiApp::choose_language() {
+  const Language wanted = parse_language(settings_.language).value_or(language_from_environment());
+  if (wanted == Language::kChinese && !has_chinese_font()) {
+    set_gui_language(Language::kEnglish);
+    std::fprintf(stderr, "aggpack-gui: %s\n", tr(Text::kNoChineseFont));
+    set_status(tr(Text::kNoChineseFont), false);
+    return;
+  }
+  set_gui_language(wanted);
+}
+
+void GuiApp::set_gui_language(Language language) {
+  const bool is_start_status = status_.empty() ||
+                               status_ == catalogue_text(Language::kEnglish, Text::kStatusStart) ||
+                               status_ == catalogue_text(Language::kChinese, Text::kStatusStart);
+  set_language(language);
+  use_font_of(language);
+  if (is_start_status) set_status(tr(Text::kStatusStart), false);
+  key_labels_.clear();    // the panel's labels in the new language, made on the next frame
+  last_entries_.clear();  // and the fields' errors
 }
 
 void GuiApp::draw_help_window() {
@@ -113,22 +166,20 @@ void GuiApp::draw_help_window() {
   ImGui::SetNextWindowSize(ImVec2(460.0f, 0.0f), ImGuiCond_Appearing);
   ImGui::SetNextWindowPos(ImGui::GetMainViewport()->GetCenter(), ImGuiCond_Appearing,
                           ImVec2(0.5f, 0.5f));
-  if (ImGui::Begin("Help: keyboard shortcuts", &show_help_, ImGuiWindowFlags_NoCollapse)) {
-    if (ImGui::BeginTable("shortcuts", 2, ImGuiTableFlags_RowBg)) {
-      ImGui::TableSetupColumn("key", ImGuiTableColumnFlags_WidthFixed, 90.0f);
-      ImGui::TableSetupColumn("action");
-      for (const auto& [key, action] : kShortcuts) {
+  if (ImGui::Begin(tr(Text::kHelpTitle), &show_help_, ImGuiWindowFlags_NoCollapse)) {
+    if (ImGui::BeginTable("##shortcuts", 2, ImGuiTableFlags_RowBg)) {
+      ImGui::TableSetupColumn("##key", ImGuiTableColumnFlags_WidthFixed, 90.0f);
+      ImGui::TableSetupColumn("##action");
+      for (const Shortcut& shortcut : kShortcuts) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(key);
+        ImGui::TextUnformatted(shortcut.key != nullptr ? shortcut.key : tr(shortcut.key_words));
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(action);
+        ImGui::TextUnformatted(tr(shortcut.action));
       }
       ImGui::EndTable();
     }
-    ImGui::TextWrapped(
-        "Hover over a field for what it does, its allowed range and default. A result made with "
-        "other parameters than the panel shows is marked out of date until you pack again.");
+    ImGui::TextWrapped("%s", tr(Text::kHelpText));
   }
   ImGui::End();
 }
@@ -155,8 +206,8 @@ void GuiApp::draw_status_bar() {
   if (show_fps_) {
     ImGui::SameLine();
     ImGui::BeginGroup();
-    ImGui::TextDisabled("UI %.0f frames/s", ImGui::GetIO().Framerate);
-    ImGui::TextDisabled("scene %.1f ms", 1e3 * last_scene_seconds_);
+    ImGui::TextDisabled("%s", trf(Text::kFramesPerSecond, ImGui::GetIO().Framerate).c_str());
+    ImGui::TextDisabled("%s", trf(Text::kSceneMilliseconds, 1e3 * last_scene_seconds_).c_str());
     ImGui::EndGroup();
   }
   ImGui::End();

@@ -33,6 +33,7 @@ GuiSettings GuiSettings::load(const std::string& settings_dir) {
     if (key == "color") settings.color = std::atoi(value.c_str()) % 3;
     if (key == "show_fps") settings.show_fps = value == "1";
     if (key == "show_container") settings.show_container = value != "0";
+    if (key == "language") settings.language = value;
   }
   if (settings.color < 0) settings.color = 0;
   return settings;
@@ -48,7 +49,8 @@ bool GuiSettings::save(const std::string& settings_dir) const {
       << "export_format=" << export_format << "\n"
       << "color=" << color << "\n"
       << "show_fps=" << (show_fps ? 1 : 0) << "\n"
-      << "show_container=" << (show_container ? 1 : 0) << "\n";
+      << "show_container=" << (show_container ? 1 : 0) << "\n"
+      << "language=" << language << "\n";
   return static_cast<bool>(out);
 }
 

@@ -12,6 +12,7 @@ struct GuiSettings {
   int color = 0;                      ///< ColorMode of the view
   bool show_fps = false;              ///< the frame-rate readout
   bool show_container = true;         ///< the container's outline
+  std::string language;  ///< "en" or "zh_CN" as chosen in View > Language ("" = the locale's)
 
   /// The settings folder: `dir` if not empty, else $XDG_CONFIG_HOME/aggpack, else
   /// $HOME/.config/aggpack, else "" (no settings kept).

@@ -16,6 +16,7 @@
 
 #include "aggpack/core/error.h"
 #include "gui_app.h"
+#include "i18n.h"
 
 namespace aggpack::gui {
 
@@ -222,7 +223,7 @@ void GuiApp::save_screenshot(const std::string& path) {
     write_png(read_framebuffer(0, 0, width, height), path);
     std::printf("screenshot: wrote %s (%dx%d)\n", path.c_str(), width, height);
     std::fflush(stdout);
-    set_status("Saved the window to " + path + ".", false);
+    set_status(trs(Text::kSavedScreenshot, path), false);
   } catch (const Error& error) {
     std::fprintf(stderr, "aggpack-gui: error: %s\n", error.what());
     set_status(error.what(), true);

@@ -20,6 +20,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/mesh/mesomodel.h"
 #include "gui_app.h"
+#include "gui_fonts.h"
 
 namespace {
 
@@ -200,6 +201,18 @@ int main(int argc, char** argv) {
   // An opaque panel: the window's back buffer is not cleared under it (the scene is blitted
   // beside it), so a see-through one shows older frames' text as ghosts.
   ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
+  // ImGui's font and, when a Debian font package provides one, a Chinese font (its glyphs of the
+  // Chinese catalogue only); GuiApp picks the language.
+  const double font_start = glfwGetTime();
+  const auto chinese_font = aggpack::gui::find_chinese_font();
+  aggpack::gui::load_fonts(chinese_font);
+  if (options.is_frame_log) {  // the fonts' cost
+    const ImFontAtlas& atlas = *ImGui::GetIO().Fonts;
+    std::printf("fonts: %s, atlas %dx%d, %d Chinese-font glyphs, %.0f ms\n",
+                chinese_font ? chinese_font->path.c_str() : "no Chinese font", atlas.TexWidth,
+                atlas.TexHeight, atlas.Fonts.Size > 1 ? atlas.Fonts[1]->Glyphs.Size : 0,
+                1e3 * (glfwGetTime() - font_start));
+  }
   glfwSetMouseButtonCallback(window, on_mouse_button);
   glfwSetCursorPosCallback(window, on_cursor);
   glfwSetScrollCallback(window, on_scroll);

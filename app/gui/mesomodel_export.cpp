@@ -9,12 +9,14 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <string_view>
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/io/mesomodel_files.h"
 #include "aggpack/mesh/mesomodel.h"
 #include "gui_app.h"
+#include "i18n.h"
 
 namespace aggpack::gui {
 
@@ -33,78 +35,66 @@ void field_error(const std::map<std::string, std::string>& errors, const std::st
   ImGui::PopStyleColor();
 }
 
-constexpr const char* kItzField = "ITZ thickness (mm)";
-constexpr const char* kMortarField = "mortar element (mm)";
-constexpr const char* kKindField = "ITZ model";
+// The fields' labels, also the keys of mesomodel_field_errors() ("###" ids: the same widget in
+// either language).
+const char* itz_field() { return tr(Text::kItzField); }
+const char* mortar_field() { return tr(Text::kMortarField); }
+const char* kind_field() { return tr(Text::kKindField); }
+
+// A label without its "###id" (as the scripted run prints a field's error).
+std::string shown_label(const char* label) {
+  const std::string_view text(label);
+  return std::string(text.substr(0, text.find("###")));
+}
 
 }  // namespace
 
 std::map<std::string, std::string> GuiApp::mesomodel_field_errors() const {
   std::map<std::string, std::string> errors;
   if (!(mesomodel_itz_mm_ >= 0.0) || !std::isfinite(mesomodel_itz_mm_)) {
-    errors[kItzField] = fmt::format("{} mm is not allowed: the ITZ thickness is 0 or more.",
-                                    format_value(mesomodel_itz_mm_));
+    errors[shown_label(itz_field())] = trs(Text::kItzNegative, format_value(mesomodel_itz_mm_));
   } else if (mesomodel_itz_kind_ == ItzKind::kCohesive && mesomodel_itz_mm_ == 0.0) {
-    errors[kItzField] =
-        "Cohesive elements need an ITZ thickness above 0 (their constitutive thickness).";
+    errors[shown_label(itz_field())] = tr(Text::kItzCohesiveZero);
   }
   if (!(mesomodel_mortar_size_mm_ >= 0.0) || !std::isfinite(mesomodel_mortar_size_mm_)) {
-    errors[kMortarField] =
-        fmt::format("{} mm is not allowed: the mortar element is 0 (no bound) or more.",
-                    format_value(mesomodel_mortar_size_mm_));
+    errors[shown_label(mortar_field())] =
+        trs(Text::kMortarNegative, format_value(mesomodel_mortar_size_mm_));
   }
   return errors;
 }
 
 void GuiApp::draw_mesomodel_export(bool can_export) {
-  ImGui::TextDisabled("Concrete mesomodel (aggregate, ITZ, mortar)");
+  ImGui::TextDisabled("%s", tr(Text::kMesomodelTitle));
   const auto errors = mesomodel_field_errors();
   ImGui::PushItemWidth(150.0f);
   int kind = mesomodel_itz_kind_ == ItzKind::kCohesive ? 1 : 0;
-  const char* kinds[] = {"solid layer", "cohesive elements (Abaqus)"};
+  const char* kinds[] = {tr(Text::kItzSolid), tr(Text::kItzCohesive)};
   ImGui::SetNextItemWidth(200.0f);
-  if (ImGui::Combo(kKindField, &kind, kinds, 2)) {
+  if (ImGui::Combo(kind_field(), &kind, kinds, 2)) {
     mesomodel_itz_kind_ = kind == 1 ? ItzKind::kCohesive : ItzKind::kSolid;
   }
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(
-        "How the interfacial transition zone (ITZ) around each aggregate is modelled:\n"
-        "solid layer: tetrahedra of the ITZ thickness around every aggregate (0 = none);\n"
-        "cohesive elements: zero-thickness COH3D6 wedges on every aggregate-mortar interface\n"
-        "(Abaqus; .msh/.vtu get them as prisms/wedges); the thickness is then their\n"
-        "constitutive thickness, > 0.");
-  }
-  field_error(errors, kKindField);
-  ImGui::InputDouble(kItzField, &mesomodel_itz_mm_, 0.01, 0.1, "%.3f");
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(
-        "ITZ thickness t (mm), >= 0; typical 0.02-0.05. Solid layer: its geometric thickness\n"
-        "(the layers of two particles must not meet: pack with a gap); 0 = no ITZ.\n"
-        "Cohesive elements: their constitutive thickness, > 0.");
-  }
-  field_error(errors, kItzField);
-  ImGui::InputDouble(kMortarField, &mesomodel_mortar_size_mm_, 0.5, 5.0, "%.2f");
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip("target element edge in the aggregates and mortar (mm), 0 = no bound");
-  }
-  field_error(errors, kMortarField);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kItzKindTooltip));
+  ImGui::InputDouble(itz_field(), &mesomodel_itz_mm_, 0.01, 0.1, "%.3f");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kItzTooltip));
+  field_error(errors, shown_label(itz_field()));
+  ImGui::InputDouble(mortar_field(), &mesomodel_mortar_size_mm_, 0.5, 5.0, "%.2f");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kMortarTooltip));
+  field_error(errors, shown_label(mortar_field()));
   ImGui::PopItemWidth();
   ImGui::BeginDisabled(!can_export || !errors.empty());
-  if (ImGui::Button("Mesomodel (.inp)")) start_mesomodel_export(".inp");
+  if (ImGui::Button(tr(Text::kMesomodelInp))) start_mesomodel_export(".inp");
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip(
-        "mesh the packing (TetGen) and write NAME-mesomodel.inp (Abaqus/CalculiX: sets, "
-        "materials, a compression step)");
+    ImGui::SetTooltip("%s", tr(Text::kMesomodelInpTooltip));
   }
   ImGui::SameLine();
-  if (ImGui::Button("(.msh)")) start_mesomodel_export(".msh");
+  if (ImGui::Button(tr(Text::kMesomodelMsh))) start_mesomodel_export(".msh");
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("mesh the packing (TetGen) and write NAME-mesomodel.msh (Gmsh 4.1)");
+    ImGui::SetTooltip("%s", tr(Text::kMesomodelMshTooltip));
   }
   ImGui::SameLine();
-  if (ImGui::Button("(.vtu)")) start_mesomodel_export(".vtu");
+  if (ImGui::Button(tr(Text::kMesomodelVtu))) start_mesomodel_export(".vtu");
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) {
-    ImGui::SetTooltip("mesh the packing (TetGen) and write NAME-mesomodel.vtu (ParaView)");
+    ImGui::SetTooltip("%s", tr(Text::kMesomodelVtuTooltip));
   }
   ImGui::EndDisabled();
 }
@@ -128,13 +118,13 @@ void GuiApp::start_mesomodel_export(const std::string& extension) {
     return;
   }
   const std::string path = export_base_ + "-mesomodel" + extension;
-  set_status("Meshing the mesomodel for " + path + "...", false);
-  job_.start("Meshing mesomodel", [packing = packing_, meso, path](BackgroundJob& job) {
-    job.set_detail("TetGen: aggregates and mortar; the ITZ layers");
+  set_status(trs(Text::kStatusMeshing, path), false);
+  job_.start(tr(Text::kJobMeshing), [packing = packing_, meso, path](BackgroundJob& job) {
+    job.set_detail(tr(Text::kMeshingDetail));
     MesoReport report;
     const MesoMesh mesh = build_mesomodel(*packing, meso, &report);
     job.set_progress(0.9);
-    job.set_detail("writing " + path);
+    job.set_detail(trs(Text::kWritingDetail, path));
     MesoFileOptions options;
     options.overwrite = Overwrite::kAllow;
     options.units = MesoUnits::kMillimetre;  // as the CLI's default: ccx takes the thin layers
@@ -146,15 +136,11 @@ void GuiApp::start_mesomodel_export(const std::string& extension) {
     }
     JobResult out;
     const std::string cohesive =
-        mesh.cohesive.empty()
-            ? std::string()
-            : fmt::format(" and {} cohesive elements (COH3D6)", mesh.cohesive.size());
-    out.message = fmt::format(
-        "Wrote {}: mesomodel of {} aggregates, ITZ {:g} mm ({}), {} nodes, {} tetrahedra{} (mm, "
-        "N, MPa); volume aggregate {:.1f} %, ITZ {:.1f} %, mortar {:.1f} %.",
-        path, mesh.particle_count, mesh.itz_thickness * 1e3,
-        mesh.cohesive.empty() ? "solid layer" : "cohesive", summary.nodes, mesh.tetrahedra.size(),
-        cohesive, percent[2], percent[1], percent[0]);
+        mesh.cohesive.empty() ? std::string() : trs(Text::kCohesiveCount, mesh.cohesive.size());
+    out.message =
+        trs(Text::kMesomodelWrote, path, mesh.particle_count, mesh.itz_thickness * 1e3,
+            tr(mesh.cohesive.empty() ? Text::kItzSolid : Text::kCohesiveWord), summary.nodes,
+            mesh.tetrahedra.size(), cohesive, percent[2], percent[1], percent[0]);
     out.is_ok = true;
     return out;
   });

@@ -2,6 +2,9 @@
 // schema's keys, checking types, ranges and words; every message names the key the user typed.
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -413,8 +416,21 @@ GivenValues read_values(const std::vector<TableInfo>& tables, const std::vector<
 }
 
 std::string read_config_file(const std::string& path) {
+  std::error_code status_error;
+  if (std::filesystem::is_directory(path, status_error)) {
+    throw IoError("cannot read config " + path + ": it is a folder");
+  }
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot read config " + path + ": no such file or no permission");
+  if (!in) {
+    // The reason in the user's words: a typo (no such file) and a permission are fixed apart.
+    const int reason = errno;
+    throw IoError("cannot read config " + path + ": " +
+                  (reason == ENOENT   ? std::string("no such file")
+                   : reason == EACCES ? std::string("permission denied")
+                   : reason != 0      ? std::string(std::strerror(reason))
+                                      : std::string("cannot open it")));
+  }
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw IoError("cannot read config " + path);

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -14,6 +15,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/temp_paths.h"
+#include "aggpack/core/text.h"
 
 namespace aggpack {
 
@@ -129,13 +131,29 @@ bool OutputStream::is_open() const { return buffer_.descriptor >= 0; }
 
 int OutputStream::error() const { return buffer_.error; }
 
+namespace {
+
+// "cannot write <path>: file name too long (300 bytes, at most 255)": the longest name of the path
+// against NAME_MAX, else the whole path against PATH_MAX. The path is clipped: it is long.
+std::string name_too_long_message(const std::string& path) {
+  std::size_t longest = 0;
+  for (const auto& part : fs::path(path)) longest = std::max(longest, part.native().size());
+  const std::string size =
+      longest > NAME_MAX
+          ? "a name of " + std::to_string(longest) + " bytes, at most " + std::to_string(NAME_MAX)
+          : std::to_string(path.size()) + " bytes, at most " + std::to_string(PATH_MAX);
+  return "cannot write " + clipped(path, 80) + ": file name too long (" + size + ")";
+}
+
+}  // namespace
+
 // ---- what may be replaced ----------------------------------------------------------------------
 
 std::string output_destination(const std::string& path, Overwrite overwrite) {
   if (path.empty()) throw IoError("output path is empty");
   struct stat link_status {};
   if (::lstat(path.c_str(), &link_status) != 0) {
-    if (errno == ENAMETOOLONG) throw IoError("cannot write " + path + ": file name too long");
+    if (errno == ENAMETOOLONG) throw IoError(name_too_long_message(path));
     return path;  // absent (or its folder is missing: check_writable says so)
   }
   const auto exists = [&] {

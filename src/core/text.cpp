@@ -1,6 +1,7 @@
 #include "aggpack/core/text.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -95,6 +96,24 @@ std::string clipped(std::string_view text, std::size_t max_bytes) {
   std::string out;
   append_escaped(out, shortened(text, max_bytes));
   return out;
+}
+
+std::string format_seconds(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "-";
+  if (seconds < 0.00005) return "0";
+  char buffer[32];
+  if (seconds >= 99.5) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", seconds);
+    return buffer;
+  }
+  // Round to 2 significant digits first, then take the decimals from the rounded value (9.96
+  // becomes 10, not 10.0).
+  const double unit = std::pow(10.0, std::floor(std::log10(seconds)) - 1);
+  const double rounded = std::round(seconds / unit) * unit;
+  const int decimals =
+      std::clamp(1 - static_cast<int>(std::floor(std::log10(rounded) + 1e-9)), 0, 4);
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, rounded);
+  return buffer;
 }
 
 }  // namespace aggpack

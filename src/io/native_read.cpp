@@ -166,7 +166,15 @@ class Reader {
     if (H5Aread(attribute.get(), type.get(), buffer.data()) < 0) {
       fail_hdf5(field, "cannot read the attribute");
     }
-    return {buffer.data(), ::strnlen(buffer.data(), size)};
+    const std::size_t length = ::strnlen(buffer.data(), size);
+    // A fixed-length string ends at its first NUL; anything but padding after it would be
+    // silently dropped ("aggpack-packing\0x" read as "aggpack-packing"), so it is refused.
+    if (std::any_of(buffer.begin() + static_cast<std::ptrdiff_t>(length), buffer.end(),
+                    [](char c) { return c != '\0'; })) {
+      fail(field, "contains a NUL byte at position " + std::to_string(length) +
+                      " followed by more text; allowed: text without NUL bytes");
+    }
+    return {buffer.data(), length};
   }
 
   // Opens a single-number attribute and returns it with its stored type.

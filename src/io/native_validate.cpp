@@ -34,6 +34,14 @@ bool is_within(double value, double lo, double hi) { return value >= lo && value
 void check_container(const Container& c, const std::string& source) {
   native_detail::check_container_values(container_kind_info(c), native_detail::container_values(c),
                                         source);
+  // The packers' own rule (validate(Container)): a gap of half the smallest extent leaves no room.
+  // Named here as the file's attribute, so every command refuses it the same way.
+  const double half = c.visit([](const auto& kind) { return kind.smallest_extent(); }) / 2.0;
+  if (!(c.wall_gap < half)) {
+    fail(
+        source, "/container/wall_gap = " + format_value(c.wall_gap),
+        "not below half the smallest container extent; allowed: [0, " + format_value(half) + ") m");
+  }
 }
 
 // The first problem of shape `s` (vertex rows from `vertex_row`, triangle rows from

@@ -105,8 +105,7 @@ std::string DensifyReport::summary() const {
   out.precision(4);
   out << start_fraction << " -> " << solid_fraction << " solid";
   if (bulk_fraction > 0.0) out << " (bulk " << bulk_fraction << ")";
-  out.precision(1);
-  out << " in " << sweeps << " sweeps (" << seconds << " s), " << to_string(stop);
+  out << " in " << sweeps << " sweeps (" << format_seconds(seconds) << " s), " << to_string(stop);
   return out.str();
 }
 
@@ -219,16 +218,23 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
                                      .rotation_probability = options.rotation_probability,
                                      .is_bed = is_bed,
                                      .temperature = options.bed_temperature};
-  // kFixed: squeeze (shrink without checking) whenever at most 5 % of the particles overlap;
-  // sweeps repair. After kSqueezesPerCheckpoint squeezes (or at the target container) no more
-  // squeezes until everything is repaired: that clean state is the next checkpoint, the only
-  // kind of state ever returned. A consolidation that stalls undoes part of the squeezes (every
-  // kStallSweeps sweeps) and finally goes back to the checkpoint.
-  constexpr std::uint64_t kStallSweeps = 16;
-  constexpr std::uint64_t kSqueezesPerCheckpoint = 16;  // at most; fewer after a failed repair
+  // kFixed: squeeze (shrink without checking) whenever at most kAllowedShare of the particles
+  // overlap; sweeps repair (with overlap transfer, hpmc.cpp). After kSqueezesPerCheckpoint
+  // squeezes (or at the target container) no more squeezes until everything is repaired: that
+  // clean state is the next checkpoint, the only kind of state ever returned. A consolidation
+  // that stalls undoes part of the squeezes (every kStallSweeps sweeps) and finally goes back to
+  // the checkpoint. Chosen by paired runs on 1,041 and 9,078 single-size particles
+  // (bench/RESULTS.md): with overlap transfer, squeezes that flag more pay off (the earlier
+  // "no new partner" repair had 5 %, 3-12 %, 16 squeezes, 16 sweeps).
+  constexpr std::uint64_t kStallSweeps = 32;
+  constexpr std::uint64_t kSqueezesPerCheckpoint = 64;  // at most; fewer after a failed repair
+  constexpr double kAllowedShare = 0.15;  // squeeze only while at most this share is flagged
+  constexpr double kFreshHigh = 0.25;     // a squeeze flagging more is undone and halved
+  constexpr double kFreshLow = 0.10;      // a squeeze flagging less grows the next one x1.2
+  constexpr double kRepairReach = 4.0;    // repair push <= this x the squeeze step (radii)
   std::uint64_t squeezes_per_checkpoint = kSqueezesPerCheckpoint;
   const auto particle_count = static_cast<double>(start.particles.size());
-  const auto allowed_overlaps = static_cast<std::size_t>(0.05 * particle_count);
+  const auto allowed_overlaps = static_cast<std::size_t>(kAllowedShare * particle_count);
   double squeeze_step = 0.25 * options.max_compression;  // relative shrink of the largest share
   bool is_repairing = false;                             // some particles overlap
   bool is_consolidating = false;                         // no squeezes until clean
@@ -297,6 +303,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
       report.stop = DensifyStop::kTargetReached;
       break;
     }
+    parameters.repair_step = kRepairReach * squeeze_step;
     const detail::SweepCounts counts = engine.sweep(sweep, parameters);
     ++report.sweeps;
     report.moves_tried += counts.translations_tried + counts.rotations_tried;
@@ -364,12 +371,12 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
         for (int retry = 0;; ++retry) {
           flagged = engine.squeeze(target, std::min(1.0, squeeze_step / k_max));
           fresh = flagged > before ? static_cast<double>(flagged - before) : 0.0;
-          if (fresh <= 0.12 * particle_count || retry == 8) break;
+          if (fresh <= kFreshHigh * particle_count || retry == 8) break;
           engine.restore(unsqueezed);
           squeeze_step *= 0.5;
         }
         ++since_checkpoint;
-        if (fresh < 0.03 * particle_count) {
+        if (fresh < kFreshLow * particle_count) {
           squeeze_step = std::min(options.max_compression, squeeze_step * 1.2);
         }
         if (flagged == 0) {

@@ -92,6 +92,7 @@ Hpmc::Hpmc(const Packing& packing, double gap, std::uint64_t seed, double max_co
   AxisCache empty{};
   std::fill(std::begin(empty.neighbour), std::end(empty.neighbour), 0xFFFFFFFFu);
   axes_.assign(poses_.size(), empty);
+  blockers_.assign(poses_.size(), kNone);
 }
 
 bool Hpmc::is_apart(std::uint32_t i, const Pose& pose, std::uint32_t j, double gap) const {
@@ -209,10 +210,30 @@ void Hpmc::for_each_close(std::uint32_t i, const Vec3& centre, double gap, Visit
   }
 }
 
+bool Hpmc::is_adjacent(std::uint32_t i, std::uint32_t j) const {
+  std::int64_t a[3];
+  std::int64_t b[3];
+  cell_coordinates(grid_.cell_of[i], a);
+  cell_coordinates(grid_.cell_of[j], b);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (a[axis] - b[axis] > 1 || b[axis] - a[axis] > 1) return false;
+  }
+  return true;
+}
+
 bool Hpmc::is_clear(std::uint32_t i, const Pose& pose, double gap) const {
+  // The neighbour that blocked i's last rejected move is tested first: a rejection usually
+  // comes from the same neighbour again, and testing it first ends the search at once. Only a
+  // neighbour in an adjacent cell is read (a stale one elsewhere may be moving in another
+  // thread); the order of the tests never changes the answer.
+  std::uint32_t& blocker = blockers_[i];
+  const bool has_blocker = blocker != kNone && blocker != i && is_adjacent(i, blocker);
+  if (has_blocker && !is_apart(i, pose, blocker, gap)) return false;
   bool is_ok = true;
   for_each_close(i, pose.position, gap, [&](std::uint32_t j) {
+    if (has_blocker && j == blocker) return true;
     is_ok = is_apart(i, pose, j, gap);
+    if (!is_ok) blocker = j;
     return is_ok;
   });
   return is_ok;
@@ -278,10 +299,18 @@ bool Hpmc::is_inside(std::uint32_t i, const Pose& pose, const Container& box) co
 void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) {
   // Repair moves of a squeezed, overlapping particle (not counted for the step adaptation): up
   // to kTries pushes away from its partners (and into the container) with a little noise (small
-  // random rotations here made the packings measurably less dense). A move is accepted only if it
-  // makes no new partner (exact test against every other neighbour), brings no partner's centre
-  // closer and goes no further out of the container. The partners (the neighbours it overlaps,
-  // exact test) are found once and re-tested only after an accepted move.
+  // random rotations here made the packings measurably less dense), no longer than
+  // parameters.repair_step bounding radii (about the depth a squeeze makes). Overlap transfer: a
+  // push may overlap new particles as long as its count of partners does not rise (partners
+  // resolved >= new ones); the new partners are flagged, so an overlap walks on through a
+  // crowded region until it meets room instead of waiting for that room to come to it. The
+  // partners it keeps must not come closer (else overlapping pairs drift deeper), and it goes no
+  // further out of the container. The partners (the neighbours it overlaps, exact test) are
+  // found once and updated after an accepted push.
+  //
+  // Flagging a new partner k from i's move is independent of the thread count: k is within i's
+  // reach, so in an adjacent cell of another colour, not moved at the same time (and only ever
+  // set to 1 by others, atomically).
   constexpr int kTries = 8;
   constexpr int kMaxPartners = 64;
   const Body& body = bodies_[body_of_[i]];
@@ -303,6 +332,7 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
     return std::find(partners, partners + count, j) != partners + count;
   };
   bool was_inside = is_inside(i, poses_[i], container_);
+  const double reach = std::min({parameters.translation_step, 0.2, parameters.repair_step});
   for (int attempt = 0; attempt < kTries; ++attempt) {
     if (count == 0 && was_inside) {
       flagged_[i] = 0;  // clean (its partners moved away)
@@ -321,7 +351,7 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
       if (inward.squaredNorm() > 0.0) push += inward.normalized();
     }
     if (push.squaredNorm() > 0.0) push.normalize();
-    const double size = std::min(parameters.translation_step, 0.2) * body.outer * rng.uniform();
+    const double size = reach * body.outer * rng.uniform();
     const Vec3 noise(2.0 * rng.uniform() - 1.0, 2.0 * rng.uniform() - 1.0,
                      2.0 * rng.uniform() - 1.0);
     trial.position += size * push + 0.02 * body.outer * noise;
@@ -332,18 +362,25 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
                       wall_clearance(container_, body.local, pose)) {
       continue;
     }
+    std::uint32_t fresh[kMaxPartners];
+    int fresh_count = 0;
+    int kept_count = 0;
     bool is_ok = true;
     for_each_close(i, trial.position, gap_, [&](std::uint32_t j) {
-      if (is_partner(j)) {
-        // A partner's centre must not come closer (else overlapping pairs drift deeper).
+      const bool was_partner = is_partner(j);
+      if (is_apart(i, trial, j, gap_)) return true;
+      if (was_partner) {
+        ++kept_count;
         is_ok = (poses_[j].position - trial.position).squaredNorm() >=
                 (poses_[j].position - pose.position).squaredNorm();
+      } else if (fresh_count + kept_count < count) {
+        fresh[fresh_count++] = j;
       } else {
-        is_ok = is_apart(i, trial, j, gap_);  // no new partner
+        is_ok = false;  // more partners than before
       }
       return is_ok;
     });
-    if (!is_ok) continue;
+    if (!is_ok || kept_count + fresh_count > count) continue;
     place(i, trial);
     was_inside = is_in;
     int kept = 0;
@@ -351,6 +388,12 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
       if (!is_apart(i, poses_[i], partners[p], gap_)) partners[kept++] = partners[p];
     }
     count = kept;
+    for (int f = 0; f < fresh_count; ++f) {
+      partners[count++] = fresh[f];
+      // Two particles moved at once (cells two apart) may both flag one between them: the
+      // same value either way, stored atomically.
+      std::atomic_ref<std::uint8_t>(flagged_[fresh[f]]).store(1, std::memory_order_relaxed);
+    }
   }
   if (count == 0 && was_inside) flagged_[i] = 0;
 }

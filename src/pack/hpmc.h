@@ -19,6 +19,7 @@ struct SweepParameters {
   double rotation_probability = 0.5;  // [0, 1]
   bool is_bed = false;                // Metropolis on potential energy
   double temperature = 0.0;           // bed: see DensifyOptions::bed_temperature
+  double repair_step = 1.0;           // largest repair push / bounding radius
 };
 
 struct SweepCounts {
@@ -103,6 +104,8 @@ class Hpmc {
   [[nodiscard]] Vec3 shrink_shares(const Container& target) const;
   [[nodiscard]] std::int64_t cell_index(const Vec3& position) const;
   void cell_coordinates(std::int64_t cell, std::int64_t (&c)[3]) const;
+  /// Whether particles i and j sit in the same or adjacent grid cells.
+  [[nodiscard]] bool is_adjacent(std::uint32_t i, std::uint32_t j) const;
   /// Whether particle i placed at `pose` is clear of every other particle (exact test, gap
   /// `gap`, neighbours from the grid).
   [[nodiscard]] bool is_clear(std::uint32_t i, const Pose& pose, double gap) const;
@@ -137,13 +140,17 @@ class Hpmc {
   // repeated queries of a slowly moving pair take one support pair instead of a whole GJK run);
   // answers do not depend on them. Written only by the particle's own tests (its moves, repairs
   // and flag refresh), so the cache, like everything else, is independent of the thread count.
-  static constexpr int kAxes = 8;
+  static constexpr int kAxes = 16;
   struct AxisCache {
     std::uint32_t neighbour[kAxes];
     float axis[kAxes][3];
     std::uint8_t next;
   };
   mutable std::vector<AxisCache> axes_;
+  // Per particle, the neighbour that blocked its last rejected move (tested first; kNone: none).
+  // Written only by the particle's own tests, like axes_.
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  mutable std::vector<std::uint32_t> blockers_;
 };
 
 }  // namespace aggpack::detail

@@ -412,12 +412,12 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   const auto& placed_items = placement.placed_items();
   const auto& poses = placement.poses();
   packing.particles.reserve(placed_items.size());
-  if (is_library) {
-    packing.shapes.reserve(shapes.size());
-    for (auto& stored : shapes) packing.shapes.push_back(std::move(stored.body));
-  } else {
-    packing.shapes.reserve(placed_items.size());
-  }
+  // A library's packing keeps only the shapes its particles use, in order of first use: the file
+  // and every later reader hold what was placed, not the whole library.
+  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> stored_index(is_library ? shapes.size() : 0, kUnused);
+  packing.shapes.reserve(is_library ? std::min(shapes.size(), placed_items.size())
+                                    : placed_items.size());
   for (std::size_t i = 0; i < placed_items.size(); ++i) {
     const Item& item = items[placed_items[i]];
     Particle particle;
@@ -426,7 +426,12 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
     particle.size_class = size_class(options.grading, item.size);
     particle.scale = item.scale;
     if (is_library) {
-      particle.shape = item.shape;
+      std::uint32_t& index = stored_index[item.shape];
+      if (index == kUnused) {
+        index = static_cast<std::uint32_t>(packing.shapes.size());
+        packing.shapes.push_back(std::move(shapes[item.shape].body));
+      }
+      particle.shape = index;
     } else {
       particle.shape = static_cast<std::uint32_t>(packing.shapes.size());
       packing.shapes.push_back(std::move(shapes[item.shape].body));

@@ -1,6 +1,7 @@
 #include "aggpack/pack/resources.h"
 
 #include <sys/resource.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <string>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/core/rng.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/pack/grading.h"
@@ -33,6 +35,13 @@ constexpr std::uint64_t kSampleSalt = 0x73616D706C65ULL;  // library sample stre
 constexpr double kRandomBytesPerItem = 640.0;
 constexpr double kRandomLibraryBytesPerItem = 450.0;
 constexpr double kLatticeBytesPerSite = 300.0;
+// A rough placement cost per particle (grid look-up and exact overlap tests), for the time
+// estimate of heavy_run_note only: bench/RESULTS.md, "Packing", a million particles placed in 47 s.
+constexpr double kPlacementSecondsPerParticle = 5e-5;
+// A shape library may hold this many times the particles a target needs (and at least
+// kLibraryFloor shapes): beyond that most shapes are grown and never used.
+constexpr double kLibraryHeadroom = 10.0;
+constexpr double kLibraryFloor = 1000.0;
 
 // "2G", "512M", "1000000" -> bytes; negative when it is not a size.
 double parse_size(const std::string& text) {
@@ -65,9 +74,24 @@ double cgroup_limit(const char* path) {
 }
 
 struct ShapeSample {
-  double volume_ratio = 0.0;  // sum of volumes / sum of control-sphere volumes
-  double mean_bytes = 0.0;    // heap bytes per shape
+  double volume_ratio = 0.0;       // sum of volumes / sum of control-sphere volumes
+  double mean_bytes = 0.0;         // heap bytes per shape
+  double seconds_per_shape = 0.0;  // CPU time to grow one (not reproducible; estimates only)
 };
+
+// This thread's CPU time: the sample's cost whatever else the machine runs (a loaded machine
+// would otherwise announce every small run as heavy).
+double thread_cpu_seconds() {
+  timespec now{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+// Wall time of growing `shapes` shapes on the allowed threads and placing `particles`.
+double run_seconds(const ShapeSample& sample, double shapes, double particles) {
+  return shapes * sample.seconds_per_shape / std::max(1, allowed_threads()) +
+         particles * kPlacementSecondsPerParticle;
+}
 
 // How many shapes of about `vertices` vertices the sample may grow.
 int sample_size_for(double vertices, std::uint64_t available) {
@@ -82,6 +106,7 @@ ShapeSample sample_shapes(
   double volume = 0.0;
   double sphere = 0.0;
   double bytes = 0.0;
+  const double start = thread_cpu_seconds();
   for (int i = 0; i < count; ++i) {
     const auto [body, radius] = grow(static_cast<std::uint64_t>(i));
     volume += mass_properties(body).volume;
@@ -90,6 +115,7 @@ ShapeSample sample_shapes(
   }
   sample.volume_ratio = sphere > 0.0 ? volume / sphere : 0.0;
   sample.mean_bytes = bytes / count;
+  sample.seconds_per_shape = (thread_cpu_seconds() - start) / count;
   return sample;
 }
 
@@ -214,9 +240,12 @@ RunEstimate estimate_run(const RandomPackOptions& options) {
     estimate.bytes_per_particle = kRandomLibraryBytesPerItem;
     estimate.bytes = estimate.particles * estimate.bytes_per_particle +
                      static_cast<double>(library_count) * (sample.mean_bytes + 72.0);
+    estimate.seconds =
+        run_seconds(sample, static_cast<double>(library_count), estimate.particles);
   } else {
     estimate.bytes_per_particle = kRandomBytesPerItem + sample.mean_bytes;
     estimate.bytes = estimate.particles * estimate.bytes_per_particle;
+    estimate.seconds = run_seconds(sample, estimate.particles, estimate.particles);
   }
   return estimate;
 }
@@ -250,9 +279,11 @@ RunEstimate estimate_run(const LatticeOptions& options, double sites) {
     estimate.bytes_per_particle = kRandomLibraryBytesPerItem;
     estimate.bytes = sites * estimate.bytes_per_particle +
                      static_cast<double>(files->shapes.size()) * (sample.mean_bytes + 72.0);
+    estimate.seconds = run_seconds(sample, static_cast<double>(files->shapes.size()), sites);
   } else {
     estimate.bytes_per_particle = kLatticeBytesPerSite + sample.mean_bytes;
     estimate.bytes = sites * estimate.bytes_per_particle;
+    estimate.seconds = run_seconds(sample, sites, sites);
   }
   return estimate;
 }
@@ -288,6 +319,19 @@ void check_resources(const RandomPackOptions& options) {
                                  : "; use shape.library_size, larger particles or a smaller "
                                    "container"));
   }
+  // Every library shape is grown before placement: a library far larger than the particles the
+  // target needs costs memory and time for shapes never used (the packing stores only used ones).
+  const double library = options.shape.library_size;
+  const double most = std::max(kLibraryFloor, std::ceil(kLibraryHeadroom * estimate.particles));
+  if (library > most) {
+    throw LimitExceeded("shape.library_size", std::to_string(options.shape.library_size),
+                        "at most " + count_text(most) + " (" + format_value(kLibraryHeadroom) +
+                            " x the ~" + count_text(estimate.particles) +
+                            " particles this target needs, at least " + count_text(kLibraryFloor) +
+                            "): every library shape is grown before placement, so the run "
+                            "would need ~" +
+                            format_bytes(estimate.bytes) + ", mostly for shapes it never uses");
+  }
 }
 
 void check_resources(const LatticeOptions& options, double sites) {
@@ -303,6 +347,22 @@ void check_resources(const LatticeOptions& options, double sites) {
                         memory_advice(estimate, limit) +
                             "; use a larger radius or edge length, or a smaller container");
   }
+}
+
+std::string heavy_run_note(const RunEstimate& estimate) {
+  if (!(estimate.seconds > kHeavySeconds) && !(estimate.bytes > kHeavyBytes)) return "";
+  const double seconds = estimate.seconds;
+  char time[64];
+  if (seconds < 120.0) {
+    std::snprintf(time, sizeof time, "%.0f s", seconds);
+  } else if (seconds < 7200.0) {
+    std::snprintf(time, sizeof time, "%.0f min", seconds / 60.0);
+  } else {
+    std::snprintf(time, sizeof time, "%.1f h", seconds / 3600.0);
+  }
+  return "a large run: ~" + count_text(estimate.particles) + " particles, ~" +
+         format_bytes(estimate.bytes) + " of memory, ~" + time +
+         " (rough estimate; Ctrl-C stops it)";
 }
 
 }  // namespace aggpack

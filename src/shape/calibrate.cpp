@@ -210,9 +210,9 @@ void nelder_mead(Search& search, std::vector<double> start, double step) {
 const char* calibration_target_name(CalibrationTarget target) {
   switch (target) {
     case CalibrationTarget::kVolumeRatio:
-      return "volume_ratio";
+      return "control_volume_ratio";
     case CalibrationTarget::kEnclosedVolumeRatio:
-      return "enclosed_volume_ratio";
+      return "volume_ratio";
     case CalibrationTarget::kMeasuredAlpha:
       return "measured_alpha";
     case CalibrationTarget::kSphericity:
@@ -398,14 +398,15 @@ CalibrationResult calibrate(const CalibrationOptions& options) {
       hi = std::max(hi, mean_of(point, worst->target));
     }
     const std::string name = calibration_target_name(worst->target);
-    throw InvalidInput(
+    throw CalibrationUnreached(
         name, format_value(worst->value),
         "a mean the generator reaches" +
             std::string(options.goals.size() > 1 ? " together with the other targets" : "") +
             ": over " + space.ranges() + " the means of " + name + " span [" + short_number(lo) +
             ", " + short_number(hi) + "]; the closest inputs (" + describe_inputs(result.inputs) +
             ") give " + short_number(mean_of(final_point, worst->target)) + " (" +
-            short_number(100.0 * worst_miss) + " % off)");
+            short_number(100.0 * worst_miss) + " % off)",
+        lo, hi, mean_of(final_point, worst->target), describe_inputs(result.inputs));
   }
   return result;
 }

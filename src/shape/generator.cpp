@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,39 @@ constexpr std::uint32_t kInsertionsPerVertex = 4;
 // The base octahedron's six directions, in make_octahedron's order (+x, -x, +y, -y, +z, -z).
 const std::array<Vec3, 6> kBaseDirections = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
                                              Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
+
+// The growing mesh of this thread, kept between particles so that growth allocates nothing once
+// warm (a particle's own allocations cost as much as its growth at L = r). A callback that grows
+// a particle itself (a GrowthLimit) gets a mesh of its own.
+class MeshLease {
+ public:
+  MeshLease() {
+    if (!is_busy()) {
+      is_busy() = true;
+      mesh_ = &shared();
+    } else {
+      mesh_ = &own_.emplace();
+    }
+  }
+  ~MeshLease() {
+    if (mesh_ == &shared()) is_busy() = false;
+  }
+  MeshLease(const MeshLease&) = delete;
+  MeshLease& operator=(const MeshLease&) = delete;
+  detail::GrowingMesh& operator*() const { return *mesh_; }
+
+ private:
+  static detail::GrowingMesh& shared() {
+    thread_local detail::GrowingMesh mesh;
+    return mesh;
+  }
+  static bool& is_busy() {
+    thread_local bool busy = false;
+    return busy;
+  }
+  std::optional<detail::GrowingMesh> own_;
+  detail::GrowingMesh* mesh_ = nullptr;
+};
 
 }  // namespace
 
@@ -117,7 +151,9 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const Grow
   const auto expected = static_cast<std::size_t>(
       std::min(estimated_vertex_count(params.radius, params.edge_length, params.form.growth) + 16.0,
                static_cast<double>(params.max_vertices) + 1.0));
-  detail::GrowingMesh mesh(
+  const MeshLease lease;
+  detail::GrowingMesh& mesh = *lease;
+  mesh.reset(
       base, params.edge_length,
       params.form.growth == Growth::kHull ? params.form.min_edge_ratio * params.edge_length : 0.0,
       expected);

@@ -1,6 +1,7 @@
 #include "growing_mesh.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "aggpack/core/error.h"
@@ -78,51 +79,87 @@ constexpr std::array<std::uint32_t, 3> kPrev = {2, 0, 1};
 // visibility test (rounding of a plane through three vertices).
 constexpr double kRelativeTolerance = 1e-12;
 
+// Insertions are stamped 2 s and 2 s + 1 on faces: s starts again below 2^31.
+constexpr std::uint32_t kLastStamp = 0x7FFFFFF0U;
+
 }  // namespace
 
-GrowingMesh::GrowingMesh(const std::array<Vec3, 6>& base, double edge_length,
-                         double min_edge_length, std::size_t expected_vertices)
-    : limit_squared_(edge_length * edge_length),
-      min_edge_squared_(min_edge_length * min_edge_length) {
+void GrowingMesh::reset(const std::array<Vec3, 6>& base, double edge_length, double min_edge_length,
+                        std::size_t expected_vertices) {
+  limit_squared_ = edge_length * edge_length;
+  min_edge_squared_ = min_edge_length * min_edge_length;
   const std::size_t expected_faces = 2 * expected_vertices;
   vertices_.reserve(expected_vertices);
   triangles_.reserve(expected_faces);
-  twins_.reserve(expected_faces);
-  corner_faces_.reserve(expected_vertices);
   heap_.reserve(expected_faces);
+  heap_.clear();
+  free_faces_.clear();
+  live_vertices_ = 6;
+  top_half_ = kNone;
+  may_be_stale_ = false;
+  if (stamp_ > kLastStamp) {  // the stamps start again (stale ones must not match)
+    std::fill(face_stamps_.begin(), face_stamps_.end(), 0);
+    std::fill(vertex_stamps_.begin(), vertex_stamps_.end(), 0);
+    stamp_ = 0;
+  }
   vertices_.assign(base.begin(), base.end());
   triangles_.assign(kBase.triangles.begin(), kBase.triangles.end());
-  twins_.assign(kBase.twins.begin(), kBase.twins.end());
-  corner_faces_.assign(kBase.corner_faces.begin(), kBase.corner_faces.end());
+  grow_vertex_arrays(std::max(expected_vertices, vertices_.size()));
+  grow_face_arrays(std::max(expected_faces, triangles_.size()));
+  std::copy(kBase.twins.begin(), kBase.twins.end(), twins_.begin());
+  std::copy(kBase.corner_faces.begin(), kBase.corner_faces.end(), corner_faces_.begin());
+  std::fill_n(is_dead_vertex_.begin(), vertices_.size(), 0);
+  std::fill_n(is_free_face_.begin(), triangles_.size(), 0);
+  for (std::size_t f = 0; f < triangles_.size(); ++f) planes_[f].norm_squared = -1.0;
   for (const auto& t : kBase.triangles) {
     for (std::uint32_t k = 0; k < 3; ++k) {
       const std::uint32_t from = t[k];
       const std::uint32_t to = t[kNext[k]];
       if (from > to) continue;  // each edge once
       const double length_squared = (vertices_[from] - vertices_[to]).squaredNorm();
-      if (length_squared > limit_squared_) insert({length_squared, from, to});
+      if (length_squared > limit_squared_) insert(key_of({length_squared, from, to}));
     }
   }
 }
 
+GrowingMesh::Key GrowingMesh::key_of(const EdgeEntry& entry) {
+  const auto pair = (static_cast<std::uint64_t>(~entry.from) << 32U) | (~entry.to);
+  return (static_cast<Key>(std::bit_cast<std::uint64_t>(entry.length_squared)) << 64U) | pair;
+}
+
+EdgeEntry GrowingMesh::entry_of(Key key) {
+  const auto pair = static_cast<std::uint64_t>(key);
+  return {std::bit_cast<double>(static_cast<std::uint64_t>(key >> 64U)),
+          ~static_cast<std::uint32_t>(pair >> 32U), ~static_cast<std::uint32_t>(pair)};
+}
+
 bool GrowingMesh::longest_edge(EdgeEntry& entry) {
   while (!heap_.empty()) {
-    entry = heap_.front();
+    entry = entry_of(heap_.front());
     // Only the hull rule removes edges; a removed edge's entry is dropped here.
-    if (is_dead_vertex_.empty() ||
-        (is_dead_vertex_[entry.from] == 0 && is_dead_vertex_[entry.to] == 0 &&
-         find_outgoing(entry.from, entry.to) != kNone)) {
+    if (!may_be_stale_) {
+      top_half_ = kNone;
       return true;
+    }
+    if (is_dead_vertex_[entry.from] == 0 && is_dead_vertex_[entry.to] == 0) {
+      top_half_ = find_outgoing(entry.from, entry.to);
+      if (top_half_ != kNone) return true;
     }
     pop();
   }
   return false;
 }
 
+std::uint32_t GrowingMesh::top_half(const EdgeEntry& entry) {
+  const std::uint32_t half = top_half_ != kNone ? top_half_ : find_outgoing(entry.from, entry.to);
+  if (half == kNone) broken();
+  top_half_ = kNone;
+  return half;
+}
+
 void GrowingMesh::split_midpoint(const EdgeEntry& entry, const DrawDistance& draw,
                                  const GrowthLimit& limit) {
-  const std::uint32_t ab = find_outgoing(entry.from, entry.to);
-  if (ab == kNone) broken();
+  const std::uint32_t ab = top_half(entry);
   const std::uint32_t f1 = face_of(ab);
   const std::uint32_t k1 = local_of(ab);
   const std::uint32_t f2 = face_of(twins_[f1][k1]);
@@ -175,6 +212,7 @@ void GrowingMesh::split_at(std::uint32_t ab, const Vec3& point) {
   triangles_[f3] = {p, b, c};
   triangles_[f2] = {b, p, d};
   triangles_[f4] = {p, a, d};
+  for (const std::uint32_t face : {f1, f2, f3, f4}) planes_[face].norm_squared = -1.0;
   twins_[f1] = {half_edge(f4, 0), half_edge(f3, 2), across_ca};
   twins_[f3] = {half_edge(f2, 0), across_bc, half_edge(f1, 1)};
   twins_[f2] = {half_edge(f3, 0), half_edge(f4, 2), across_db};
@@ -196,8 +234,7 @@ void GrowingMesh::split_at(std::uint32_t ab, const Vec3& point) {
 
 void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistance& draw,
                               const GrowthLimit& limit) {
-  const std::uint32_t ab = find_outgoing(entry.from, entry.to);
-  if (ab == kNone) broken();
+  const std::uint32_t ab = top_half(entry);
   pop();
   const Vec3 on_edge = vertices_[entry.from] + t * (vertices_[entry.to] - vertices_[entry.from]);
   const double on_edge_distance = on_edge.norm();
@@ -213,138 +250,180 @@ void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistan
     split_at(ab, on_edge);
     return;
   }
-
-  // The faces the new vertex sees: a connected patch (the body is convex) that holds the edge's
-  // two faces; found by a walk from them across edges.
-  if (is_dead_vertex_.empty()) is_dead_vertex_.assign(vertices_.size(), 0);
-  is_visible_.resize(triangles_.size(), 0);
-  is_free_face_.resize(triangles_.size(), 0);
   // In front of a face's plane by more than the tolerance (compared squared: no square root).
   const double tolerance_squared = kRelativeTolerance * kRelativeTolerance * distance * distance;
-  const auto sees = [&](std::uint32_t face) {
-    const Triangle& tri = triangles_[face];
-    const Vec3 normal =
-        (vertices_[tri[1]] - vertices_[tri[0]]).cross(vertices_[tri[2]] - vertices_[tri[0]]);
-    const double height = normal.dot(point - vertices_[tri[0]]);
-    return height > 0.0 && height * height > tolerance_squared * normal.squaredNorm();
-  };
-  visible_.clear();
-  for (const std::uint32_t face : {face_of(ab), face_of(twins_[face_of(ab)][local_of(ab)])}) {
-    if (!sees(face)) {  // the vertex lies in the face's plane after rounding: split instead
-      split_at(ab, on_edge);
-      return;
-    }
-    is_visible_[face] = 1;
-    visible_.push_back(face);
-  }
-  for (std::size_t i = 0; i < visible_.size(); ++i) {
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      const std::uint32_t next = face_of(twins_[visible_[i]][k]);
-      if (is_visible_[next] == 0 && sees(next)) {
-        is_visible_[next] = 1;
-        visible_.push_back(next);
-      }
-    }
-  }
-  // Its border (half-edges of visible faces whose twin is not visible), walked as one loop: the
-  // next border half-edge leaves the current one's end, found by turning about that vertex inside
-  // the patch. Border vertices are marked 2 in is_dead_vertex_ (kept; reset below).
-  const auto from_of = [&](std::uint32_t half) {
-    return triangles_[face_of(half)][local_of(half)];
-  };
-  std::size_t border_count = 0;
-  std::uint32_t first = kNone;
-  for (const std::uint32_t face : visible_) {
-    for (std::uint32_t k = 0; k < 3; ++k) {
-      if (is_visible_[face_of(twins_[face][k])] != 0) continue;
-      ++border_count;
-      if (first == kNone) first = half_edge(face, k);
-    }
-  }
-  std::vector<std::uint32_t>& loop = loop_;
-  loop.clear();
-  bool is_disk = true;
-  std::uint32_t half = first;
-  do {
-    const std::uint32_t from = from_of(half);
-    if (is_dead_vertex_[from] == 2 || loop.size() == border_count) {
-      is_disk = false;  // a vertex met twice (a pinched patch), or more than one loop
-      break;
-    }
-    is_dead_vertex_[from] = 2;
-    loop.push_back(half);
-    std::uint32_t face = face_of(half);
-    std::uint32_t k = kNext[local_of(half)];
-    while (is_visible_[face_of(twins_[face][k])] != 0) {
-      const std::uint32_t twin = twins_[face][k];
-      face = face_of(twin);
-      k = kNext[local_of(twin)];
-    }
-    half = half_edge(face, k);
-  } while (half != first);
-  // The minimum edge length: a new vertex that would come closer than it to a vertex it joins
-  // (a short edge, thin triangles around it) splits the edge instead.
-  const bool is_too_close = std::any_of(loop.begin(), loop.end(), [&](std::uint32_t h) {
-    return (vertices_[from_of(h)] - point).squaredNorm() < min_edge_squared_;
-  });
-  // Rounding can make the patch other than a disk; then, too, the vertex splits the edge.
-  if (!is_disk || loop.size() != border_count || is_too_close) {
-    for (const std::uint32_t h : loop) is_dead_vertex_[from_of(h)] = 0;
-    for (const std::uint32_t face : visible_) is_visible_[face] = 0;
+  // Rounding can make the patch other than a disk (or the vertex lie in the plane of one of the
+  // edge's faces); then, too, the vertex splits the edge.
+  if (!find_visible(ab, point, tolerance_squared) || !chain_border()) {
     split_at(ab, on_edge);
     return;
   }
-
-  // Replace the patch: its inner vertices are dropped, its faces freed, and a fan of new faces
-  // joins the new vertex to the loop.
-  std::vector<Border>& border = border_;
-  border.clear();
-  for (const std::uint32_t h : loop) {
-    const Triangle& tri = triangles_[face_of(h)];
-    border.push_back({tri[local_of(h)], tri[kNext[local_of(h)]], twins_[face_of(h)][local_of(h)]});
+  // The minimum edge length: a new vertex that would come closer than it to a vertex it joins
+  // (a short edge, thin triangles around it) splits the edge instead.
+  for (std::size_t i = 0; i < border_count_; ++i) {
+    if ((vertices_[sides_[i].from] - point).squaredNorm() < min_edge_squared_) {
+      split_at(ab, on_edge);
+      return;
+    }
   }
-  for (const std::uint32_t face : visible_) {
-    for (const std::uint32_t v : triangles_[face]) {
-      if (is_dead_vertex_[v] == 0) {
-        is_dead_vertex_[v] = 1;
-        --live_vertices_;
+  replace_patch(point);
+}
+
+bool GrowingMesh::find_visible(std::uint32_t ab, const Vec3& point, double tolerance_squared) {
+  // The faces the new vertex sees: a connected patch (the body is convex) that holds the edge's
+  // two faces; found by a walk from them across edges, each face tested once.
+  stamp_ += 1;
+  const std::uint32_t seen = 2 * stamp_ + 1;
+  const std::uint32_t unseen = 2 * stamp_;
+  const std::size_t faces = triangles_.size();
+  if (visible_.size() < faces) {
+    visible_.resize(faces);
+    border_.resize(3 * faces);
+  }
+  const Triangle* triangles = triangles_.data();
+  const Twins* twins = twins_.data();
+  const Vec3* vertices = vertices_.data();
+  Plane* planes = planes_.data();
+  std::uint32_t* stamps = face_stamps_.data();
+  std::uint32_t* visible = visible_.data();
+  std::uint32_t* border = border_.data();
+  const auto sees = [&](std::uint32_t face) {
+    const Triangle& tri = triangles[face];
+    Plane& plane = planes[face];
+    if (plane.norm_squared < 0.0) {
+      plane.normal =
+          (vertices[tri[1]] - vertices[tri[0]]).cross(vertices[tri[2]] - vertices[tri[0]]);
+      plane.norm_squared = plane.normal.squaredNorm();
+    }
+    const double height = plane.normal.dot(point - vertices[tri[0]]);
+    return height > 0.0 && height * height > tolerance_squared * plane.norm_squared;
+  };
+  std::size_t visible_count = 0;
+  for (const std::uint32_t face : {face_of(ab), face_of(twins[face_of(ab)][local_of(ab)])}) {
+    if (!sees(face)) return false;  // the vertex lies in the face's plane after rounding
+    stamps[face] = seen;
+    visible[visible_count++] = face;
+  }
+  // The patch's border: half-edges of visible faces whose twin is not visible, in the order of
+  // the walk.
+  std::size_t border_count = 0;
+  for (std::size_t i = 0; i < visible_count; ++i) {
+    const std::uint32_t face = visible[i];
+    for (std::uint32_t k = 0; k < 3; ++k) {
+      const std::uint32_t next = face_of(twins[face][k]);
+      const std::uint32_t stamp = stamps[next];
+      if (stamp == seen) continue;
+      if (stamp != unseen) {
+        if (sees(next)) {
+          stamps[next] = seen;
+          visible[visible_count++] = next;
+          continue;
+        }
+        stamps[next] = unseen;
+      }
+      border[border_count++] = half_edge(face, k);
+    }
+  }
+  visible_count_ = visible_count;
+  border_count_ = border_count;
+  return true;
+}
+
+bool GrowingMesh::chain_border() {
+  // The border as one loop from its first half-edge: each border vertex must have exactly one
+  // border half-edge leaving it (else the patch is pinched there), and the loop must use them all
+  // (else there is more than one). The loop goes to sides_ (ends and outer twin of each step).
+  const Triangle* triangles = triangles_.data();
+  const Twins* twins = twins_.data();
+  const std::uint32_t* border = border_.data();
+  std::uint32_t* stamps = vertex_stamps_.data();
+  std::uint32_t* next = border_next_.data();
+  const std::size_t count = border_count_;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t half = border[i];
+    const std::uint32_t from = triangles[face_of(half)][local_of(half)];
+    if (stamps[from] == stamp_) return false;
+    stamps[from] = stamp_;
+    next[from] = half;
+  }
+  if (sides_.size() < count) sides_.resize(count);
+  Side* sides = sides_.data();
+  const std::uint32_t first = border[0];
+  std::uint32_t half = first;
+  std::size_t length = 0;
+  do {
+    const Triangle& tri = triangles[face_of(half)];
+    const std::uint32_t to = tri[kNext[local_of(half)]];
+    sides[length++] = {tri[local_of(half)], to, twins[face_of(half)][local_of(half)]};
+    half = next[to];
+  } while (half != first && length < count);
+  return half == first && length == count;
+}
+
+void GrowingMesh::replace_patch(const Vec3& point) {
+  // The patch's inner vertices are dropped (the border's are stamped), its faces freed, and a fan
+  // of new faces joins the new vertex to the loop. Freed faces are taken back last in, first out:
+  // the fan takes the patch's faces from its last, then older free faces, then new ones.
+  const std::uint32_t* visible = visible_.data();
+  const std::size_t m = visible_count_;
+  {
+    const Triangle* triangles = triangles_.data();
+    std::uint32_t* stamps = vertex_stamps_.data();
+    for (std::size_t i = 0; i < m; ++i) {
+      for (const std::uint32_t v : triangles[visible[i]]) {
+        if (stamps[v] != stamp_) {
+          stamps[v] = stamp_;
+          is_dead_vertex_[v] = 1;
+          --live_vertices_;
+        }
       }
     }
   }
-  for (const Border& side : border) is_dead_vertex_[side.from] = 0;
-  for (const std::uint32_t face : visible_) {
-    is_visible_[face] = 0;
-    is_free_face_[face] = 1;
-    free_faces_.push_back(face);
-  }
+  may_be_stale_ = true;
+  const std::size_t n = border_count_;
   const std::uint32_t p = add_vertex(point);
-  const std::size_t n = border.size();
-  std::vector<std::uint32_t>& fan = fan_;
-  fan.resize(n);
-  for (std::size_t i = 0; i < n; ++i) fan[i] = new_face();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Border& side = border[i];
-    const std::uint32_t face = fan[i];
-    triangles_[face] = {side.from, side.to, p};
-    // Edge 1 (to -> p) meets the next fan face's edge 2 (p -> its from = this to).
-    twins_[face] = {side.across, half_edge(fan[(i + 1) % n], 2),
-                    half_edge(fan[(i + n - 1) % n], 1)};
-    set_twin(side.across, half_edge(face, 0));
-    corner_faces_[side.from] = face;
+  if (fan_.size() < n) fan_.resize(n);
+  std::uint32_t* fan = fan_.data();
+  const std::size_t reused = std::min(m, n);
+  for (std::size_t i = 0; i < reused; ++i) fan[i] = visible[m - 1 - i];
+  for (std::size_t i = 0; i + reused < m; ++i) {
+    is_free_face_[visible[i]] = 1;
+    free_faces_.push_back(visible[i]);
   }
-  corner_faces_[p] = fan[0];
-  for (std::size_t i = 0; i < n; ++i) loop[i] = border[i].from;  // the new vertex's neighbours
-  push_edges_of(p, loop.data(), n);
+  for (std::size_t i = reused; i < n; ++i) fan[i] = new_face();
+  const Side* sides = sides_.data();
+  Triangle* triangles = triangles_.data();
+  Twins* twins = twins_.data();
+  Plane* planes = planes_.data();
+  std::uint32_t* corners = corner_faces_.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Side& side = sides[i];
+    const std::uint32_t face = fan[i];
+    triangles[face] = {side.from, side.to, p};
+    planes[face].norm_squared = -1.0;
+    // Edge 1 (to -> p) meets the next fan face's edge 2 (p -> its from = this to).
+    twins[face] = {side.across, half_edge(fan[i + 1 == n ? 0 : i + 1], 2),
+                   half_edge(fan[i == 0 ? n - 1 : i - 1], 1)};
+    twins[face_of(side.across)][local_of(side.across)] = half_edge(face, 0);
+    corners[side.from] = face;
+  }
+  corners[p] = fan[0];
+  // The new vertex's edges to the loop.
+  const Vec3& apex = vertices_[p];
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t v = sides[i].from;
+    const double length_squared = (vertices_[v] - apex).squaredNorm();
+    if (length_squared > limit_squared_) insert(key_of({length_squared, v, p}));
+  }
 }
 
 ConvexPolyhedron GrowingMesh::release() {
-  if (is_dead_vertex_.empty() && free_faces_.empty()) {
+  if (!may_be_stale_ && free_faces_.empty()) {
     // Exactly sized copies: the working vectors were reserved from an estimate.
     return {std::vector<Vec3>(vertices_.begin(), vertices_.end()),
             std::vector<Triangle>(triangles_.begin(), triangles_.end())};
   }
-  is_dead_vertex_.resize(vertices_.size(), 0);
-  std::vector<std::uint32_t> index(vertices_.size(), kNone);
+  std::uint32_t* index = border_next_.data();  // scratch: the kept vertices' new indices
   std::vector<Vec3> vertices;
   vertices.reserve(live_vertices_);
   for (std::size_t v = 0; v < vertices_.size(); ++v) {
@@ -352,7 +431,6 @@ ConvexPolyhedron GrowingMesh::release() {
     index[v] = static_cast<std::uint32_t>(vertices.size());
     vertices.push_back(vertices_[v]);
   }
-  is_free_face_.resize(triangles_.size(), 0);
   std::vector<Triangle> triangles;
   triangles.reserve(triangles_.size() - free_faces_.size());
   for (std::size_t f = 0; f < triangles_.size(); ++f) {
@@ -390,8 +468,9 @@ std::uint32_t GrowingMesh::find_outgoing(std::uint32_t from, std::uint32_t to) c
 std::uint32_t GrowingMesh::add_vertex(const Vec3& point) {
   const auto p = static_cast<std::uint32_t>(vertices_.size());
   vertices_.push_back(point);
-  corner_faces_.push_back(0);
-  if (!is_dead_vertex_.empty()) is_dead_vertex_.push_back(0);
+  if (p >= corner_faces_.size()) grow_vertex_arrays(2 * static_cast<std::size_t>(p));
+  corner_faces_[p] = 0;
+  is_dead_vertex_[p] = 0;
   ++live_vertices_;
   return p;
 }
@@ -405,8 +484,26 @@ std::uint32_t GrowingMesh::new_face() {
   }
   const auto face = static_cast<std::uint32_t>(triangles_.size());
   triangles_.emplace_back();
-  twins_.emplace_back();
+  if (face >= twins_.size()) grow_face_arrays(2 * static_cast<std::size_t>(face));
+  planes_[face].norm_squared = -1.0;
+  is_free_face_[face] = 0;
   return face;
+}
+
+void GrowingMesh::grow_vertex_arrays(std::size_t count) {
+  if (corner_faces_.size() >= count) return;
+  corner_faces_.resize(count);
+  is_dead_vertex_.resize(count);
+  vertex_stamps_.resize(count, 0);
+  border_next_.resize(count);
+}
+
+void GrowingMesh::grow_face_arrays(std::size_t count) {
+  if (twins_.size() >= count) return;
+  twins_.resize(count);
+  planes_.resize(count, Plane{Vec3::Zero(), -1.0});
+  face_stamps_.resize(count, 0);
+  is_free_face_.resize(count);
 }
 
 void GrowingMesh::push_edges_of(std::uint32_t vertex, const std::uint32_t* neighbours,
@@ -415,39 +512,61 @@ void GrowingMesh::push_edges_of(std::uint32_t vertex, const std::uint32_t* neigh
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t v = neighbours[i];
     const double length_squared = (vertices_[v] - point).squaredNorm();
-    if (length_squared > limit_squared_) insert({length_squared, v, vertex});
+    if (length_squared > limit_squared_) insert(key_of({length_squared, v, vertex}));
   }
 }
 
-void GrowingMesh::insert(const EdgeEntry& entry) {
-  // A binary max-heap, sifted up by hand (as std::push_heap does).
+// The heap is 4-ary (children of i: 4 i + 1 .. 4 i + 4): half the depth of a binary heap, and the
+// largest of four children is found without unpredictable branches. The order in which live
+// edges come out depends only on their keys, not on the heap's shape.
+void GrowingMesh::insert(Key key) {
   std::size_t hole = heap_.size();
-  heap_.push_back(entry);
+  heap_.push_back(key);
+  Key* heap = heap_.data();
   while (hole > 0) {
-    const std::size_t parent = (hole - 1) / 2;
-    if (!(heap_[parent] < entry)) break;
-    heap_[hole] = heap_[parent];
+    const std::size_t parent = (hole - 1) / 4;
+    if (!(heap[parent] < key)) break;
+    heap[hole] = heap[parent];
     hole = parent;
   }
-  heap_[hole] = entry;
+  heap[hole] = key;
 }
 
 void GrowingMesh::pop() {
-  // The last entry sifts down from the root.
-  const EdgeEntry last = heap_.back();
+  // The root's hole goes down to a leaf along the largest children, then the last key sifts up
+  // from there (it nearly always belongs near the bottom: fewer comparisons than sifting it down).
+  const Key last = heap_.back();
   heap_.pop_back();
   const std::size_t size = heap_.size();
   if (size == 0) return;
+  Key* heap = heap_.data();
   std::size_t hole = 0;
   for (;;) {
-    std::size_t child = 2 * hole + 1;
-    if (child >= size) break;
-    if (child + 1 < size && heap_[child] < heap_[child + 1]) ++child;
-    if (!(last < heap_[child])) break;
-    heap_[hole] = heap_[child];
+    const std::size_t first = 4 * hole + 1;
+    if (first + 4 <= size) {
+      const std::size_t a = first + static_cast<std::size_t>(heap[first] < heap[first + 1]);
+      const std::size_t b = first + 2 + static_cast<std::size_t>(heap[first + 2] < heap[first + 3]);
+      const std::size_t child = heap[a] < heap[b] ? b : a;
+      heap[hole] = heap[child];
+      hole = child;
+      continue;
+    }
+    if (first >= size) break;
+    std::size_t child = first;
+    for (std::size_t c = first + 1; c < size; ++c) {
+      if (heap[child] < heap[c]) child = c;
+    }
+    heap[hole] = heap[child];
     hole = child;
+    break;
   }
-  heap_[hole] = last;
+  while (hole > 0) {
+    const std::size_t parent = (hole - 1) / 4;
+    if (!(heap[parent] < last)) break;
+    heap[hole] = heap[parent];
+    hole = parent;
+  }
+  heap[hole] = last;
 }
 
 }  // namespace aggpack::detail

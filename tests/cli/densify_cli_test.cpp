@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 
 #include "aggpack/config/config.h"
@@ -67,8 +68,27 @@ TEST_F(DensifyCliTest, FixedModeWritesAVerifiedDensePackingWithProvenance) {
   const VerifyResult check = verify(dense, {.is_brute_force = true});
   EXPECT_TRUE(check.is_ok) << check.message;
   const std::string trace = file_text(folder_ / "trace.txt");
-  EXPECT_EQ(trace.rfind("# seconds sweeps solid_fraction", 0), 0u);
+  EXPECT_EQ(trace.rfind("# seconds sweeps solid_fraction cpu_seconds\n", 0), 0u);
   EXPECT_GT(std::count(trace.begin(), trace.end(), '\n'), 1);
+  {
+    // Every update: wall time, sweeps, fraction, CPU time; none of them goes backward.
+    std::istringstream lines(trace.substr(trace.find('\n') + 1));
+    std::string line;
+    double previous[4] = {0.0, 0.0, 0.0, 0.0};
+    int rows = 0;
+    while (std::getline(lines, line)) {
+      std::istringstream fields(line);
+      double value[4] = {-1.0, -1.0, -1.0, -1.0};
+      std::string rest;
+      ASSERT_TRUE(fields >> value[0] >> value[1] >> value[2] >> value[3]) << line;
+      EXPECT_FALSE(fields >> rest) << line;
+      for (int k = 0; k < 4; ++k) EXPECT_GE(value[k], previous[k]) << line;
+      std::copy(std::begin(value), std::end(value), std::begin(previous));
+      ++rows;
+    }
+    EXPECT_GT(rows, 0);
+    EXPECT_GT(previous[3], 0.0);  // the run took some CPU time
+  }
   // `aggpack info` still reads the stored configuration (the densify keys are comments).
   const CliRun info = run("info dense.h5 --no-descriptors");
   EXPECT_EQ(info.exit_code, 0) << info.err;
@@ -144,12 +164,12 @@ TEST_F(DensifyCliTest, BadOptionsFailWithOneLineAndNoOutput) {
     const char* names;
   } cases[] = {
       {"--mode heap", "--mode"},
-      {"--target-fraction 0.99", "densify.target_fraction"},
-      {"--sweeps 0", "densify.max_sweeps"},
-      {"--max-time -1", "densify.max_seconds"},
-      {"--gap -0.1", "densify.gap"},
+      {"--target-fraction 0.99", "invalid --target-fraction = 0.99"},
+      {"--sweeps 0", "invalid --sweeps = 0"},
+      {"--max-time -1", "invalid --max-time = -1"},
+      {"--gap -0.1", "invalid --gap = -0.1"},
       {"--target-container 0.3,0.3", "--target-container"},
-      {"--target-container 0.5,0.4,0.4", "densify.target_container.length"},
+      {"--target-container 0.5,0.4,0.4", "invalid --target-container (length) = 0.5"},
       {"--progress loud", "--progress"},
   };
   for (const auto& bad : cases) {

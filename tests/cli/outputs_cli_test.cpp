@@ -179,7 +179,8 @@ TEST(OutputsCli, FailedOutputExportLeavesNoNativeFile) {
   const auto proc =
       aggpack("pack " + kFixtures + "pack_output_proc.toml --progress none -o " + native);
   EXPECT_EQ(proc.exit_code, 3);
-  EXPECT_NE(proc.output.find("aggpack: error: cannot write /proc/x.stl: cannot create a file in "
+  EXPECT_NE(proc.output.find("aggpack: error: output.stl: cannot write /proc/x.stl: cannot create "
+                             "a file in "
                              "folder /proc"),
             std::string::npos)
       << proc.output;

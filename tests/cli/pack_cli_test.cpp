@@ -146,7 +146,7 @@ TEST_F(PackCliTest, BadInputFailsCleanlyWithOneLine) {
       {"pack -o no/such/folder/run.h5", 3, "folder no/such/folder does not exist"},
       {"pack --compression 12", 2, "--compression"},
       {"pack --progress sometimes", 2, "--progress"},
-      {"pack --threads=-3", 2, "invalid packer.threads = -3"},
+      {"pack --threads=-3", 2, "invalid -j/--threads = -3 (allowed: [0, 4096])"},
       {"info missing.h5", 3, "cannot read missing.h5: no such file"},
       {"info notes.h5", 2, "notes.h5: not an HDF5 file"},
   };

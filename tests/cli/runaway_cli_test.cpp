@@ -1,5 +1,6 @@
 // Runaway jobs are refused before any work (issue 12): `pack` configs whose size list the
-// container cannot hold or the memory cannot take, and `shapes -n` streams its rows.
+// container cannot hold or the memory cannot take, or whose shape library is far larger than the
+// target needs; a heavy run that passes says so before it starts; `shapes -n` streams its rows.
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -65,6 +66,63 @@ TEST_F(RunawayCliTest, SizeListBeyondTheMemoryLimitIsRefusedUpFront) {
                          "AGGPACK_MEMORY_LIMIT=lots");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("AGGPACK_MEMORY_LIMIT = lots"), std::string::npos) << bad.err;
+}
+
+// Valid but heavy (issue: "Found on 2026-12-03"): a shape library far above what the target
+// needs is refused with the estimate, before any shape is grown.
+TEST_F(RunawayCliTest, ShapeLibraryFarAboveTheTargetIsRefused) {
+  const CliRun pack = run("pack '" + test::source_dir() +
+                          "/examples/concrete-fuller.toml' --set packer.shape_library=1000000 "
+                          "--set packer.target_fraction=0.1 -o x.h5");
+  EXPECT_EQ(pack.exit_code, 2) << pack.err;
+  EXPECT_EQ(pack.err.rfind("aggpack: error: limit exceeded for packer.shape_library = 1000000 "
+                           "(allowed: at most ",
+                           0),
+            0U)
+      << pack.err;
+  EXPECT_NE(pack.err.find(" particles this target needs, at least 1000): every library shape is "
+                          "grown before placement, so the run would need ~"),
+            std::string::npos)
+      << pack.err;
+  EXPECT_EQ(std::count(pack.err.begin(), pack.err.end(), '\n'), 1) << pack.err;
+  EXPECT_TRUE(fs::is_empty(folder_));
+}
+
+// A valid run that will take minutes and gigabytes says so in one line before it starts, even
+// with --progress none; stopped (SIGTERM: a background job of a shell ignores SIGINT) once the
+// line is there, it leaves nothing.
+TEST_F(RunawayCliTest, HeavyRunIsAnnouncedBeforeItStarts) {
+  const std::string err = folder_.string() + ".heavy.err";
+  const std::string command =
+      "cd '" + folder_.string() + "' && ('" + test::aggpack_binary() + "' pack '" +
+      test::source_dir() +
+      "/examples/triaxial-cylinder.toml' --set container.radius=1.0 --progress none -o t.h5 "
+      ">/dev/null 2>'" +
+      err + "' & pid=$!; for i in $(seq 1200); do grep -q 'large run' '" + err +
+      "' && break; sleep 0.1; done; kill -TERM $pid; wait $pid)";
+  const int status = std::system(command.c_str());
+  EXPECT_NE(status, -1);
+  const std::string text = test::file_text(err);
+  std::filesystem::remove(err);
+  // The first line: estimated particles (~10^6), memory (GB) and time.
+  EXPECT_EQ(text.rfind("aggpack: a large run: ~", 0), 0U) << text;
+  const std::string first = text.substr(0, text.find('\n'));
+  EXPECT_NE(first.find(" particles, ~"), std::string::npos) << first;
+  EXPECT_NE(first.find(" GB of memory, ~"), std::string::npos) << first;
+  EXPECT_NE(first.find("(rough estimate; Ctrl-C stops it)"), std::string::npos) << first;
+  const double particles = std::stod(first.substr(std::string("aggpack: a large run: ~").size()));
+  EXPECT_GT(particles, 3e5) << first;
+  EXPECT_LT(particles, 3e6) << first;
+  EXPECT_TRUE(fs::is_empty(folder_)) << "no output or temporary file after Ctrl-C";
+}
+
+// A small run says nothing more than before.
+TEST_F(RunawayCliTest, SmallRunHasNoHeadsUp) {
+  const CliRun pack =
+      run("pack --progress none -o small.h5 --set container.length=0.6 --set "
+          "container.width=0.4 --set container.depth=0.4");
+  EXPECT_EQ(pack.exit_code, 0) << pack.err;
+  EXPECT_EQ(pack.err, "");
 }
 
 TEST_F(RunawayCliTest, ShapesStreamsItsRowsAcrossChunks) {

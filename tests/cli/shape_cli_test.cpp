@@ -198,10 +198,11 @@ TEST_F(ShapeCliTest, BadInputFailsWithOneLineAndNoFile) {
       {"-L -0.05", {"--edge-length", "-0.05", "> 0"}},
       {"--edge-length nan", {"--edge-length", "nan", "> 0"}},
       {"-L inf", {"--edge-length", "inf", "> 0"}},
-      {"-L 1e-5", {"edge_length", "1e-05", "max_vertices is 20000"}},
-      {"-L 0.01 --max-vertices 100", {"edge_length", "0.01", "max_vertices is 100"}},
-      {"--max-vertices 5", {"max_vertices", "5", "[6, 1000000]"}},
-      {"--max-vertices 2000000", {"max_vertices", "2000000", "[6, 1000000]"}},
+      {"-L 1e-5", {"limit exceeded for --edge-length", "1e-05", "max_vertices is 20000"}},
+      {"-L 0.01 --max-vertices 100",
+       {"limit exceeded for --edge-length", "0.01", "max_vertices is 100"}},
+      {"--max-vertices 5", {"invalid --max-vertices", "5", "[6, 1000000]"}},
+      {"--max-vertices 2000000", {"invalid --max-vertices", "2000000", "[6, 1000000]"}},
       {"--seed -1", {"--seed", "-1", ">= 0"}},
       {"--alpha abc", {"--alpha", "abc"}},
       {"--bogus 3", {"--bogus"}},
@@ -272,7 +273,7 @@ TEST_F(ShapeCliTest, VertexCapIsCheckedUpFront) {
   const std::string flags = "shapes -n 200 --alpha 1 -r 0.1 -L 0.02 --max-vertices ";
   const auto refused = run(flags + std::to_string(cap - 1) + " -o capped.csv");
   EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_EQ(refused.err.rfind("aggpack: error: limit exceeded for edge_length = 0.02", 0), 0U)
+  EXPECT_EQ(refused.err.rfind("aggpack: error: limit exceeded for --edge-length = 0.02", 0), 0U)
       << refused.err;
   EXPECT_EQ(line_count(refused.err), 1U);
   EXPECT_EQ(entry_count(), 0U);

@@ -8,7 +8,10 @@
   error     a field's error in the panel: red text in the panel's area
   deck      the Export dialog with a solver deck's fields, one out of range: a dark modal with
             the bad field's red frame and the red error text under the fields
-Usage: check_ui.py WHAT FILE WIDTH HEIGHT"""
+  cjk       the window in Chinese (FILE) against the same run in English (ENGLISH): the status
+            bar's first line of text is drawn with CJK glyphs, whose strokes fill their columns
+            far more than Latin letters do (a missing glyph is a sparse '?')
+Usage: check_ui.py WHAT FILE WIDTH HEIGHT [ENGLISH]"""
 import os
 import sys
 
@@ -25,6 +28,31 @@ def count(pixel, xs, ys, test):
 
 def is_dark(c):
     return sum(c) < 200
+
+
+def first_line_ink(path):
+    """The status bar's first line of text: (inked columns, mean ink per inked column, columns
+    with 6 or more inked pixels)."""
+    width, height, pixel = read_png(path)
+    y = height - 1
+    while sum(pixel(700, y)) < 200:  # up to the view's light background
+        y -= 1
+    top = y + 1
+
+    def ink(c):
+        return sum(c) > 240
+    rows = [sum(1 for x in range(0, 560) if ink(pixel(x, y))) for y in range(top, height)]
+    k = 0
+    while k < len(rows) and rows[k] == 0:
+        k += 1
+    start = k
+    while k < len(rows) and rows[k] > 0:
+        k += 1
+    line = range(top + start, top + k)
+    columns = [sum(1 for y in line if ink(pixel(x, y))) for x in range(0, 560)]
+    inked = [c for c in columns if c > 0]
+    assert len(inked) > 100, f"{path}: no status text ({len(inked)} inked columns)"
+    return len(inked), sum(inked) / len(inked), sum(1 for c in inked if c >= 6)
 
 
 def main():
@@ -53,6 +81,13 @@ def main():
                            ("z blue", lambda c: c[2] > 150 and c[0] < 90 and c[1] < 120)):
             found = count(pixel, xs, ys, test)
             assert found > 10, f"axes triad: no {name} stroke ({found} pixels)"
+    elif what == "cjk":
+        zh_columns, zh_density, zh_full = first_line_ink(path)
+        en_columns, en_density, en_full = first_line_ink(sys.argv[5])
+        print(f"status line: Chinese {zh_columns} columns, {zh_density:.2f} ink/column, "
+              f"{zh_full} full; English {en_columns}, {en_density:.2f}, {en_full}")
+        assert zh_density > 1.45 * en_density, "the Chinese status line is not denser (CJK glyphs?)"
+        assert zh_full > 2 * en_full, "too few dense columns: CJK glyphs not drawn"
     elif what == "stale":
         # The modal dialog in the middle of the window: dark, with amber warning text.
         xs = range(width // 2 - 280, width // 2 + 280, 2)

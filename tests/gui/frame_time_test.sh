@@ -7,6 +7,9 @@
 # figure is in bench/RESULTS.md.
 # Usage: frame_time_test.sh AGGPACK_GUI OUTPUT_DIR [BOUND_MS]
 set -euo pipefail
+# The GUI in English (the checks read its English words; ui_test.sh runs it in Chinese too).
+export LANG=C.UTF-8
+unset LC_ALL LC_MESSAGES
 gui="$1"
 out="$2"
 bound="${3:-1000}"

@@ -6,6 +6,9 @@
 # Pack, and the Cancel button (clicked with xdotool) stops its densifier.
 # Usage: smoke_test.sh AGGPACK_GUI OUTPUT_DIR [AGGPACK_CLI]
 set -euo pipefail
+# The GUI in English (the checks read its English words; ui_test.sh runs it in Chinese too).
+export LANG=C.UTF-8
+unset LC_ALL LC_MESSAGES
 gui="$1"
 out="$2"
 cli="${3:-}"  # the aggpack CLI, for the Open check

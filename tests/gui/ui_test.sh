@@ -11,9 +11,16 @@
 #      view moves (--benchmark-frames turns it as a drag does);
 #   5. the Export dialog's solver deck (CalculiX, picked in the format list with xdotool) and a
 #      friction typed out of range: the field is marked and the library's rule shown beneath.
+#   6. Chinese: started with LANG=zh_CN.UTF-8 the window speaks Chinese (the status line's words,
+#      CJK glyphs drawn: denser text than the English run's); with no Chinese font it falls
+#      back to English with a one-line note; View > Language (clicked with xdotool) switches and
+#      is remembered by the next start.
 # Settings go to a folder of the test's own (--settings-dir), so runs do not share them.
 # Usage: ui_test.sh AGGPACK_GUI OUTPUT_DIR
 set -euo pipefail
+# English unless a step asks for Chinese (the tests read the English words).
+export LANG=C.UTF-8
+unset LC_ALL LC_MESSAGES
 gui="$1"
 out="$2"
 here="$(cd "$(dirname "$0")" && pwd)"
@@ -105,4 +112,37 @@ xvfb-run -a -s "-screen 0 1200x760x24" bash -c '
   wait $pid' _ "$gui" "$out" "${small[@]}" || { cat "$out/deck.txt"; exit 1; }
 cat "$out/deck.txt"
 python3 "$here/check_ui.py" deck "$out/deck.png" 1200 760
+
+# 6. Chinese from the locale: the status line in the catalogue's words and CJK glyphs on screen.
+LANG=zh_CN.UTF-8 run zh "${small[@]}" --pack --screenshot "$out/zh.png"
+grep -q "^status: 颗粒生成与投放完成！共 45 个颗粒，固体体积分数" "$out/zh.txt"
+grep -q "^已投放 45 / 45 个颗粒" "$out/zh.txt" ||
+  { echo "the packer's report line is not in Chinese"; exit 1; }
+run en "${small[@]}" --pack --screenshot "$out/en.png"
+grep -q "^status: Packing finished! 45 particles" "$out/en.txt"
+python3 "$here/check_ui.py" cjk "$out/zh.png" 1200 760 "$out/en.png"
+# No Chinese font: English, and one line saying why.
+AGGPACK_GUI_FONT=none LANG=zh_CN.UTF-8 run zh-nofont "${small[@]}" --pack
+grep -q "^aggpack-gui: No Chinese font is installed (apt-get install fonts-noto-cjk)" \
+  "$out/zh-nofont.txt"
+grep -q "^status: Packing finished! 45 particles" "$out/zh-nofont.txt"
+# View > Language > 中文 (English window, View menu at x 113, its Language item at y 81, the
+# submenu's Chinese at 292,102); the choice is kept and wins over the locale at the next start.
+rm -rf "$out/language"
+xvfb-run -a -s "-screen 0 1200x760x24" bash -c '
+  "$1" --settings-dir "$2/language" --size 1200x760 > "$2/language.txt" 2>&1 &
+  pid=$!
+  sleep 4
+  xdotool mousemove 113 9 click 1; sleep 1
+  xdotool mousemove 140 81; sleep 1
+  xdotool mousemove 292 102 click 1; sleep 1
+  xdotool key ctrl+q
+  wait $pid' _ "$gui" "$out" || { cat "$out/language.txt"; exit 1; }
+grep -q "^language=zh_CN$" "$out/language/settings.ini" ||
+  { echo "View > Language was not remembered"; cat "$out/language/settings.ini"; exit 1; }
+xvfb-run -a -s "-screen 0 1280x800x24" "$gui" --settings-dir "$out/language" --quit \
+  --size 1200x760 "${small[@]}" --pack > "$out/language-again.txt" 2>&1 ||
+  { cat "$out/language-again.txt"; exit 1; }
+grep -q "^status: 颗粒生成与投放完成" "$out/language-again.txt" ||
+  { echo "the kept language was not used"; cat "$out/language-again.txt"; exit 1; }
 echo "ui_test: all checks passed"

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstdint>
+#include <vector>
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
@@ -103,6 +105,32 @@ TEST(RandomPacker, ShapeLibraryReusesScaledShapes) {
     EXPECT_LT(particle.shape, 10u);
     EXPECT_DOUBLE_EQ(particle.scale, particle.control_radius);
   }
+  expect_valid_packing(result.packing, 0.0);
+  const PackingStatistics stats = compute_statistics(result.packing);
+  EXPECT_NEAR(stats.solid_volume, result.report.solid_volume, 1e-12 * stats.solid_volume);
+}
+
+// The packing keeps only the library shapes its particles use (in order of first use), so a
+// large library costs nothing in the file: every stored shape is used, and the used shapes are
+// the library's (same volumes as a run that uses them all).
+TEST(RandomPacker, ShapeLibraryStoresOnlyUsedShapes) {
+  RandomPackOptions options = small_fuller(3);
+  options.target = PackTarget::kCount;
+  options.count = 20;
+  options.shape.library_size = 1000;
+  const PackResult result = pack_random(options);
+  ASSERT_EQ(result.packing.particles.size(), 20U) << result.report.summary();
+  EXPECT_LE(result.packing.shapes.size(), 20U);
+  std::vector<bool> is_used(result.packing.shapes.size(), false);
+  std::uint32_t next = 0;
+  for (const auto& particle : result.packing.particles) {
+    ASSERT_LT(particle.shape, result.packing.shapes.size());
+    if (!is_used[particle.shape]) {
+      EXPECT_EQ(particle.shape, next++) << "shapes are stored in order of first use";
+      is_used[particle.shape] = true;
+    }
+  }
+  EXPECT_EQ(next, result.packing.shapes.size()) << "every stored shape is used";
   expect_valid_packing(result.packing, 0.0);
   const PackingStatistics stats = compute_statistics(result.packing);
   EXPECT_NEAR(stats.solid_volume, result.report.solid_volume, 1e-12 * stats.solid_volume);

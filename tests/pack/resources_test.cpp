@@ -113,6 +113,43 @@ TEST(Resources, SizeListBeyondTheMemoryLimitIsRefused) {
   }
 }
 
+// A shape library grows every shape before placement: far more shapes than the target needs is
+// refused with the estimate (10 x the particles, at least 1000 shapes).
+TEST(Resources, LibraryFarAboveTheTargetIsRefused) {
+  RandomPackOptions options = count_target(100);
+  options.shape.edge_length = 0.0;
+  options.shape.library_size = 1000;  // the floor: accepted for any target
+  EXPECT_NO_THROW(validate(options));
+  options.shape.library_size = 1001;
+  const std::string message = limit_message(options);
+  EXPECT_EQ(message.rfind("limit exceeded for shape.library_size = 1001 (allowed: at most 1000 (10 "
+                          "x the ~100 particles this target needs, at least 1000)",
+                          0),
+            0U)
+      << message;
+  options = count_target(500);
+  options.shape.edge_length = 0.0;
+  options.shape.library_size = 5000;  // 10 x 500
+  EXPECT_NO_THROW(validate(options));
+  options.shape.library_size = 5001;
+  EXPECT_THROW(validate(options), LimitExceeded);
+}
+
+// The heads-up of a heavy run: one line above 10 s or 1 GB, nothing below both.
+TEST(Resources, HeavyRunNoteAboveTenSecondsOrOneGigabyte) {
+  RunEstimate estimate{.particles = 5000, .bytes = 5e8, .seconds = 3.0};
+  EXPECT_EQ(heavy_run_note(estimate), "");
+  estimate.bytes = 2.5e9;
+  EXPECT_EQ(heavy_run_note(estimate),
+            "a large run: ~5000 particles, ~2.5 GB of memory, ~3 s (rough estimate; Ctrl-C stops "
+            "it)");
+  estimate.bytes = 5e8;
+  estimate.seconds = 600.0;
+  EXPECT_EQ(heavy_run_note(estimate),
+            "a large run: ~5000 particles, ~500 MB of memory, ~10 min (rough estimate; Ctrl-C "
+            "stops it)");
+}
+
 TEST(Resources, LatticeBeyondTheMemoryLimitIsRefused) {
   LatticeOptions options;  // the paper's box
   options.radius = 0.003;  // ~3.9 x 10^7 sites

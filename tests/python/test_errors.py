@@ -77,9 +77,16 @@ def test_bad_export_keyword_and_word(small_packing, tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-def test_overwrite_false_refuses_an_existing_file(small_packing, tmp_path):
-    path = tmp_path / "run.h5"
-    path.write_text("keep me")
-    with pytest.raises(aggpack.IoError):
-        small_packing.write(str(path), overwrite=False)
-    assert path.read_text() == "keep me"
+def test_an_existing_file_is_refused_unless_forced(small_packing, tmp_path):
+    # As the CLI: an existing output is kept (IoError naming it) unless force=True replaces it.
+    for name, write in [("run.h5", lambda p, **k: small_packing.write(p, **k)),
+                        ("run.vtu", lambda p, **k: small_packing.export(p, **k)),
+                        ("run.stl", lambda p, **k: small_packing.export(p, format="stl", **k))]:
+        path = tmp_path / name
+        path.write_text("keep me")
+        with pytest.raises(aggpack.IoError, match=r"exists \(pass force=True"):
+            write(str(path))
+        assert path.read_text() == "keep me"
+        write(str(path), force=True)
+        assert path.read_bytes() != b"keep me"
+        assert path.stat().st_size > 100

@@ -3,6 +3,7 @@ import filecmp
 import os
 
 import numpy as np
+import pytest
 
 import aggpack
 
@@ -141,3 +142,40 @@ def test_dense_kind_matches_the_cli(tmp_path, cli):
     assert "densify" in stages
     packing.write(str(tmp_path / "python.h5"))
     assert filecmp.cmp(from_cli, tmp_path / "python.h5", shallow=False)
+
+
+def test_pack_takes_a_dict_or_a_toml_path_as_the_cli_does(tmp_path, cli):
+    keys = {
+        "container": {"kind": "box", "length": 0.04, "width": 0.04, "depth": 0.04},
+        "grading": {"kind": "fuller", "size_min": 0.004, "size_max": 0.008, "exponent": 0.5},
+        "packer": {"kind": "random", "seed": 3, "target_fraction": 0.15},
+    }
+    toml = tmp_path / "run.toml"
+    toml.write_text(aggpack._dict_to_toml(keys))
+    from_dict = aggpack.pack(keys)
+    from_path = aggpack.pack(toml)
+    from_str = aggpack.pack(str(toml))
+    for packing, name in ((from_dict, "dict"), (from_path, "path"), (from_str, "str")):
+        packing.write(str(tmp_path / f"{name}.h5"))
+    cli("pack", str(toml), "-o", str(tmp_path / "cli.h5"))
+    expected = (tmp_path / "cli.h5").read_bytes()
+    for name in ("dict", "path", "str"):
+        assert (tmp_path / f"{name}.h5").read_bytes() == expected, name
+
+
+def test_pack_refuses_other_config_types_naming_the_argument():
+    with pytest.raises(aggpack.InvalidInput, match="config"):
+        aggpack.pack(42)
+    with pytest.raises(aggpack.IoError, match="no-such.toml"):
+        aggpack.pack("no-such.toml")
+
+
+def test_module_help_lists_every_public_function():
+    functions = [
+        name
+        for name in dir(aggpack)
+        if not name.startswith("_") and type(getattr(aggpack, name)).__name__ == "builtin_function_or_method"
+    ]
+    assert "pack" in functions and "read" in functions
+    missing = [name for name in functions if f"{name}(" not in aggpack.__doc__]
+    assert not missing, f"help(aggpack) does not list {missing}"

@@ -15,6 +15,14 @@ def test_render_image_and_png(small_packing, tmp_path):
     assert (tmp_path / "run.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     # The centre of the iso view holds particles, unlike the corner (background).
     assert not np.array_equal(image[60, 100], image[0, 0])
+    # A second render to the same path is refused, as `aggpack render` without -f; force=True
+    # replaces the file.
+    (tmp_path / "run.png").write_bytes(b"keep me")
+    with pytest.raises(aggpack.IoError, match="force=True"):
+        small_packing.render(str(tmp_path / "run.png"), width=200, height=120)
+    assert (tmp_path / "run.png").read_bytes() == b"keep me"
+    small_packing.render(str(tmp_path / "run.png"), width=200, height=120, force=True)
+    assert (tmp_path / "run.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
 @pytest.mark.skipif(not aggpack.has_render, reason="built without rendering")

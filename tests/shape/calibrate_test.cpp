@@ -110,10 +110,15 @@ TEST(Calibrate, UnreachableTargetNamesTheRangeAndClosestInputs) {
   options.max_evaluations = 40;
   try {
     calibrate(options);
-    FAIL() << "expected InvalidInput";
-  } catch (const InvalidInput& error) {
+    FAIL() << "expected CalibrationUnreached";
+  } catch (const CalibrationUnreached& error) {
     const std::string message = error.what();
-    EXPECT_EQ(error.field(), "enclosed_volume_ratio");
+    EXPECT_EQ(error.field(), "volume_ratio");
+    // The target lies below every reached mean: the closest inputs give the span's low end.
+    EXPECT_GT(error.lowest(), 0.01);
+    EXPECT_LE(error.lowest(), error.highest());
+    EXPECT_NEAR(error.closest(), error.lowest(), 0.1 * error.lowest());
+    EXPECT_EQ(error.closest_inputs().rfind("alpha ", 0), 0U) << error.closest_inputs();
     EXPECT_NE(message.find("span ["), std::string::npos) << message;
     EXPECT_NE(message.find("closest inputs (alpha"), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos);
@@ -158,7 +163,7 @@ TEST(Calibrate, InvalidOptionsNameTheField) {
   EXPECT_EQ(field_of(small_options({ratio})), "");
   EXPECT_EQ(field_of(small_options({})), "goals");
   EXPECT_EQ(field_of(small_options({ratio, sphericity, elongation, flatness})), "goals");
-  EXPECT_EQ(field_of(small_options({ratio, enclosed})), "enclosed_volume_ratio");
+  EXPECT_EQ(field_of(small_options({ratio, enclosed})), "volume_ratio");
   EXPECT_EQ(field_of(small_options({sphericity, sphericity})), "sphericity");
   EXPECT_EQ(field_of(small_options({{.target = CalibrationTarget::kFlatness, .value = 1.5}})),
             "flatness");

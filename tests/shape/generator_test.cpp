@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstring>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -369,6 +370,39 @@ TEST(GenerateParticle, IndependentOfThreadAndOrder) {
   a.join();
   b.join();
   EXPECT_EQ(serial, threaded);
+}
+
+// Each thread keeps its growing mesh from one particle to the next: a growth aborted midway (here
+// by a throwing GrowthLimit) leaves nothing behind, and a particle grown inside another's
+// GrowthLimit gets a mesh of its own, so neither changes a bit of the particles around it.
+TEST(GrowAggregate, KeptMeshLeavesNoTrace) {
+  for (const Growth growth : {Growth::kHull, Growth::kMidpoint}) {
+    SCOPED_TRACE(growth_name(growth));
+    const GrowthParams params{
+        .alpha = 0.4, .radius = 0.1, .edge_length = 0.03, .form = {.growth = growth}};
+    const auto grow = [&params](const GrowthLimit& limit) {
+      Rng rng(5, 3);
+      return hash_body(0xcbf29ce484222325ULL, grow_aggregate(params, rng, limit));
+    };
+    const std::uint64_t fresh = grow({});
+    int calls = 0;
+    const GrowthLimit abort_midway = [&calls](const Vec3&, double, double s_hi) {
+      if (++calls == 20) throw std::runtime_error("aborted");
+      return s_hi;
+    };
+    EXPECT_THROW(grow(abort_midway), std::runtime_error);
+    EXPECT_EQ(calls, 20);
+    EXPECT_EQ(grow({}), fresh);
+    std::size_t inner_vertices = 0;
+    const GrowthLimit nested = [&](const Vec3&, double, double s_hi) {
+      Rng inner(9, 9);
+      inner_vertices = grow_aggregate(params, inner).vertex_count();
+      return s_hi;  // no clamp: the outer particle is the unlimited one
+    };
+    EXPECT_EQ(grow(nested), fresh);
+    EXPECT_GT(inner_vertices, 6U);
+    EXPECT_EQ(grow({}), fresh);
+  }
 }
 
 // The hash of particles 0..count-1 (radius 0.05-0.1 m, seed 1) for alpha 0, 0.5 and 1 in turn:

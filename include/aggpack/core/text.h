@@ -21,4 +21,9 @@ std::string clipped(std::string_view text, std::size_t max_bytes = 200);
 /// `text` cut like clipped() but not escaped (for quoted(), which escapes).
 std::string shortened(std::string_view text, std::size_t max_bytes = 200);
 
+/// A wall-clock time in seconds to 2 significant digits, no exponent: "0.0012", "0.040", "3.1",
+/// "12", "340" (whole seconds from 100 on; "0" below 0.00005, "-" if negative or not finite).
+/// Every timing aggpack prints goes through it.
+std::string format_seconds(double seconds);
+
 }  // namespace aggpack

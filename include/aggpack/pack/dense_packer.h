@@ -15,10 +15,11 @@
 //  - kFixed: between sweeps the container is squeezed toward the target container, rescaling
 //    particle POSITIONS only (shapes are never deformed), HOOMD-blue QuickCompress style: the
 //    squeeze itself is not checked; the particles it made overlap (exact test) are flagged and
-//    repaired by sweeps in which a flagged particle is pushed away from its partners and may
-//    not gain an overlap partner nor bring an existing partner's centre closer, and a clean
-//    particle may overlap nothing. Squeezes continue while at most 5 % of the particles are
-//    flagged (their size adapts to flag 3-12 % each); after 16 squeezes no more until no
+//    repaired by sweeps in which a flagged particle is pushed away from its partners; a push
+//    may not raise its number of partners (it may trade a resolved partner for a new one, which
+//    is then flagged: overlap transfer) nor bring a kept partner's centre closer, and a clean
+//    particle may overlap nothing. Squeezes continue while at most 15 % of the particles are
+//    flagged (their size adapts to flag 10-25 % each); after 64 squeezes no more until no
 //    particle is flagged: that overlap-free state is a checkpoint. A repair that stalls undoes
 //    part of the squeezes, finally all. Only checkpoints are ever returned.
 //    Stops once the target container is reached (and the target fraction, if any).
@@ -72,8 +73,8 @@ struct DensifyOptions {
   /// kFixed: squeezes happen only on sweeps whose number is a multiple of this, [1, 1000].
   std::uint32_t compress_interval = 4;
   /// kFixed: largest relative shrink of any container extent in one squeeze, (0, 0.1]; the
-  /// step starts at a quarter of it and adapts (x1.2 when a squeeze flags < 3 % of the
-  /// particles, x0.7 above 12 % and for every stalled repair).
+  /// step starts at a quarter of it and adapts (x1.2 when a squeeze flags < 10 % of the
+  /// particles, halved and retried above 25 %, x0.7 for every stalled repair).
   double max_compression = 0.01;
   /// kBed: initial temperature: a particle of mean volume rising by one mean bounding radius is
   /// accepted with probability exp(-1 / T), >= 0 (0 = never rise).

@@ -43,6 +43,10 @@ struct RunEstimate {
   double capacity = 0.0;            ///< particles the container holds at kMaxSolidFraction
   double bytes_per_particle = 0.0;  ///< its shape (unless shared) plus the packer's bookkeeping
   double bytes = 0.0;               ///< peak memory of the run
+  /// Rough wall time (s) on an otherwise idle machine: the sample's CPU time per shape for every
+  /// shape grown, on the allowed threads, plus a fixed placement cost per particle. Measured, so
+  /// not reproducible.
+  double seconds = 0.0;
 };
 
 /// Estimates for options that passed the packer's own range checks. The random packer's sample:
@@ -53,10 +57,20 @@ RunEstimate estimate_run(const LatticeOptions& options, double sites);
 
 /// Throws LimitExceeded (field random.count or random.volume_fraction) when a count target's
 /// solid volume exceeds kMaxSolidFraction of the container, or when estimate_run().bytes exceeds
-/// memory_limit(). Called by validate(RandomPackOptions).
+/// memory_limit(); (field shape.library_size) when a shape library holds more than 10 x the
+/// estimated particles (and more than 1000 shapes). Called by validate(RandomPackOptions).
 void check_resources(const RandomPackOptions& options);
 /// Throws LimitExceeded (field lattice.radius) when the shapes of `sites` lattice sites exceed
 /// memory_limit(). Called by validate(LatticeOptions).
 void check_resources(const LatticeOptions& options, double sites);
+
+/// A run is heavy above either of these: it is announced before it starts.
+inline constexpr double kHeavySeconds = 10.0;
+inline constexpr double kHeavyBytes = 1e9;
+
+/// One line announcing a heavy run ("a large run: ~600000 particles, ~4.8 GB of memory, ~3 min
+/// (rough estimate; Ctrl-C stops it)"), or "" when the estimate is below kHeavySeconds and
+/// kHeavyBytes.
+std::string heavy_run_note(const RunEstimate& estimate);
 
 }  // namespace aggpack

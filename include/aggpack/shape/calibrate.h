@@ -15,8 +15,10 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "aggpack/core/error.h"
 #include "aggpack/shape/descriptors.h"
 #include "aggpack/shape/generator.h"
 
@@ -39,8 +41,9 @@ constexpr CalibrationTarget kCalibrationTargets[] = {
     CalibrationTarget::kSphericity,  CalibrationTarget::kElongation,
     CalibrationTarget::kFlatness,    CalibrationTarget::kEnclosedVolumeRatio};
 
-/// "volume_ratio", "measured_alpha", "sphericity", "elongation", "flatness",
-/// "enclosed_volume_ratio".
+/// One name per quantity, as the other outputs use it: "control_volume_ratio" (V over the
+/// control sphere), "measured_alpha", "sphericity", "elongation", "flatness", "volume_ratio" (V
+/// over the smallest enclosing sphere: the `volume_ratio` column of `aggpack shapes`).
 const char* calibration_target_name(CalibrationTarget target);
 
 /// The target descriptor of a particle grown with control radius `control_radius` (m).
@@ -92,6 +95,33 @@ struct CalibrationOptions {
 
 /// Throws InvalidInput naming the field unless the options are usable.
 void validate(const CalibrationOptions& options);
+
+/// calibrate()'s refusal of a target the generator does not reach (field: the target's name):
+/// the span of means over every evaluated input and what the closest inputs achieve, for a
+/// front end that words it in the user's terms (the CLI gives the closest reachable --volume).
+class CalibrationUnreached : public InvalidInput {
+ public:
+  CalibrationUnreached(const std::string& field, const std::string& value,
+                       const std::string& allowed, double lowest, double highest, double closest,
+                       std::string closest_inputs)
+      : InvalidInput(field, value, allowed),
+        lowest_(lowest),
+        highest_(highest),
+        closest_(closest),
+        closest_inputs_(std::move(closest_inputs)) {}
+  /// Smallest and largest mean of the target over the evaluated inputs.
+  [[nodiscard]] double lowest() const { return lowest_; }
+  [[nodiscard]] double highest() const { return highest_; }
+  /// The mean the closest inputs give, and those inputs ("alpha 0, L/r 1.4, ...").
+  [[nodiscard]] double closest() const { return closest_; }
+  [[nodiscard]] const std::string& closest_inputs() const { return closest_inputs_; }
+
+ private:
+  double lowest_;
+  double highest_;
+  double closest_;
+  std::string closest_inputs_;
+};
 
 /// One evaluated set of inputs: the mean and spread of every target descriptor, in
 /// kCalibrationTargets order.
