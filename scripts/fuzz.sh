@@ -16,7 +16,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-90}
 shift || true
-targets=${AGGPACK_FUZZ_TARGETS:-native_reader config_reader repose_config}
+targets=${AGGPACK_FUZZ_TARGETS:-native_reader config_reader repose_config mesh_reader}
 build=build-fuzz
 CC=${CC_FUZZ:-clang-14} CXX=${CXX_FUZZ:-clang++-14} cmake -S . -B "$build" -G Ninja \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAGGPACK_BUILD_FUZZ=ON -DAGGPACK_BUILD_TESTS=OFF \
@@ -27,10 +27,12 @@ cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $targets)
 # max_len: the native seeds are up to ~24 KB; a config is a few hundred bytes. malloc_limit_mb:
 # reading a file of at most 64 KB must never need a 256 MB block (issue 12: memory within a
 # small multiple of the file size).
-declare -A max_len=([native_reader]=65536 [config_reader]=8192 [repose_config]=8192)
+declare -A max_len=([native_reader]=65536 [config_reader]=8192 [repose_config]=8192
+  [mesh_reader]=65536)
 declare -A seeds=([native_reader]="tests/io/fixtures/bad-inputs"
   [config_reader]="tests/fuzz/corpus/config_reader examples tests/io/fixtures/bad-inputs"
-  [repose_config]="tests/fuzz/corpus/repose_config examples")
+  [repose_config]="tests/fuzz/corpus/repose_config examples"
+  [mesh_reader]="tests/fuzz/corpus/mesh_reader")
 # Leaks inside Debian's HDF5 on corrupted headers are not ours: tests/fuzz/lsan-suppressions.txt.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/fuzz/lsan-suppressions.txt}
