@@ -149,7 +149,8 @@ TEST(AtomicFile, WritesNamesUpToNameMax) {
   EXPECT_EQ(read_text(scratch.file(name)), "again");
   const std::string too_long = std::string(256, 'n');
   EXPECT_EQ(error_of(scratch.file(too_long)),
-            "cannot write " + scratch.file(too_long) + ": file name too long");
+            "cannot write " + scratch.file(too_long) +
+                ": file name too long (a name of 256 bytes, at most 255)");
   EXPECT_EQ(scratch.entries().size(), 1U);
 }
 
