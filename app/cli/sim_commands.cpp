@@ -85,11 +85,19 @@ struct ReposeFlags {
 };
 
 SweepOptions resolve(const ReposeFlags& flags) {
-  std::vector<std::string> overrides = flags.overrides;
-  // The flags are --set overrides, so that their messages name the key.
-  if (flags.engine) overrides.push_back("physics.engine=" + *flags.engine);
-  if (flags.time_limit) overrides.push_back(fmt::format("yade.time_limit={}", *flags.time_limit));
-  SweepOptions options = load_sweep_config(flags.config_path, overrides);
+  SweepOptions options = load_sweep_config(flags.config_path, flags.overrides);
+  if (flags.engine) {
+    if (*flags.engine != "bullet" && *flags.engine != "yade") {
+      throw InvalidInput("--engine", clipped(*flags.engine, 40), "bullet or yade");
+    }
+    options.base.engine = repose_engine_from_string(*flags.engine);
+  }
+  if (flags.time_limit) {
+    if (!(*flags.time_limit >= 0.0 && *flags.time_limit <= 1e7)) {
+      throw InvalidInput("--time-limit", format_value(*flags.time_limit), "[0, 1e7] s");
+    }
+    options.base.yade.time_limit = *flags.time_limit;
+  }
   if (flags.friction) options.base.physics.friction = *flags.friction;
   if (flags.alpha) options.base.alpha = *flags.alpha;
   if (flags.seed) {
