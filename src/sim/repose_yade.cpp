@@ -97,6 +97,21 @@ class YadeProcess {
     int fds[2];
     if (::pipe(fds) != 0) throw IoError("cannot start yade: " + std::string(std::strerror(errno)));
     const std::string log = folder.file("yade.log");
+    // Everything the child needs is made before fork(): between fork and exec a threaded process
+    // (seeds run side by side) may only call async-signal-safe functions.
+    std::vector<std::string> environment;
+    for (char** entry = environ; *entry != nullptr; ++entry) {
+      if (std::strncmp(*entry, "OMP_NUM_THREADS=", 16) != 0) environment.emplace_back(*entry);
+    }
+    environment.emplace_back("OMP_NUM_THREADS=1");  // one core per run, like Bullet's runs
+    std::vector<char*> envp;
+    for (auto& entry : environment) envp.push_back(entry.data());
+    envp.push_back(nullptr);
+    std::string arg0 = program;
+    std::string arg1 = "-n";
+    std::string arg2 = "-x";
+    std::string arg3 = "repose.py";
+    char* const argv[] = {arg0.data(), arg1.data(), arg2.data(), arg3.data(), nullptr};
     pid_ = ::fork();
     if (pid_ < 0) {
       ::close(fds[0]);
@@ -111,9 +126,7 @@ class YadeProcess {
       const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       if (err >= 0) ::dup2(err, STDERR_FILENO);
       if (::chdir(folder.path().c_str()) != 0) ::_exit(126);
-      ::setenv("OMP_NUM_THREADS", "1", 1);
-      ::execl(program.c_str(), program.c_str(), "-n", "-x", "repose.py",
-              static_cast<char*>(nullptr));
+      ::execve(program.c_str(), argv, envp.data());
       ::_exit(127);
     }
     ::close(fds[1]);
