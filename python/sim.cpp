@@ -16,6 +16,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/pipeline/pipeline.h"
 #include "aggpack/sim/repose.h"
+#include "aggpack/sim/repose_yade.h"
 #include "aggpack/sim/settle.h"
 #include "aggpack/sim/sweep.h"
 #endif
@@ -145,7 +146,10 @@ overlapping_pairs, max_overlap m, escaped_particles, ...). Raises InvalidInput n
         {
           const py::gil_scoped_release release;
           with_sweep_key_names(
-              [&] { result = run_repose(options.base, repose_fill(options.base)); });
+              [&] {  // physics.engine = "yade" runs YADE (aggpack/sim/repose_yade.h)
+                result = run_repose_engine(options.base, repose_fill(options.base),
+                                           write_repose_yade_script);
+              });
         }
         py::dict d;
         d["angle_degrees"] = result->fit.angle_degrees;
@@ -189,7 +193,8 @@ float64 arrays), and the packings initial, settled, final. Raises ConfigError na
         std::vector<SweepCase> cases;
         {
           const py::gil_scoped_release release;
-          with_sweep_key_names([&] { cases = run_sweep(options, repose_fill); });
+          with_sweep_key_names(
+              [&] { cases = run_sweep(options, repose_fill, {}, write_repose_yade_script); });
         }
         py::list rows;
         for (const SweepCase& c : cases) {

@@ -8,6 +8,8 @@
 #   CalculixDeck.CcxRunsTheTroughTestOnASmallPile: the CalculiX deck writer runs in
 #     GoldenCli/Case.Matches/export_decks (byte-compared deck).
 #   YadeDeck.YadeRunsTheExportedScript: the YADE writer, also in GoldenCli/.../export_decks.
+#   ReposeYadeCli.RunsTheSmallTroughEndToEnd: `repose --engine yade` (~20 s CPU of YADE); the
+#     script writer and the fill it is given run in ReposeYade.TheScriptHoldsBulletsFill.
 #   PaperPackingInCalculix.*: `aggpack pack` of the paper's case (PackCliTest.PapersCaseEndToEnd
 #     ThenInfo) and `export --format inp` with the fan (AbaqusExport.*, C3D4 and C3D10) and TetGen
 #     at the paper's scale (ExportTetGenCliTest.PaperPackingExportsAndReportsTheFallbacks).
@@ -15,6 +17,7 @@
 set_tests_properties(
   CalculixDeck.CcxRunsTheTroughTestOnASmallPile
   YadeDeck.YadeRunsTheExportedScript
+  ReposeYadeCli.RunsTheSmallTroughEndToEnd
   PaperPackingInCalculix.FanC3D4
   PaperPackingInCalculix.FanC3D10
   PaperPackingInCalculix.TetGenC3D4

@@ -27,6 +27,7 @@
 #include "aggpack/sim/distributed.h"
 #include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
+#include "aggpack/sim/repose_yade.h"
 #include "aggpack/sim/sweep.h"
 #include "commands.h"
 #include "mpi_world.h"
@@ -71,7 +72,9 @@ struct ReposeFlags {
   std::optional<double> friction;
   std::optional<double> alpha;
   std::optional<std::uint64_t> seed;
-  std::string seeds;  ///< an ensemble, "1-16" or "1,4,9" (overrides ensemble.seeds)
+  std::optional<std::string> engine;  ///< --engine, same as --set physics.engine
+  std::optional<double> time_limit;   ///< --time-limit, same as --set yade.time_limit
+  std::string seeds;                  ///< an ensemble, "1-16" or "1,4,9" (overrides ensemble.seeds)
   bool has_seeds = false;
   std::optional<std::string> worker;  ///< --case K
   std::optional<std::string> of;      ///< --of N
@@ -87,6 +90,18 @@ struct ReposeFlags {
 SweepOptions resolve(const ReposeFlags& flags) {
   check_output_folder_flag("-o/--output", flags.output);
   SweepOptions options = load_sweep_config(flags.config_path, flags.overrides);
+  if (flags.engine) {
+    if (*flags.engine != "bullet" && *flags.engine != "yade") {
+      throw InvalidInput("--engine", clipped(*flags.engine, 40), "bullet or yade");
+    }
+    options.base.engine = repose_engine_from_string(*flags.engine);
+  }
+  if (flags.time_limit) {
+    if (!(*flags.time_limit >= 0.0 && *flags.time_limit <= 1e7)) {
+      throw InvalidInput("--time-limit", format_value(*flags.time_limit), "[0, 1e7] s");
+    }
+    options.base.yade.time_limit = *flags.time_limit;
+  }
   if (flags.friction) options.base.physics.friction = *flags.friction;
   if (flags.alpha) options.base.alpha = *flags.alpha;
   if (flags.friction || flags.alpha) {
@@ -114,6 +129,13 @@ void add_config_options(CLI::App& command, ReposeFlags& flags) {
                      "sliding friction mu_s, same as --set physics.friction");
   command.add_option("--alpha", flags.alpha, "shape control alpha, same as --set particles.alpha");
   command.add_option("--seed", flags.seed, "master seed, same as --set particles.seed");
+  command.add_option("--engine", flags.engine,
+                     "physics engine: bullet (built in) or yade (Debian's yade as a subprocess, "
+                     "same fill, trough and measurement; far slower: README), same as --set "
+                     "physics.engine");
+  command.add_option("--time-limit", flags.time_limit,
+                     "yade: wall-clock seconds one run may take (0 = none), same as --set "
+                     "yade.time_limit");
   command.add_option("-o,--output", flags.output, "output folder (created if missing)")
       ->capture_default_str();
   command.add_option("--width", flags.image_width, "side-view PNG width in pixels, [64, 16384]")
@@ -156,6 +178,11 @@ void print_result(const ReposeResult& r) {
   fmt::print("particles            {} (mean measured alpha {:.3f}), solid {:.4g} m^3\n",
              r.particle_count, r.mean_measured_alpha, r.solid_volume);
   fmt::print("time step            {:.4g} s (d_min {:.4g} m)\n", r.time_step, r.smallest_size);
+  if (r.yade_iterations > 0) {
+    fmt::print(
+        "engine               yade: {} iterations, contact stiffness {:.3g} N/m^3, {} s CPU\n",
+        r.yade_iterations, r.yade_young, format_seconds(r.engine_cpu_seconds));
+  }
   fmt::print("stage 1 (settle)     {:.2f} s simulated, {}, pile height {:.3f} m, {} s wall\n",
              r.stage1_time, r.is_stage1_at_rest ? "at rest" : "NOT at rest (max_time)",
              r.stage1_height, format_seconds(r.stage1_seconds));
@@ -163,11 +190,15 @@ void print_result(const ReposeResult& r) {
       "stage 2 (baffle)     {:.2f} s simulated, baffle moved {:.3f} m ({}), {}, {} s wall\n",
       r.stage2_time, r.baffle_travel, r.is_baffle_removed ? "then removed" : "to the far wall",
       r.is_stage2_at_rest ? "stable" : "NOT stable (max_time)", format_seconds(r.stage2_seconds));
-  fmt::print(
-      "final pile           max overlap {:.3f}% of d_min, max contact penetration {:.3f}%, "
-      "{} particles outside\n",
-      100.0 * r.max_overlap_fraction, 100.0 * r.max_contact_penetration_fraction,
-      r.escaped_particles);
+  if (r.yade_iterations > 0) {
+    fmt::print("final pile           {} particles outside\n", r.escaped_particles);
+  } else {
+    fmt::print(
+        "final pile           max overlap {:.3f}% of d_min, max contact penetration {:.3f}%, "
+        "{} particles outside\n",
+        100.0 * r.max_overlap_fraction, 100.0 * r.max_contact_penetration_fraction,
+        r.escaped_particles);
+  }
   if (r.fit.is_valid) {
     fmt::print(
         "angle of repose      {:.2f} deg (R^2 {:.3f}, {} bins from x = {:.3f} to {:.3f} m, "
@@ -300,7 +331,7 @@ EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& o
                      s.is_valid ? fmt::format("seed {}: {:.2f} deg", s.seed, s.angle_degrees)
                                 : fmt::format("seed {}: failed", s.seed));
         },
-        &share);
+        &share, write_repose_yade_script);
   });
   bar.finish();
   created.keep();
@@ -330,6 +361,25 @@ void run_ensemble_command(const ReposeFlags& flags, const SweepOptions& options,
           write_ensemble_summary(flags.output, options.base, ensemble, flags.image_width);
         }
       });
+}
+
+// A YADE progress line: simulated time, the rate (simulated per wall-clock second) and a rough
+// ETA from an expected length of the run (the fill's fall and quiet time, half the baffle's
+// travel, the quiet time and the confirmation window), which the run may well exceed.
+void print_yade_progress(const YadeProgress& p, const ReposeOptions& o) {
+  const double g = std::max(1e-9, o.physics.gravity.norm());
+  const double earliest = std::sqrt(2.0 * o.fill_height / g) +
+                          2.0 * (o.rest.min_time + o.rest.quiet_time) +
+                          (o.trough_length - o.baffle_position) / o.baffle_speed * 0.5 +
+                          o.confirm_window * std::sqrt(2.0 * o.radius / g);
+  const double rate = p.wall_seconds > 0.0 ? p.total_time / p.wall_seconds : 0.0;
+  const std::string eta = rate > 0.0 && earliest > p.total_time
+                              ? fmt::format(", ETA ~{:.0f} s", (earliest - p.total_time) / rate)
+                              : std::string();
+  std::fprintf(stderr,
+               "yade stage %d  t = %7.3f s (total %.3f s)  kinetic energy %.3g J  %.3g "
+               "simulated s per s, %.0f s wall%s\n",
+               p.stage, p.time, p.total_time, p.energy, rate, p.wall_seconds, eta.c_str());
 }
 
 void run_repose_command(const ReposeFlags& flags) {
@@ -364,6 +414,14 @@ void run_repose_command(const ReposeFlags& flags) {
   int last_stage = 0;
   ReposeResult result;
   with_sweep_key_names([&] {
+    if (options.base.engine == ReposeEngine::kYade) {
+      result = run_repose_yade(options.base, repose_fill(options.base), write_repose_yade_script,
+                               [&](const YadeProgress& p) {
+                                 if (style != ProgressStyle::kNone)
+                                   print_yade_progress(p, options.base);
+                               });
+      return;
+    }
     result = run_repose(
         options.base, repose_fill(options.base),
         [&](int stage, double time, double energy, double threshold) {
@@ -449,7 +507,7 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
                      fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction,
                                  c.angle_degrees));
         },
-        &share);
+        &share, write_repose_yade_script);
   });
   bar.finish();
   created.keep();

@@ -172,6 +172,29 @@ std::vector<SweepKey> keys() {
        .binding = members<SweepOptions>(
            [](auto& o) -> auto& { return o.base.physics.solver_block_sweeps; }),
        .fields = {"solver_block_sweeps"}},
+      {.name = "physics.engine",
+       .type = ValueType::kWord,
+       .words = {"bullet", "yade"},
+       .doc = "physics engine: bullet (built in) or yade (Debian's yade as a subprocess: "
+              "polyhedra, volumetric contact law; far slower, see the [yade] keys)",
+       .binding = {.get = [](const SweepOptions& o) -> Value {
+                     return std::string(to_string(o.base.engine));
+                   },
+                   .set =
+                       [](SweepOptions& o, const Value& value) {
+                         o.base.engine = repose_engine_from_string(std::get<std::string>(value));
+                       }},
+       .fields = {"repose.engine"}},
+      number("yade.young", "N/m^3", closed(0, 1e15),
+             "YADE's contact stiffness (PolyhedraMat.young: force per overlap volume); 0 = "
+             "density g fill_height / (0.005 d), a static overlap of about 0.5 % of d",
+             [](auto& o) -> auto& { return o.base.yade.young; }, {"repose.yade_young"}),
+      number("yade.damping", "-", closed(0, 0.99),
+             "YADE's NewtonIntegrator (local, Cundall) damping",
+             [](auto& o) -> auto& { return o.base.yade.damping; }, {"repose.yade_damping"}),
+      number("yade.time_limit", "s", closed(0, 1e7),
+             "wall-clock seconds one YADE run may take, 0 = no limit",
+             [](auto& o) -> auto& { return o.base.yade.time_limit; }, {"repose.yade_time_limit"}),
       number("rest.kinetic_energy_ratio", "-", closed(1e-12, 1),
              "at rest when kinetic energy < ratio * M g d",
              [](auto& o) -> auto& { return o.base.rest.kinetic_energy_ratio; },
@@ -269,8 +292,8 @@ std::vector<SweepKey> ensemble_keys() {
 const Schema<SweepOptions>& sweep_schema() {
   static const Schema<SweepOptions> schema = [] {
     Schema<SweepOptions> s;
-    s.tables = {{.name = "trough"},  {.name = "particles"}, {.name = "physics"}, {.name = "rest"},
-                {.name = "measure"}, {.name = "sweep"},     {.name = "ensemble"}};
+    s.tables = {{.name = "trough"},  {.name = "particles"}, {.name = "physics"},  {.name = "rest"},
+                {.name = "measure"}, {.name = "sweep"},     {.name = "ensemble"}, {.name = "yade"}};
     s.keys = keys();
     for (auto& key : ensemble_keys()) s.keys.push_back(std::move(key));
     s.aliases = {{"min_time", "fall time from particles.fill_height"}};

@@ -4,6 +4,7 @@
 // the particles' mass and contact stiffness, and O.run for the whole test, then a one-line summary.
 
 #include "deck_common.h"
+#include "deck_yade_common.h"
 
 namespace aggpack::detail {
 
@@ -34,44 +35,21 @@ void write_deck_yade(const ExportModel& model, std::ostream& out) {
       "\nBAFFLE_SPEED = " + n(t.baffle_speed) + "\nTROUGH_END = " + n(t.upper.x()) +
       "\nTIME_STEP = " + n(time_step) + "  # 0: stiffness_time_step()\n\n" +
       "material.frictionAngle = math.atan(FRICTION)\n"
-      "particle_ids = [b.id for b in O.bodies]\n"
-      "walls = [\n"
-      "    utils.wall(" +
-      n(t.lower.z()) + ", axis=2, material=material),  # floor\n    utils.wall(" + n(t.lower.y()) +
-      ", axis=1, material=material),  # side wall y0\n    utils.wall(" + n(t.upper.y()) +
-      ", axis=1, material=material),  # side wall y1\n    utils.wall(" + n(t.lower.x()) +
-      ", axis=0, material=material),  # end wall x0\n    utils.wall(" + n(t.upper.x()) +
-      ", axis=0, material=material),  # end wall x1\n]\n" + "baffle = utils.wall(" + n(t.baffle) +
-      ", axis=0, material=material)\n"
-      "O.bodies.append(walls + [baffle])\n\n"
+      "particle_ids = [b.id for b in O.bodies]\n" +
+      yade_walls({.floor = t.lower.z(),
+                  .y0 = t.lower.y(),
+                  .y1 = t.upper.y(),
+                  .x0 = t.lower.x(),
+                  .x1 = t.upper.x(),
+                  .baffle = t.baffle},
+                 "material", [](double value) { return deck_number(value); }) +
       "def move_baffle():\n"
       "    # Still in SETTLE, toward +x in BAFFLE (until the trough end), still again in REST.\n"
       "    moving = SETTLE_TIME <= O.time < SETTLE_TIME + BAFFLE_TIME and "
       "baffle.state.pos[0] < TROUGH_END\n"
-      "    baffle.state.vel = Vector3(BAFFLE_SPEED if moving else 0.0, 0.0, 0.0)\n\n"
-      "O.engines = [\n"
-      "    ForceResetter(),\n"
-      "    InsertionSortCollider([Bo1_Polyhedra_Aabb(), Bo1_Wall_Aabb()]),\n"
-      "    InteractionLoop(\n"
-      "        [Ig2_Polyhedra_Polyhedra_PolyhedraGeom(), Ig2_Wall_Polyhedra_PolyhedraGeom()],\n"
-      "        [Ip2_PolyhedraMat_PolyhedraMat_PolyhedraPhys()],\n"
-      "        [Law2_PolyhedraGeom_PolyhedraPhys_Volumetric()],\n"
-      "    ),\n"
-      "    PyRunner(iterPeriod=1, command='move_baffle()'),\n"
-      "    NewtonIntegrator(damping=0.3, gravity=(0, 0, -GRAVITY)),\n"
-      "]\n"
-      "def stiffness_time_step():\n"
-      "    # YADE's PWaveTimeStep only knows spheres. The volumetric law pushes back with about\n"
-      "    # young x overlap volume, i.e. a stiffness young x pi r^2 against a particle of mass m\n"
-      "    # and equivalent radius r: a fifth of sqrt(m / stiffness), the smallest over "
-      "particles.\n"
-      "    step = float('inf')\n"
-      "    for i in particle_ids:\n"
-      "        b = O.bodies[i]\n"
-      "        r = (3.0 * b.state.mass / (4.0 * math.pi * material.density)) ** (1.0 / 3.0)\n"
-      "        step = min(step, 0.2 * math.sqrt(b.state.mass / (material.young * math.pi * r * "
-      "r)))\n"
-      "    return step\n\n"
+      "    baffle.state.vel = Vector3(BAFFLE_SPEED if moving else 0.0, 0.0, 0.0)\n\n" +
+      yade_engines("    PyRunner(iterPeriod=1, command='move_baffle()'),\n", "0.3") +
+      yade_time_step_function() +
       "O.dt = TIME_STEP if TIME_STEP > 0 else stiffness_time_step()\n\n"
       "def mean_height():\n"
       "    return sum(O.bodies[i].state.pos[2] for i in particle_ids) / max(1, "

@@ -168,7 +168,7 @@ EnsembleStatistics ensemble_statistics(const std::vector<double>& values, double
 
 EnsembleResult run_ensemble(const ReposeOptions& base, const std::vector<std::uint64_t>& seeds,
                             const ReposeFill& fill, const EnsembleSeedCallback& on_seed,
-                            const RunShare* share) {
+                            const RunShare* share, const YadeScriptWriter& yade_script) {
   if (seeds.empty()) throw InvalidInput("--seeds", "[]", "at least one seed");
   if (!fill) throw InvalidInput("ensemble fill", "none", "a function making each seed's fill");
   validate(base);
@@ -189,7 +189,7 @@ EnsembleResult run_ensemble(const ReposeOptions& base, const std::vector<std::ui
     ReposeResult result;
     bool has_result = false;
     try {
-      result = run_repose(options, fill(options));
+      result = run_repose_engine(options, fill(options), yade_script);
       has_result = true;
       summary.particle_count = result.particle_count;
       summary.is_at_rest = result.is_stage1_at_rest && result.is_stage2_at_rest;

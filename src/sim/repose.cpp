@@ -7,6 +7,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/rng.h"
+#include "aggpack/core/text.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/lattice_packer.h"
@@ -214,6 +215,16 @@ LatticeOptions repose_fill_options(const ReposeOptions& options) {
   return lattice;
 }
 
+std::string_view to_string(ReposeEngine engine) {
+  return engine == ReposeEngine::kYade ? "yade" : "bullet";
+}
+
+ReposeEngine repose_engine_from_string(std::string_view word) {
+  if (word == "bullet") return ReposeEngine::kBullet;
+  if (word == "yade") return ReposeEngine::kYade;
+  throw InvalidInput("repose.engine", clipped(std::string(word), 40), "bullet or yade");
+}
+
 void validate(const ReposeOptions& options) {
   require_positive("repose.trough_length", options.trough_length);
   require_positive("repose.trough_width", options.trough_width);
@@ -246,16 +257,16 @@ void validate(const ReposeOptions& options) {
   require_in_range("repose.follow_time", options.follow_time, 0.0, 1e3);
   validate(options.physics);
   validate(options.rest);
+  require_in_range("repose.yade_young", options.yade.young, 0.0, 1e15);
+  require_in_range("repose.yade_damping", options.yade.damping, 0.0, 0.99);
+  require_in_range("repose.yade_time_limit", options.yade.time_limit, 0.0, 1e7);
   // What the fill would reject (too large a radius, too many vertices), before any simulation.
   validate(repose_fill_options(options));
 }
 
-ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
-                        const ReposeProgress& progress) {
-  validate(options);
-  ReposeResult result;
-  const auto start = Clock::now();
+namespace detail {
 
+Packing prepare_repose(const ReposeOptions& options, PackResult fill, ReposeResult& result) {
   Packing packing = std::move(fill.packing);
   const BoxContainer* region = packing.container.get_if<BoxContainer>();
   if (region == nullptr || !(region->length <= options.baffle_position) ||
@@ -273,13 +284,44 @@ ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
   result.initial = packing;
   result.particle_count = packing.particles.size();
   result.solid_volume = fill.report.solid_volume;
-  {
-    double sum = 0.0;
-    for (const auto& particle : packing.particles) {
-      sum += describe(packing.shapes[particle.shape]).measured_alpha;
-    }
-    result.mean_measured_alpha = sum / static_cast<double>(packing.particles.size());
+  double sum = 0.0;
+  for (const auto& particle : packing.particles) {
+    sum += describe(packing.shapes[particle.shape]).measured_alpha;
   }
+  result.mean_measured_alpha = sum / static_cast<double>(packing.particles.size());
+  return packing;
+}
+
+void finish_repose(const ReposeOptions& options, ReposeResult& result) {
+  result.final.provenance.packer = result.initial.provenance.packer;
+  result.escaped_particles = 0;
+  const double tolerance = 0.01 * result.smallest_size;
+  for (std::size_t i = 0; i < result.final.particles.size(); ++i) {
+    const Aabb box = result.final.placed(i).bounds();
+    if (box.lower.x() < -tolerance || box.upper.x() > options.trough_length + tolerance ||
+        box.lower.y() < -tolerance || box.upper.y() > options.width() + tolerance ||
+        box.lower.z() < -tolerance) {
+      ++result.escaped_particles;
+    }
+  }
+  ReposeMeasurement measured = measure_repose(result.final, options);
+  result.profile = std::move(measured.profile);
+  result.fit = measured.fit;
+  result.sensitivity = fit_sensitivity(result.final, options, result.fit);
+}
+
+}  // namespace detail
+
+ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
+                        const ReposeProgress& progress) {
+  validate(options);
+  if (options.engine != ReposeEngine::kBullet) {
+    throw InvalidInput("repose.engine", std::string(to_string(options.engine)),
+                       "bullet (yade runs through run_repose_yade, aggpack/sim/repose_yade.h)");
+  }
+  ReposeResult result;
+  const auto start = Clock::now();
+  const Packing packing = detail::prepare_repose(options, std::move(fill), result);
 
   // Stage 1: fill and settle behind the baffle. Walls reach above the lattice while it falls.
   const double wall_height = std::max(options.trough_height, options.fill_height);
@@ -358,26 +400,12 @@ ReposeResult run_repose(const ReposeOptions& options, PackResult fill,
       result.confirmation);
   result.stage2_time = world.time() - stage2_begin;
   result.final = world.packing();
-  result.final.provenance.packer = packer + "+repose";
   const OverlapStatistics overlap = world.overlap_statistics();
   result.max_overlap_fraction = overlap.max_depth_fraction;
   result.max_contact_penetration_fraction =
       world.contact_statistics().max_contact_penetration / world.smallest_size();
 
-  for (std::size_t i = 0; i < result.final.particles.size(); ++i) {
-    const Aabb box = result.final.placed(i).bounds();
-    const double tolerance = 0.01 * result.smallest_size;
-    if (box.lower.x() < -tolerance || box.upper.x() > options.trough_length + tolerance ||
-        box.lower.y() < -tolerance || box.upper.y() > options.width() + tolerance ||
-        box.lower.z() < -tolerance) {
-      ++result.escaped_particles;
-    }
-  }
-
-  ReposeMeasurement measured = measure_repose(result.final, options);
-  result.profile = std::move(measured.profile);
-  result.fit = measured.fit;
-  result.sensitivity = fit_sensitivity(result.final, options, result.fit);
+  detail::finish_repose(options, result);
 
   // Diagnostic follow-up: the same world, follow_time longer.
   if (options.follow_time > 0.0) {

@@ -33,6 +33,7 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
                        const ReposeResult& result) {
   nlohmann::ordered_json json;
   json["aggpack_version"] = AGGPACK_VERSION;
+  json["engine"] = to_string(options.engine);
   json["options"] = {
       {"trough_length_m", options.trough_length},
       {"trough_width_m", options.width()},
@@ -66,6 +67,12 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
       {"fit_upper", options.fit_upper},
       {"fit_lower", options.fit_lower},
   };
+  if (options.engine == ReposeEngine::kYade) {
+    // Bullet's solver settings above do not apply; YADE's contact stiffness and damping do.
+    json["yade"] = {{"young_n_per_m3", result.yade_young},
+                    {"damping", options.yade.damping},
+                    {"iterations", result.yade_iterations}};
+  }
   json["particles"] = {
       {"count", result.particle_count},
       {"solid_volume_m3", result.solid_volume},
@@ -100,6 +107,11 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
       {"max_contact_penetration_fraction_of_d_min", result.max_contact_penetration_fraction},
       {"escaped_particles", result.escaped_particles},
   };
+  if (options.engine == ReposeEngine::kYade) {
+    // Measured in Bullet's world only.
+    json["final"]["max_overlap_fraction_of_d_min"] = nullptr;
+    json["final"]["max_contact_penetration_fraction_of_d_min"] = nullptr;
+  }
   const SlopeFit& fit = result.fit;
   json["fit"] = {
       {"valid", fit.is_valid},

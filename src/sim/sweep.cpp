@@ -23,12 +23,14 @@ void validate(const SweepOptions& options) {
 }
 
 std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& fill,
-                                 const SweepCaseCallback& on_case) {
-  return summarize_sweep(options, run_sweep_runs(options, fill, on_case));
+                                 const SweepCaseCallback& on_case,
+                                 const YadeScriptWriter& yade_script) {
+  return summarize_sweep(options, run_sweep_runs(options, fill, on_case, nullptr, yade_script));
 }
 
 std::vector<SweepCase> run_sweep_runs(const SweepOptions& options, const ReposeFill& fill,
-                                      const SweepCaseCallback& on_case, const RunShare* share) {
+                                      const SweepCaseCallback& on_case, const RunShare* share,
+                                      const YadeScriptWriter& yade_script) {
   validate(options);
   if (!fill) throw InvalidInput("sweep fill", "none", "a function making each case's fill");
   if (options.seeds.size() > kMaxEnsembleSeeds) {
@@ -56,7 +58,7 @@ std::vector<SweepCase> run_sweep_runs(const SweepOptions& options, const ReposeF
     repose.physics.friction = friction;
     if (options.is_wall_friction_coupled) repose.physics.wall_friction = friction;
     if (is_ensemble) repose.seed = options.seeds[index % seed_count];
-    const ReposeResult result = run_repose(repose, fill(repose));
+    const ReposeResult result = run_repose_engine(repose, fill(repose), yade_script);
     SweepCase& summary = runs[slot];
     summary.index = case_index;
     summary.alpha = alpha;

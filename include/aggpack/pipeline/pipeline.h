@@ -7,6 +7,7 @@
 // options structs with defaults and validate(), their words). Each kind's run function is one
 // PackerRun specialisation in src/pipeline/pipeline.cpp; a kind without one fails to compile.
 
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -89,6 +90,12 @@ PipelineResult densify_packing(Packing start, const DensifyOptions& options, std
 /// packed by pack(). What `aggpack repose|sweep` and the Python module's repose() and sweep()
 /// run the simulation on (a ReposeFill; called concurrently by a sweep).
 PackResult repose_fill(const ReposeOptions& options);
+
+/// The YADE script of a repose run on `initial` (engine yade): the io module's
+/// write_yade_repose_script (aggpack/io/yade_repose.h) with the options' trough, friction,
+/// gravity, YADE parameters and rest criteria. A YadeScriptWriter (aggpack/sim/repose_yade.h).
+void write_repose_yade_script(const Packing& initial, const ReposeOptions& options,
+                              std::ostream& out);
 #endif
 
 }  // namespace aggpack

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "aggpack/sim/repose.h"
+#include "aggpack/sim/repose_yade.h"
 
 namespace aggpack {
 
@@ -72,11 +73,13 @@ struct RunShare;  // aggpack/sim/distributed.h
 /// Runs `base` once per seed (base.seed replaced) on the fill `fill` makes (called concurrently),
 /// in parallel over seeds. A seed whose run throws an aggpack Error is recorded as failed with
 /// the message; the others go on. With `share` (worker K of N, distributed.h) only the seeds
-/// that worker owns run, and the result holds only them. \throw InvalidInput for no seeds or
+/// that worker owns run, and the result holds only them. Engine yade (base.engine) needs
+/// `yade_script` (aggpack/sim/repose_yade.h). \throw InvalidInput for no seeds or
 /// invalid options.
 EnsembleResult run_ensemble(const ReposeOptions& base, const std::vector<std::uint64_t>& seeds,
                             const ReposeFill& fill, const EnsembleSeedCallback& on_seed = {},
-                            const RunShare* share = nullptr);
+                            const RunShare* share = nullptr,
+                            const YadeScriptWriter& yade_script = {});
 
 /// The ensemble of finished seeds (in plan order): the statistics over the valid ones.
 EnsembleResult summarize_ensemble(std::vector<EnsembleSeed> seeds);

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aggpack/pack/lattice_packer.h"
@@ -22,6 +23,29 @@
 #include "aggpack/sim/world.h"
 
 namespace aggpack {
+
+/// The physics engine of the repose test: Bullet in this process (impulse-based rigid bodies,
+/// world.h), or YADE (Debian's `yade`) as a subprocess: polyhedra with the volumetric
+/// (overlap-volume) contact law, aggpack/sim/repose_yade.h.
+enum class ReposeEngine { kBullet, kYade };
+/// "bullet" or "yade".
+std::string_view to_string(ReposeEngine engine);
+/// The engine named `word`. \throw InvalidInput naming "repose.engine".
+ReposeEngine repose_engine_from_string(std::string_view word);
+
+/// YADE's own parameters (engine yade).
+struct YadeOptions {
+  /// PolyhedraMat.young, the volumetric law's stiffness: normal force per overlap volume
+  /// (N/m^3). 0 = automatic: density x g x fill_height / (0.005 d), d the median equivalent
+  /// diameter, so that a particle under the whole fill's weight overlaps its neighbours by
+  /// about 0.5 % of d (a contact face of about d^2 carries density g fill_height d^2). [0, 1e15].
+  double young = 0.0;
+  /// NewtonIntegrator's damping (Cundall's local damping: each body's force is reduced by this
+  /// fraction of its magnitude against the velocity), YADE's usual 0.3; [0, 1).
+  double damping = 0.3;
+  /// Wall-clock seconds a YADE run may take (the run then stops with an error); 0 = no limit.
+  double time_limit = 0.0;
+};
 
 /// Options of the repose test. Defaults = the paper's case: trough 6 x 1 x 1 m, baffle at the
 /// middle, alpha 0.5, R 0.1 m, L 0.1 m, lattice 15 x 5 x 14 = 1,050 particles behind the baffle.
@@ -61,6 +85,8 @@ struct ReposeOptions {
 
   /// Materials. `friction` is the mu_s of the sweep; walls default to the same value.
   PhysicsOptions physics;
+  ReposeEngine engine = ReposeEngine::kBullet;
+  YadeOptions yade{};
   /// Rest criterion of both stages (stage 1 adds the free-fall time of the highest particle).
   RestCriterion rest{};
   /// Stage 2 also ends when the pile's surface profile (bins above fit_lower x its height) has
@@ -205,10 +231,15 @@ struct ReposeResult {
   double stage1_height = 0.0;   ///< m, top of the settled pile
   double stage1_seconds = 0.0;  ///< wall-clock s (not reproducible)
   bool is_stage2_at_rest = false;
-  double stage2_time = 0.0;           ///< simulated s, baffle motion + waiting
-  double baffle_travel = 0.0;         ///< m the baffle moved
-  bool is_baffle_removed = false;     ///< false: it reached the far wall and stayed there
-  double stage2_seconds = 0.0;        ///< wall-clock s
+  double stage2_time = 0.0;        ///< simulated s, baffle motion + waiting
+  double baffle_travel = 0.0;      ///< m the baffle moved
+  bool is_baffle_removed = false;  ///< false: it reached the far wall and stayed there
+  double stage2_seconds = 0.0;     ///< wall-clock s
+  /// Engine yade: the subprocess's CPU seconds (user + system; not reproducible), YADE's
+  /// contact stiffness (PolyhedraMat.young, N/m^3) and its iterations.
+  double engine_cpu_seconds = 0.0;
+  double yade_young = 0.0;
+  std::size_t yade_iterations = 0;
   double max_overlap_fraction = 0.0;  ///< deepest exact overlap / d_min in the final pile
   double max_contact_penetration_fraction = 0.0;  ///< deepest Bullet contact / d_min, final
   std::size_t escaped_particles = 0;  ///< particles outside the trough (x, y) or below the floor

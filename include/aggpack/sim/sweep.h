@@ -12,6 +12,7 @@
 
 #include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
+#include "aggpack/sim/repose_yade.h"
 
 namespace aggpack {
 
@@ -61,8 +62,10 @@ using SweepCaseCallback = std::function<void(const SweepCase& summary, const Rep
 /// Runs every case (in parallel where TBB is available) on the fill `fill` makes for the case's
 /// options (called concurrently). Returns the cases in index order.
 /// \throw InvalidInput (as validate and run_repose).
+/// Engine yade (options.base.engine) needs `yade_script` (aggpack/sim/repose_yade.h).
 std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& fill,
-                                 const SweepCaseCallback& on_case = {});
+                                 const SweepCaseCallback& on_case = {},
+                                 const YadeScriptWriter& yade_script = {});
 
 struct RunShare;  // aggpack/sim/distributed.h
 
@@ -70,7 +73,8 @@ struct RunShare;  // aggpack/sim/distributed.h
 /// without seeds), or only those `share` owns: one summary per run, no aggregation.
 std::vector<SweepCase> run_sweep_runs(const SweepOptions& options, const ReposeFill& fill,
                                       const SweepCaseCallback& on_case = {},
-                                      const RunShare* share = nullptr);
+                                      const RunShare* share = nullptr,
+                                      const YadeScriptWriter& yade_script = {});
 
 /// The sweep's table from all its runs in plan order (what run_sweep returns): without seeds the
 /// runs themselves, else one row per case with the seeds' means and statistics.
