@@ -76,7 +76,7 @@ if [ "$seeds" != summary ]; then
 fi
 
 # Every seed's angle per case, the means with 95 % intervals, Welch's test of the extremes, a plot.
-python3 - "$out" >>"$log" <<'PY'
+/usr/bin/python3 - "$out" >>"$log" <<'PY'  # Debian's, with python3-scipy
 import glob, json, math, os, sys
 from scipy import stats
 out = sys.argv[1]

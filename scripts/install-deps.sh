@@ -28,6 +28,8 @@ packages=(
   # independent readers used by the tests, and tools used by commands
   admesh calculix-ccx gmsh python3 python3-meshio python3-vtk9 python3-h5py python3-numpy
   xvfb xauth xdotool gnuplot-nox
+  # statistics of the long benchmark scripts (bench/run_shape_effect.sh: t quantiles, Welch test)
+  python3-scipy
   # the Python module (python/, pybind11) and its tests and examples
   pybind11-dev python3-dev python3-pytest python3-matplotlib
   # `mpirun -n N aggpack sweep` (optional, cmake/mpi.cmake)
