@@ -21,9 +21,14 @@ for needed in libhdf5 libtbb libglfw3 libbullet libfmt python3-numpy "python3 (<
   [[ $depends == *"$needed"* ]] || fail "Depends lacks $needed"
 done
 
-apt-get install -y -q "./$deb"
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+# On any failure after the install, the package is purged again: the machine is left as found.
+cleanup() {
+  rm -rf "$work"
+  if dpkg -s aggpack >/dev/null 2>&1; then apt-get purge -y -q aggpack >/dev/null; fi
+}
+trap cleanup EXIT
+apt-get install -y -q "./$deb"
 cd "$work"
 [ "$(command -v aggpack)" = /usr/bin/aggpack ] || fail "aggpack is not /usr/bin/aggpack"
 [ "$(aggpack --version)" = "aggpack $version" ] || fail "aggpack --version: $(aggpack --version)"
