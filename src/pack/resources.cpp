@@ -240,8 +240,7 @@ RunEstimate estimate_run(const RandomPackOptions& options) {
     estimate.bytes_per_particle = kRandomLibraryBytesPerItem;
     estimate.bytes = estimate.particles * estimate.bytes_per_particle +
                      static_cast<double>(library_count) * (sample.mean_bytes + 72.0);
-    estimate.seconds =
-        run_seconds(sample, static_cast<double>(library_count), estimate.particles);
+    estimate.seconds = run_seconds(sample, static_cast<double>(library_count), estimate.particles);
   } else {
     estimate.bytes_per_particle = kRandomBytesPerItem + sample.mean_bytes;
     estimate.bytes = estimate.particles * estimate.bytes_per_particle;
