@@ -177,7 +177,9 @@ fi
 
 # The dense kind (examples/dense-box.toml, a budget it cannot finish for minutes): Pack at start,
 # click Cancel (the job section is at the top of the panel: Pack at x 8-128, Cancel right of it,
-# y ~37 below the title bar); the run ends cancelled with the last verified state shown.
+# y ~37 below the title bar); the run ends cancelled with the last verified state shown. The click
+# comes after 5 s, in the densify phase on an idle machine but possibly still in the fill on a
+# loaded one, so the count of particles is not pinned (both phases keep a verified state).
 command -v xdotool > /dev/null || { echo "xdotool is missing (scripts/install-deps.sh)"; exit 1; }
 rm -f "$out/dense-cancel.txt" "$out/dense-cancel.png"
 xvfb-run -a -s "-screen 0 1000x700x24" bash -c '
@@ -189,6 +191,6 @@ xvfb-run -a -s "-screen 0 1000x700x24" bash -c '
   wait $pid' _ "$gui" "$here/../../examples/dense-box.toml" "$out/dense-cancel" ||
   { cat "$out/dense-cancel.txt"; exit 1; }
 cat "$out/dense-cancel.txt"
-grep -q "status: Cancelled: 576 particles" "$out/dense-cancel.txt"
+grep -Eq "status: Cancelled: [0-9]+ particles" "$out/dense-cancel.txt"
 grep -q "^Warning: cancelled; the packing holds the last verified state" "$out/dense-cancel.txt"
 python3 "$here/check_screenshot.py" "$out/dense-cancel.png" 1000 700
