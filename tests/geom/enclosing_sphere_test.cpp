@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -96,6 +97,34 @@ TEST(EnclosingSphere, MatchesExhaustiveSearchOnRandomSets) {
     const Sphere s = minimal_enclosing_sphere(p);
     for (const Vec3& q : p) EXPECT_LE((q - s.centre).norm(), s.radius * (1 + 1e-12));
     EXPECT_NEAR(s.radius, brute_force_radius(p), 1e-9) << "trial " << trial;
+  }
+}
+
+TEST(EnclosingSphere, CosphericalPointsGiveTheirSphere) {
+  // Many points on one sphere (more than a pivoting round carries over, so the fallback runs for
+  // the larger sets): the sphere itself, since the points spread over all of it.
+  const Vec3 centre(1.0, -2.0, 3.0);
+  for (const int n : {4, 6, 9, 12, 40, 400}) {
+    Rng rng(11, static_cast<std::uint64_t>(n));
+    std::vector<Vec3> p;
+    // The six axis points first: every set spans the whole sphere.
+    for (const Vec3& axis : {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0),
+                             Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
+      p.push_back(centre + 2.0 * axis);
+    }
+    p.resize(std::min<std::size_t>(p.size(), static_cast<std::size_t>(n)));
+    while (p.size() < static_cast<std::size_t>(n)) {
+      const Vec3 q(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+      if (q.norm() > 0.1) p.push_back(centre + 2.0 * q.normalized());
+    }
+    const Sphere s = minimal_enclosing_sphere(p);
+    for (const Vec3& q : p) EXPECT_LE((q - s.centre).norm(), s.radius * (1 + 1e-12));
+    if (n >= 6) {
+      EXPECT_NEAR(s.radius, 2.0, 1e-12) << n << " points";
+      EXPECT_NEAR((s.centre - centre).norm(), 0.0, 1e-12) << n << " points";
+    } else {
+      EXPECT_NEAR(s.radius, brute_force_radius(p), 1e-12) << n << " points";
+    }
   }
 }
 

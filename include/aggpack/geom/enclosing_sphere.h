@@ -1,8 +1,9 @@
 #pragma once
-// The smallest sphere enclosing a set of points (Welzl's algorithm, iterative move-to-front form
-// for 3D, points taken in a fixed pseudo-random order: expected linear time, same answer on
-// every run). The circumscribed sphere of a real particle, as a caliper or a photograph measures
-// it, is this sphere of its vertices; the generator's control sphere (radius R) only bounds it.
+// The smallest sphere enclosing a set of points (pivoting on a support of a few points, each
+// round one pass over the points plus Welzl's recursion over the support; Welzl's algorithm over
+// all points in a fixed pseudo-random order as the fallback: same answer on every run). The
+// circumscribed sphere of a real particle, as a caliper or a photograph measures it, is this sphere
+// of its vertices; the generator's control sphere (radius R) only bounds it.
 //
 // Own code, not a library's: CGAL's Min_sphere_d would do it but is a large dependency for ~100
 // lines, and no other Debian package the project uses has it.
