@@ -260,8 +260,11 @@ void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistan
   }
   // The minimum edge length: a new vertex that would come closer than it to a vertex it joins
   // (a short edge, thin triangles around it) splits the edge instead.
+  // The squared lengths are kept for the new edges' heap entries.
   for (std::size_t i = 0; i < border_count_; ++i) {
-    if ((vertices_[sides_[i].from] - point).squaredNorm() < min_edge_squared_) {
+    Side& side = sides_[i];
+    side.length_squared = (vertices_[side.from] - point).squaredNorm();
+    if (side.length_squared < min_edge_squared_) {
       split_at(ab, on_edge);
       return;
     }
@@ -354,7 +357,7 @@ bool GrowingMesh::chain_border() {
   do {
     const Triangle& tri = triangles[face_of(half)];
     const std::uint32_t to = tri[kNext[local_of(half)]];
-    sides[length++] = {tri[local_of(half)], to, twins[face_of(half)][local_of(half)]};
+    sides[length++] = {tri[local_of(half)], to, twins[face_of(half)][local_of(half)], 0.0};
     half = next[to];
   } while (half != first && length < count);
   return half == first && length == count;
@@ -409,11 +412,9 @@ void GrowingMesh::replace_patch(const Vec3& point) {
   }
   corners[p] = fan[0];
   // The new vertex's edges to the loop.
-  const Vec3& apex = vertices_[p];
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t v = sides[i].from;
-    const double length_squared = (vertices_[v] - apex).squaredNorm();
-    if (length_squared > limit_squared_) insert(key_of({length_squared, v, p}));
+    const double length_squared = sides[i].length_squared;
+    if (length_squared > limit_squared_) insert(key_of({length_squared, sides[i].from, p}));
   }
 }
 

@@ -95,7 +95,8 @@ class GrowingMesh {
   bool find_visible(std::uint32_t ab, const Vec3& point, double tolerance_squared);
   // Chains border_ into sides_ from its first half-edge; false unless the patch is a disk.
   bool chain_border();
-  // Replaces the visible patch by a fan from the new vertex `point` to its border loop.
+  // Replaces the visible patch by a fan from the new vertex `point` to its border loop (sides_,
+  // with the squared lengths from `point` set).
   void replace_patch(const Vec3& point);
   std::uint32_t add_vertex(const Vec3& point);
   std::uint32_t new_face();
@@ -136,6 +137,7 @@ class GrowingMesh {
   std::size_t border_count_ = 0;
   struct Side {
     std::uint32_t from, to, across;  // a border half-edge's ends and its twin (outside the patch)
+    double length_squared;           // from the new vertex to `from` (set by insert_hull)
   };
   std::vector<Side> sides_;  // the border as a loop (the first border_count_)
   std::vector<std::uint32_t> fan_;
