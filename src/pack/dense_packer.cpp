@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 #include "aggpack/core/error.h"
@@ -213,11 +214,13 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
 
   DensifyReport report;
   report.start_fraction = solid_volume / start.container.volume();
-  detail::SweepParameters parameters{.translation_step = options.translation_step,
-                                     .rotation_step = options.rotation_step,
-                                     .rotation_probability = options.rotation_probability,
-                                     .is_bed = is_bed,
-                                     .temperature = options.bed_temperature};
+  detail::SweepParameters parameters{
+      .translation_step = options.translation_step,
+      .rotation_step = options.rotation_step,
+      .rotation_probability = options.rotation_probability,
+      .is_bed = is_bed,
+      .temperature = options.bed_temperature,
+      .per_particle_acceptance = is_bed ? 0.0 : options.target_acceptance};
   // kFixed: squeeze (shrink without checking) whenever at most kAllowedShare of the particles
   // overlap; sweeps repair (with overlap transfer, hpmc.cpp). After kSqueezesPerCheckpoint
   // squeezes (or at the target container) no more squeezes until everything is repaired: that
@@ -308,17 +311,20 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
     ++report.sweeps;
     report.moves_tried += counts.translations_tried + counts.rotations_tried;
     report.moves_accepted += counts.translations_accepted + counts.rotations_accepted;
-    // Step sizes toward the target acceptance (a deterministic function of exact counts).
+    // Bed: one pair of step sizes toward the target acceptance (a deterministic function of
+    // exact counts). Fixed: every particle adapts its own steps (hpmc.cpp).
     auto adapt = [&](double& step, std::uint64_t tried, std::uint64_t accepted, double cap) {
       if (tried == 0) return;
       const double rate = static_cast<double>(accepted) / static_cast<double>(tried);
       step *= rate > options.target_acceptance ? 1.1 : 1.0 / 1.1;
       step = std::clamp(step, 1e-7, cap);
     };
-    adapt(parameters.translation_step, counts.translations_tried, counts.translations_accepted,
-          1.0);
-    adapt(parameters.rotation_step, counts.rotations_tried, counts.rotations_accepted,
-          std::numbers::pi);
+    if (parameters.per_particle_acceptance <= 0.0) {
+      adapt(parameters.translation_step, counts.translations_tried, counts.translations_accepted,
+            1.0);
+      adapt(parameters.rotation_step, counts.rotations_tried, counts.rotations_accepted,
+            std::numbers::pi);
+    }
     if (is_bed) {
       parameters.temperature *= options.bed_cooling;
       history.push_back(engine.mean_height());
@@ -428,6 +434,9 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   report.solid_fraction = fraction_now();
   report.translation_step = parameters.translation_step;
   report.rotation_step = parameters.rotation_step;
+  if (parameters.per_particle_acceptance > 0.0 && report.sweeps > 0) {
+    std::tie(report.translation_step, report.rotation_step) = engine.mean_steps();
+  }
   if (is_bed) measure_bulk(packing, report);
   const VerifyResult check = verify(packing, {.gap = options.gap});
   if (!check.is_ok) {

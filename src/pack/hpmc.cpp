@@ -332,7 +332,9 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
     return std::find(partners, partners + count, j) != partners + count;
   };
   bool was_inside = is_inside(i, poses_[i], container_);
-  const double reach = std::min({parameters.translation_step, 0.2, parameters.repair_step});
+  const double step = own_translation_.empty() ? parameters.translation_step
+                                               : static_cast<double>(own_translation_[i]);
+  const double reach = std::min({step, 0.2, parameters.repair_step});
   for (int attempt = 0; attempt < kTries; ++attempt) {
     if (count == 0 && was_inside) {
       flagged_[i] = 0;  // clean (its partners moved away)
@@ -408,16 +410,31 @@ void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters
   const Body& body = bodies_[body_of_[i]];
   Pose trial = poses_[i];
   const bool is_rotation = rng.uniform() < parameters.rotation_probability;
+  // Own steps: a move's outcome nudges the particle's step, up on acceptance and down on
+  // rejection, in the ratio that balances at the target acceptance rate (Robbins-Monro). In a
+  // dense packing the room differs from particle to particle (rattlers, caged ones, walls); one
+  // global step is too small for some and too large for others.
+  const bool is_own = parameters.per_particle_acceptance > 0.0;
+  float* own = nullptr;
+  if (is_own) own = is_rotation ? &own_rotation_[i] : &own_translation_[i];
+  const double p = parameters.per_particle_acceptance;
+  const auto outcome = [&](bool is_accepted) {
+    if (own == nullptr) return;
+    constexpr double kRate = 0.1;
+    const double cap = is_rotation ? 3.14159 : 1.0;
+    *own = static_cast<float>(
+        std::clamp(*own * std::exp(is_accepted ? kRate * (1.0 - p) : -kRate * p), 1e-7, cap));
+  };
   if (is_rotation) {
     ++counts.rotations_tried;
     const Vec3 axis(rng.normal(), rng.normal(), rng.normal());
-    const double angle = parameters.rotation_step * (2.0 * rng.uniform() - 1.0);
+    const double angle = (is_own ? *own : parameters.rotation_step) * (2.0 * rng.uniform() - 1.0);
     if (axis.norm() < 1e-9) return;
     trial.rotation = (Quat(Eigen::AngleAxisd(angle, axis.normalized())) * trial.rotation);
     trial.rotation.normalize();
   } else {
     ++counts.translations_tried;
-    const double step = parameters.translation_step * body.outer;
+    const double step = (is_own ? *own : parameters.translation_step) * body.outer;
     const double dx = 2.0 * rng.uniform() - 1.0;
     const double dy = 2.0 * rng.uniform() - 1.0;
     const double dz = 2.0 * rng.uniform() - 1.0;
@@ -428,9 +445,16 @@ void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters
       const double energy = (body.volume / mean_volume_) * (step * dz / mean_outer_);
       if (rng.uniform() >= std::exp(-energy / parameters.temperature)) return;
     }
-    if (cell_index(trial.position) != static_cast<std::int64_t>(grid_.cell_of[i])) return;
+    if (cell_index(trial.position) != static_cast<std::int64_t>(grid_.cell_of[i])) {
+      outcome(false);
+      return;
+    }
   }
-  if (!is_inside(i, trial, container_) || !is_clear(i, trial, gap_)) return;
+  if (!is_inside(i, trial, container_) || !is_clear(i, trial, gap_)) {
+    outcome(false);
+    return;
+  }
+  outcome(true);
   place(i, trial);
   if (is_rotation) {
     ++counts.rotations_accepted;
@@ -439,7 +463,23 @@ void Hpmc::move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters
   }
 }
 
+std::pair<double, double> Hpmc::mean_steps() const {
+  if (own_translation_.empty()) return {0.0, 0.0};
+  double t = 0.0;
+  double r = 0.0;
+  for (std::size_t i = 0; i < own_translation_.size(); ++i) {
+    t += std::log(static_cast<double>(own_translation_[i]));
+    r += std::log(static_cast<double>(own_rotation_[i]));
+  }
+  const auto n = static_cast<double>(own_translation_.size());
+  return {std::exp(t / n), std::exp(r / n)};
+}
+
 SweepCounts Hpmc::sweep(std::uint64_t sweep, const SweepParameters& parameters) {
+  if (parameters.per_particle_acceptance > 0.0 && own_translation_.empty()) {
+    own_translation_.assign(poses_.size(), static_cast<float>(parameters.translation_step));
+    own_rotation_.assign(poses_.size(), static_cast<float>(parameters.rotation_step));
+  }
   Rng shift_rng(seed_ ^ kShiftSeedMix, sweep);
   const Vec3 shift(shift_rng.uniform() * grid_.width, shift_rng.uniform() * grid_.width,
                    shift_rng.uniform() * grid_.width);

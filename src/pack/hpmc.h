@@ -4,6 +4,7 @@
 // Every decision about overlap goes through is_separated (exact); containment through contains().
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "aggpack/core/rng.h"
@@ -20,6 +21,9 @@ struct SweepParameters {
   bool is_bed = false;                // Metropolis on potential energy
   double temperature = 0.0;           // bed: see DensifyOptions::bed_temperature
   double repair_step = 1.0;           // largest repair push / bounding radius
+  // > 0: every particle keeps translation and rotation steps of its own (starting at the two
+  // steps above, which are then ignored) adapted to this acceptance rate by its own moves.
+  double per_particle_acceptance = 0.0;
 };
 
 struct SweepCounts {
@@ -73,6 +77,9 @@ class Hpmc {
   [[nodiscard]] double solid_volume() const { return solid_volume_; }
   [[nodiscard]] double mean_outer_radius() const { return mean_outer_; }
   [[nodiscard]] double max_outer_radius() const { return max_outer_; }
+  /// Geometric means of the per-particle translation (/ bounding radius) and rotation (rad)
+  /// steps (SweepParameters::per_particle_acceptance); 0 before the first such sweep.
+  [[nodiscard]] std::pair<double, double> mean_steps() const;
   /// Volume-weighted mean centroid height (m).
   [[nodiscard]] double mean_height() const;
 
@@ -151,6 +158,10 @@ class Hpmc {
   // Written only by the particle's own tests, like axes_.
   static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
   mutable std::vector<std::uint32_t> blockers_;
+  // Per particle, its own translation (/ bounding radius) and rotation (rad) steps (empty until
+  // the first sweep with per_particle_acceptance > 0). Written only by the particle's own moves.
+  std::vector<float> own_translation_;
+  std::vector<float> own_rotation_;
 };
 
 }  // namespace aggpack::detail

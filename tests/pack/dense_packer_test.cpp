@@ -51,6 +51,28 @@ TEST(DensePacker, FixedModeReachesTheTargetFractionExactly) {
   expect_valid_packing(result.packing, 0.0);
 }
 
+TEST(DensePacker, EachParticleAdaptsItsStepsToTheTargetAcceptance) {
+  // Fixed mode: every particle tunes its own translation and rotation steps by its own moves
+  // (up on acceptance, down on rejection, balanced at target_acceptance). Over a run the
+  // acceptance rate settles near the target, and a lower target means larger steps.
+  const Packing start = loose_start();
+  auto run = [&](double acceptance) {
+    const DensifyOptions options{
+        .target_fraction = 0.6, .seed = 5, .max_sweeps = 1500, .target_acceptance = acceptance};
+    return densify(start, options).report;
+  };
+  const DensifyReport at_30 = run(0.3);
+  const DensifyReport at_15 = run(0.15);
+  for (const auto& [report, target] : {std::pair{at_30, 0.3}, std::pair{at_15, 0.15}}) {
+    ASSERT_GT(report.moves_tried, 0U);
+    const double rate =
+        static_cast<double>(report.moves_accepted) / static_cast<double>(report.moves_tried);
+    EXPECT_NEAR(rate, target, 0.05) << report.summary();
+  }
+  EXPECT_GT(at_15.translation_step, at_30.translation_step);
+  EXPECT_GT(at_15.rotation_step, at_30.rotation_step);
+}
+
 TEST(DensePacker, GapsAndWallGapsAreKeptToAnExplicitTargetContainer) {
   const double gap = 0.002;
   const double wall_gap = 0.003;
