@@ -199,6 +199,7 @@ void GuiApp::draw_key_input(const Key<PackConfig>& key, const KeyView& view,
       return;
     case ValueType::kNumberList:
     case ValueType::kPath:
+    case ValueType::kPathList:
       return;  // no pack key of these kinds is edited in the panel
   }
   key_tooltip(key, view);
