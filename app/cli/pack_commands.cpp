@@ -255,9 +255,7 @@ void run_pack(const PackFlags& flags) {
   }
   set_thread_count(config.threads);
   // A run estimated above ~10 s or 1 GB says so at once, whatever --progress says.
-  if (const std::string note = heavy_run_note(estimate_of(config.packer)); !note.empty()) {
-    std::fprintf(stderr, "aggpack: %s\n", note.c_str());
-  }
+  announce_heavy_run(estimate_of(config.packer));
   // All or nothing: if an [output] export fails after the native file was written, the files this
   // run created are removed and the ones it replaced (--force) are put back.
   OutputTransaction outputs;
