@@ -18,8 +18,7 @@ const std::vector<SieveRow> kDefaultSieve = {{.size = 0.038, .percent_passing = 
 }  // namespace
 
 bool ConfigFields::is_editable(const Key<PackConfig>& key) {
-  return key.type != ValueType::kPath && key.type != ValueType::kPathList &&
-         key.written.text != "never";
+  return key.type != ValueType::kPath && key.written.text != "never";
 }
 
 ConfigFields ConfigFields::from_config(const PackConfig& config) {
