@@ -45,6 +45,11 @@ if(AGGPACK_BUILD_GUI)
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/ui_test.sh $<TARGET_FILE:aggpack-gui>
                      ${CMAKE_CURRENT_BINARY_DIR}/gui_ui)
     set_tests_properties(gui_ui PROPERTIES TIMEOUT 300)
+    # The shape library dialog (particle.library): folder, picked files, Cancel, Chinese.
+    add_test(NAME gui_library
+             COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/library_test.sh $<TARGET_FILE:aggpack-gui>
+                     ${CMAKE_CURRENT_BINARY_DIR}/gui_library)
+    set_tests_properties(gui_library PROPERTIES TIMEOUT 300)
     # The window stays live while 200,000 particles are packed and shown (a bound for CI noise;
     # the measured figure is in bench/RESULTS.md).
     add_test(NAME gui_frame_time

@@ -193,10 +193,12 @@ Particle i's world vertices: rotation_i @ (scale_i * shape_vertices(shape_index_
             result["config_toml"] = v.config_toml;
             result["seed"] = v.seed;
             result["packer"] = v.packer;
+            result["shape_library"] = v.shape_library;
             return result;
           },
           "Where the packing came from: aggpack_version, config_toml (the resolved "
-          "configuration), seed, packer.")
+          "configuration), seed, packer, shape_library (particle.library: a header line, then "
+          "'name<TAB>hash' per library shape, shape k on line k + 1; '' without a library).")
       .def_property_readonly(
           "report",
           [](const PyPacking& p) -> py::object {

@@ -18,6 +18,7 @@
 #include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 #include "aggpack/io/native.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/dense_packer.h"
@@ -179,6 +180,9 @@ void run_densify(const DensifyFlags& flags) {
   const std::map<std::string, std::string> flag_names = densify_flag_names();
   with_key_names({}, flag_names, [&] { validate(options); });
   set_thread_count(flags.threads);
+  announce_heavy_run(estimate_densify(static_cast<double>(start.particles.size()),
+                                      static_cast<double>(options.max_sweeps), options.max_seconds,
+                                      allowed_threads()));
 
   fmt::print("aggpack densify: {} mode, {} particles, gap {} m, seed {}\n", to_string(options.mode),
              start.particles.size(), options.gap, options.seed);

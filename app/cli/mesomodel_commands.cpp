@@ -90,6 +90,9 @@ void run_voxels(const MesomodelFlags& flags, const Overwrite overwrite) {
   }
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
+  // At most resolution^3 voxels (the longest side has `resolution`).
+  announce_heavy_run(estimate_mesomodel(static_cast<double>(packing.particles.size()),
+                                        std::pow(static_cast<double>(options.resolution), 3)));
   VoxelImage image;  // voxelize checks the ITZ against the container; its messages name the flags
   with_key_names({}, {{"itz_thickness", "--itz"}, {"voxels", "--voxels"}},
                  [&] { image = voxelize(packing, options); });
@@ -219,6 +222,7 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   check_writable(flags.output, overwrite);
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
+  announce_heavy_run(estimate_mesomodel(static_cast<double>(packing.particles.size()), 0.0));
   MesoReport report;
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   MesoMesh mesh;

@@ -149,6 +149,29 @@ void print_dense_summary(const PipelineResult& result, const std::vector<Grading
   fmt::print("{}", format_grading(grading));
 }
 
+// particle.library as the run loaded it: where from, shapes, skipped files, hull excess.
+void print_library(const ShapeLibrary& library) {
+  fmt::print("shape library   {}\n", library.summary());
+  for (const std::string& line : library.skipped) {
+    fmt::print("skipped         {}\n", aggpack::clipped(line, 300));
+  }
+  fmt::print("convex hulls    {}\n", library.hull_summary());
+}
+
+std::string library_json(const ShapeLibrary& library) {
+  double mesh = 0.0;
+  double hull = 0.0;
+  for (const LibraryShape& shape : library.shapes) {
+    mesh += shape.mesh_volume;
+    hull += shape.hull_volume;
+  }
+  return fmt::format(
+      ",\n  \"library\": {{\"source\": {}, \"shapes\": {}, \"skipped\": {}, \"units\": "
+      "\"{}\", \"mesh_volume_m3\": {}, \"hull_volume_m3\": {}}}",
+      aggpack::quoted(library.source), library.shapes.size(), library.skipped.size(),
+      length_unit_name(library.units), mesh, hull);
+}
+
 void run_pack(const PackFlags& flags) {
   std::vector<std::string> overrides = flags.overrides;
   // --seed and --threads are shortcuts for --set and win over it.
@@ -232,9 +255,7 @@ void run_pack(const PackFlags& flags) {
   }
   set_thread_count(config.threads);
   // A run estimated above ~10 s or 1 GB says so at once, whatever --progress says.
-  if (const std::string note = heavy_run_note(estimate_of(config.packer)); !note.empty()) {
-    std::fprintf(stderr, "aggpack: %s\n", note.c_str());
-  }
+  announce_heavy_run(estimate_of(config.packer));
   // All or nothing: if an [output] export fails after the native file was written, the files this
   // run created are removed and the ones it replaced (--force) are put back.
   OutputTransaction outputs;
@@ -325,6 +346,7 @@ void run_pack(const PackFlags& flags) {
       dense_json += ",\n  \"densify\": " + nest_json(to_json(*result.densify, 2), 2);
     }
     if (result.fill) dense_json += ",\n  \"grading\": " + nest_json(to_json(grading, 2), 2);
+    if (result.library) dense_json += library_json(*result.library);
     fmt::print("{{\n  \"output\": {},\n  \"report\": {}{}{}\n}}\n", aggpack::quoted(output),
                nest_json(to_json(report, 2), 2), dense_json,
                written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
@@ -344,6 +366,7 @@ void run_pack(const PackFlags& flags) {
                format_seconds(report.shape_seconds), format_seconds(report.placement_seconds));
   }
   if (!flags.is_json) {
+    if (result.library) print_library(*result.library);
     fmt::print("wrote {}{}\n", output,
                flags.has_xdmf ? " and " + xdmf_path_for(output) : std::string());
     for (const auto& line : written) fmt::print("wrote {}\n", line);

@@ -32,6 +32,13 @@ std::string format_rate(double rate) {
 
 }  // namespace
 
+void announce_heavy_run(const RunEstimate& estimate) {
+  if (const std::string note = heavy_run_note(estimate); !note.empty()) {
+    std::fprintf(stderr, "aggpack: %s\n", note.c_str());
+    std::fflush(stderr);
+  }
+}
+
 ProgressStyle parse_progress_style(const std::string& field, const std::string& text) {
   if (text == "auto") return ProgressStyle::kAuto;
   if (text == "bar") return ProgressStyle::kBar;

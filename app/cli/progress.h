@@ -11,6 +11,8 @@
 #include <string>
 #include <thread>
 
+#include "aggpack/pack/resources.h"
+
 namespace aggpack::cli {
 
 /// How progress is shown. kAuto = kBar when the stream is a terminal (isatty), else kLines.
@@ -18,6 +20,10 @@ enum class ProgressStyle { kAuto, kBar, kLines, kNone };
 
 /// Parses "auto", "bar", "lines", "none". \throw InvalidInput naming `field`.
 ProgressStyle parse_progress_style(const std::string& field, const std::string& text);
+
+/// Prints heavy_run_note(estimate) to stderr as "aggpack: a large run: ..." when the run is
+/// heavy (aggpack/pack/resources.h), whatever --progress says; nothing otherwise.
+void announce_heavy_run(const RunEstimate& estimate);
 
 /// Formats a duration in seconds as "0:07", "12:34" or "1:02:03" ("--:--" if not finite or < 0).
 std::string format_duration(double seconds);

@@ -19,6 +19,7 @@
 #include "aggpack/io/native.h"
 #include "aggpack/sim/settle.h"
 #include "commands.h"
+#include "heavy_runs.h"
 #include "output_flags.h"
 #include "progress.h"
 
@@ -66,6 +67,7 @@ void run_settle_command(const SettleFlags& flags) {
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   check_writable(flags.output, overwrite);
   const Packing packing = read_packing(flags.input);
+  announce_heavy_run(estimate_settle(packing, options));
   fmt::print(
       "settling {} particles from {} until at rest (kinetic energy below --energy-ratio for "
       "--quiet-time), at most {} s simulated (--max-time)\n",

@@ -113,7 +113,7 @@ void print_descriptors(const ShapeDescriptors& d, double control_radius) {
 
 // Where `shapes --library` reads from and how.
 struct LibraryFlags {
-  std::string path;
+  std::vector<std::string> paths;  // --library, repeated or comma-separated
   std::string units = "mm";
   bool is_skipping_bad = false;
   double max_hull_excess = 0.0;
@@ -138,7 +138,7 @@ void run_library(const LibraryFlags& flags, const std::string& output, Overwrite
     throw InvalidInput("--units", flags.units, "mm or m");
   }
   ShapeLibraryOptions options{
-      .path = flags.path,
+      .paths = flags.paths,
       .import = {.units = flags.units == "m" ? LengthUnit::kMetre : LengthUnit::kMillimetre,
                  .max_hull_excess = flags.max_hull_excess,
                  .max_vertices = flags.max_vertices},
@@ -147,8 +147,18 @@ void run_library(const LibraryFlags& flags, const std::string& output, Overwrite
   if (flags.max_vertices < 4 || flags.max_vertices > 1000000) {
     throw InvalidInput("--max-hull-vertices", std::to_string(flags.max_vertices), "[4, 1000000]");
   }
+  for (const std::string& path : flags.paths) {
+    if (path.empty()) {
+      throw InvalidInput("--library", "\"\"", "a folder or a .stl, .obj or .ply file");
+    }
+  }
   if (!output.empty()) check_writable(output, overwrite);
-  const ShapeLibrary library = load_shape_library(options);
+  ShapeLibrary library;
+  // The loader's messages name the config keys; here the user typed flags.
+  with_key_names({},
+                 {{"particle.library", "--library"},
+                  {"particle.library_max_hull_excess", "--max-hull-excess"}},
+                 [&] { library = load_shape_library(options); });
   const auto& columns = descriptor_columns();
   std::vector<ShapeDescriptors> descriptors(library.shapes.size());
   parallel_for_index(0, library.shapes.size(), [&](std::size_t k) {
@@ -159,7 +169,6 @@ void run_library(const LibraryFlags& flags, const std::string& output, Overwrite
   for (const auto& column : columns) csv += "," + std::string(column.name);
   csv += ",file,hash,mesh_volume,hull_volume,hull_excess,simplification_change\n";
   std::vector<RunningSummary> summaries(columns.size());
-  double mesh_total = 0.0;
   double hull_total = 0.0;
   double kept_total = 0.0;
   std::size_t simplified = 0;
@@ -174,7 +183,6 @@ void run_library(const LibraryFlags& flags, const std::string& output, Overwrite
     csv += fmt::format(",{},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", shape.name, shape.hash,
                        shape.mesh_volume, shape.hull_volume, shape.hull_excess(),
                        shape.simplification_change());
-    mesh_total += shape.mesh_volume;
     hull_total += shape.hull_volume;
     kept_total += shape.volume;
     simplified += shape.volume != shape.hull_volume ? 1 : 0;
@@ -187,11 +195,9 @@ void run_library(const LibraryFlags& flags, const std::string& output, Overwrite
     file.commit();
     fmt::print("wrote {} ({} shapes)\n", output, library.shapes.size());
   }
-  fmt::print("library         {} ({} shapes, {} skipped, units {})\n", library.source,
-             library.shapes.size(), library.skipped.size(), length_unit_name(library.units));
+  fmt::print("library         {}\n", library.summary());
   for (const std::string& line : library.skipped) fmt::print("skipped         {}\n", line);
-  fmt::print("convex hulls    add {:.6g} m^3 to {:.6g} m^3 of meshes ({:+.3f} %)\n",
-             hull_total - mesh_total, mesh_total, 100.0 * (hull_total / mesh_total - 1.0));
+  fmt::print("convex hulls    {}\n", library.hull_summary());
   fmt::print(
       "vertex budget   {} of {} hulls simplified to <= {} vertices ({:+.3f} % of hull "
       "volume)\n",
@@ -268,9 +274,12 @@ void register_shapes(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("-f,--force", *is_forced, "replace an existing output file");
   auto library = std::make_shared<LibraryFlags>();
-  command->add_option("--library", library->path,
-                      "measure a shape library instead of growing particles: a folder of .stl, "
-                      ".obj, .ply meshes (or one file); each as its convex hull at file size");
+  command
+      ->add_option("--library", library->paths,
+                   "measure a shape library instead of growing particles: a folder of .stl, "
+                   ".obj, .ply meshes or one such file (repeat the flag or separate with commas "
+                   "for several); each as its convex hull at file size")
+      ->delimiter(',');
   command->add_option("--units", library->units, "--library: unit of the files (mm or m)")
       ->capture_default_str();
   command->add_flag("--skip-bad", library->is_skipping_bad,
@@ -287,7 +296,7 @@ void register_shapes(CLI::App& app) {
       ->capture_default_str();
   command->callback([=, &app]() {
     const auto* self = app.get_subcommand("shapes");
-    if (!library->path.empty()) {
+    if (self->count("--library") > 0) {
       set_thread_count(flags->threads);
       run_library(*library, *output, *is_forced ? Overwrite::kAllow : Overwrite::kForbid);
       return;

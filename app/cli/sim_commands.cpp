@@ -30,6 +30,7 @@
 #include "aggpack/sim/repose_yade.h"
 #include "aggpack/sim/sweep.h"
 #include "commands.h"
+#include "heavy_runs.h"
 #include "mpi_world.h"
 #include "output_flags.h"
 #include "progress.h"
@@ -295,6 +296,7 @@ EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& o
       check_writable(in_folder(folder, fmt::format("seed-{}/{}", seeds[i], name)), overwrite);
     }
   }
+  announce_repose(options.base, share, seeds.size());
   const RunRecord plan = plan_record(RunKind::kEnsemble, options, seeds.size(), flags.image_width);
   check_same_plan(folder, plan);
   std::filesystem::create_directories(in_folder(folder, "runs"));
@@ -403,6 +405,7 @@ void run_repose_command(const ReposeFlags& flags) {
                        "only with a seed ensemble (--seeds or ensemble.seeds)");
   }
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
+  announce_repose(options.base, {}, 1);
   CreatedFolder created(flags.output);
   std::vector<std::string> names = {"repose.json", "profile.csv", "side.png"};
   names.push_back("final.h5");
@@ -474,6 +477,7 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
              options.frictions.size(), total);
   fmt::print("{}{}\n", is_ensemble ? fmt::format(" x {} seeds", options.seeds.size()) : "",
              share.is_split() ? fmt::format(" (worker {} of {})", share.worker, share.of) : "");
+  announce_repose(options.base, share, total * seed_count);
   const RunRecord plan =
       plan_record(RunKind::kSweep, options, total * seed_count, flags.image_width);
   check_same_plan(folder, plan);

@@ -142,9 +142,11 @@ void GuiApp::draw_key(const Key<PackConfig>& key, const KeyView& view) {
     if (ImGui::Checkbox(("##on" + key.name).c_str(), &is_on)) fields_.set_on(key.name, is_on);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", trf(Text::kGiveKey, key.name).c_str());
     ImGui::SameLine();
-    if (!is_on) ImGui::BeginDisabled();
+    // A list of paths is chosen with its dialog, which switches it on.
+    const bool is_disabled = !is_on && key.type != ValueType::kPathList;
+    if (is_disabled) ImGui::BeginDisabled();
     draw_key_input(key, view, label, value);
-    if (!is_on) ImGui::EndDisabled();
+    if (is_disabled) ImGui::EndDisabled();
     return;
   }
   draw_key_input(key, view, label, value);
@@ -197,6 +199,25 @@ void GuiApp::draw_key_input(const Key<PackConfig>& key, const KeyView& view,
       key_tooltip(key, view);
       draw_sieve_table(std::get<std::vector<SieveRow>>(value));
       return;
+    case ValueType::kPathList: {
+      // particle.library: what is chosen (a folder or file, or how many), and the dialog.
+      const auto& paths = std::get<std::vector<std::string>>(value);
+      const std::string shown = paths.empty()       ? std::string(tr(Text::kNoLibrary))
+                                : paths.size() == 1 ? paths.front()
+                                                    : trs(Text::kLibraryFiles, paths.size());
+      if (ImGui::Button(tr(Text::kBrowse))) open_library_dialog();
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tr(Text::kBrowseTooltip));
+      ImGui::SameLine();
+      ImGui::TextUnformatted(shown.c_str());
+      if (paths.size() > 1 && ImGui::IsItemHovered()) {
+        std::string list;
+        for (const std::string& path : paths) list += path + "\n";
+        ImGui::SetTooltip("%s", list.c_str());
+      }
+      ImGui::SameLine();
+      ImGui::TextUnformatted(label.substr(0, label.find("##")).c_str());
+      break;
+    }
     case ValueType::kNumberList:
     case ValueType::kPath:
       return;  // no pack key of these kinds is edited in the panel

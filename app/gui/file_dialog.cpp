@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "aggpack/io/export.h"
+#include "aggpack/io/mesh_read.h"
 #include "gui_app.h"
 #include "i18n.h"
 
@@ -30,7 +31,6 @@ void FileDialog::list() {
     error = trs(Text::kCannotReadFolder, dir.string(), code.message());
     return;
   }
-  const std::string wanted = extension();
   for (; it != fs::directory_iterator(); it.increment(code)) {
     if (code) break;
     const std::string entry = it->path().filename().string();
@@ -38,14 +38,16 @@ void FileDialog::list() {
     std::error_code type_code;
     if (it->is_directory(type_code)) {
       new_folders.push_back(entry);
-    } else if (it->path().extension().string() == wanted) {
+    } else if (is_listed(entry)) {
       new_files.push_back(entry);
     }
   }
   std::sort(new_folders.begin(), new_folders.end());
   std::sort(new_files.begin(), new_files.end());
+  const std::string old_folder = folder;
   folder = dir.lexically_normal().string();
   if (folder.size() > 1 && folder.back() == '/') folder.pop_back();
+  if (folder != old_folder) picked.clear();  // picks belong to the folder they were made in
   folders = std::move(new_folders);
   files = std::move(new_files);
   error.clear();
@@ -54,7 +56,14 @@ void FileDialog::list() {
 std::string FileDialog::path() const { return (fs::path(folder) / name).string(); }
 
 std::string FileDialog::extension() const {
+  if (kind == Kind::kLibrary) return "";
   return kind == Kind::kOpen ? std::string(".h5") : "." + format;
+}
+
+bool FileDialog::is_listed(const std::string& entry) const {
+  if (kind != Kind::kLibrary) return fs::path(entry).extension().string() == extension();
+  MeshFileFormat mesh_format{};
+  return mesh_file_format(entry, mesh_format);
 }
 
 std::string default_export_name(const std::string& format, const std::string& stem) {
@@ -97,6 +106,10 @@ bool dialog_button(const char* label) {
 
 void GuiApp::draw_file_dialog() {
   if (dialog_.kind == FileDialog::Kind::kNone) return;
+  if (dialog_.kind == FileDialog::Kind::kLibrary) {
+    draw_library_dialog();
+    return;
+  }
   const bool is_open = dialog_.kind == FileDialog::Kind::kOpen;
   const char* title = tr(is_open ? Text::kDialogOpenTitle : Text::kDialogExportTitle);
   if (dialog_.is_open_requested) {

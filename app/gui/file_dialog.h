@@ -11,7 +11,8 @@
 namespace aggpack::gui {
 
 struct FileDialog {
-  enum class Kind { kNone, kOpen, kExport };
+  /// kLibrary: particle.library's folder or mesh files (library_dialog.cpp).
+  enum class Kind { kNone, kOpen, kExport, kLibrary };
   /// What the dialog shows: browsing, or one of the questions before an export.
   enum class Stage { kBrowse, kAskStale, kAskOverwrite };
 
@@ -27,6 +28,7 @@ struct FileDialog {
   std::string error;                 ///< why the last folder / file was refused ("" = none)
   std::vector<std::string> folders;  ///< subfolders of `folder` (names), sorted
   std::vector<std::string> files;    ///< files of `folder` with the dialog's extension, sorted
+  std::vector<std::string> picked;   ///< kLibrary: the files picked in `folder`, in list order
   /// Scripted runs: the next frame answers the shown stage: 1 yes (the default button), 2 no
   /// (Cancel); 0 = none.
   int scripted = 0;
@@ -36,8 +38,11 @@ struct FileDialog {
   /// The chosen file's full path.
   [[nodiscard]] std::string path() const;
   /// The extension the dialog lists and writes (".h5" for Open, "." + the format's for Export;
-  /// rock.dat's ".dat").
+  /// rock.dat's ".dat"; "" for kLibrary, which lists mesh files: is_listed).
   [[nodiscard]] std::string extension() const;
+  /// Whether the file `entry` is listed: its extension, or for kLibrary .stl, .obj or .ply in
+  /// any case (as the library loader reads them).
+  [[nodiscard]] bool is_listed(const std::string& entry) const;
 };
 
 /// The paper's default file name for an export format: "rock.dat" for rock.dat, else

@@ -495,6 +495,34 @@ void GuiApp::after_render() {
       return;
     }
   }
+  if (options_.library_folder && !is_library_script_started_) {
+    is_library_script_started_ = true;
+    open_library_dialog(*options_.library_folder);
+    for (const std::string& name : options_.library_picks) {
+      if (std::find(dialog_.files.begin(), dialog_.files.end(), name) != dialog_.files.end()) {
+        dialog_.picked.push_back(name);
+      }
+    }
+    frames_since_job_ = 0;
+    if (dialog_.kind != FileDialog::Kind::kNone) return;
+  }
+  if (dialog_.kind == FileDialog::Kind::kLibrary) {
+    if (dialog_.scripted != 0) return;  // the answer is not taken yet
+    std::string picked;
+    for (const std::string& name : dialog_.picked) picked += " " + name;
+    std::printf("dialog: library %s (%zu mesh files; picked:%s); answer %s\n",
+                dialog_.folder.c_str(), dialog_.files.size(), picked.c_str(),
+                options_.answer.c_str());
+    if (options_.screenshot_path && !is_screenshot_taken_) {
+      save_screenshot(*options_.screenshot_path);  // the dialog on screen
+      is_screenshot_taken_ = true;
+      is_frame_timing_skipped_ = true;
+    }
+    std::fflush(stdout);
+    dialog_.scripted = options_.answer == "yes" ? 1 : 2;
+    frames_since_job_ = 0;
+    return;
+  }
   if (options_.export_format && !is_export_script_started_) {
     is_export_script_started_ = true;
     open_dialog(FileDialog::Kind::kExport, *options_.export_format, options_.export_deck);

@@ -54,6 +54,11 @@ struct GuiOptions {
   DeckKind export_deck = DeckKind::kNone;
   /// --answer yes|no: the scripted answer to the export dialog's question (stale, overwrite).
   std::string answer = "no";
+  /// --library-dialog FOLDER: once the first job (and the edits) are done, open the shape
+  /// library dialog in FOLDER, pick --library-pick's files and answer with --answer (yes: use
+  /// the picked files, or the folder when none are picked).
+  std::optional<std::string> library_folder;
+  std::vector<std::string> library_picks;
   /// Settings folder (default $XDG_CONFIG_HOME/aggpack or ~/.config/aggpack).
   std::string settings_dir;
 };
@@ -111,6 +116,11 @@ class GuiApp {
   void open_dialog(FileDialog::Kind kind, const std::string& format = "",
                    DeckKind deck = DeckKind::kNone);
   void draw_file_dialog();
+  // library_dialog.cpp: particle.library's folder or files (in `folder`, else where the field's
+  // library or the kept folder is); use_library sets the field and closes the dialog.
+  void open_library_dialog(const std::string& folder = "");
+  void draw_library_dialog();
+  void use_library(std::vector<std::string> paths);
   // deck_export.cpp: a solver deck's fields in the Export dialog; returns their error in plain
   // words ("" = the library's check passes).
   std::string draw_deck_fields(DeckKind deck);
@@ -180,6 +190,7 @@ class GuiApp {
   bool is_timing_frames_script_ = false;
   bool are_edits_applied_ = false;
   bool is_export_script_started_ = false;
+  bool is_library_script_started_ = false;
   bool is_screenshot_taken_ = false;      // the scripted screenshot was written
   bool is_frame_timing_skipped_ = false;  // this frame wrote a screenshot: not timed
   // Whether frames drawn while the view moves must be light: the last full-detail picture took

@@ -116,6 +116,13 @@ int main(int argc, char** argv) {
                  "the answer to the Export dialog's questions (out-of-date result, existing file)")
       ->check(CLI::IsMember({"yes", "no"}))
       ->capture_default_str();
+  cli.add_option("--library-dialog", options.library_folder,
+                 "after the first pack/open (and --edit), open the shape library dialog in FOLDER "
+                 "and answer it with --answer (yes: use the --library-pick files, else the "
+                 "folder)");
+  cli.add_option("--library-pick", options.library_picks,
+                 "--library-dialog: click these files of the folder (repeat or comma list)")
+      ->delimiter(',');
   cli.add_option("--settings-dir", options.settings_dir,
                  "folder of the kept settings (default $XDG_CONFIG_HOME/aggpack or "
                  "~/.config/aggpack)");

@@ -29,14 +29,15 @@ const PackScope kLibrary{.text = "particle.library given", .applies = [](const P
 std::vector<Key<PackConfig>> library_keys() {
   return {
       {.name = "particle.library",
-       .type = ValueType::kPath,
+       .type = ValueType::kPathList,
        .written = kLibrary,
-       .doc = "a folder of particle meshes (.stl, .obj, .ply; or one such file): every particle "
-              "is one of them, as its convex hull, scaled to the grading's sieve size (enclosing "
-              "diameter) and randomly turned; unset = grown particles",
-       .binding =
-           bind(on<LatticeOptions>([](auto& o) -> auto& { return o.files.options.path; }),
-                on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.files.options.path; })),
+       .doc = "a folder of particle meshes (.stl, .obj, .ply), one such file, or an array of "
+              "folders and files: every particle is one of them, as its convex hull, scaled to "
+              "the grading's sieve size (enclosing diameter) and randomly turned; unset = grown "
+              "particles",
+       .binding = bind(
+           on<LatticeOptions>([](auto& o) -> auto& { return o.files.options.paths; }),
+           on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.files.options.paths; })),
        .presence = Presence::kOptional,
        .default_text = "(none)"},
       {.name = "particle.library_units",

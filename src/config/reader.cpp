@@ -278,6 +278,26 @@ class Converter {
         }
         return path->get();
       }
+      case ValueType::kPathList: {
+        const std::string expected =
+            " must be a non-empty path or an array of them, e.g. [\"a.stl\", \"rocks/\"]";
+        if (const auto* path = node.as_string()) {
+          if (path->get().empty()) fail(name + expected);
+          return std::vector<std::string>{path->get()};
+        }
+        const auto* items = node.as_array();
+        if (items == nullptr || items->empty()) fail(name + expected + got(node));
+        std::vector<std::string> paths;
+        for (std::size_t i = 0; i < items->size(); ++i) {
+          const auto* path = items->get(i)->as_string();
+          if (path == nullptr || path->get().empty()) {
+            fail(name + "[" + std::to_string(i) + "] must be a non-empty string (a file path)" +
+                 got(*items->get(i)));
+          }
+          paths.push_back(path->get());
+        }
+        return paths;
+      }
     }
     fail(name + ": unknown type");
   }

@@ -67,6 +67,9 @@ std::string allowed_text(const KeyView& key) {
       if (!key.note->empty()) return *key.note;  // a string that is not a path says what it is
       text = "a non-empty path";
       break;
+    case ValueType::kPathList:
+      text = "a non-empty path or an array of them";
+      break;
     default:
       text = key.range->text();
   }
@@ -88,6 +91,8 @@ const char* type_name(ValueType type) {
     case ValueType::kWord:
     case ValueType::kPath:
       return "string";
+    case ValueType::kPathList:
+      return "string or array";
   }
   return "";
 }
@@ -104,6 +109,16 @@ std::string value_text(const Value& value, ValueType type, WriteStyle style) {
     case ValueType::kWord:
     case ValueType::kPath:
       return aggpack::quoted(std::get<std::string>(value));
+    case ValueType::kPathList: {
+      // One path is written as a string, as it is usually typed.
+      const auto& paths = std::get<std::vector<std::string>>(value);
+      if (paths.size() == 1) return aggpack::quoted(paths.front());
+      std::string text = "[";
+      for (const std::string& path : paths) {
+        text += (text.size() > 1 ? ", " : "") + aggpack::quoted(path);
+      }
+      return text + "]";
+    }
     case ValueType::kBool:
       return std::get<bool>(value) ? "true" : "false";
     case ValueType::kNumberList: {

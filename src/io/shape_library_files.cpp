@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -19,8 +20,10 @@ namespace {
 
 constexpr std::size_t kMaxFiles = 1000000;
 
-// The files to import: (full path, name) in name order.
-std::vector<std::pair<std::string, std::string>> list_files(const std::string& path) {
+using FileList = std::vector<std::pair<std::string, std::string>>;
+
+// The files one library path names: (full path, name) in name order.
+FileList list_files(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code error;
   const auto status = fs::status(path, error);
@@ -56,6 +59,34 @@ std::vector<std::pair<std::string, std::string>> list_files(const std::string& p
   std::sort(files.begin(), files.end(),
             [](const auto& a, const auto& b) { return a.second < b.second; });
   return files;
+}
+
+// The files of every library path, in the paths' order. With several paths a shape is named by
+// its path (two folders may both hold "a.stl"); a file named twice is refused.
+FileList list_all_files(const std::vector<std::string>& paths) {
+  if (paths.size() == 1) return list_files(paths.front());
+  namespace fs = std::filesystem;
+  FileList all;
+  std::set<fs::path> seen;
+  for (const std::string& path : paths) {
+    if (path.empty()) {
+      throw InvalidInput("particle.library", "\"\"", "a folder or a .stl, .obj or .ply file");
+    }
+    for (auto& [full, name] : list_files(path)) {
+      std::error_code error;
+      fs::path canonical = fs::weakly_canonical(full, error);
+      if (error) canonical = fs::path(full).lexically_normal();
+      if (!seen.insert(canonical).second) {
+        throw InvalidInput("particle.library", aggpack::quoted(path),
+                           "paths naming each mesh file once (" + full + " is named twice)");
+      }
+      if (all.size() >= kMaxFiles) {
+        throw LimitExceeded("particle.library", aggpack::quoted(path), "at most 10^6 mesh files");
+      }
+      all.emplace_back(full, full);
+    }
+  }
+  return all;
 }
 
 struct Outcome {
@@ -94,16 +125,16 @@ Outcome import_file(const std::string& path, const std::string& name,
 
 ShapeLibrary load_shape_library(const ShapeLibraryOptions& options) {
   validate(options.import);
-  if (options.path.empty()) {
+  if (options.paths.empty() || (options.paths.size() == 1 && options.paths.front().empty())) {
     throw InvalidInput("particle.library", "\"\"", "a folder or a .stl, .obj or .ply file");
   }
-  const auto files = list_files(options.path);
+  const FileList files = list_all_files(options.paths);
   std::vector<Outcome> outcomes(files.size());
   parallel_for_index(0, files.size(), [&](std::size_t i) {
     outcomes[i] = import_file(files[i].first, files[i].second, options.import);
   });
   ShapeLibrary library;
-  library.source = options.path;
+  library.source = options.paths_text();
   library.units = options.import.units;
   library.shapes.reserve(files.size());
   for (std::size_t i = 0; i < files.size(); ++i) {
@@ -118,7 +149,7 @@ ShapeLibrary load_shape_library(const ShapeLibraryOptions& options) {
     library.skipped.push_back(files[i].second + ": " + outcome.message);
   }
   if (library.shapes.empty()) {
-    throw InvalidInput("particle.library", aggpack::quoted(options.path),
+    throw InvalidInput("particle.library", aggpack::quoted(library.source),
                        "at least one usable mesh (all " + std::to_string(files.size()) +
                            " were skipped; first: " + clipped(library.skipped.front(), 160) + ")");
   }

@@ -109,7 +109,7 @@ GrowthParams growth_params(const ShapeOptions& shape, double radius) {
 PackResult pack_random(const RandomPackOptions& options, const PackControl& control) {
   validate(options);
   if (options.shape.files.is_used() && !options.shape.files.loaded) {
-    throw InvalidInput("particle.library", options.shape.files.options.path,
+    throw InvalidInput("particle.library", options.shape.files.options.paths_text(),
                        "a library loaded by the pipeline (pack()) before the packer runs");
   }
   ProgressReporter progress(control);

@@ -38,6 +38,25 @@ constexpr double kLatticeBytesPerSite = 300.0;
 // A rough placement cost per particle (grid look-up and exact overlap tests), for the time
 // estimate of heavy_run_note only: bench/RESULTS.md, "Packing", a million particles placed in 47 s.
 constexpr double kPlacementSecondsPerParticle = 5e-5;
+// densify (bench/RESULTS.md, "Densifying packer"): CPU seconds per particle and sweep (9,078
+// particles: 3.4e-6; 101,303: 8.0e-6) and peak memory per particle (101,303: 530 MB, 5.2 kB).
+constexpr double kDensifySecondsPerParticleSweep = 5e-6;
+constexpr double kDensifyBytesPerParticle = 5.2e3;
+// Bullet (bench/RESULTS.md, "Steps per second"): CPU seconds per particle and step, 5.7e-5 at
+// 1,000 particles and 1.5e-4 at 10,000 (a power law between, flat below 1,000). Memory per body
+// besides its shape's vertices (rigid body, convex hull shape, broadphase proxy, contact
+// manifolds): an allowance, not measured.
+constexpr double kSimSecondsPerBodyStep = 5.7e-5;
+constexpr double kSimCostExponent = 0.42;  // log10(1.5e-4 / 5.7e-5)
+constexpr double kSimBytesPerBody = 4e3;
+// mesomodel (bench/RESULTS.md, "Concrete mesomodel mesh"): wall seconds and peak bytes per
+// aggregate (5,962: 15.2 s, 1.17 GB; 23,968: 66.9 s, 4.44 GB); the phase image: 5 bytes and
+// ~0.8 microseconds per voxel (256^3 in 13.7 s).
+constexpr double kMeshSecondsPerAggregate = 2.8e-3;
+constexpr double kMeshBytesPerAggregate = 1.9e5;
+constexpr double kVoxelBytes = 5.0;
+constexpr double kVoxelSeconds = 8e-7;
+constexpr double kGravity = 9.81;
 // A shape library may hold this many times the particles a target needs (and at least
 // kLibraryFloor shapes): beyond that most shapes are grown and never used.
 constexpr double kLibraryHeadroom = 10.0;
@@ -348,6 +367,53 @@ void check_resources(const LatticeOptions& options, double sites) {
   }
 }
 
+RunEstimate estimate_densify(double particles, double max_sweeps, double max_seconds, int threads) {
+  RunEstimate estimate;
+  estimate.particles = particles;
+  estimate.bytes = particles * kDensifyBytesPerParticle;
+  estimate.seconds =
+      particles * max_sweeps * kDensifySecondsPerParticleSweep / std::max(1, threads);
+  if (max_seconds > 0.0) estimate.seconds = std::min(estimate.seconds, max_seconds);
+  estimate.is_upper_bound = true;
+  return estimate;
+}
+
+RunEstimate estimate_simulation(double bodies, double shape_bytes, double steps, double runs,
+                                int parallel) {
+  RunEstimate estimate;
+  const double at_once = std::min(runs, static_cast<double>(std::max(1, parallel)));
+  estimate.particles = bodies;
+  estimate.bytes = at_once * (bodies * kSimBytesPerBody + 2.0 * shape_bytes);
+  const double per_body_step =
+      kSimSecondsPerBodyStep * std::pow(std::max(1.0, bodies / 1000.0), kSimCostExponent);
+  estimate.seconds = std::ceil(runs / at_once) * bodies * steps * per_body_step;
+  return estimate;
+}
+
+double expected_steps(double height, double min_time, double quiet_time, double max_time,
+                      double time_step) {
+  const double fall = std::sqrt(2.0 * std::max(0.0, height) / kGravity);
+  const double simulated = std::min(max_time, min_time + 2.0 * fall + quiet_time + 1.0);
+  return time_step > 0.0 ? simulated / time_step : 0.0;
+}
+
+double automatic_time_step(double d_min, double time_step_factor) {
+  return time_step_factor * std::sqrt(std::max(d_min, 0.0) / kGravity);
+}
+
+RunEstimate estimate_mesomodel(double particles, double voxels) {
+  RunEstimate estimate;
+  estimate.particles = particles;
+  if (voxels > 0.0) {
+    estimate.bytes = voxels * kVoxelBytes;
+    estimate.seconds = voxels * kVoxelSeconds;
+  } else {
+    estimate.bytes = particles * kMeshBytesPerAggregate;
+    estimate.seconds = particles * kMeshSecondsPerAggregate;
+  }
+  return estimate;
+}
+
 std::string heavy_run_note(const RunEstimate& estimate) {
   if (!(estimate.seconds > kHeavySeconds) && !(estimate.bytes > kHeavyBytes)) return "";
   const double seconds = estimate.seconds;
@@ -360,8 +426,8 @@ std::string heavy_run_note(const RunEstimate& estimate) {
     std::snprintf(time, sizeof time, "%.1f h", seconds / 3600.0);
   }
   return "a large run: ~" + count_text(estimate.particles) + " particles, ~" +
-         format_bytes(estimate.bytes) + " of memory, ~" + time +
-         " (rough estimate; Ctrl-C stops it)";
+         format_bytes(estimate.bytes) + " of memory, " +
+         (estimate.is_upper_bound ? "up to ~" : "~") + time + " (rough estimate; Ctrl-C stops it)";
 }
 
 }  // namespace aggpack

@@ -28,6 +28,31 @@ void validate(const ShapeImportOptions& options) {
   }
 }
 
+std::string ShapeLibraryOptions::paths_text() const {
+  std::string text;
+  for (const std::string& path : paths) text += (text.empty() ? "" : ", ") + path;
+  return text;
+}
+
+std::string ShapeLibrary::summary() const {
+  return source + " (" + std::to_string(shapes.size()) + " shapes, " +
+         std::to_string(skipped.size()) + " skipped, units " +
+         std::string(length_unit_name(units)) + ")";
+}
+
+std::string ShapeLibrary::hull_summary() const {
+  double mesh_total = 0.0;
+  double hull_total = 0.0;
+  for (const LibraryShape& shape : shapes) {
+    mesh_total += shape.mesh_volume;
+    hull_total += shape.hull_volume;
+  }
+  char text[160];
+  std::snprintf(text, sizeof text, "add %.6g m^3 to %.6g m^3 of meshes (%+.3f %%)",
+                hull_total - mesh_total, mesh_total, 100.0 * (hull_total / mesh_total - 1.0));
+  return text;
+}
+
 std::string ShapeLibrary::provenance() const {
   std::string text = "library " + source + " (units " + std::string(length_unit_name(units)) +
                      ", " + std::to_string(shapes.size()) + " shapes, " +

@@ -62,6 +62,18 @@ TEST_F(LibraryCli, PackStoresTheLibraryOnceAndInfoShowsIt) {
                    "[packer]\nkind = \"random\"\ntarget_fraction = 0.15\nseed = 2\n");
   const CliRun pack = run("pack rocks.toml -o rocks.h5");
   ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  // The run names its library: where from, shapes, skipped, and the volume the hulls added (the
+  // dented cube's 100 mm^3 and the two dented icosahedra's).
+  EXPECT_NE(pack.out.find("\nshape library   rocks (3 shapes, 0 skipped, units mm)\n"),
+            std::string::npos)
+      << pack.out;
+  EXPECT_NE(pack.out.find("\nconvex hulls    add "), std::string::npos) << pack.out;
+  const CliRun json = run("pack rocks.toml -o rocks-json.h5 --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"library\": {\"source\": \"rocks\", \"shapes\": 3, \"skipped\": 0, "
+                          "\"units\": \"mm\", \"mesh_volume_m3\": "),
+            std::string::npos)
+      << json.out;
   const CliRun info = run("info rocks.h5");
   ASSERT_EQ(info.exit_code, 0) << info.err;
   EXPECT_NE(info.out.find("shape library   library rocks (units mm, 3 shapes, 0 skipped)"),
@@ -92,9 +104,58 @@ TEST_F(LibraryCli, BadMeshesAreOneLineErrorsOrSkipped) {
   EXPECT_EQ(limit.exit_code, 2);
   EXPECT_NE(limit.err.find("its convex hull adds 11.1 % to its volume"), std::string::npos)
       << limit.err;
+  EXPECT_NE(limit.err.find("above --max-hull-excess = 0.05"), std::string::npos) << limit.err;
+  const CliRun empty = this->run("shapes --library ''");
+  EXPECT_EQ(empty.exit_code, 2);
+  EXPECT_EQ(empty.err.rfind("aggpack: error: invalid --library = \"\"", 0), 0u) << empty.err;
   const CliRun none = this->run("pack --set particle.library=nowhere --set packer.kind=random");
   EXPECT_EQ(none.exit_code, 2);
   EXPECT_NE(none.err.find("particle.library = \"nowhere\""), std::string::npos) << none.err;
+}
+
+// A list of folders and files: --library repeated or comma-separated, particle.library an array.
+TEST_F(LibraryCli, ListsOfFilesAndFolders) {
+  write_library();
+  std::filesystem::create_directories(path("more"));
+  test::write_file(path("more/cube.stl"), test::stl_ascii(test::dented_cube(20, 5)));
+  const CliRun shapes = run("shapes --library rocks/rock.ply,rocks/cube.stl --library more");
+  ASSERT_EQ(shapes.exit_code, 0) << shapes.err;
+  // In the list's order, each named by its path (two files are called cube.stl).
+  const auto ply = shapes.out.find(",rocks/rock.ply,fnv1a64:");
+  const auto cube = shapes.out.find(",rocks/cube.stl,fnv1a64:");
+  const auto more = shapes.out.find(",more/cube.stl,fnv1a64:");
+  ASSERT_NE(more, std::string::npos) << shapes.out;
+  EXPECT_LT(ply, cube);
+  EXPECT_LT(cube, more);
+  EXPECT_EQ(shapes.out.find("rock.obj"), std::string::npos) << "a file not listed was read";
+  EXPECT_NE(shapes.out.find("library         rocks/rock.ply, rocks/cube.stl, more (3 shapes, "),
+            std::string::npos)
+      << shapes.out;
+  // A file named twice (directly and through its folder) is refused, naming it.
+  const CliRun twice = run("shapes --library rocks --library rocks/cube.stl");
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_NE(twice.err.find("invalid --library = \"rocks/cube.stl\""), std::string::npos)
+      << twice.err;
+  EXPECT_NE(twice.err.find("is named twice"), std::string::npos) << twice.err;
+  // The config key as an array; the resolved configuration writes it back as one.
+  const CliRun pack =
+      run("pack --set 'particle.library=[\"rocks/cube.stl\", \"more\"]' --set packer.kind=random "
+          "--set container.length=0.2 --set container.width=0.2 --set container.depth=0.2 --set "
+          "particle.radius_min=0.015 --set particle.radius_max=0.025 --set "
+          "packer.target_fraction=0.1 -o two.h5");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  EXPECT_NE(pack.out.find("shape library   rocks/cube.stl, more (2 shapes, 0 skipped"),
+            std::string::npos)
+      << pack.out;
+  const CliRun config =
+      run("pack --set 'particle.library=[\"rocks/cube.stl\", \"more\"]' --print-config");
+  EXPECT_NE(config.out.find("library = [\"rocks/cube.stl\", \"more\"]"), std::string::npos)
+      << config.out;
+  const CliRun bad = run("pack --set 'particle.library=[\"rocks\", 3]' --print-config");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("particle.library[1] must be a non-empty string (a file path)"),
+            std::string::npos)
+      << bad.err;
 }
 
 }  // namespace

@@ -112,6 +112,15 @@ def main():
         assert frame > 1500, f"no red field frame in the dialog: {frame} pixels"
         red = count(pixel, xs, ys, lambda c: c[0] > 200 and c[1] < 120 and c[2] < 110)
         assert red > 60, f"no red error text in the dialog: {red} pixels"
+    elif what == "library":
+        # The shape library dialog in the middle, its picked files' rows highlighted (ImGui's
+        # header colour: blue over the dark dialog).
+        xs = range(width // 2 - 280, width // 2 + 280, 2)
+        ys = range(height // 2 - 200, height // 2 + 200, 2)
+        dark = count(pixel, xs, ys, is_dark)
+        assert dark > 0.4 * len(xs) * len(ys), f"no dialog in the middle: {dark}"
+        picked = count(pixel, xs, ys, lambda c: c[2] > 90 and c[2] > c[0] + 40 and c[1] > c[0])
+        assert picked > 500, f"no highlighted (picked) rows in the dialog: {picked} pixels"
     else:
         raise SystemExit(f"unknown check {what}")
     print(f"check_ui {what}: ok")

@@ -53,7 +53,7 @@ std::pair<ErrorKind, std::string> load_error(const ShapeLibraryOptions& options)
   } catch (const Error& error) {
     return {error.kind(), error.what()};
   }
-  ADD_FAILURE() << "no error for " << options.path;
+  ADD_FAILURE() << "no error for " << options.paths_text();
   return {ErrorKind::kInvalidInput, ""};
 }
 
@@ -206,7 +206,7 @@ TEST(ShapeLibraryFiles, LoadsAFolderInNameOrderWithHashes) {
   folder.write("c_rock.ply", test::ply_bytes(rock, PlyEncoding::kLittle));
   folder.write("d_cube_ascii.stl", test::stl_ascii(cube));
   folder.write("notes.txt", "ignored");
-  const ShapeLibrary library = load_shape_library({.path = folder.path()});
+  const ShapeLibrary library = load_shape_library({.paths = {folder.path()}});
   ASSERT_EQ(library.shapes.size(), 4u);
   EXPECT_EQ(library.shapes[0].name, "a_rock.OBJ");
   EXPECT_EQ(library.shapes[3].name, "d_cube_ascii.stl");
@@ -229,18 +229,19 @@ TEST(ShapeLibraryFiles, BadFilesStopTheLoadOrAreSkippedAndCounted) {
                "float y\nproperty float z\nelement face 4\nproperty list uchar int "
                "vertex_indices\nend_header\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 2\n"
                "3 0 2 3\n3 0 3 1\n3 1 3 2\n");
-  const auto [kind, message] = load_error({.path = folder.path()});
+  const auto [kind, message] = load_error({.paths = {folder.path()}});
   EXPECT_EQ(kind, ErrorKind::kFormatError);
   EXPECT_EQ(message, folder.file("bowtie.obj") +
                          ": mesh is non-manifold: vertex 0 joins two surfaces that touch only "
                          "there");
-  const ShapeLibrary library = load_shape_library({.path = folder.path(), .is_skipping_bad = true});
+  const ShapeLibrary library =
+      load_shape_library({.paths = {folder.path()}, .is_skipping_bad = true});
   ASSERT_EQ(library.shapes.size(), 1u);
   ASSERT_EQ(library.skipped.size(), 3u);
   EXPECT_EQ(library.skipped[1].rfind("open.stl: mesh is open: edge", 0), 0u);
   EXPECT_EQ(library.skipped[2], "zero.ply: mesh triangle 0 has zero area (degenerate)");
   // The hull excess limit: the dented cube's hull adds 1 / (1 - 0.1) - 1 = 11.1 %.
-  const ShapeLibraryOptions strict{.path = folder.file("good.stl"),
+  const ShapeLibraryOptions strict{.paths = {folder.file("good.stl")},
                                    .import = {.max_hull_excess = 0.1}};
   const auto [limit_kind, limit_message] = load_error(strict);
   EXPECT_EQ(limit_kind, ErrorKind::kLimitExceeded);
@@ -248,8 +249,8 @@ TEST(ShapeLibraryFiles, BadFilesStopTheLoadOrAreSkippedAndCounted) {
                                ": its convex hull adds 11.1 % to its volume, above "
                                "particle.library_max_hull_excess = 0.1");
   EXPECT_NO_THROW((void)load_shape_library(
-      {.path = folder.file("good.stl"), .import = {.max_hull_excess = 0.12}}));
-  EXPECT_EQ(load_error({.path = folder.file("none")}).second,
+      {.paths = {folder.file("good.stl")}, .import = {.max_hull_excess = 0.12}}));
+  EXPECT_EQ(load_error({.paths = {folder.file("none")}}).second,
             "invalid particle.library = \"" + folder.file("none") +
                 "\" (allowed: an existing folder, or a .stl, .obj or .ply file)");
 }

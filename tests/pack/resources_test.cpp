@@ -150,6 +150,36 @@ TEST(Resources, HeavyRunNoteAboveTenSecondsOrOneGigabyte) {
             "stops it)");
 }
 
+// The other commands' estimates: the per-unit costs times the work, exactly.
+TEST(Resources, DensifySimulationAndMesomodelEstimates) {
+  // densify: 5e-6 s per particle and sweep over the threads, capped by --max-time; 5.2 kB each.
+  RunEstimate densify = estimate_densify(1000, 4000, 0.0, 2);
+  EXPECT_DOUBLE_EQ(densify.seconds, 1000 * 4000 * 5e-6 / 2);
+  EXPECT_DOUBLE_EQ(densify.bytes, 1000 * 5.2e3);
+  EXPECT_TRUE(densify.is_upper_bound);
+  EXPECT_DOUBLE_EQ(estimate_densify(1000, 4000, 3.0, 2).seconds, 3.0);
+  EXPECT_EQ(heavy_run_note(estimate_densify(1e5, 2000, 0.0, 1)),
+            "a large run: ~100000 particles, ~520 MB of memory, up to ~17 min (rough estimate; "
+            "Ctrl-C stops it)");
+  // Bullet: 5.7e-5 s per body and step up to 1,000 bodies, x (n / 1000)^0.42 above; runs in
+  // rounds of `parallel`; 4 kB per body plus twice the shapes, for each run at a time.
+  const RunEstimate small = estimate_simulation(500, 1e6, 1000, 1, 1);
+  EXPECT_DOUBLE_EQ(small.seconds, 500 * 1000 * 5.7e-5);
+  EXPECT_DOUBLE_EQ(small.bytes, 500 * 4e3 + 2e6);
+  const RunEstimate large = estimate_simulation(10000, 0.0, 100, 5, 2);
+  EXPECT_NEAR(large.seconds, 3 * 10000 * 100 * 5.7e-5 * std::pow(10.0, 0.42), 1e-9);
+  EXPECT_DOUBLE_EQ(large.bytes, 2 * 10000 * 4e3);
+  // Steps to rest: twice the fall from h, min_time, quiet_time and 1 s, capped by max_time.
+  EXPECT_DOUBLE_EQ(expected_steps(4.905, 0.5, 0.25, 30.0, 0.01), (0.5 + 2.0 + 0.25 + 1.0) / 0.01);
+  EXPECT_DOUBLE_EQ(expected_steps(4.905, 0.5, 0.25, 2.0, 0.01), 2.0 / 0.01);
+  EXPECT_NEAR(automatic_time_step(0.0981, 0.04), 0.004, 1e-15);
+  // mesomodel: 2.8 ms and 190 kB per aggregate; a phase image 0.8 us and 5 bytes per voxel.
+  EXPECT_DOUBLE_EQ(estimate_mesomodel(6000, 0.0).bytes, 6000 * 1.9e5);
+  EXPECT_DOUBLE_EQ(estimate_mesomodel(6000, 0.0).seconds, 6000 * 2.8e-3);
+  EXPECT_DOUBLE_EQ(estimate_mesomodel(6000, 1e9).bytes, 5e9);
+  EXPECT_DOUBLE_EQ(estimate_mesomodel(6000, 1e9).seconds, 800.0);
+}
+
 TEST(Resources, LatticeBeyondTheMemoryLimitIsRefused) {
   LatticeOptions options;  // the paper's box
   options.radius = 0.003;  // ~3.9 x 10^7 sites

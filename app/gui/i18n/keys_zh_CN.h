@@ -22,7 +22,7 @@ AGGPACK_KEY("particle.growth", "生长方式", "生长时新顶点的位置。hu
 AGGPACK_KEY("particle.elongation", "伸长度", "控制椭球的中半轴 / 长半轴（1 = 球；长半轴为控制半径 r）：细长颗粒")
 AGGPACK_KEY("particle.flatness", "扁平度", "控制椭球的短半轴 / 中半轴（1 = 球）：扁平颗粒")
 AGGPACK_KEY("particle.min_edge_ratio", "最小边长比", "最小边长 / L（hull 生长）：最长边上的随机点距两端至少为此值 x L（0 = 任意位置，0.5 = 中点）")
-AGGPACK_KEY("particle.library", "颗粒形状库", "颗粒形状库：一个含 STL / OBJ / PLY 网格的文件夹（或单个文件），例如扫描的骨料；每个颗粒取库中一个形状，按级配缩放、随机取向（取其凸包）")
+AGGPACK_KEY("particle.library", "颗粒形状库", "颗粒形状库：一个含 STL / OBJ / PLY 网格的文件夹、单个网格文件，或由文件夹和文件组成的数组，例如扫描的骨料；每个颗粒取库中一个形状，按级配缩放、随机取向（取其凸包）")
 AGGPACK_KEY("particle.library_units", "形状库单位", "形状库文件的坐标单位：mm 或 m")
 AGGPACK_KEY("particle.library_skip_bad", "跳过坏文件", "跳过（并计数）不封闭、非流形或退化的网格文件，而不是报错停止")
 AGGPACK_KEY("particle.library_max_hull_excess", "凸包增量上限", "拒绝凸包比网格本身体积大出此比例以上的形状 ((V_凸包 - V_网格) / V_网格)；0 = 不限")

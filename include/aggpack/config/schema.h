@@ -49,7 +49,8 @@ enum class ValueType {
   kBool,        ///< true / false
   kNumberList,  ///< [x, y, ...], every element in the range
   kSieve,       ///< [[size, percent_passing], ...]
-  kPath         ///< a non-empty string (a file path)
+  kPath,        ///< a non-empty string (a file path)
+  kPathList     ///< a non-empty path, or an array of them (read as a list of one or more)
 };
 
 /// Sieve rows compare by value (for Value's ==).
@@ -59,7 +60,7 @@ inline bool operator==(const SieveRow& a, const SieveRow& b) {
 
 /// A value of any key type.
 using Value = std::variant<double, std::int64_t, std::string, bool, std::vector<double>,
-                           std::vector<SieveRow>>;
+                           std::vector<SieveRow>, std::vector<std::string>>;
 
 /// Whether an end of a range belongs to it.
 enum class End { kClosed, kOpen };

@@ -9,8 +9,9 @@ namespace aggpack {
 /// Largest mesh file read (bytes): 1 GiB.
 inline constexpr std::uint64_t kMaxMeshFileBytes = 1ULL << 30;
 
-/// Loads the library `options.path` names: a folder's .stl/.obj/.ply files (any case; not its
-/// sub-folders; other files ignored) in file-name order, or one mesh file. Files are imported in
+/// Loads the library `options.paths` name, each a folder's .stl/.obj/.ply files (any case; not its
+/// sub-folders; other files ignored) in file-name order, or one mesh file; several paths in their
+/// order (shapes then named by path, each file at most once). Files are imported in
 /// parallel; the result is the same at any thread count. A file that fails stops the load with
 /// a one-line error "PATH: what is wrong" of the failure's kind, unless
 /// options.is_skipping_bad, which records it in ShapeLibrary::skipped instead.

@@ -47,6 +47,9 @@ struct RunEstimate {
   /// shape grown, on the allowed threads, plus a fixed placement cost per particle. Measured, so
   /// not reproducible.
   double seconds = 0.0;
+  /// `seconds` is a budget's worth (a sweep or simulated-time limit) that the run may stop well
+  /// before: the note says "up to".
+  bool is_upper_bound = false;
 };
 
 /// Estimates for options that passed the packer's own range checks. The random packer's sample:
@@ -64,13 +67,36 @@ void check_resources(const RandomPackOptions& options);
 /// memory_limit(). Called by validate(LatticeOptions).
 void check_resources(const LatticeOptions& options, double sites);
 
+/// The other heavy commands, from per-unit costs measured in bench/RESULTS.md (one thread unless
+/// said; `particles` is what RunEstimate::particles reports):
+/// densify: `particles` particles, at most `max_sweeps` sweeps (and `max_seconds` of wall time
+/// when > 0) on `threads` threads; the sweep budget's time, an upper bound (a run ends at its
+/// target). Memory per particle measured with the packing's shapes (10^5 particles: 530 MB).
+RunEstimate estimate_densify(double particles, double max_sweeps, double max_seconds, int threads);
+/// A Bullet simulation (settle, repose, their ensembles and sweeps): `runs` runs of `bodies`
+/// bodies for about `steps` time steps each, `parallel` runs at a time; `shape_bytes` the heap
+/// bytes of one run's shapes (heap_bytes).
+RunEstimate estimate_simulation(double bodies, double shape_bytes, double steps, double runs,
+                                int parallel);
+/// Expected time steps of a simulation to rest: twice the free fall from `height` (m), the
+/// criterion's `min_time` and `quiet_time` and one more second, at most `max_time` (simulated
+/// s), over `time_step` (s). Piles measured at rest after ~1.2 s (50 mm cube, 199 particles).
+double expected_steps(double height, double min_time, double quiet_time, double max_time,
+                      double time_step);
+/// The automatic Bullet time step for particles of equivalent diameter `d_min` (m):
+/// time_step_factor x sqrt(d_min / 9.81), as World takes it when PhysicsOptions::time_step = 0.
+double automatic_time_step(double d_min, double time_step_factor);
+/// mesomodel: the tetrahedral mesh of `particles` aggregates (voxels = 0), or the phase image of
+/// `voxels` voxels.
+RunEstimate estimate_mesomodel(double particles, double voxels);
+
 /// A run is heavy above either of these: it is announced before it starts.
 inline constexpr double kHeavySeconds = 10.0;
 inline constexpr double kHeavyBytes = 1e9;
 
 /// One line announcing a heavy run ("a large run: ~600000 particles, ~4.8 GB of memory, ~3 min
-/// (rough estimate; Ctrl-C stops it)"), or "" when the estimate is below kHeavySeconds and
-/// kHeavyBytes.
+/// (rough estimate; Ctrl-C stops it)"; "up to ~3 min" for an upper bound), or "" when the
+/// estimate is below kHeavySeconds and kHeavyBytes.
 std::string heavy_run_note(const RunEstimate& estimate);
 
 }  // namespace aggpack

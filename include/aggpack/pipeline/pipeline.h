@@ -8,6 +8,7 @@
 // PackerRun specialisation in src/pipeline/pipeline.cpp; a kind without one fails to compile.
 
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,6 +19,7 @@
 #include "aggpack/pack/dense_packer.h"
 #include "aggpack/pack/packer_kinds.h"
 #include "aggpack/pack/progress.h"
+#include "aggpack/shape/shape_library.h"
 #ifdef AGGPACK_HAS_SIM
 #include "aggpack/sim/repose.h"
 #endif
@@ -46,6 +48,8 @@ struct DenseFill {
 struct PipelineResult : PackResult {
   std::optional<DensifyReport> densify{};
   std::optional<DenseFill> fill{};
+  /// particle.library as loaded (its summary for the front ends), or null for grown particles.
+  std::shared_ptr<const ShapeLibrary> library{};
 };
 
 /// What a "dense" run fell short of, one sentence each, for the front ends to show as warnings

@@ -35,15 +35,19 @@ struct ShapeImportOptions {
 
 /// Where the library comes from and how it is used (config keys particle.library*).
 struct ShapeLibraryOptions {
-  std::string path;  ///< a folder of .stl/.obj/.ply files, or one such file; empty = none
+  /// Each a folder of .stl/.obj/.ply files or one such file, read in this order; empty = none.
+  std::vector<std::string> paths;
   ShapeImportOptions import{};
   bool is_skipping_bad = false;  ///< skip (and count) files that fail, instead of stopping
   bool is_use_once = false;      ///< each shape placed at most once
+  /// The paths for messages and the provenance: "rocks/", "a.stl, b.stl".
+  [[nodiscard]] std::string paths_text() const;
 };
 
 /// One imported shape. Volumes in m^3 at the file's size (after the unit).
 struct LibraryShape {
-  std::string name;  ///< file name (within the library folder)
+  /// File name (within its folder); with several library paths, the path as found ("rocks/a.stl").
+  std::string name;
   std::string hash;  ///< content_hash of the file's bytes
   /// The hull (simplified), centroid at the origin, scaled so that its smallest enclosing sphere
   /// has radius 1: a particle of sieve size d is this body scaled by d / 2.
@@ -64,7 +68,7 @@ struct LibraryShape {
 
 /// A loaded library: the shapes in file-name order, and what was skipped.
 struct ShapeLibrary {
-  std::string source;  ///< the path it was loaded from
+  std::string source;  ///< the path(s) it was loaded from, ", "-separated
   LengthUnit units = LengthUnit::kMillimetre;
   std::vector<LibraryShape> shapes;
   std::vector<std::string> skipped;  ///< one line per skipped file: "name: reason"
@@ -72,6 +76,11 @@ struct ShapeLibrary {
   /// Provenance text stored in the native file: a header line, then one line per shape
   /// ("name<TAB>hash"), shape k on line k + 1.
   [[nodiscard]] std::string provenance() const;
+  /// "rocks/ (12 shapes, 1 skipped, units mm)": what was loaded, for the front ends.
+  [[nodiscard]] std::string summary() const;
+  /// "add 1.2e-06 m^3 to 3.4e-05 m^3 of meshes (+3.529 %)": the volume the convex hulls added,
+  /// summed over the shapes.
+  [[nodiscard]] std::string hull_summary() const;
 };
 
 /// Makes one library shape from a mesh in file units: check_particle_mesh, then the hull, the
@@ -90,7 +99,7 @@ void validate(const ShapeImportOptions& options);
 struct ShapeFiles {
   ShapeLibraryOptions options{};
   std::shared_ptr<const ShapeLibrary> loaded{};
-  [[nodiscard]] bool is_used() const { return !options.path.empty(); }
+  [[nodiscard]] bool is_used() const { return !options.paths.empty(); }
 };
 
 }  // namespace aggpack
