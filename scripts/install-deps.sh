@@ -32,6 +32,8 @@ packages=(
   python3-scipy
   # the Python module (python/, pybind11) and its tests and examples
   pybind11-dev python3-dev python3-pytest python3-matplotlib
+  # the manual's commands run by a test (tests/docs): its markdown parser
+  python3-markdown-it
   # `mpirun -n N aggpack sweep` (optional, cmake/mpi.cmake)
   libopenmpi-dev openmpi-bin
   # runs the exported YADE deck (export --deck yade); ~105 MB download, ~1.1 GB installed

@@ -16,7 +16,7 @@ for format in stl dat inp vtu; do
 done
 # The paper's trough-test deck run by CalculiX as written: the whole model (1,050 particles, walls,
 # baffle, contact pairs, gravity) for a few microseconds of simulated time; the full 8.5 s needs
-# ~2.4e7 explicit increments in ccx (README "Complete decks"). The deck is made from aggpack 0.1's
+# ~2.4e7 explicit increments in ccx (docs/export.md, "Complete decks"). The deck is made from aggpack 0.1's
 # particles (particle.growth = midpoint, as the deck tests do): ccx sets up its contact structure
 # for those in about 10 s of CPU, while the default hull rule's particles (more, smaller surface
 # facets) kept it in that set-up for over 3 CPU-minutes (20 minutes on a loaded machine); the

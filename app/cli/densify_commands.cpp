@@ -242,7 +242,7 @@ void register_densify(CLI::App& app) {
       "densify",
       "Densify a saved packing by hard-particle Monte Carlo (exact, overlap-free at every step): "
       "compress it toward a target container / fraction (--mode fixed) or let it sink as a "
-      "gravity bed (--mode bed). Docs: README 'Dense packings'.");
+      "gravity bed (--mode bed). Docs: docs/densify.md.");
   command->add_option("input", flags->input, "native packing file to start from (.h5)")->required();
   command->add_option("-o,--output", flags->output, "native packing file to write")->required();
   command->add_option("--mode", flags->mode, "fixed (compress) or bed (gravity bed)")

@@ -130,10 +130,11 @@ void add_config_options(CLI::App& command, ReposeFlags& flags) {
                      "sliding friction mu_s, same as --set physics.friction");
   command.add_option("--alpha", flags.alpha, "shape control alpha, same as --set particles.alpha");
   command.add_option("--seed", flags.seed, "master seed, same as --set particles.seed");
-  command.add_option("--engine", flags.engine,
-                     "physics engine: bullet (built in) or yade (Debian's yade as a subprocess, "
-                     "same fill, trough and measurement; far slower: README), same as --set "
-                     "physics.engine");
+  command.add_option(
+      "--engine", flags.engine,
+      "physics engine: bullet (built in) or yade (Debian's yade as a subprocess, "
+      "same fill, trough and measurement; far slower: docs/physics.md), same as --set "
+      "physics.engine");
   command.add_option("--time-limit", flags.time_limit,
                      "yade: wall-clock seconds one run may take (0 = none), same as --set "
                      "yade.time_limit");

@@ -431,7 +431,7 @@ std::vector<PackKey> packer_keys() {
        .written = kCountTarget,
        .doc = "place this many particles (instead of `target_fraction`). Refused when their "
               "estimated solid volume exceeds 0.74 of the container, or the run's memory "
-              "estimate the memory limit (README, \"Runs that cannot work\")",
+              "estimate the memory limit (docs/packing.md)",
        .binding = {
            .get = [](const PackConfig& c) -> Value {
              const RandomPackOptions* random = random_of(c);

@@ -39,7 +39,7 @@ AGGPACK_KEY("packer.seed", "随机种子", "主随机种子；颗粒 i 使用自
 AGGPACK_KEY("packer.threads", "线程数", "工作线程数，0 = 全部核心；结果与之无关（不存入文件）")
 AGGPACK_KEY("packer.gap", "颗粒间隙", "颗粒之间的最小距离")
 AGGPACK_KEY("packer.spacing", "点阵间距", "点阵中心间距。0 = 2 R + 间隙（颗粒不会接触，各自独立生长）；更小的值使点位更密，并启用论文的接触检查（向相邻颗粒的生长被停止，仍接触的颗粒绕其中心缩小）")
-AGGPACK_KEY("packer.target_count", "目标颗粒数", "投放这么多颗粒（代替 target_fraction）。若其估计固体体积超过容器的 0.74，或运行的内存估计超过内存上限，则拒绝（见 README“无法运行的情况”）")
+AGGPACK_KEY("packer.target_count", "目标颗粒数", "投放这么多颗粒（代替 target_fraction）。若其估计固体体积超过容器的 0.74，或运行的内存估计超过内存上限，则拒绝（见 docs/packing.md）")
 AGGPACK_KEY("packer.target_fraction", "目标体积分数", "投放颗粒直到固体体积 / 容器体积达到此值（默认的目标）。packer.kind = dense、densify.mode = fixed 时：填充在放大容器中的体积分数，须小于 densify.target_fraction")
 AGGPACK_KEY("packer.attempts", "每颗尝试次数", "每个颗粒被跳过之前尝试的候选位姿数")
 AGGPACK_KEY("packer.max_total_attempts", "总尝试次数", "整个运行的候选位姿总数；用完后运行停止")
