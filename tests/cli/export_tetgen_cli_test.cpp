@@ -49,10 +49,15 @@ TEST_F(ExportTetGenCliTest, ConcreteFullerExampleExports) {
   ASSERT_EQ(run("pack '" + config + "' -o fuller.h5 --progress none --set particle.growth=midpoint")
                 .exit_code,
             0);
-  const CliRun result = run("export fuller.h5 --tet-method tetgen -o fuller.dat");
+  // A time limit far above any shape's meshing time, so only TetGen's aborts fall back (at the
+  // default 20 s a slow machine or the sanitized build adds time-outs and the count moves).
+  const CliRun result =
+      run("export fuller.h5 --tet-method tetgen --tet-time-limit 600 -o fuller.dat");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.out.find("tetgen: 14 of 3439 shapes fell back to the centroid fan"),
             std::string::npos)
+      << result.out;
+  EXPECT_NE(result.out.find("TetGen died of signal 6 (Aborted): 14)\n"), std::string::npos)
       << result.out;
   EXPECT_TRUE(fs::exists(folder_ / "fuller.dat"));
 }
