@@ -242,6 +242,8 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
       has_faces = true;
       mesh.triangles.reserve(element.count);
     }
+    // An element without properties holds no bytes: its entries (any count) are nothing to read.
+    if (element.properties.empty()) continue;
     std::vector<std::int64_t> polygon;
     for (std::uint64_t entry = 0; entry < element.count; ++entry) {
       Vec3 point = Vec3::Zero();

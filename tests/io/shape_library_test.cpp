@@ -99,6 +99,8 @@ TEST(MeshRead, MalformedFilesAreOneLineErrorsNamingTheFile) {
       {"f.ply", test::ply_bytes(cube, PlyEncoding::kBig).substr(0, 300)},
       {"g.stl", "solid x\nfacet normal 0 0 1\n outer loop\n"},
       {"h.stl", "not an stl at all"},
+      // An element without properties and 6e12 entries (a fuzzer's find): read at once, no loop.
+      {"i.ply", "ply\nformat binary_little_endian 1.0\nelement junk 6111111111111\nend_header\n"},
   };
   for (const auto& [name, bytes] : cases) {
     MeshFileFormat format{};
