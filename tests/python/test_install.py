@@ -13,8 +13,14 @@ def test_install_into_a_prefix(tmp_path):
     result = subprocess.run(["cmake", "--install", build, "--prefix", str(tmp_path)],
                             capture_output=True, text=True, check=False)
     assert result.returncode == 0, result.stderr
+    # Debian's layout for the prefix the build was configured with: /usr (after
+    # scripts/package.sh) installs to lib/python3/dist-packages, any other prefix to
+    # lib/python3.X/dist-packages; exactly one of them must hold the module.
     version = f"python{sys.version_info.major}.{sys.version_info.minor}"
-    site = tmp_path / "lib" / version / "dist-packages"
+    candidates = [tmp_path / "lib" / name / "dist-packages" for name in (version, "python3")]
+    holding = [c for c in candidates if c.is_dir() and any(c.glob("aggpack*.so"))]
+    assert len(holding) == 1, f"module installed under {holding} (expected one of {candidates})"
+    site = holding[0]
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     env["PYTHONPATH"] = str(site)
     result = subprocess.run(
