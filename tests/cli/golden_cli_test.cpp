@@ -56,23 +56,6 @@ std::vector<std::string> case_names() {
   return names;
 }
 
-// True when `aggpack <subcommand> --help` works (the sanitized build has no settle/repose/sweep
-// and no render).
-// Whether `aggpack --help` lists the subcommand. (`aggpack NAME --help` is no test: CLI11 prints
-// the main help and exits 0 for a name it does not know.)
-bool has_subcommand(const std::string& subcommand) {
-  static const std::string help = [] {
-    std::string text;
-    FILE* pipe = popen(("'" + test::aggpack_binary() + "' --help 2>&1").c_str(), "r");
-    if (pipe == nullptr) return text;
-    char buffer[4096];
-    while (const std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) text.append(buffer, n);
-    pclose(pipe);
-    return text;
-  }();
-  return help.find("\n  " + subcommand + " ") != std::string::npos;
-}
-
 void write_file(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
   std::ofstream(path, std::ios::binary) << text;
@@ -112,7 +95,7 @@ class Case : public ::testing::TestWithParam<std::string> {
 
 TEST_P(Case, Matches) {
   for (const std::string& subcommand : lines_of(source_ / "requires")) {
-    if (!has_subcommand(subcommand)) {
+    if (!test::has_subcommand(subcommand)) {
       GTEST_SKIP() << "this aggpack has no '" << subcommand << "' subcommand";
     }
   }

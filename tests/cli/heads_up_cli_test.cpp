@@ -19,22 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::CliRun;
+using test::has_subcommand;
 
 constexpr const char* kLead = "aggpack: a large run: ~";
-
-// Whether `aggpack --help` lists the subcommand (the sanitized build has no Bullet commands).
-bool has_subcommand(const std::string& subcommand) {
-  static const std::string help = [] {
-    std::string text;
-    FILE* pipe = popen(("'" + test::aggpack_binary() + "' --help 2>&1").c_str(), "r");
-    if (pipe == nullptr) return text;
-    char buffer[4096];
-    while (const std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) text.append(buffer, n);
-    pclose(pipe);
-    return text;
-  }();
-  return help.find("\n  " + subcommand + " ") != std::string::npos;
-}
 
 // The tiny trough of the golden repose case (120 particles, a 0.35 m trough, rest.max_time 0.02).
 const std::string kTrough = test::source_dir() + "/tests/cli/cases/repose/trough.toml";

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -26,6 +27,22 @@ struct CliRun {
   std::string out;
   std::string err;
 };
+
+/// Whether `aggpack --help` lists the subcommand (the sanitized build has no settle, repose,
+/// sweep or render). (`aggpack NAME --help` is no test: CLI11 prints the main help and exits 0
+/// for a name it does not know.) The help is read once per test program.
+inline bool has_subcommand(const std::string& subcommand) {
+  static const std::string help = [] {
+    std::string text;
+    FILE* pipe = popen(("'" + aggpack_binary() + "' --help 2>&1").c_str(), "r");
+    if (pipe == nullptr) return text;
+    char buffer[4096];
+    while (const std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) text.append(buffer, n);
+    pclose(pipe);
+    return text;
+  }();
+  return help.find("\n  " + subcommand + " ") != std::string::npos;
+}
 
 /// A whole file as bytes ("" when it cannot be read).
 inline std::string file_text(const std::filesystem::path& path) {
