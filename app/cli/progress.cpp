@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/isolated.h"
 #include "aggpack/core/text.h"
 
 namespace aggpack::cli {
@@ -75,7 +76,10 @@ ProgressBar::ProgressBar(std::string label, std::string unit, ProgressStyle styl
       wake_.wait_for(lock, std::chrono::milliseconds(250));
       if (is_stopping_) break;
       lock.unlock();
-      heartbeat();
+      {
+        const auto no_fork = section_without_fork();
+        heartbeat();
+      }
       lock.lock();
     }
   });
@@ -230,6 +234,7 @@ StageTimer::StageTimer(std::string label, ProgressStyle style, double limit_seco
       // Quiet for the first interval: a step that ends at once prints nothing.
       wake_.wait_until(lock, start_ + std::chrono::duration<double>(tick * interval));
       if (is_stopping_) break;
+      const auto no_fork = section_without_fork();
       draw(tick * interval, false);
     }
   });

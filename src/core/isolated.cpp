@@ -40,6 +40,11 @@ struct RecordHeader {
 
 int default_workers() { return allowed_threads(); }
 
+std::shared_mutex& fork_mutex() {
+  static std::shared_mutex mutex;
+  return mutex;
+}
+
 bool write_all(int fd, const void* data, std::size_t size) {
   const auto* bytes = static_cast<const char*>(data);
   while (size > 0) {
@@ -160,6 +165,8 @@ class Pool {
                     std::strerror(errno));
     }
     const pid_t parent = ::getpid();
+    // No ticker thread is formatting or printing while the child is made (section_without_fork).
+    std::unique_lock no_sections(fork_mutex());
     const pid_t pid = ::fork();
     if (pid < 0) {
       const int error = errno;
@@ -172,6 +179,7 @@ class Pool {
       for (const Worker& other : workers_) ::close(other.fd);
       run_child(fds[1], items, work_, parent);
     }
+    no_sections.unlock();
     ::close(fds[1]);
     Worker worker;
     worker.pid = pid;
@@ -285,6 +293,10 @@ class Pool {
 };
 
 }  // namespace
+
+std::shared_lock<std::shared_mutex> section_without_fork() {
+  return std::shared_lock(fork_mutex());
+}
 
 std::vector<IsolatedOutcome> run_isolated(std::size_t count,
                                           const std::function<std::string(std::size_t)>& work,

@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <future>
 #include <string>
 
 #include "aggpack/core/error.h"
@@ -92,6 +94,20 @@ TEST(RunIsolated, HangingItemIsStoppedAtTheTimeLimit) {
     EXPECT_TRUE(outcomes[i].is_done) << outcomes[i].failure;
     EXPECT_EQ(outcomes[i].bytes, square(i));
   }
+}
+
+TEST(RunIsolated, DoesNotForkWhileASectionWithoutForkIsOpen) {
+  // A ticker thread's section: the worker may not be forked until it is closed (the test cannot
+  // prove that it would fork at once without the section, only that it waits with it).
+  auto section = section_without_fork();
+  auto running =
+      std::async(std::launch::async, [] { return run_isolated(3, square, {.workers = 1}); });
+  EXPECT_EQ(running.wait_for(std::chrono::milliseconds(300)), std::future_status::timeout)
+      << "a worker was forked inside a section without fork";
+  section.unlock();
+  const auto outcomes = running.get();
+  ASSERT_EQ(outcomes.size(), 3U);
+  for (std::size_t i = 0; i < outcomes.size(); ++i) EXPECT_EQ(outcomes[i].bytes, square(i));
 }
 
 TEST(RunIsolated, RejectsBadOptions) {

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <shared_mutex>
 #include <string>
 #include <vector>
 
@@ -42,5 +43,12 @@ struct IsolatedOptions {
 std::vector<IsolatedOutcome> run_isolated(std::size_t count,
                                           const std::function<std::string(std::size_t)>& work,
                                           const IsolatedOptions& options = {});
+
+/// A section during which run_isolated does not fork, for a thread of ours that runs beside it and
+/// allocates (the CLI's progress tickers hold one while they format and print). A child forked
+/// while another thread is inside the allocator inherits its lock taken: glibc's malloc guards
+/// against that at fork, but the sanitizers' allocator of GCC 12 does not, and a worker of a
+/// sanitized CI run hung for ever that way. Hold it briefly: forking waits for it.
+[[nodiscard]] std::shared_lock<std::shared_mutex> section_without_fork();
 
 }  // namespace aggpack
