@@ -67,30 +67,9 @@ PackResult pack_lattice_files(const LatticeOptions& options, const Lattice& latt
   PackReport report;
 
   // The earlier sites within reach of site i (only in contact mode can two particles meet).
-  const auto steps = static_cast<std::int64_t>(std::ceil(reach / spacing));
   auto earlier_neighbours = [&](std::size_t i) {
-    std::vector<std::size_t> result;
-    if (!is_contact_mode) return result;
-    const auto& c = lattice.coordinates[i];
-    const auto nx = static_cast<std::int64_t>(lattice.counts[0]);
-    const auto ny = static_cast<std::int64_t>(lattice.counts[1]);
-    const auto nz = static_cast<std::int64_t>(lattice.counts[2]);
-    for (std::int64_t dz = -steps; dz <= steps; ++dz) {
-      for (std::int64_t dy = -steps; dy <= steps; ++dy) {
-        for (std::int64_t dx = -steps; dx <= steps; ++dx) {
-          const std::int64_t x = c[0] + dx;
-          const std::int64_t y = c[1] + dy;
-          const std::int64_t z = c[2] + dz;
-          if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz) continue;
-          const std::int64_t j = lattice.index[static_cast<std::size_t>((z * ny + y) * nx + x)];
-          if (j < 0 || static_cast<std::size_t>(j) >= i) continue;
-          if ((lattice.sites[static_cast<std::size_t>(j)] - lattice.sites[i]).norm() < reach) {
-            result.push_back(static_cast<std::size_t>(j));
-          }
-        }
-      }
-    }
-    return result;
+    if (!is_contact_mode) return std::vector<std::size_t>{};
+    return earlier_sites_within(lattice, i, reach, spacing);
   };
   // Site i clear of the walls and of its earlier neighbours; if not, shrunk about its site by
   // bisection until it is (the site itself is clear by > gap: validate's spacing rule).
@@ -159,16 +138,7 @@ PackResult pack_lattice_files(const LatticeOptions& options, const Lattice& latt
     particle.control_radius = radius;
     solid += unit_volumes[particle.shape] * std::pow(particle.scale, 3);  // site order
   }
-  report.requested = site_count;
-  report.placed = done;
-  report.attempts = done;
-  report.solid_volume = solid;
-  report.container_volume = options.container.volume();
-  report.solid_fraction = solid / report.container_volume;
-  report.stop_reason = was_cancelled ? StopReason::kCancelled : StopReason::kTargetReached;
-  report.is_target_reached = !was_cancelled;
-  report.placement_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  finish_report(report, options, site_count, done, solid, was_cancelled, start);
   result.report = report;
   return result;
 }

@@ -91,6 +91,47 @@ Lattice make_lattice(const LatticeOptions& options) {
   return lattice;
 }
 
+std::vector<std::size_t> earlier_sites_within(const Lattice& lattice, std::size_t i, double reach,
+                                              double spacing) {
+  std::vector<std::size_t> result;
+  const auto steps = static_cast<std::int64_t>(std::ceil(reach / spacing));
+  const auto& c = lattice.coordinates[i];
+  const auto nx = static_cast<std::int64_t>(lattice.counts[0]);
+  const auto ny = static_cast<std::int64_t>(lattice.counts[1]);
+  const auto nz = static_cast<std::int64_t>(lattice.counts[2]);
+  for (std::int64_t dz = -steps; dz <= steps; ++dz) {
+    for (std::int64_t dy = -steps; dy <= steps; ++dy) {
+      for (std::int64_t dx = -steps; dx <= steps; ++dx) {
+        const std::int64_t x = c[0] + dx;
+        const std::int64_t y = c[1] + dy;
+        const std::int64_t z = c[2] + dz;
+        if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz) continue;
+        const std::int64_t j = lattice.index[static_cast<std::size_t>((z * ny + y) * nx + x)];
+        if (j < 0 || static_cast<std::size_t>(j) >= i) continue;
+        if ((lattice.sites[static_cast<std::size_t>(j)] - lattice.sites[i]).norm() < reach) {
+          result.push_back(static_cast<std::size_t>(j));
+        }
+      }
+    }
+  }
+  return result;
+}
+
+void finish_report(PackReport& report, const LatticeOptions& options, std::size_t site_count,
+                   std::size_t done, double solid, bool was_cancelled,
+                   std::chrono::steady_clock::time_point start) {
+  report.requested = site_count;
+  report.placed = done;
+  report.attempts = done;
+  report.solid_volume = solid;
+  report.container_volume = options.container.volume();
+  report.solid_fraction = solid / report.container_volume;
+  report.stop_reason = was_cancelled ? StopReason::kCancelled : StopReason::kTargetReached;
+  report.is_target_reached = !was_cancelled;
+  report.placement_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 }  // namespace lattice_detail
 
 namespace {
@@ -265,29 +306,8 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
 
   // Already-grown neighbours of site i that could come within gap: sites closer than 2R + gap.
   const double reach = 2.0 * options.radius + options.gap;
-  const auto steps = static_cast<std::int64_t>(std::ceil(reach / spacing));
   auto earlier_neighbours = [&](std::size_t i) {
-    std::vector<std::size_t> result;
-    const auto& c = lattice.coordinates[i];
-    const auto nx = static_cast<std::int64_t>(lattice.counts[0]);
-    const auto ny = static_cast<std::int64_t>(lattice.counts[1]);
-    const auto nz = static_cast<std::int64_t>(lattice.counts[2]);
-    for (std::int64_t dz = -steps; dz <= steps; ++dz) {
-      for (std::int64_t dy = -steps; dy <= steps; ++dy) {
-        for (std::int64_t dx = -steps; dx <= steps; ++dx) {
-          const std::int64_t x = c[0] + dx;
-          const std::int64_t y = c[1] + dy;
-          const std::int64_t z = c[2] + dz;
-          if (x < 0 || y < 0 || z < 0 || x >= nx || y >= ny || z >= nz) continue;
-          const std::int64_t j = lattice.index[static_cast<std::size_t>((z * ny + y) * nx + x)];
-          if (j < 0 || static_cast<std::size_t>(j) >= i) continue;
-          if ((lattice.sites[static_cast<std::size_t>(j)] - lattice.sites[i]).norm() < reach) {
-            result.push_back(static_cast<std::size_t>(j));
-          }
-        }
-      }
-    }
-    return result;
+    return earlier_sites_within(lattice, i, reach, spacing);
   };
 
   // Exact check of site i against its grown neighbours; if it fails, shrink the particle about
@@ -403,15 +423,7 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
   double solid = 0.0;
   for (double v : volumes) solid += v;  // in site order: independent of threads
 
-  report.requested = site_count;
-  report.placed = done;
-  report.attempts = done;
-  report.solid_volume = solid;
-  report.container_volume = options.container.volume();
-  report.solid_fraction = solid / report.container_volume;
-  report.stop_reason = was_cancelled ? StopReason::kCancelled : StopReason::kTargetReached;
-  report.is_target_reached = !was_cancelled;
-  report.placement_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  finish_report(report, options, site_count, done, solid, was_cancelled, start);
   report_progress(done, true);
   result.report = report;
   return result;

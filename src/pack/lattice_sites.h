@@ -2,6 +2,8 @@
 // Internal to the lattice packer (lattice_packer.cpp, lattice_files.cpp): the sites of a lattice.
 
 #include <array>
+#include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +25,17 @@ double effective_spacing(const LatticeOptions& options);
 
 // The sites of the options' lattice (x fastest, then y, then z).
 Lattice make_lattice(const LatticeOptions& options);
+
+// The sites before site i (smaller index) whose centres are closer than reach to site i's, in
+// grid order; spacing is the lattice's (effective_spacing).
+std::vector<std::size_t> earlier_sites_within(const Lattice& lattice, std::size_t i, double reach,
+                                              double spacing);
+
+// Fills the report's counts, volumes, stop reason and seconds since start at the end of a run
+// (done of site_count sites placed, solid = their volume summed in site order).
+void finish_report(PackReport& report, const LatticeOptions& options, std::size_t site_count,
+                   std::size_t done, double solid, bool was_cancelled,
+                   std::chrono::steady_clock::time_point start);
 
 // The lattice packer with shapes from mesh files (options.files.loaded; lattice_files.cpp).
 PackResult pack_lattice_files(const LatticeOptions& options, const Lattice& lattice,

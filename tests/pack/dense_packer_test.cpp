@@ -18,18 +18,53 @@ using testing::expect_identical;
 using testing::expect_valid_packing;
 using testing::invalid_field;
 
+// Particles placed by random sequential addition at `fraction` of the container: a densify start.
+Packing rsa_start(const Container& container, double radius_min, double radius_max, double fraction,
+                  std::uint64_t seed, double gap = 0.0, const ShapeOptions& shape = {}) {
+  // Member by member: GCC 12 warns (maybe-uninitialized, a false positive) about the grading's
+  // sieve when these options are built with designated initialisers from parameters.
+  RandomPackOptions options;
+  options.container = container;
+  options.grading.kind = GradingKind::kUniform;
+  options.grading.radius_min = radius_min;
+  options.grading.radius_max = radius_max;
+  options.shape = shape;
+  options.target = PackTarget::kVolumeFraction;
+  options.volume_fraction = fraction;
+  options.gap = gap;
+  options.seed = seed;
+  return pack_random(options).packing;
+}
+
+// Single-size particles of alpha 0.5 and L = r (the packers' test shape).
+const ShapeOptions kTestShape{.alpha = 0.5, .edge_length_ratio = 1.0};
+
 // ~60 single-size particles (alpha 0.5, L = r) placed by RSA at 25 % in a 0.4 m cube.
 Packing loose_start(double gap = 0.0, double wall_gap = 0.0, std::uint64_t seed = 3) {
-  const RandomPackOptions options{
-      .container = {.shape = BoxContainer{.length = 0.4, .width = 0.4, .depth = 0.4},
-                    .wall_gap = wall_gap},
-      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.05, .radius_max = 0.05},
-      .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
-      .target = PackTarget::kVolumeFraction,
-      .volume_fraction = 0.25,
-      .gap = gap,
-      .seed = seed};
-  return pack_random(options).packing;
+  const Container cube{.shape = BoxContainer{.length = 0.4, .width = 0.4, .depth = 0.4},
+                       .wall_gap = wall_gap};
+  return rsa_start(cube, 0.05, 0.05, 0.25, seed, gap, kTestShape);
+}
+
+// The same densify run at one and at two threads: the packings, the container and the accepted
+// moves must be identical. Returns the one-thread run.
+DensifyResult expect_thread_independent(const Packing& start, const DensifyOptions& options) {
+  DensifyResult one;
+  DensifyResult two;
+  {
+    const ThreadLimit limit(1);
+    one = densify(start, options);
+  }
+  {
+    const ThreadLimit limit(2);
+    two = densify(start, options);
+  }
+  expect_identical(one.packing, two.packing);
+  EXPECT_EQ(one.packing.container.get_if<BoxContainer>()->length,
+            two.packing.container.get_if<BoxContainer>()->length);
+  EXPECT_EQ(one.report.moves_accepted, two.report.moves_accepted);
+  EXPECT_EQ(one.report.compressions, two.report.compressions);
+  return one;
 }
 
 TEST(DensePacker, FixedModeReachesTheTargetFractionExactly) {
@@ -92,14 +127,9 @@ TEST(DensePacker, GapsAndWallGapsAreKeptToAnExplicitTargetContainer) {
 }
 
 TEST(DensePacker, CylinderIsCompressedTowardItsTarget) {
-  const RandomPackOptions random{
-      .container = {.shape = CylinderContainer{.radius = 0.25, .height = 0.4}, .wall_gap = 0.002},
-      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.04, .radius_max = 0.05},
-      .target = PackTarget::kVolumeFraction,
-      .volume_fraction = 0.22,
-      .gap = 0.001,
-      .seed = 8};
-  const Packing start = pack_random(random).packing;
+  const Packing start =
+      rsa_start({.shape = CylinderContainer{.radius = 0.25, .height = 0.4}, .wall_gap = 0.002},
+                0.04, 0.05, 0.22, 8, 0.001);
   Container target = start.container;
   target.get_if<CylinderContainer>()->radius = 0.22;
   target.get_if<CylinderContainer>()->height = 0.36;
@@ -115,20 +145,7 @@ TEST(DensePacker, CylinderIsCompressedTowardItsTarget) {
 TEST(DensePacker, SameSeedIsByteIdenticalAtOneAndTwoThreads) {
   const Packing start = loose_start();
   const DensifyOptions options{.target_fraction = 0.38, .seed = 9, .max_sweeps = 60};
-  DensifyResult one;
-  DensifyResult two;
-  {
-    const ThreadLimit limit(1);
-    one = densify(start, options);
-  }
-  {
-    const ThreadLimit limit(2);
-    two = densify(start, options);
-  }
-  expect_identical(one.packing, two.packing);
-  EXPECT_EQ(one.packing.container.get_if<BoxContainer>()->length,
-            two.packing.container.get_if<BoxContainer>()->length);
-  EXPECT_EQ(one.report.moves_accepted, two.report.moves_accepted);
+  const DensifyResult one = expect_thread_independent(start, options);
   EXPECT_GT(one.report.moves_accepted, 0u);
   DensifyOptions other = options;
   other.seed = 10;
@@ -140,35 +157,15 @@ TEST(DensePacker, SameSeedIsByteIdenticalAtOneAndTwoThreads) {
 // particles at once, and squeezes that make overlaps which the repair passes on (overlap
 // transfer) to particles in other cells.
 Packing crowded_start() {
-  const RandomPackOptions options{
-      .container = {.shape = BoxContainer{.length = 0.4, .width = 0.4, .depth = 0.4}},
-      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.02, .radius_max = 0.02},
-      .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
-      .target = PackTarget::kVolumeFraction,
-      .volume_fraction = 0.3,
-      .seed = 4};
-  return pack_random(options).packing;
+  const Container cube{.shape = BoxContainer{.length = 0.4, .width = 0.4, .depth = 0.4}};
+  return rsa_start(cube, 0.02, 0.02, 0.3, 4, 0.0, kTestShape);
 }
 
 TEST(DensePacker, OverlapTolerantCompressionEndsOverlapFreeAndThreadIndependent) {
   const Packing start = crowded_start();
   ASSERT_GT(start.particles.size(), 300u);
   const DensifyOptions options{.target_fraction = 0.6, .seed = 7, .max_sweeps = 300};
-  DensifyResult one;
-  DensifyResult two;
-  {
-    const ThreadLimit limit(1);
-    one = densify(start, options);
-  }
-  {
-    const ThreadLimit limit(2);
-    two = densify(start, options);
-  }
-  expect_identical(one.packing, two.packing);
-  EXPECT_EQ(one.packing.container.get_if<BoxContainer>()->length,
-            two.packing.container.get_if<BoxContainer>()->length);
-  EXPECT_EQ(one.report.moves_accepted, two.report.moves_accepted);
-  EXPECT_EQ(one.report.compressions, two.report.compressions);
+  const DensifyResult one = expect_thread_independent(start, options);
   // It compressed a long way (squeezes repaired many times over)...
   EXPECT_GT(one.report.compressions, 20u);
   EXPECT_GT(one.report.solid_fraction, one.report.start_fraction + 0.12) << one.report.summary();
@@ -230,13 +227,8 @@ TEST(DensePacker, ContinuingFromADensePackingKeepsCompressing) {
 }
 
 TEST(DensePacker, GravityBedSinksAndStaysValid) {
-  RandomPackOptions random{
-      .container = {.shape = BoxContainer{.length = 0.3, .width = 0.3, .depth = 0.6}},
-      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.04, .radius_max = 0.05},
-      .target = PackTarget::kVolumeFraction,
-      .volume_fraction = 0.2,
-      .seed = 4};
-  const Packing start = pack_random(random).packing;
+  const Packing start = rsa_start(
+      {.shape = BoxContainer{.length = 0.3, .width = 0.3, .depth = 0.6}}, 0.04, 0.05, 0.2, 4);
   auto centre_height = [](const Packing& packing) {
     double sum = 0.0;
     for (const Particle& p : packing.particles) sum += p.pose.position.z();
