@@ -1,7 +1,8 @@
 // Golden CLI tests: every folder of tests/cli/cases/ is one test, GoldenCli/Case.Matches/<name>.
 // Its commands run in a scratch folder and their printed text (and the output files it lists) must
 // match the references in its expected/ folder: text exactly, numbers within a relative 1e-9,
-// timings and paths masked. Layout and the regenerate mode: tests/cli/cases/README.md.
+// timings and paths masked; the files listed in `exact` byte for byte, the PNGs listed in
+// `images` within a pixel tolerance. Layout and the regenerate mode: tests/cli/cases/README.md.
 //
 //   AGGPACK_REGENERATE_GOLDEN=1 ctest --test-dir build -R GoldenCli   rewrites every expected/
 
@@ -19,6 +20,10 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb_image.h>
 
 #include "support/cli_test.h"
 #include "support/golden.h"
@@ -60,6 +65,27 @@ void write_file(const fs::path& path, const std::string& text) {
   fs::create_directories(path.parent_path());
   std::ofstream(path, std::ios::binary) << text;
 }
+
+// A PNG's pixels as RGB (an empty image when the bytes are no PNG).
+test::GoldenImage decode_png(const std::string& bytes) {
+  test::GoldenImage image;
+  int channels = 0;
+  unsigned char* pixels = stbi_load_from_memory(
+      reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<int>(bytes.size()),
+      &image.width, &image.height, &channels, 3);
+  if (pixels == nullptr) return {};
+  image.rgb.assign(pixels, pixels + static_cast<std::size_t>(image.width) *
+                                        static_cast<std::size_t>(image.height) * 3);
+  stbi_image_free(pixels);
+  return image;
+}
+
+// How an output file is compared with its reference.
+enum class Comparison { kText, kBytes, kImage };
+
+// The case's control files; every other file of a case folder is an input.
+const std::vector<std::string> kControlFiles = {"cmd",    "outputs",  "exact",
+                                                "images", "requires", "expected"};
 
 class Case : public ::testing::TestWithParam<std::string> {
  protected:
@@ -105,38 +131,73 @@ TEST_P(Case, Matches) {
   // Every file of the case folder except its own control files is an input.
   for (const auto& entry : fs::directory_iterator(source_)) {
     const std::string name = entry.path().filename().string();
-    if (name == "cmd" || name == "outputs" || name == "requires" || name == "expected") continue;
+    if (std::find(kControlFiles.begin(), kControlFiles.end(), name) != kControlFiles.end()) {
+      continue;
+    }
     fs::copy(entry.path(), scratch_ / name, fs::copy_options::recursive);
   }
   std::string transcript;
   for (const std::string& command : commands) transcript += run(command);
 
-  std::vector<std::pair<std::string, std::string>> results = {{"transcript.txt", transcript}};
-  for (const std::string& output : lines_of(source_ / "outputs")) {
-    ASSERT_TRUE(fs::exists(scratch_ / output))
-        << "the case lists output " << output << " but the commands did not write it\n"
-        << transcript;
-    results.emplace_back(output, test::mask_volatile(test::file_text(scratch_ / output),
-                                                     scratch_.string(), test::aggpack_binary()));
+  struct Result {
+    std::string name;
+    std::string content;
+    Comparison comparison = Comparison::kText;
+  };
+  std::vector<Result> results = {{"transcript.txt", transcript, Comparison::kText}};
+  for (const auto& [list, comparison] :
+       {std::pair{"outputs", Comparison::kText}, std::pair{"exact", Comparison::kBytes},
+        std::pair{"images", Comparison::kImage}}) {
+    for (const std::string& output : lines_of(source_ / list)) {
+      ASSERT_TRUE(fs::exists(scratch_ / output)) << "the case lists output " << output << " (in "
+                                                 << list << ") but the commands did not write it\n"
+                                                 << transcript;
+      std::string content = test::file_text(scratch_ / output);
+      if (comparison == Comparison::kText) {
+        content = test::mask_volatile(content, scratch_.string(), test::aggpack_binary());
+      }
+      results.push_back({output, std::move(content), comparison});
+    }
   }
 
   const fs::path expected = source_ / "expected";
   if (is_regenerating()) {
     fs::remove_all(expected);
-    for (const auto& [name, text] : results) write_file(expected / name, text);
+    for (const Result& result : results) write_file(expected / result.name, result.content);
     std::cout << "[golden] regenerated " << expected.string() << "\n";
     return;
   }
-  for (const auto& [name, text] : results) {
-    const fs::path reference = expected / name;
+  for (const Result& result : results) {
+    const fs::path reference = expected / result.name;
     ASSERT_TRUE(fs::exists(reference))
         << reference << " is missing; write it with AGGPACK_REGENERATE_GOLDEN=1 ctest -R GoldenCli";
-    const std::string difference = test::golden_difference(test::file_text(reference), text);
+    const std::string want = test::file_text(reference);
+    std::string difference;
+    switch (result.comparison) {
+      case Comparison::kText:
+        difference = test::golden_difference(want, result.content);
+        break;
+      case Comparison::kBytes:
+        if (want != result.content) {
+          const auto mismatch =
+              std::mismatch(want.begin(), want.end(), result.content.begin(), result.content.end());
+          difference = "bytes differ from offset " + std::to_string(mismatch.first - want.begin()) +
+                       " (" + std::to_string(result.content.size()) + " bytes, expected " +
+                       std::to_string(want.size()) + ")";
+        }
+        break;
+      case Comparison::kImage: {
+        const test::GoldenImage got = decode_png(result.content);
+        difference =
+            got.rgb.empty() ? "not a PNG" : test::golden_image_difference(decode_png(want), got);
+        break;
+      }
+    }
     EXPECT_TRUE(difference.empty())
-        << GetParam() << "/expected/" << name << " differs (" << difference
+        << GetParam() << "/expected/" << result.name << " differs (" << difference
         << ").\nIf the change is intended: AGGPACK_REGENERATE_GOLDEN=1 ctest --test-dir build -R "
-           "GoldenCli, then review `git diff tests/cli/cases`.\n--- got:\n"
-        << text;
+           "GoldenCli, then review `git diff tests/cli/cases`."
+        << (result.comparison == Comparison::kText ? "\n--- got:\n" + result.content : "");
   }
 }
 

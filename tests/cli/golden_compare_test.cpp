@@ -1,7 +1,9 @@
 // The comparison behind the golden CLI tests (tests/support/golden.h).
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "support/golden.h"
 
@@ -44,6 +46,36 @@ TEST(GoldenCompare, TimingsFoldersAndTheBinaryAreMasked) {
             "time <T> s shapes + <T> s placement\nstage 1 0.02 s simulated, <T> s wall\n"
             "wrote <dir>/a.stl in <T> s; 0 sweeps (<T> s)\n\"placement_seconds\": <T>,\n"
             "Usage: aggpack pack\n");
+}
+
+// A w x h picture of one colour, with `changed` pixels (from the first) set to another.
+test::GoldenImage flat_image(int width, int height, unsigned char value, std::size_t changed = 0,
+                             unsigned char other = 0) {
+  test::GoldenImage image{
+      .width = width,
+      .height = height,
+      .rgb = std::vector<unsigned char>(
+          static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3, value)};
+  for (std::size_t p = 0; p < changed; ++p) image.rgb[3 * p + 1] = other;
+  return image;
+}
+
+TEST(GoldenCompare, ImagesMatchWithinThePixelTolerance) {
+  using test::golden_image_difference;
+  const test::GoldenImage reference = flat_image(20, 10, 100);
+  EXPECT_EQ(golden_image_difference(reference, reference), "");
+  // Every channel off by 1: mean 1 <= 2.
+  EXPECT_EQ(golden_image_difference(reference, flat_image(20, 10, 101)), "");
+  // Every channel off by 3: mean 3 > 2.
+  EXPECT_NE(golden_image_difference(reference, flat_image(20, 10, 103)), "");
+  // 4 of 200 pixels (2 %) far off in one channel: mean (4 * 100) / 600 < 2, allowed.
+  EXPECT_EQ(golden_image_difference(reference, flat_image(20, 10, 100, 4, 200)), "");
+  // 5 of 200 (2.5 %) far off: refused, though the mean is still below 2.
+  const std::string five = golden_image_difference(reference, flat_image(20, 10, 100, 5, 140));
+  EXPECT_NE(five.find("5 of 200 pixels"), std::string::npos) << five;
+  // Another size never matches.
+  const std::string size = golden_image_difference(reference, flat_image(10, 20, 100));
+  EXPECT_NE(size.find("size 10x20, expected 20x10"), std::string::npos) << size;
 }
 
 }  // namespace

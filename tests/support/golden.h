@@ -1,7 +1,7 @@
 #pragma once
-// Text comparison for golden tests (tests/cli/golden_cli_test.cpp): numbers within a relative
-// tolerance, everything else exact; and the masks that hide what changes from run to run
-// (timings, the scratch folder, the binary's path).
+// Comparisons for golden tests (tests/cli/golden_cli_test.cpp): text with numbers within a
+// relative tolerance, everything else exact; images within a per-pixel tolerance; and the masks
+// that hide what changes from run to run (timings, the scratch folder, the binary's path).
 
 #include <algorithm>
 #include <cmath>
@@ -138,6 +138,57 @@ inline std::string golden_difference(const std::string& expected, const std::str
   if (want.size() != got.size()) {
     return "line " + std::to_string(golden_line_of(want, count)) + ": " +
            (want.size() > got.size() ? "output ends early" : "output goes on longer");
+  }
+  return "";
+}
+
+/// A decoded picture: 8-bit RGB, rows top to bottom.
+struct GoldenImage {
+  int width = 0;
+  int height = 0;
+  std::vector<unsigned char> rgb;  ///< width * height * 3 bytes
+};
+
+/// Image tolerance: the mean absolute channel difference (of 255) may be at most
+/// kGoldenImageMeanTolerance, and at most kGoldenImagePixelFraction of the pixels may differ by
+/// more than kGoldenImagePixelTolerance in some channel (an edge drawn a pixel aside by another
+/// rasteriser, not a changed colour, view or particle).
+inline constexpr double kGoldenImageMeanTolerance = 2.0;
+inline constexpr int kGoldenImagePixelTolerance = 32;
+inline constexpr double kGoldenImagePixelFraction = 0.02;
+
+/// "" when the images have the same size and match within the tolerances above, else how not.
+inline std::string golden_image_difference(const GoldenImage& expected, const GoldenImage& actual) {
+  if (expected.width != actual.width || expected.height != actual.height) {
+    return "size " + std::to_string(actual.width) + "x" + std::to_string(actual.height) +
+           ", expected " + std::to_string(expected.width) + "x" + std::to_string(expected.height);
+  }
+  const std::size_t pixels =
+      static_cast<std::size_t>(expected.width) * static_cast<std::size_t>(expected.height);
+  if (expected.rgb.size() != pixels * 3 || actual.rgb.size() != pixels * 3) {
+    return "pixel data of the wrong length";
+  }
+  double sum = 0.0;
+  std::size_t far = 0;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    int largest = 0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const int difference = std::abs(static_cast<int>(expected.rgb[3 * p + c]) -
+                                      static_cast<int>(actual.rgb[3 * p + c]));
+      sum += difference;
+      largest = std::max(largest, difference);
+    }
+    if (largest > kGoldenImagePixelTolerance) ++far;
+  }
+  const double mean = pixels == 0 ? 0.0 : sum / (3.0 * static_cast<double>(pixels));
+  const double far_fraction =
+      pixels == 0 ? 0.0 : static_cast<double>(far) / static_cast<double>(pixels);
+  if (mean > kGoldenImageMeanTolerance || far_fraction > kGoldenImagePixelFraction) {
+    return "mean channel difference " + std::to_string(mean) + " (at most " +
+           std::to_string(kGoldenImageMeanTolerance) + "), " + std::to_string(far) + " of " +
+           std::to_string(pixels) + " pixels off by more than " +
+           std::to_string(kGoldenImagePixelTolerance) + " (at most " +
+           std::to_string(kGoldenImagePixelFraction * 100.0) + " %)";
   }
   return "";
 }
