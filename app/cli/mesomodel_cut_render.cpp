@@ -1,6 +1,5 @@
 // `aggpack render --mesomodel-cut AXIS=VALUE`: the section of a packing's concrete mesomodel
-// (issue 16, item 7), drawn in software on core/raster.h (mesh/mesomodel_cut.h): no OpenGL. Its
-// own file because core/raster.h and render/colors.h both name a colour type Rgb.
+// (issue 16, item 7), drawn in software on core/raster.h (mesh/mesomodel_cut.h): no OpenGL.
 
 #include <fmt/core.h>
 

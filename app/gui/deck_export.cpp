@@ -38,41 +38,30 @@ std::string plain_stem(const std::string& stem) {
 }
 
 std::string deck_title(DeckKind deck) {
-  const char* solver = "";
-  switch (deck) {
-    case DeckKind::kAbaqus:
-      solver = "Abaqus/Explicit";
-      break;
-    case DeckKind::kCalculix:
-      solver = "CalculiX";
-      break;
-    case DeckKind::kLsDyna:
-      solver = "LS-DYNA";
-      break;
-    case DeckKind::kYade:
-      solver = "YADE";
-      break;
-    case DeckKind::kNone:
-      return tr(Text::kMeshOnly);
-  }
   for (const DeckInfo& info : deck_kinds()) {
-    if (info.kind == deck) return trs(Text::kDeckTitle, solver, format_name(info.format));
+    if (info.kind == deck) return trs(Text::kDeckTitle, info.title, format_name(info.format));
   }
-  return solver;
+  return tr(Text::kMeshOnly);
 }
 
+namespace {
+
+// The GUI's words for what each deck models and how to run it (translated in i18n/); a deck
+// without a line here shows no hint.
+struct DeckHint {
+  DeckKind kind;
+  Text hint;
+};
+constexpr DeckHint kDeckHints[] = {{DeckKind::kAbaqus, Text::kHintAbaqus},
+                                   {DeckKind::kCalculix, Text::kHintCalculix},
+                                   {DeckKind::kLsDyna, Text::kHintLsDyna},
+                                   {DeckKind::kYade, Text::kHintYade}};
+
+}  // namespace
+
 const char* deck_run_hint(DeckKind deck) {
-  switch (deck) {
-    case DeckKind::kAbaqus:
-      return tr(Text::kHintAbaqus);
-    case DeckKind::kCalculix:
-      return tr(Text::kHintCalculix);
-    case DeckKind::kLsDyna:
-      return tr(Text::kHintLsDyna);
-    case DeckKind::kYade:
-      return tr(Text::kHintYade);
-    case DeckKind::kNone:
-      break;
+  for (const DeckHint& entry : kDeckHints) {
+    if (entry.kind == deck) return tr(entry.hint);
   }
   return "";
 }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstddef>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
@@ -96,12 +98,22 @@ void Raster::text(const std::string& message, int x, int y, int scale, const Rgb
 }
 
 void write_png(const std::string& path, const Raster& raster) {
-  AtomicFile file(path);
+  write_png_rgb(path, raster.width(), raster.height(), raster.pixels());
+}
+
+void write_png_rgb(const std::string& path, int width, int height,
+                   const std::vector<std::uint8_t>& rgb, Overwrite overwrite) {
+  if (width <= 0 || height <= 0 ||
+      rgb.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3) {
+    throw InvalidInput("image", std::to_string(width) + "x" + std::to_string(height),
+                       "a non-empty RGB image");
+  }
+  AtomicFile file(path, overwrite);
   auto writer = [](void* context, void* data, int size) {
     static_cast<std::ostream*>(context)->write(static_cast<const char*>(data), size);
   };
-  if (stbi_write_png_to_func(writer, &file.stream(), raster.width(), raster.height(), 3,
-                             raster.pixels().data(), raster.width() * 3) == 0) {
+  if (stbi_write_png_to_func(writer, &file.stream(), width, height, 3, rgb.data(), width * 3) ==
+      0) {
     throw IoError("cannot encode PNG " + path);
   }
   file.commit();

@@ -8,12 +8,12 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/glcorearb.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <string>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/raster.h"
 
 // LeakSanitizer (the sanitizer CI run): Mesa's EGL/GLX/llvmpipe and the X11 libraries keep
 // driver singletons and the LLVM JIT until process exit; they are not aggpack's. Every program
@@ -243,20 +243,7 @@ void write_png(const Image& image, const std::string& path, Overwrite overwrite)
     rgb[3 * i + 1] = image.rgba[4 * i + 1];
     rgb[3 * i + 2] = image.rgba[4 * i + 2];
   }
-  std::vector<std::uint8_t> encoded;
-  auto append = [](void* context, void* data, int size) {
-    auto* out = static_cast<std::vector<std::uint8_t>*>(context);
-    const auto* bytes = static_cast<const std::uint8_t*>(data);
-    out->insert(out->end(), bytes, bytes + size);
-  };
-  if (stbi_write_png_to_func(append, &encoded, image.width, image.height, 3, rgb.data(),
-                             image.width * 3) == 0) {
-    throw IoError("cannot encode PNG for " + path);
-  }
-  AtomicFile file(path, overwrite);
-  file.stream().write(reinterpret_cast<const char*>(encoded.data()),
-                      static_cast<std::streamsize>(encoded.size()));
-  file.commit();
+  write_png_rgb(path, image.width, image.height, rgb, overwrite);
 }
 
 }  // namespace aggpack

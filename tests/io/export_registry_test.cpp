@@ -113,12 +113,15 @@ TEST(FormatTable, OutputKeysAreTheRowsKeys) {
 
 TEST(FormatTable, EveryDeckNamesAMeshFormatAndAWriter) {
   std::set<DeckKind> seen;
+  std::set<std::string> titles;
   for (const DeckInfo& deck : deck_kinds()) {
     const std::string name(deck.name);
     SCOPED_TRACE(name);
     EXPECT_NE(deck.kind, DeckKind::kNone);
     EXPECT_TRUE(seen.insert(deck.kind).second);
     EXPECT_NE(deck.write_mesh, nullptr);
+    EXPECT_FALSE(deck.title.empty()) << "the GUI's menus show the solver's name";
+    EXPECT_TRUE(titles.insert(std::string(deck.title)).second);
     EXPECT_NE(format_info(deck.format).write_mesh, nullptr) << "a deck is written around a mesh";
     EXPECT_EQ(parse_deck_kind(name), deck.kind);
     EXPECT_EQ(deck_name(deck.kind), name);

@@ -9,9 +9,10 @@
 #include <string>
 #include <vector>
 
-namespace aggpack {
+#include "aggpack/core/atomic_file.h"
+#include "aggpack/core/rgb.h"
 
-using Rgb = std::array<std::uint8_t, 3>;
+namespace aggpack {
 
 class Raster {
  public:
@@ -41,5 +42,12 @@ class Raster {
 /// Writes the raster as an 8-bit RGB PNG, atomically (an existing regular file is replaced).
 /// Throws IoError if it cannot be encoded or written.
 void write_png(const std::string& path, const Raster& raster);
+
+/// The one PNG encoder of the project (every plot, the raster above and the 3D renderer's
+/// pictures): `rgb` holds width * height * 3 bytes, rows top to bottom; written atomically
+/// through an AtomicFile with `overwrite`. \throw InvalidInput when the sizes do not match,
+/// IoError if it cannot be encoded or written.
+void write_png_rgb(const std::string& path, int width, int height,
+                   const std::vector<std::uint8_t>& rgb, Overwrite overwrite = Overwrite::kAllow);
 
 }  // namespace aggpack

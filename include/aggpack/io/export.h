@@ -203,6 +203,7 @@ const std::vector<std::string>& output_format_names();
 struct DeckInfo {
   DeckKind kind = DeckKind::kNone;
   std::string_view name;                      ///< "calculix"
+  std::string_view title;                     ///< the solver as its users name it: "CalculiX"
   std::vector<std::string_view> aliases;      ///< "ccx"
   ExportFormat format = ExportFormat::kAuto;  ///< the format the deck is written in
   void (*write_mesh)(const detail::ExportModel& model, std::ostream& out) = nullptr;

@@ -7,17 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/core/rgb.h"
 #include "aggpack/pack/packing.h"
 
 namespace aggpack {
-
-/// An 8-bit sRGB colour.
-struct Rgb {
-  std::uint8_t r = 0;
-  std::uint8_t g = 0;
-  std::uint8_t b = 0;
-  friend bool operator==(const Rgb&, const Rgb&) = default;
-};
 
 /// How particles are coloured.
 enum class ColorMode {
