@@ -15,7 +15,7 @@
 namespace aggpack::gui {
 
 bool GuiApp::is_result_stale() const {
-  return packing_ != nullptr && !pending_packing_ && last_entries_ != packing_entries_;
+  return packing_ != nullptr && !upload_.is_pending() && last_entries_ != packing_entries_;
 }
 
 std::vector<std::string> GuiApp::changed_keys() const {

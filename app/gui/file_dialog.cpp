@@ -72,7 +72,7 @@ std::string default_export_name(const std::string& format, const std::string& st
 }
 
 void GuiApp::open_dialog(FileDialog::Kind kind, const std::string& format, DeckKind deck) {
-  if (job_.is_running() || pending_packing_) return;
+  if (job_.is_running() || upload_.is_pending()) return;
   if (kind == FileDialog::Kind::kExport && !packing_) return;
   dialog_.kind = kind;
   dialog_.is_open_requested = true;

@@ -11,18 +11,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <map>
 #include <string_view>
 #include <utility>
 
 #include "aggpack/core/error.h"
-#include "aggpack/geom/mass_properties.h"
 #include "aggpack/io/export.h"
-#include "aggpack/io/native.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/random_packer.h"
-#include "aggpack/pipeline/pipeline.h"
 #include "aggpack/shape/generator.h"
 #include "i18n.h"
 
@@ -31,38 +27,6 @@ namespace aggpack::gui {
 namespace {
 
 constexpr float kPanelWidth = 360.0f;
-
-// Builds the job's packing's scene on the worker (the window uploads it in pieces).
-void build_scene(BackgroundJob& job, JobResult& out) {
-  job.set_name(tr(Text::kJobBuildingScene));
-  job.set_progress(0.0);
-  job.set_detail(trs(Text::kJobParticles, out.packing->particles.size()));
-  out.scene = prepare_scene(*out.packing, [&job](double fraction) { job.set_progress(fraction); });
-}
-
-// The packer's report line in the window's language (in English, PackReport::summary()'s).
-std::string report_summary(const PackReport& report) {
-  Text reason = Text::kStopTarget;
-  switch (report.stop_reason) {
-    case StopReason::kTargetReached:
-      break;
-    case StopReason::kAttemptBudget:
-      reason = Text::kStopBudget;
-      break;
-    case StopReason::kConsecutiveFailures:
-      reason = Text::kStopFailures;
-      break;
-    case StopReason::kSizeListExhausted:
-      reason = Text::kStopSizeList;
-      break;
-    case StopReason::kCancelled:
-      reason = Text::kStopCancelled;
-      break;
-  }
-  return trs(Text::kReportSummary, report.placed, report.requested, report.rejected,
-             report.solid_volume, report.container_volume, 100.0 * report.solid_fraction,
-             tr(reason));
-}
 
 }  // namespace
 
@@ -121,14 +85,13 @@ GuiApp::GuiApp(GLFWwindow* window, GuiOptions options)
   if (options_.open_path) {
     open_path_ = *options_.open_path;
     start_open(open_path_);
-    is_waiting_for_first_job_ = true;
+    script_.start(true, false);
   } else if (options_.is_pack_at_start) {
-    is_waiting_for_first_job_ = true;
+    script_.start(true, false);
     start_pack();
-  } else if (options_.screenshot_path || options_.is_quit_when_done) {
-    frames_since_job_ = 0;  // nothing to wait for: screenshot / quit after two frames
+  } else {
+    script_.start(false, options_.screenshot_path || options_.is_quit_when_done);
   }
-  is_timing_frames_script_ = is_waiting_for_first_job_;
 }
 
 void GuiApp::warm_up_renderer() {
@@ -167,10 +130,10 @@ GuiApp::~GuiApp() {
 }
 
 bool GuiApp::is_busy() const {
-  return job_.is_running() || benchmark_phase_ != BenchmarkPhase::kOff ||
-         is_waiting_for_first_job_ || is_preview_ || is_scene_dirty_ ||
+  return job_.is_running() || benchmark_phase_ != BenchmarkPhase::kOff || script_.is_busy() ||
+         is_preview_ || is_scene_dirty_ ||
          (renderer_ && (renderer_->is_frame_pending() || renderer_->is_upload_pending())) ||
-         (frames_since_job_ >= 0 && frames_since_job_ < 3) || dragging_button_ >= 0;
+         dragging_button_ >= 0;
 }
 
 int GuiApp::panel_width() const {
@@ -198,153 +161,25 @@ void GuiApp::reset_view() {
   is_scene_dirty_ = true;
 }
 
-void GuiApp::start_pack() {
-  if (job_.is_running()) return;
-  // Validate on this thread so a bad field is reported at once, with the CLI's message.
-  PackConfig config;
-  update_field_errors();
-  try {
-    config = fields_.build();
-  } catch (const Error& error) {
-    set_status(plain_error(error.what()), true);
-    if (is_waiting_for_first_job_) exit_code_ = 2;
-    return;
-  }
-  set_status(tr(Text::kStatusPacking), false);
-  job_entries_ = fields_.set_entries();
-  job_kind_ = "pack";
-  job_.start(tr(Text::kJobPacking), [config](BackgroundJob& job) {
-    PackControl control;
-    control.cancel = job.cancel_flag();
-    control.progress_interval = 0.05;
-    control.on_progress = [&job](const PackProgress& progress) {
-      job.set_progress(progress.fraction);
-      // The lattice kind measures the volume at the end only: no live solid fraction.
-      const std::string solid = progress.solid_fraction > 0.0
-                                    ? trs(Text::kProgressSolid, 100.0 * progress.solid_fraction)
-                                    : std::string();
-      job.set_detail(
-          trs(progress.stage == PackStage::kDensify ? Text::kProgressSweep : Text::kProgressPlaced,
-              progress.placed, progress.total, solid));
-    };
-    PipelineResult result = pack(config, control);
-    JobResult out;
-    const bool is_cancelled = result.report.stop_reason == StopReason::kCancelled;
-    out.is_ok = true;
-    // The densifier's summary and the shortfall warnings are the library's words (English).
-    out.message = trs(is_cancelled ? Text::kPackCancelled : Text::kPackFinished,
-                      result.packing.particles.size(), 100.0 * result.report.solid_fraction) +
-                  "\n" +
-                  (result.fill ? tr(Text::kFillPrefix) + report_summary(result.fill->report)
-                               : report_summary(result.report));
-    // The dense kind: the densifier, the asked fraction, and what fell short of it.
-    if (result.densify)
-      out.message += "\n" + (tr(Text::kDensifyPrefix) + result.densify->summary());
-    if (result.fill && result.fill->asked_fraction > 0) {
-      out.message += trs(Text::kAskedFraction, 100.0 * result.fill->asked_fraction);
-    }
-    for (const std::string& line : dense_shortfalls(result)) {
-      out.message += "\n" + (tr(Text::kWarningPrefix) + line);
-    }
-    out.packing = std::make_shared<const Packing>(std::move(result.packing));
-    build_scene(job, out);
-    return out;
-  });
-}
-
-void GuiApp::start_open(const std::string& path) {
-  if (job_.is_running()) return;
-  set_status(trs(Text::kStatusOpening, path), false);
-  job_kind_ = "open";
-  job_.start(tr(Text::kJobOpening), [path](BackgroundJob& job) {
-    JobResult out;
-    auto packing = std::make_shared<const Packing>(read_packing(path));
-    out.is_ok = true;
-    double solid = 0.0;
-    for (std::size_t i = 0; i < packing->particles.size(); ++i) {
-      solid += mass_properties(packing->local_body(i)).volume;
-    }
-    const double volume = packing->container.volume();
-    out.message = trs(Text::kOpened, path, packing->particles.size(),
-                      volume > 0 ? 100.0 * solid / volume : 0.0);
-    out.config_toml = packing->provenance.config_toml;
-    out.packing = std::move(packing);
-    build_scene(job, out);
-    return out;
-  });
-}
-
-void GuiApp::start_export(const std::string& format, DeckKind deck, const std::string& path) {
-  if (job_.is_running() || !packing_) return;
-  ExportOptions options{.format = parse_export_format(format), .overwrite = Overwrite::kAllow};
-  if (deck != DeckKind::kNone) {  // a complete solver model around the mesh (export --deck)
-    options.deck = deck_options_;
-    options.deck.kind = deck;
-    options.material = deck_material_;
-  }
-  try {  // the fields' errors at once, before the job
-    validate(options, options.format);
-  } catch (const Error& error) {
-    set_status(plain_error(error.what()), true);
-    return;
-  }
-  set_status(trs(Text::kStatusWriting, path), false);
-  const std::string what =
-      deck == DeckKind::kNone ? std::string() : deck_title(deck) + tr(Text::kListSeparator);
-  job_.start(tr(Text::kJobExporting), [packing = packing_, options, path, what](BackgroundJob&) {
-    JobResult out;
-    const ExportSummary summary = write(*packing, path, options);
-    out.message = trs(Text::kWrote, path, what, summary.particles, summary.nodes, summary.elements);
-    out.is_ok = true;
-    return out;
-  });
-}
-
 void GuiApp::show_packing(std::shared_ptr<const Packing> packing, std::shared_ptr<SceneData> scene,
                           std::vector<std::string> entries) {
   if (!scene) scene = prepare_scene(*packing);
   try {
-    renderer_->begin_upload(std::move(scene));
+    upload_.begin(*renderer_, std::move(packing), std::move(scene), std::move(entries));
   } catch (const Error& error) {
     set_status(error.what(), true);
     return;
   }
-  pending_packing_ = std::move(packing);
-  pending_entries_ = std::move(entries);
   finish_upload_if_done();
 }
 
 void GuiApp::finish_upload_if_done() {
-  if (!pending_packing_) return;
-  // Steps while the frame has time (about 25 ms): the window stays live while a large scene
-  // goes to OpenGL, and a loaded machine uploads less per frame. Each step allocates one buffer
-  // or copies at most 4 MB; a step starts only if it fits the time left at the cost per byte
-  // measured so far (llvmpipe clears new storage; fresh memory costs 1-3 ms per MB on this VM).
-  // The first step of a frame always runs.
-  constexpr std::size_t kUploadPieceBytes = std::size_t{4} << 20;
-  constexpr double kUploadSecondsPerFrame = 0.025;
-  const double start = glfwGetTime();
-  bool is_uploaded = false;
-  for (bool is_first = true;; is_first = false) {
-    const std::size_t bytes = renderer_->next_upload_bytes(kUploadPieceBytes);
-    const double now = glfwGetTime();
-    if (!is_first && now - start + static_cast<double>(bytes) * upload_seconds_per_byte_ >
-                         kUploadSecondsPerFrame) {
-      break;
-    }
-    is_uploaded = renderer_->upload_step(kUploadPieceBytes);
-    if (bytes >= (std::size_t{1} << 20)) {  // large enough to time
-      const double rate = (glfwGetTime() - now) / static_cast<double>(bytes);
-      upload_seconds_per_byte_ = 0.5 * (upload_seconds_per_byte_ + rate);
-    }
-    if (is_uploaded) break;
-  }
-  if (!is_uploaded) return;
+  if (!upload_.step(*renderer_)) return;
   is_upload_finished_now_ = true;
   const Aabb old_bounds = packing_ ? last_bounds_ : Aabb{};
-  packing_ = std::move(pending_packing_);
-  packing_entries_ = std::move(pending_entries_);
-  pending_packing_.reset();
+  UploadScheduler::Uploaded uploaded = upload_.take();
+  packing_ = std::move(uploaded.packing);
+  packing_entries_ = std::move(uploaded.entries);
   // Keep the user's camera when the scene did not move (re-pack with new shape parameters);
   // refit when the container changed.
   const Aabb& bounds = renderer_->scene_bounds();
@@ -355,41 +190,6 @@ void GuiApp::finish_upload_if_done() {
   if (!is_same_scene) reset_view();
   last_bounds_ = bounds;
   is_scene_dirty_ = true;
-}
-
-void GuiApp::poll_job() {
-  JobResult result;
-  if (!job_.take_result(result)) return;
-  std::string message = result.message;
-  std::vector<std::string> entries = job_entries_;
-  if (!result.config_toml.empty()) {
-    // An opened file: its stored configuration fills the panel, so Pack repeats or varies it.
-    try {
-      fields_ = ConfigFields::from_config(parse_pack_config(result.config_toml, "stored config"));
-      message += tr(Text::kOpenedConfig);
-    } catch (const Error&) {
-      message += tr(Text::kOpenedConfigBad);
-    }
-  }
-  if (result.packing && job_kind_ == "open") entries = fields_.set_entries();
-  set_status(plain_error(message), !result.is_ok);
-  if (result.packing) show_packing(result.packing, result.scene, std::move(entries));
-  if (is_waiting_for_first_job_ && result.is_ok && options_.mesomodel_export &&
-      !is_mesomodel_script_started_) {  // scripted: the mesomodel export follows, wait for it
-    is_mesomodel_script_started_ = true;
-    // Scripted: the packing is shown at once (its upload finished in this frame) to be meshed.
-    while (pending_packing_) {
-      if (renderer_->upload_step(std::numeric_limits<std::size_t>::max())) finish_upload_if_done();
-    }
-    start_mesomodel_export(*options_.mesomodel_export);
-    if (job_.is_running()) return;
-    exit_code_ = 2;  // refused before it started (the status line says why)
-  }
-  if (is_waiting_for_first_job_) {
-    is_waiting_for_first_job_ = false;
-    frames_since_job_ = 0;
-    if (!result.is_ok) exit_code_ = 2;
-  }
 }
 
 void GuiApp::frame() {
@@ -456,7 +256,7 @@ void GuiApp::frame() {
     }
   }
 
-  if (frames_since_job_ >= 0) ++frames_since_job_;
+  script_.count_frame();
 }
 
 void GuiApp::after_render() {
@@ -473,139 +273,7 @@ void GuiApp::after_render() {
     is_screenshot_requested_ = false;
     save_screenshot(options_.screenshot_path.value_or("aggpack-gui.png"));
   }
-  // Scripted runs: act once the first job's result has been on screen for two frames (the
-  // status line and the scene are then drawn) and any benchmark is over; then the --edit
-  // values, then the --export dialog, answering its questions with --answer.
-  if (frames_since_job_ < 2 || benchmark_phase_ != BenchmarkPhase::kOff || is_script_done_ ||
-      is_scene_dirty_ || renderer_->is_frame_pending() || renderer_->is_upload_pending() ||
-      job_.is_running() || is_waiting_for_first_job_) {
-    return;
-  }
-  if (options_.benchmark_frames > 0 && !is_benchmark_started_) {
-    // Once the packing is shown (uploaded, its first full-detail picture drawn).
-    is_benchmark_started_ = true;
-    start_benchmark();
-    return;
-  }
-  if (!are_edits_applied_) {
-    are_edits_applied_ = true;
-    if (!options_.edits.empty()) {
-      apply_edits();
-      frames_since_job_ = 0;
-      return;
-    }
-  }
-  if (options_.library_folder && !is_library_script_started_) {
-    is_library_script_started_ = true;
-    open_library_dialog(*options_.library_folder);
-    for (const std::string& name : options_.library_picks) {
-      if (std::find(dialog_.files.begin(), dialog_.files.end(), name) != dialog_.files.end()) {
-        dialog_.picked.push_back(name);
-      }
-    }
-    frames_since_job_ = 0;
-    if (dialog_.kind != FileDialog::Kind::kNone) return;
-  }
-  if (dialog_.kind == FileDialog::Kind::kLibrary) {
-    if (dialog_.scripted != 0) return;  // the answer is not taken yet
-    std::string picked;
-    for (const std::string& name : dialog_.picked) picked += " " + name;
-    std::printf("dialog: library %s (%zu mesh files; picked:%s); answer %s\n",
-                dialog_.folder.c_str(), dialog_.files.size(), picked.c_str(),
-                options_.answer.c_str());
-    if (options_.screenshot_path && !is_screenshot_taken_) {
-      save_screenshot(*options_.screenshot_path);  // the dialog on screen
-      is_screenshot_taken_ = true;
-      is_frame_timing_skipped_ = true;
-    }
-    std::fflush(stdout);
-    dialog_.scripted = options_.answer == "yes" ? 1 : 2;
-    frames_since_job_ = 0;
-    return;
-  }
-  if (options_.export_format && !is_export_script_started_) {
-    is_export_script_started_ = true;
-    open_dialog(FileDialog::Kind::kExport, *options_.export_format, options_.export_deck);
-    frames_since_job_ = 0;
-    if (dialog_.kind != FileDialog::Kind::kNone) return;
-  }
-  if (dialog_.kind != FileDialog::Kind::kNone) {
-    if (dialog_.scripted != 0) return;  // the last answer is not taken yet
-    const bool is_yes = options_.answer == "yes";
-    switch (dialog_.stage) {
-      case FileDialog::Stage::kAskStale: {
-        std::string keys;
-        for (const std::string& key : changed_keys()) keys += " " + key;
-        std::printf("dialog: asks: export an out-of-date packing? (changed:%s)\n", keys.c_str());
-        break;
-      }
-      case FileDialog::Stage::kAskOverwrite:
-        std::printf("dialog: asks: replace %s?\n", dialog_.path().c_str());
-        break;
-      case FileDialog::Stage::kBrowse:
-        std::printf("dialog: export %s to %s\n",
-                    dialog_.deck == DeckKind::kNone ? dialog_.format.c_str()
-                                                    : deck_title(dialog_.deck).c_str(),
-                    dialog_.path().c_str());
-        break;
-    }
-    const bool is_question = dialog_.stage != FileDialog::Stage::kBrowse;
-    if (is_question) std::printf("dialog: answer %s\n", is_yes ? "yes" : "no");
-    if (is_question && options_.screenshot_path && !is_screenshot_taken_) {
-      save_screenshot(*options_.screenshot_path);  // the question on screen
-      is_screenshot_taken_ = true;
-      is_frame_timing_skipped_ = true;
-    }
-    std::fflush(stdout);
-    dialog_.scripted = !is_question || is_yes ? 1 : 2;
-    frames_since_job_ = 0;
-    return;
-  }
-  is_script_done_ = true;
-  // The status line of the finished job (a screenshot below replaces it on screen) and the
-  // configuration the panel would pack next (the keys of `aggpack pack --set`).
-  std::printf("status: %s\n", status_.c_str());
-  std::string panel;
-  for (const auto& entry : fields_.set_entries()) panel += " " + entry;
-  std::printf("panel:%s\n", panel.c_str());
-  std::printf("result: %s\n", !packing_ ? "none" : is_result_stale() ? "out of date" : "current");
-  for (const auto& [key, message] : field_errors_) {
-    std::printf("field error: %s: %s\n", key.c_str(), message.c_str());
-  }
-  for (const auto& [field, message] : mesomodel_field_errors()) {
-    std::printf("field error: %s: %s\n", field.c_str(), message.c_str());
-  }
-  if (!form_error_.empty()) std::printf("form error: %s\n", form_error_.c_str());
-  if (is_timing_frames_script_) {
-    std::printf(
-        "longest frame: %.0f ms (of %d frames while packing/opening and showing %zu "
-        "particles; the first frame, start-up, took %.0f ms)\n",
-        1e3 * longest_frame_, timed_frames_, renderer_->particle_count(), 1e3 * first_frame_);
-  }
-  if (options_.screenshot_path && !is_screenshot_taken_) save_screenshot(*options_.screenshot_path);
-  std::fflush(stdout);
-  if (options_.is_quit_when_done) should_quit_ = true;
-}
-
-void GuiApp::note_frame_start() { frame_work_start_ = glfwGetTime(); }
-
-void GuiApp::note_frame_end() {
-  if (!is_timing_frames_script_ || is_script_done_) return;
-  if (std::exchange(is_frame_timing_skipped_, false)) return;  // a screenshot was written
-  const double seconds = glfwGetTime() - frame_work_start_;
-  // The window's first frame compiles shaders and builds the font atlas (start-up, before the
-  // window is shown): reported apart.
-  if (timed_frames_ == 0 && first_frame_ < 0.0) {
-    first_frame_ = seconds;
-    return;
-  }
-  longest_frame_ = std::max(longest_frame_, seconds);
-  if (options_.is_frame_log) {
-    std::printf("frame %d: %.1f ms%s%s\n", timed_frames_, 1e3 * seconds,
-                job_.is_running() ? " (job running)" : "",
-                renderer_->is_upload_pending() ? " (uploading)" : "");
-  }
-  ++timed_frames_;
+  script_.after_render();
 }
 
 }  // namespace aggpack::gui

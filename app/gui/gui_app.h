@@ -2,6 +2,11 @@
 // aggpack-gui: the paper's program (Section 5) done as a modern tool. Panels for the container,
 // particle shape, grading and packer; Pack on a worker thread with progress and Cancel; a 3D
 // view with arcball rotation, pan, zoom and colour modes; Open and Export.
+// GuiApp owns the window's state and its parts: the job controller (job_controller.cpp: pack,
+// open, export on the worker), the upload scheduler (upload_scheduler.h), the panels
+// (gui_panel.cpp, config_panel.cpp, field_checks.cpp, file_dialog.cpp, deck_export.cpp,
+// mesomodel_export.cpp, gui_layout.cpp), the 3D view (gui_view.cpp) and the scripted-test
+// driver (script_driver.h).
 
 #include <map>
 #include <memory>
@@ -21,6 +26,8 @@
 #include "file_dialog.h"
 #include "gui_settings.h"
 #include "i18n.h"
+#include "script_driver.h"
+#include "upload_scheduler.h"
 
 struct GLFWwindow;
 
@@ -90,8 +97,8 @@ class GuiApp {
   void note_present_times(double ui_draw_seconds, double swap_seconds);
   /// Main calls these when a frame's work begins (events are in) and after its buffer swap:
   /// scripted runs print the longest such frame since the first job began.
-  void note_frame_start();
-  void note_frame_end();
+  void note_frame_start() { script_.note_frame_start(); }
+  void note_frame_end() { script_.note_frame_end(); }
   /// Exit code for main: non-zero when a --pack/--open/--screenshot step failed.
   [[nodiscard]] int exit_code() const { return exit_code_; }
 
@@ -170,10 +177,8 @@ class GuiApp {
   std::vector<std::string> job_entries_;  // set_entries() of the pack job under way
   std::string job_kind_;                  // "pack", "open" (the job that gives a packing)
   Aabb last_bounds_;                      // scene bounds of packing_
-  double frame_work_start_ = 0.0;         // the panel's set_entries() that made packing_
   // A finished job's packing whose scene is being uploaded (a bounded piece per frame).
-  std::shared_ptr<const Packing> pending_packing_;
-  std::vector<std::string> pending_entries_;
+  UploadScheduler upload_;
   std::vector<std::string> last_entries_;            // set_entries() when field_errors_ were made
   std::map<std::string, std::string> field_errors_;  // key -> plain-words message
   std::string form_error_;                           // an error no field is named for
@@ -183,23 +188,10 @@ class GuiApp {
   bool show_fps_ = false;
   float menu_height_ = 0.0f;    // window pixels taken by the menu bar (top)
   float status_height_ = 0.0f;  // ... and by the status bar (bottom)
-  // Longest wall time between two frames since the first job started (scripted runs print it).
-  double longest_frame_ = 0.0;
-  double first_frame_ = -1.0;  // the window's first frame (start-up), not in longest_frame_
-  int timed_frames_ = 0;
-  bool is_timing_frames_script_ = false;
-  bool are_edits_applied_ = false;
-  bool is_export_script_started_ = false;
-  bool is_library_script_started_ = false;
-  bool is_screenshot_taken_ = false;      // the scripted screenshot was written
-  bool is_frame_timing_skipped_ = false;  // this frame wrote a screenshot: not timed
   // Whether frames drawn while the view moves must be light: the last full-detail picture took
   // longer than the detail controller's target (else they stay in full detail).
   bool needs_light_frames_ = false;
   bool is_upload_finished_now_ = false;  // this frame finished an upload: no drawing in it
-  // Seconds per byte of a scene upload step, measured (a running average; 1 ms per MB at first).
-  double upload_seconds_per_byte_ = 1e-3 / (1 << 20);
-  bool is_benchmark_started_ = false;  // --benchmark-frames began
   std::unique_ptr<PackingRenderer> renderer_;
   std::unique_ptr<OffscreenTarget> scene_target_;
   // Light frames drawn at a lower resolution (DetailLevel::resolution_scale) go here.
@@ -243,10 +235,9 @@ class GuiApp {
   bool is_preview_ = false;  // the cached scene is a light in-motion frame
   double cursor_x_ = 0.0, cursor_y_ = 0.0;
 
-  // Scripted runs (--pack/--open, --screenshot, --benchmark-frames, --quit).
-  bool is_waiting_for_first_job_ = false;
-  bool is_mesomodel_script_started_ = false;  // --mesomodel-export's job was started
-  int frames_since_job_ = -1;
+  // Scripted runs (--pack/--open, --edit, --export, --screenshot, --benchmark-frames, --quit).
+  friend class ScriptDriver;
+  ScriptDriver script_{*this};
   // --benchmark-frames: first the camera turns as if dragged (light frames, adaptive detail),
   // then a few full-detail frames (the scene as it is drawn once the view rests).
   enum class BenchmarkPhase { kOff, kMoving, kStill };
@@ -266,7 +257,6 @@ class GuiApp {
   int benchmark_left_ = 0;
   double benchmark_frame_start_ = 0.0;
   FrameTimes moving_times_, still_times_;
-  bool is_script_done_ = false;
   bool is_screenshot_requested_ = false;  // F12
   bool should_quit_ = false;
   int exit_code_ = 0;

@@ -58,7 +58,7 @@ void GuiApp::draw_menu_bar() {
   if (!ImGui::BeginMainMenuBar()) return;
   menu_height_ = ImGui::GetWindowSize().y;
   const bool is_idle = !job_.is_running();
-  const bool can_export = is_idle && packing_ != nullptr && !pending_packing_;
+  const bool can_export = is_idle && packing_ != nullptr && !upload_.is_pending();
   if (ImGui::BeginMenu(tr(Text::kMenuFile))) {
     if (ImGui::MenuItem(tr(Text::kMenuOpen), "Ctrl+O", false, is_idle)) {
       open_dialog(FileDialog::Kind::kOpen);

@@ -137,7 +137,7 @@ void GuiApp::draw_file_section() {
   if (ImGui::Button(tr(Text::kOpenButton), ImVec2(110, 0))) open_dialog(FileDialog::Kind::kOpen);
   ImGui::EndDisabled();
   item_tooltip(tr(Text::kOpenTooltip));
-  const bool can_export = packing_ != nullptr && is_idle && !pending_packing_;
+  const bool can_export = packing_ != nullptr && is_idle && !upload_.is_pending();
   ImGui::BeginDisabled(!can_export);
   ImGui::SameLine();
   if (ImGui::Button(tr(Text::kExportButton), ImVec2(110, 0))) {
