@@ -41,7 +41,7 @@ bool wide_button(const char* label) {
 }  // namespace
 
 void GuiApp::open_library_dialog(const std::string& folder) {
-  if (job_.is_running() || pending_packing_) return;
+  if (job_.is_running() || upload_.is_pending()) return;
   dialog_.kind = FileDialog::Kind::kLibrary;
   dialog_.stage = FileDialog::Stage::kBrowse;
   dialog_.is_open_requested = true;

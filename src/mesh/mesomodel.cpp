@@ -1,7 +1,7 @@
 // The concrete mesomodel (mesh/mesomodel.h): container, aggregates and the outer surfaces of their
 // ITZ layers as one piecewise linear complex meshed by TetGen (mesomodel_tetgen.cpp; the layers
 // are holes there), phases from TetGen's regions checked against the geometry, then the layers
-// filled with prisms (mesomodel_itz.cpp).
+// filled with prisms (mesomodel_itz.cpp). Its report and face node sets: mesomodel_measure.cpp.
 
 #include "aggpack/mesh/mesomodel.h"
 
@@ -555,64 +555,6 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
                         "<= " + number(options.max_aspect_ratio));
   }
   return mesh;
-}
-
-MesoReport measure_mesomodel(const MesoMesh& mesh) {
-  MesoReport report;
-  std::array<std::vector<Tetrahedron>, 3> by_phase;
-  for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
-    by_phase[static_cast<int>(mesh.phase[e])].push_back(mesh.tetrahedra[e]);
-  }
-  for (int p = 0; p < 3; ++p) {
-    MesoPhaseReport& phase = report.phases[p];
-    std::vector<std::uint8_t> is_used(mesh.nodes.size(), 0);
-    for (const Tetrahedron& tet : by_phase[p]) {
-      phase.meshed_volume += tetra_volume(mesh.nodes[tet[0]], mesh.nodes[tet[1]],
-                                          mesh.nodes[tet[2]], mesh.nodes[tet[3]]);
-      for (const std::uint32_t node : tet) is_used[node] = 1;
-    }
-    phase.nodes = static_cast<std::uint64_t>(std::count(is_used.begin(), is_used.end(), 1));
-    phase.quality = measure_quality(mesh.nodes, by_phase[p]);
-  }
-  MesoPhaseReport& itz = report.phases[static_cast<int>(MesoPhase::kItz)];
-  std::vector<std::uint8_t> is_used(mesh.cohesive.empty() ? 0 : mesh.nodes.size(), 0);
-  for (const CohesiveWedge& wedge : mesh.cohesive) {
-    const Vec3& a = mesh.nodes[wedge[0]];
-    report.interface_area +=
-        0.5 * (mesh.nodes[wedge[1]] - a).cross(mesh.nodes[wedge[2]] - a).norm();
-    for (const std::uint32_t node : wedge) is_used[node] = 1;
-  }
-  report.cohesive_elements = mesh.cohesive.size();
-  itz.nodes += static_cast<std::uint64_t>(std::count(is_used.begin(), is_used.end(), 1));
-  return report;
-}
-
-std::vector<std::uint32_t> face_nodes(const MesoMesh& mesh, SpecimenFace face) {
-  const double tolerance = 1e-9 * mesh.bounds.extent().maxCoeff();
-  std::vector<std::uint32_t> nodes;
-  for (std::uint32_t i = 0; i < mesh.nodes.size(); ++i) {
-    const Vec3& p = mesh.nodes[i];
-    const bool is_bottom = p.z() <= mesh.bounds.lower.z() + tolerance;
-    const bool is_top = p.z() >= mesh.bounds.upper.z() - tolerance;
-    bool is_side = false;
-    if (mesh.is_cylinder) {
-      const int n = mesh.cylinder_segments;
-      for (int k = 0; k < n && !is_side; ++k) {
-        const double angle = 2.0 * std::numbers::pi * k / n;
-        const double reach = std::cos(angle) * (p.x() - mesh.axis_point.x()) +
-                             std::sin(angle) * (p.y() - mesh.axis_point.y());
-        is_side = reach >= mesh.cylinder_radius - tolerance;
-      }
-    } else {
-      is_side = (p.head<2>().array() <= mesh.bounds.lower.head<2>().array() + tolerance).any() ||
-                (p.head<2>().array() >= mesh.bounds.upper.head<2>().array() - tolerance).any();
-    }
-    const bool is_wanted = face == SpecimenFace::kBottom ? is_bottom
-                           : face == SpecimenFace::kTop  ? is_top
-                                                         : is_side;
-    if (is_wanted) nodes.push_back(i);
-  }
-  return nodes;
 }
 
 }  // namespace aggpack

@@ -2,6 +2,7 @@
 // The one colour type: the 3D views' particle colours (render/colors.h), the headless renderer's
 // pixels and the PNG plots' raster (core/raster.h) all use it.
 
+#include <compare>
 #include <cstddef>
 #include <cstdint>
 
@@ -21,6 +22,8 @@ struct Rgb {
     return channel == 0 ? r : (channel == 1 ? g : b);
   }
   friend bool operator==(const Rgb&, const Rgb&) = default;
+  /// Ordered by r, then g, then b (for sorting and sets of colours).
+  friend auto operator<=>(const Rgb&, const Rgb&) = default;
 };
 
 }  // namespace aggpack
