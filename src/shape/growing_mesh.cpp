@@ -122,12 +122,16 @@ void GrowingMesh::reset(const std::array<Vec3, 6>& base, double edge_length, dou
   }
 }
 
-GrowingMesh::Key GrowingMesh::key_of(const EdgeEntry& entry) {
+// The private members called per insertion are defined `inline`: the library is compiled with
+// -fPIC, and GCC does not inline a function with external linkage there (another definition could
+// interpose it), so each call, even set_twin's one store, cost a call (-8 to -11 % instructions
+// in the hull growth, bench/RESULTS.md). The arithmetic is the same: the bits do not change.
+inline GrowingMesh::Key GrowingMesh::key_of(const EdgeEntry& entry) {
   const auto pair = (static_cast<std::uint64_t>(~entry.from) << 32U) | (~entry.to);
   return (static_cast<Key>(std::bit_cast<std::uint64_t>(entry.length_squared)) << 64U) | pair;
 }
 
-EdgeEntry GrowingMesh::entry_of(Key key) {
+inline EdgeEntry GrowingMesh::entry_of(Key key) {
   const auto pair = static_cast<std::uint64_t>(key);
   return {std::bit_cast<double>(static_cast<std::uint64_t>(key >> 64U)),
           ~static_cast<std::uint32_t>(pair >> 32U), ~static_cast<std::uint32_t>(pair)};
@@ -150,7 +154,7 @@ bool GrowingMesh::longest_edge(EdgeEntry& entry) {
   return false;
 }
 
-std::uint32_t GrowingMesh::top_half(const EdgeEntry& entry) {
+inline std::uint32_t GrowingMesh::top_half(const EdgeEntry& entry) {
   const std::uint32_t half = top_half_ != kNone ? top_half_ : find_outgoing(entry.from, entry.to);
   if (half == kNone) broken();
   top_half_ = kNone;
@@ -188,7 +192,7 @@ void GrowingMesh::split_midpoint(const EdgeEntry& entry, const DrawDistance& dra
   split_at(ab, distance * direction);
 }
 
-void GrowingMesh::split_at(std::uint32_t ab, const Vec3& point) {
+inline void GrowingMesh::split_at(std::uint32_t ab, const Vec3& point) {
   // f1 holds a -> b, f2 holds b -> a; c and d are their third vertices.
   const std::uint32_t f1 = face_of(ab);
   const std::uint32_t k1 = local_of(ab);
@@ -272,7 +276,8 @@ void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistan
   replace_patch(point);
 }
 
-bool GrowingMesh::find_visible(std::uint32_t ab, const Vec3& point, double tolerance_squared) {
+inline bool GrowingMesh::find_visible(std::uint32_t ab, const Vec3& point,
+                                      double tolerance_squared) {
   // The faces the new vertex sees: a connected patch (the body is convex) that holds the edge's
   // two faces; found by a walk from them across edges, each face tested once.
   stamp_ += 1;
@@ -332,7 +337,7 @@ bool GrowingMesh::find_visible(std::uint32_t ab, const Vec3& point, double toler
   return true;
 }
 
-bool GrowingMesh::chain_border() {
+inline bool GrowingMesh::chain_border() {
   // The border as one loop from its first half-edge: each border vertex must have exactly one
   // border half-edge leaving it (else the patch is pinched there), and the loop must use them all
   // (else there is more than one). The loop goes to sides_ (ends and outer twin of each step).
@@ -363,7 +368,7 @@ bool GrowingMesh::chain_border() {
   return half == first && length == count;
 }
 
-void GrowingMesh::replace_patch(const Vec3& point) {
+inline void GrowingMesh::replace_patch(const Vec3& point) {
   // The patch's inner vertices are dropped (the border's are stamped), its faces freed, and a fan
   // of new faces joins the new vertex to the loop. Freed faces are taken back last in, first out:
   // the fan takes the patch's faces from its last, then older free faces, then new ones.
@@ -446,11 +451,11 @@ void GrowingMesh::broken() {
   throw Error(ErrorKind::kInvalidInput, "internal: broken adjacency in aggregate growth");
 }
 
-void GrowingMesh::set_twin(std::uint32_t half, std::uint32_t twin) {
+inline void GrowingMesh::set_twin(std::uint32_t half, std::uint32_t twin) {
   twins_[face_of(half)][local_of(half)] = twin;
 }
 
-std::uint32_t GrowingMesh::find_outgoing(std::uint32_t from, std::uint32_t to) const {
+inline std::uint32_t GrowingMesh::find_outgoing(std::uint32_t from, std::uint32_t to) const {
   // The twin of the edge that enters `from` is the next edge that leaves it.
   std::uint32_t face = corner_faces_[from];
   std::uint32_t k = find_corner(triangles_[face], from);
@@ -466,7 +471,7 @@ std::uint32_t GrowingMesh::find_outgoing(std::uint32_t from, std::uint32_t to) c
   broken();
 }
 
-std::uint32_t GrowingMesh::add_vertex(const Vec3& point) {
+inline std::uint32_t GrowingMesh::add_vertex(const Vec3& point) {
   const auto p = static_cast<std::uint32_t>(vertices_.size());
   vertices_.push_back(point);
   if (p >= corner_faces_.size()) grow_vertex_arrays(2 * static_cast<std::size_t>(p));
@@ -476,7 +481,7 @@ std::uint32_t GrowingMesh::add_vertex(const Vec3& point) {
   return p;
 }
 
-std::uint32_t GrowingMesh::new_face() {
+inline std::uint32_t GrowingMesh::new_face() {
   if (!free_faces_.empty()) {
     const std::uint32_t face = free_faces_.back();
     free_faces_.pop_back();
@@ -507,8 +512,8 @@ void GrowingMesh::grow_face_arrays(std::size_t count) {
   is_free_face_.resize(count);
 }
 
-void GrowingMesh::push_edges_of(std::uint32_t vertex, const std::uint32_t* neighbours,
-                                std::size_t count) {
+inline void GrowingMesh::push_edges_of(std::uint32_t vertex, const std::uint32_t* neighbours,
+                                       std::size_t count) {
   const Vec3& point = vertices_[vertex];
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t v = neighbours[i];
@@ -520,7 +525,7 @@ void GrowingMesh::push_edges_of(std::uint32_t vertex, const std::uint32_t* neigh
 // The heap is 4-ary (children of i: 4 i + 1 .. 4 i + 4): half the depth of a binary heap, and the
 // largest of four children is found without unpredictable branches. The order in which live
 // edges come out depends only on their keys, not on the heap's shape.
-void GrowingMesh::insert(Key key) {
+inline void GrowingMesh::insert(Key key) {
   std::size_t hole = heap_.size();
   heap_.push_back(key);
   Key* heap = heap_.data();
@@ -533,7 +538,7 @@ void GrowingMesh::insert(Key key) {
   heap[hole] = key;
 }
 
-void GrowingMesh::pop() {
+inline void GrowingMesh::pop() {
   // The root's hole goes down to a leaf along the largest children, then the last key sifts up
   // from there (it nearly always belongs near the bottom: fewer comparisons than sifting it down).
   const Key last = heap_.back();
