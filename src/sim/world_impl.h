@@ -54,6 +54,31 @@ struct ShapeData {
 // (position) sweeps are blocked alike. A block's rows and
 // bodies stay in cache across its sweeps, where a full sweep over a 10,000-particle pile's ~30 MB
 // of rows streams them from memory. With a single block this is exactly Bullet's Gauss-Seidel.
+// Compact copies of Bullet's solver bodies and rows for the Gauss-Seidel sweeps (world_solver.cpp):
+// only what a row update reads or writes, so a sweep streams 176 bytes a row and 72 a body instead
+// of Bullet's 288 and 488.
+struct SweepBody {
+  btScalar linear[3];    // delta linear velocity (push velocity in the split-impulse sweeps)
+  btScalar angular[3];   // delta angular velocity (turn velocity in the split-impulse sweeps)
+  btScalar inv_mass[3];  // Bullet's m_invMass (1/m times the linear factor, which is 1)
+};
+
+struct SweepRow {
+  btScalar normal[3];  // contact normal 1; normal 2 is its negation (see world_solver.cpp)
+  btScalar relpos1_cross_normal[3];
+  btScalar relpos2_cross_normal[3];
+  btScalar angular_a[3];
+  btScalar angular_b[3];
+  btScalar rhs;
+  btScalar cfm;
+  btScalar jac_diag_inv;
+  btScalar applied;
+  btScalar limit;  // contact row: its lower limit; friction row: its friction coefficient
+  int body_a;
+  int body_b;
+  int normal_row;  // friction row: index of its contact row in the sweep order
+};
+
 class OrderedSolver final : public btSequentialImpulseConstraintSolver {
  public:
   OrderedSolver(int block_contacts, int block_sweeps)
@@ -98,11 +123,24 @@ class OrderedSolver final : public btSequentialImpulseConstraintSolver {
   // Velocity rows of contacts [begin, end): normal rows, their friction rows, their rolling rows.
   void sweep_block(int begin, int end);
 
+  // Bullet's Gauss-Seidel sweeps (split impulse, then velocity) on compact rows and bodies, bit for
+  // bit; false (nothing done) for set-ups World does not use, which go to Bullet's own sweeps.
+  bool compact_sweeps(const btContactSolverInfo& info);
+  bool load_compact();
+  void store_compact();
+
   int block_contacts_ = 0;  // 0 = Bullet's sweeps over all contacts
   int block_sweeps_ = 1;
   std::vector<btCollisionObject*> sorted_bodies_;
   std::vector<btPersistentManifold*> sorted_manifolds_;
   std::vector<int> rolling_begin_;  // per contact + 1: first rolling-friction row of the contact
+  std::vector<SweepBody> sweep_bodies_;
+  std::vector<SweepRow> contact_rows_;     // in m_orderTmpConstraintPool's order
+  std::vector<SweepRow> friction_rows_;    // in m_orderFrictionConstraintPool's order
+  std::vector<btScalar> rhs_penetration_;  // per contact row
+  std::vector<btScalar> push_applied_;     // per contact row: applied push impulse
+  std::vector<int> contact_position_;      // contact pool index -> position in contact_rows_
+  std::vector<int> split_rows_;            // contact rows the split-impulse sweeps visit
 };
 
 struct Wall {
