@@ -117,11 +117,7 @@ void ScriptDriver::answer_library_dialog() {
   for (const std::string& name : dialog.picked) picked += " " + name;
   std::printf("dialog: library %s (%zu mesh files; picked:%s); answer %s\n", dialog.folder.c_str(),
               dialog.files.size(), picked.c_str(), app.options_.answer.c_str());
-  if (app.options_.screenshot_path && !is_screenshot_taken_) {
-    app.save_screenshot(*app.options_.screenshot_path);  // the dialog on screen
-    is_screenshot_taken_ = true;
-    is_frame_timing_skipped_ = true;
-  }
+  take_screenshot_once();  // the dialog on screen
   std::fflush(stdout);
   dialog.scripted = app.options_.answer == "yes" ? 1 : 2;
   frames_since_job_ = 0;
@@ -153,11 +149,7 @@ void ScriptDriver::answer_dialog() {
   }
   const bool is_question = dialog.stage != FileDialog::Stage::kBrowse;
   if (is_question) std::printf("dialog: answer %s\n", is_yes ? "yes" : "no");
-  if (is_question && app.options_.screenshot_path && !is_screenshot_taken_) {
-    app.save_screenshot(*app.options_.screenshot_path);  // the question on screen
-    is_screenshot_taken_ = true;
-    is_frame_timing_skipped_ = true;
-  }
+  if (is_question) take_screenshot_once();  // the question on screen
   std::fflush(stdout);
   dialog.scripted = !is_question || is_yes ? 1 : 2;
   frames_since_job_ = 0;
@@ -188,10 +180,16 @@ void ScriptDriver::print_outcome() {
         "particles; the first frame, start-up, took %.0f ms)\n",
         1e3 * longest_frame_, timed_frames_, app.renderer_->particle_count(), 1e3 * first_frame_);
   }
-  if (app.options_.screenshot_path && !is_screenshot_taken_) {
-    app.save_screenshot(*app.options_.screenshot_path);
-  }
+  take_screenshot_once();
   std::fflush(stdout);
+}
+
+// --screenshot, written at the script's first chance only; the frame that wrote it is not timed.
+void ScriptDriver::take_screenshot_once() {
+  if (!app_.options_.screenshot_path || is_screenshot_taken_) return;
+  app_.save_screenshot(*app_.options_.screenshot_path);
+  is_screenshot_taken_ = true;
+  is_frame_timing_skipped_ = true;
 }
 
 void ScriptDriver::note_frame_start() { frame_work_start_ = glfwGetTime(); }

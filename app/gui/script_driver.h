@@ -35,6 +35,7 @@ class ScriptDriver {
  private:
   void answer_dialog();
   void answer_library_dialog();
+  void take_screenshot_once();
   void print_outcome();
 
   GuiApp& app_;
