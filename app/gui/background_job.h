@@ -106,6 +106,11 @@ class BackgroundJob {
   }
 
   [[nodiscard]] bool is_running() const { return is_running_; }
+  /// A finished job's result that take_result has not taken yet.
+  [[nodiscard]] bool has_result() const {
+    std::lock_guard lock(mutex_);
+    return has_result_;
+  }
   /// What the job does now ("Packing", then "Building the scene"); the task may change it.
   [[nodiscard]] std::string name() const {
     std::lock_guard lock(mutex_);

@@ -56,10 +56,12 @@ void ScriptDriver::after_render() {
   GuiApp& app = app_;
   // Act once the first job's result has been on screen for two frames (the status line and the
   // scene are then drawn) and any benchmark is over; then the --edit values, then the --export
-  // dialog, answering its questions with --answer.
+  // dialog, answering its questions with --answer. A job that finished after this frame's
+  // poll_job still holds its result (its status line is not shown yet): wait for the next frame.
   if (frames_since_job_ < 2 || app.benchmark_phase_ != GuiApp::BenchmarkPhase::kOff ||
       is_script_done_ || app.is_scene_dirty_ || app.renderer_->is_frame_pending() ||
-      app.renderer_->is_upload_pending() || app.job_.is_running() || is_waiting_for_first_job_) {
+      app.renderer_->is_upload_pending() || app.job_.is_running() || app.job_.has_result() ||
+      is_waiting_for_first_job_) {
     return;
   }
   if (app.options_.benchmark_frames > 0 && !is_benchmark_started_) {
