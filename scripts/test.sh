@@ -2,8 +2,9 @@
 # Fresh Debian bookworm, as root: install dependencies, build with warnings as errors, and run
 # every test. `scripts/test.sh --sanitize` builds into build-asan/ with AddressSanitizer +
 # UndefinedBehaviorSanitizer and runs the suite there, except the tests labelled external-solver
-# (a full ccx or yade run on a file our code wrote; tests/labels.cmake says where that file's
-# writer is tested under the sanitizers). The sanitized build is compiled at -O1 -g1 (half
+# (a full ccx or yade run on a file our code wrote) and physics-trend (minutes of simulation that
+# check what the physics measures); tests/labels.cmake names the tests that run their code under
+# the sanitizers. The sanitized build is compiled at -O1 -g1 (half
 # the compile time of -O2 -g). After scripts/quickstart.sh, the normal build compiles nothing:
 # both use scripts/build.sh's flags.
 set -euo pipefail
@@ -27,7 +28,7 @@ if [ "${1:-}" = "--sanitize" ]; then
     -DAGGPACK_BUILD_SIM=ON -DAGGPACK_BUILD_PYTHON=OFF "$@"
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1
   export AGGPACK_SANITIZED=1
-  ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -LE external-solver
+  ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -LE 'external-solver|physics-trend'
 else
   echo "test: building (nothing to compile after scripts/quickstart.sh; about 12 minutes from scratch"
   echo "on 2 cores), then the test suite (about 11 minutes on 2 cores)"

@@ -266,6 +266,27 @@ TEST(Repose, WritesJsonCsvAndPng) {
   std::filesystem::remove_all(folder);
 }
 
+// The follow-up measurement on a small pile (the sanitized phase's cover of the follow code;
+// PileAtRestStaysAtRestWhenFollowedLonger checks what it measures, in the Release phase): it runs
+// follow_time longer than rest, measures again and is written to repose.json.
+TEST(Repose, FollowUpIsMeasuredAndWritten) {
+  ReposeOptions options = small_trough();
+  options.fill_height = 0.4;
+  options.follow_time = 0.2;
+  const ReposeResult result = run_repose(options, lattice_fill(options));
+  ASSERT_TRUE(result.fit.is_valid) << result.fit.message;
+  EXPECT_NEAR(result.follow.time, 0.2, result.time_step);
+  EXPECT_EQ(result.follow.fit.is_valid, result.follow.fit.message.empty());
+  const auto folder = std::filesystem::temp_directory_path() / "aggpack_repose_follow_test";
+  std::filesystem::create_directories(folder);
+  const std::string json = (folder / "r.json").string();
+  write_repose_json(json, options, result);
+  std::ifstream json_in(json);
+  const std::string json_text((std::istreambuf_iterator<char>(json_in)), {});
+  EXPECT_NE(json_text.find("\"follow_up\""), std::string::npos);
+  std::filesystem::remove_all(folder);
+}
+
 // The sensitivity table: 3 fit_lower x 3 fit_upper x 3 bin widths around the run's setting, the
 // run's own entry reproducing the reported angle exactly, the others close to it.
 TEST(Repose, ReportsTheAngleSensitivityToFitWindowAndBinWidth) {
