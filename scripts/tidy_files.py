@@ -95,8 +95,18 @@ class Inputs:
         return digest.hexdigest()
 
 
-# A batch's sources are headers to clang-tidy: the .clang-tidy HeaderFilterRegex, with bench/.
-BATCH_HEADER_FILTER = "/(include/aggpack|src|app|python|tests|bench)/"
+def batch_header_filter(config_text):
+    """The header filter of a batch run: the .clang-tidy HeaderFilterRegex, which must also match
+    bench/ there, since a batch's sources are headers to clang-tidy."""
+    match = re.search(r"^HeaderFilterRegex:\s*'/\((.*)\)/'\s*$", config_text, re.MULTILINE)
+    if not match:
+        sys.exit("tidy_files.py: .clang-tidy has no HeaderFilterRegex of the form '/(a|b|...)/'")
+    return f"/({match.group(1)}|bench)/"
+
+
+def unity_text(sources):
+    """A translation unit that includes the given sources, in order."""
+    return "".join(f'#include "{source}"\n' for source in sources)
 
 
 def flags_of(entry):
@@ -139,7 +149,9 @@ def main():
             chosen[source] = entry
     version = subprocess.run([args.tidy, "--version"], capture_output=True, text=True).stdout
     with open(os.path.join(root, ".clang-tidy"), "rb") as f:
-        common = version.encode() + b"\0" + f.read()
+        config = f.read()
+    common = version.encode() + b"\0" + config
+    header_filter = batch_header_filter(config.decode("utf-8"))
     inputs = Inputs(root, build_dir)
     keys = {source: inputs.key(entry, common) for source, entry in chosen.items()}
 
@@ -174,7 +186,7 @@ def main():
                 errors = set()
                 result = subprocess.run(
                     [args.clang, "-fsyntax-only", "-w", "-ferror-limit=0", "-x", "c++", "-"]
-                    + flags_of(entry), input="".join(f'#include "{s}"\n' for s in current),
+                    + flags_of(entry), input=unity_text(current),
                     cwd=entry["directory"], capture_output=True, text=True)
                 if result.returncode == 0:
                     break
@@ -200,7 +212,7 @@ def main():
         not compile together go to other batches (compatible); a batch with a finding is checked
         again file by file, so findings are reported exactly as a per-file run reports them."""
         outcome = []
-        for part in compatible(batch) if len(batch) > 1 else [batch]:
+        for part in compatible(batch):
             if len(part) == 1:
                 outcome.append((run(part[0]), False))
                 continue
@@ -208,12 +220,14 @@ def main():
             unity = os.path.join(unity_dir, hashlib.sha256("\0".join(part).encode()).hexdigest()
                                  [:16] + ".cpp")
             with open(unity, "w") as f:
-                f.writelines(f'#include "{source}"\n' for source in part)
-            result = subprocess.run(
-                [args.tidy, "-quiet", "--extra-arg=-Wno-unknown-warning-option",
-                 f"--header-filter={BATCH_HEADER_FILTER}", unity, "--"] + flags_of(entry),
-                cwd=entry["directory"], capture_output=True, text=True)
-            os.remove(unity)
+                f.write(unity_text(part))
+            try:
+                result = subprocess.run(
+                    [args.tidy, "-quiet", "--extra-arg=-Wno-unknown-warning-option",
+                     f"--header-filter={header_filter}", unity, "--"] + flags_of(entry),
+                    cwd=entry["directory"], capture_output=True, text=True)
+            finally:
+                os.remove(unity)
             if result.returncode == 0:
                 outcome.extend(((source, 0, ""), True) for source in part)
             else:
