@@ -25,7 +25,7 @@ tidy=$(command -v clang-tidy-14 || command -v clang-tidy)
 mkdir -p "$build_dir"
 # No compiler launcher here: clang-tidy reads the compile commands as they are.
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_EXPORT_COMPILE_COMMANDS=ON \
-  -DAGGPACK_BUILD_TESTS=ON -DAGGPACK_BUILD_BENCH=ON -DAGGPACK_CCACHE=OFF \
+  -DAGGPACK_BUILD_TESTS=ON -DAGGPACK_BUILD_BENCH=ON -DAGGPACK_CCACHE=OFF -DAGGPACK_UNITY=OFF \
   >"$build_dir/configure.log" 2>&1 || {
   cat "$build_dir/configure.log"
   exit 1

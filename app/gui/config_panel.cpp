@@ -15,16 +15,13 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/pack/grading.h"
+#include "error_colours.h"
 #include "gui_app.h"
 #include "i18n.h"
 
 namespace aggpack::gui {
 
 namespace {
-
-// Text and input background of a value outside its range (and of a sieve table error).
-const ImVec4 kErrorText(0.95f, 0.35f, 0.3f, 1.0f);
-const ImVec4 kErrorFrame(0.55f, 0.15f, 0.12f, 1.0f);
 
 // A step for the +/- buttons: a tenth of the value's order of magnitude.
 double step_for(double value) {

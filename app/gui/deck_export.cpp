@@ -11,6 +11,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/io/export.h"
+#include "error_colours.h"
 #include "file_dialog.h"
 #include "gui_app.h"
 #include "i18n.h"
@@ -67,9 +68,6 @@ const char* deck_run_hint(DeckKind deck) {
 }
 
 namespace {
-
-const ImVec4 kErrorText(0.95f, 0.35f, 0.3f, 1.0f);
-const ImVec4 kErrorFrame(0.55f, 0.15f, 0.12f, 1.0f);
 
 // One field of the deck table: `field` is the name the library's check gives it.
 struct DeckField {

@@ -15,14 +15,13 @@
 #include "aggpack/core/error.h"
 #include "aggpack/io/mesomodel_files.h"
 #include "aggpack/mesh/mesomodel.h"
+#include "error_colours.h"
 #include "gui_app.h"
 #include "i18n.h"
 
 namespace aggpack::gui {
 
 namespace {
-
-const ImVec4 kErrorText(0.95f, 0.35f, 0.3f, 1.0f);
 
 // The plain-words error of a field, right under it (nothing when it is valid).
 void field_error(const std::map<std::string, std::string>& errors, const std::string& field) {

@@ -15,8 +15,6 @@ namespace {
 using PackKey = Key<PackConfig>;
 using PackScope = Scope<PackConfig>;
 
-constexpr double kHuge = 1e6;
-
 const DensifyOptions* densify_of(const PackConfig& c) {
   return find_options<DensifyOptions>(c.packer);
 }
@@ -80,7 +78,7 @@ std::vector<PackKey> densify_keys() {
       "fill that jams below its target gives a lower fraction; both are reported",
       [](auto& o) -> auto& { return o.target_fraction; }));
   PackKey gap = key(
-      "densify.gap", kFloat, "m", closed(0, kHuge), kDense,
+      "densify.gap", kFloat, "m", closed(0, kMaxMagnitude), kDense,
       "minimum particle distance kept while densifying", [](auto& o) -> auto& { return o.gap; });
   gap.note = "<= packer.gap";
   gap.default_from = "packer.gap";
@@ -91,7 +89,7 @@ std::vector<PackKey> densify_keys() {
       "keeps what it reached",
       [](auto& o) -> auto& { return o.max_sweeps; }));
   keys.push_back(key(
-      "densify.max_seconds", kFloat, "s", closed(0, kHuge), kDense,
+      "densify.max_seconds", kFloat, "s", closed(0, kMaxMagnitude), kDense,
       "wall-time budget, 0 = none. A run stopped by time is not reproducible "
       "(sweep budgets are)",
       [](auto& o) -> auto& { return o.max_seconds; }));
@@ -102,7 +100,7 @@ std::vector<PackKey> densify_keys() {
       "less than `stall_tolerance` mean bounding radii",
       [](auto& o) -> auto& { return o.stall_sweeps; }));
   keys.push_back(key(
-      "densify.stall_tolerance", kFloat, "-", closed(0, kHuge), kDense,
+      "densify.stall_tolerance", kFloat, "-", closed(0, kMaxMagnitude), kDense,
       "see `stall_sweeps` (a fraction for fixed, bounding radii for bed)",
       [](auto& o) -> auto& { return o.stall_tolerance; }));
   keys.push_back(key(
@@ -115,7 +113,7 @@ std::vector<PackKey> densify_keys() {
       "below it); both modes size the cell grid for it",
       [](auto& o) -> auto& { return o.max_compression; }));
   keys.push_back(key(
-      "densify.bed_temperature", kFloat, "-", closed(0, kHuge), kBedMode,
+      "densify.bed_temperature", kFloat, "-", closed(0, kMaxMagnitude), kBedMode,
       "initial temperature: a particle of mean volume rising one mean bounding "
       "radius is accepted with probability exp(-1 / T); 0 = never rise",
       [](auto& o) -> auto& { return o.bed_temperature; }));

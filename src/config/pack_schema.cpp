@@ -26,7 +26,6 @@ using config_detail::set_on;
 using PackKey = Key<PackConfig>;
 using PackScope = Scope<PackConfig>;
 
-constexpr double kHuge = 1e6;  // 1000 km: any larger length is a unit mistake
 constexpr double kMaxSeed = 9223372036854775807.0;
 
 const RandomPackOptions* random_of(const PackConfig& c) {
@@ -109,7 +108,7 @@ std::vector<PackKey> container_keys() {
       keys.push_back(
           {.name = std::string("container.") + param.name,
            .unit = "m",
-           .range = open_closed(0, kHuge),
+           .range = open_closed(0, kMaxMagnitude),
            .scope = {.text = std::string("container.kind = ") + info.name,
                      .applies = [kind](const PackConfig& c) { return kind->holds(c.container()); }},
            .doc = param.description,
@@ -125,7 +124,7 @@ std::vector<PackKey> container_keys() {
   keys.push_back(
       {.name = "container.wall_gap",
        .unit = "m",
-       .range = closed(0, kHuge),
+       .range = closed(0, kMaxMagnitude),
        .note = "< half the smallest extent",
        .doc = "minimum distance from every particle to every wall",
        .binding = {.get = [](const PackConfig& c) -> Value { return c.container().wall_gap; },
@@ -148,7 +147,7 @@ std::vector<PackKey> particle_keys() {
        .fields = {"lattice.alpha", "shape.alpha"}},
       {.name = "particle.radius",
        .unit = "m",
-       .range = open_closed(0, kHuge),
+       .range = open_closed(0, kMaxMagnitude),
        .scope = kLatticeOrUniform,
        .written = kLattice,
        .doc = "control radius R of every lattice particle; for the random packer the default of "
@@ -161,7 +160,7 @@ std::vector<PackKey> particle_keys() {
        .fields = {"lattice.radius"}},
       {.name = "particle.radius_min",
        .unit = "m",
-       .range = open_closed(0, kHuge),
+       .range = open_closed(0, kMaxMagnitude),
        .note = "<= radius_max",
        .scope = kUniform,
        .doc = "smallest control radius of the uniform grading (uniform by number)",
@@ -171,7 +170,7 @@ std::vector<PackKey> particle_keys() {
        .fields = {"grading.radius_min"}},
       {.name = "particle.radius_max",
        .unit = "m",
-       .range = open_closed(0, kHuge),
+       .range = open_closed(0, kMaxMagnitude),
        .note = ">= radius_min",
        .scope = kUniform,
        .doc = "largest control radius of the uniform grading",
@@ -181,7 +180,7 @@ std::vector<PackKey> particle_keys() {
        .fields = {"grading.radius_max"}},
       {.name = "particle.edge_length",
        .unit = "m",
-       .range = closed(0, kHuge),
+       .range = closed(0, kMaxMagnitude),
        .note = "0 only with packer.kind = random",
        .doc = "growth edge-length control L: a particle grows on its longest edge until every "
               "edge is <= L. 0 = relative: L = `edge_length_ratio` x r for each particle (the "
@@ -274,14 +273,14 @@ std::vector<PackKey> grading_keys() {
                }}},
       {.name = "grading.size_min",
        .unit = "m",
-       .range = open_closed(0, kHuge),
+       .range = open_closed(0, kMaxMagnitude),
        .note = "< size_max",
        .scope = kFuller,
        .doc = "Fuller curve: smallest control diameter d_min",
        .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.size_min; }))},
       {.name = "grading.size_max",
        .unit = "m",
-       .range = open_closed(0, kHuge),
+       .range = open_closed(0, kMaxMagnitude),
        .note = "> size_min",
        .scope = kFuller,
        .doc = "Fuller curve: largest control diameter d_max",
@@ -296,7 +295,7 @@ std::vector<PackKey> grading_keys() {
       {.name = "grading.sieve",
        .type = ValueType::kSieve,
        .unit = "m, %",
-       .range = open_closed(0, kHuge),
+       .range = open_closed(0, kMaxMagnitude),
        .note = ">= 2 rows [size, percent passing]; sizes increasing, percents [0, 100] "
                "non-decreasing, last 100",
        .scope = kSieve,
@@ -408,14 +407,14 @@ std::vector<PackKey> packer_keys() {
        .binding = members<PackConfig>([](auto& c) -> auto& { return c.threads; })},
       {.name = "packer.gap",
        .unit = "m",
-       .range = closed(0, kHuge),
+       .range = closed(0, kMaxMagnitude),
        .doc = "minimum distance between particles",
        .binding = bind(on<LatticeOptions>([](auto& o) -> auto& { return o.gap; }),
                        on<RandomPackOptions>([](auto& o) -> auto& { return o.gap; })),
        .fields = {"lattice.gap", "random.gap"}},
       {.name = "packer.spacing",
        .unit = "m",
-       .range = closed(0, kHuge),
+       .range = closed(0, kMaxMagnitude),
        .note = "0 or >= particle.radius",
        .scope = kLattice,
        .doc = "centre-to-centre lattice spacing. 0 = 2 R + gap (particles cannot touch and grow "

@@ -16,8 +16,6 @@ namespace {
 using config_detail::members;
 using SweepKey = Key<SweepOptions>;
 
-constexpr double kHuge = 1e6;
-
 // A float key of the repose options.
 template <typename Access>
 SweepKey number(const char* name, const char* unit, Range range, const char* doc, Access access,
@@ -33,26 +31,26 @@ SweepKey number(const char* name, const char* unit, Range range, const char* doc
 
 std::vector<SweepKey> keys() {
   return {
-      number("trough.length", "m", open_closed(0, kHuge), "trough length (x)",
+      number("trough.length", "m", open_closed(0, kMaxMagnitude), "trough length (x)",
              [](auto& o) -> auto& { return o.base.trough_length; }, {"repose.trough_length"}),
-      number("trough.width", "m", open_closed(0, kHuge), "trough width (y)",
+      number("trough.width", "m", open_closed(0, kMaxMagnitude), "trough width (y)",
              [](auto& o) -> auto& { return o.base.trough_width; },
              {"repose.trough_width", "container.width"}),
       number("trough.width_factor", "-", closed(1, 100),
              "multiplies trough.width and the fill's width: a wider trough (less wall effect, "
              "more particles), the pile's side view unchanged",
              [](auto& o) -> auto& { return o.base.width_factor; }, {"repose.width_factor"}),
-      number("trough.height", "m", open_closed(0, kHuge),
+      number("trough.height", "m", open_closed(0, kMaxMagnitude),
              "trough wall height (walls reach the fill top during stage 1)",
              [](auto& o) -> auto& { return o.base.trough_height; }, {"repose.trough_height"}),
       number(
-          "trough.baffle_position", "m", open_closed(0, kHuge),
+          "trough.baffle_position", "m", open_closed(0, kMaxMagnitude),
           "x of the baffle; particles fill [0, baffle_position]",
           [](auto& o) -> auto& { return o.base.baffle_position; },
           {"repose.baffle_position", "container.length"}, "< trough.length"),
-      number("trough.baffle_thickness", "m", open_closed(0, kHuge), "baffle thickness",
+      number("trough.baffle_thickness", "m", open_closed(0, kMaxMagnitude), "baffle thickness",
              [](auto& o) -> auto& { return o.base.baffle_thickness; }, {"repose.baffle_thickness"}),
-      number("trough.baffle_speed", "m/s", open_closed(0, kHuge),
+      number("trough.baffle_speed", "m/s", open_closed(0, kMaxMagnitude),
              "baffle speed toward +x in stage 2",
              [](auto& o) -> auto& { return o.base.baffle_speed; }, {"repose.baffle_speed"}),
       number("trough.baffle_clear_time", "s", closed(0, 1e3),
@@ -62,10 +60,10 @@ std::vector<SweepKey> keys() {
       number("particles.alpha", "-", closed(0, 1), "Eq. 3 shape control alpha, [0, 1]",
              [](auto& o) -> auto& { return o.base.alpha; },
              {"repose.alpha", "lattice.alpha", "alpha"}),
-      number("particles.radius", "m", open_closed(0, kHuge), "control radius R; lattice spacing 2R",
-             [](auto& o) -> auto& { return o.base.radius; },
+      number("particles.radius", "m", open_closed(0, kMaxMagnitude),
+             "control radius R; lattice spacing 2R", [](auto& o) -> auto& { return o.base.radius; },
              {"repose.radius", "lattice.radius", "radius"}),
-      number("particles.edge_length", "m", open_closed(0, kHuge), "maximum edge length L",
+      number("particles.edge_length", "m", open_closed(0, kMaxMagnitude), "maximum edge length L",
              [](auto& o) -> auto& { return o.base.edge_length; },
              {"repose.edge_length", "lattice.edge_length", "lattice.max_vertices", "edge_length",
               "max_vertices"}),
@@ -85,8 +83,8 @@ std::vector<SweepKey> keys() {
              "minimum edge length / L of hull growth (see particle.min_edge_ratio)",
              [](auto& o) -> auto& { return o.base.form.min_edge_ratio; },
              {"repose.min_edge_ratio"}),
-      number("particles.fill_height", "m", open_closed(0, kHuge), "height of the lattice region",
-             [](auto& o) -> auto& { return o.base.fill_height; },
+      number("particles.fill_height", "m", open_closed(0, kMaxMagnitude),
+             "height of the lattice region", [](auto& o) -> auto& { return o.base.fill_height; },
              {"repose.fill_height", "container.depth"}),
       {.name = "particles.seed",
        .type = ValueType::kInteger,
@@ -100,7 +98,7 @@ std::vector<SweepKey> keys() {
        .doc = "turn each particle randomly about its lattice site",
        .binding =
            members<SweepOptions>([](auto& o) -> auto& { return o.base.is_orientation_random; })},
-      number("physics.density", "kg/m^3", open_closed(0, kHuge), "particle density",
+      number("physics.density", "kg/m^3", open_closed(0, kMaxMagnitude), "particle density",
              [](auto& o) -> auto& { return o.base.physics.density; }, {"density"}),
       number("physics.friction", "-", closed(0, 10), "sliding friction mu_s particle-particle",
              [](auto& o) -> auto& { return o.base.physics.friction; }, {"friction"}),
@@ -199,11 +197,11 @@ std::vector<SweepKey> keys() {
              "at rest when kinetic energy < ratio * M g d",
              [](auto& o) -> auto& { return o.base.rest.kinetic_energy_ratio; },
              {"kinetic_energy_ratio"}),
-      number("rest.quiet_time", "s", closed(0, kHuge), "time the rest criterion must hold",
+      number("rest.quiet_time", "s", closed(0, kMaxMagnitude), "time the rest criterion must hold",
              [](auto& o) -> auto& { return o.base.rest.quiet_time; }, {"quiet_time"}),
-      number("rest.check_interval", "s", open_closed(0, kHuge), "time between rest checks",
+      number("rest.check_interval", "s", open_closed(0, kMaxMagnitude), "time between rest checks",
              [](auto& o) -> auto& { return o.base.rest.check_interval; }, {"check_interval"}),
-      number("rest.max_time", "s", open_closed(0, kHuge), "simulated time limit per stage",
+      number("rest.max_time", "s", open_closed(0, kMaxMagnitude), "simulated time limit per stage",
              [](auto& o) -> auto& { return o.base.rest.max_time; }, {"max_time"}),
       number("rest.confirm_window", "sqrt(d/g)", closed(0, 1e4),
              "stage 2: after the energy/surface tests, follow the pile this long (x sqrt(d/g), d "
@@ -224,7 +222,7 @@ std::vector<SweepKey> keys() {
              "diagnostic: follow the pile this long after rest and measure again (follow_up)",
              [](auto& o) -> auto& { return o.base.follow_time; }, {"repose.follow_time"}),
       number(
-          "measure.bin_width", "m", closed(0, kHuge), "profile bin width, 0 = radius / 2",
+          "measure.bin_width", "m", closed(0, kMaxMagnitude), "profile bin width, 0 = radius / 2",
           [](auto& o) -> auto& { return o.base.bin_width; }, {"repose.bin_width"},
           "<= trough.length"),
       number("measure.fit_upper", "-", closed(1e-6, 1), "slope region below this x pile height",

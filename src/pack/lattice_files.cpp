@@ -20,7 +20,7 @@ namespace aggpack::lattice_detail {
 namespace {
 
 // Relative slack on "every vertex within R of its site" (Welzl's sphere is exact to ~1e-12).
-constexpr double kRadiusSlack = 1e-9;
+constexpr double kReachSlack = 1e-9;
 
 struct Site {
   std::uint32_t shape = 0;
@@ -63,7 +63,7 @@ PackResult pack_lattice_files(const LatticeOptions& options, const Lattice& latt
   };
   const double spacing = effective_spacing(options);
   const bool is_contact_mode = spacing < 2.0 * radius + options.gap;
-  const double reach = 2.0 * radius * (1.0 + kRadiusSlack) + options.gap;
+  const double reach = 2.0 * radius * (1.0 + kReachSlack) + options.gap;
   PackReport report;
 
   // The earlier sites within reach of site i (only in contact mode can two particles meet).

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/core/clock.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
 #include "aggpack/geom/overlap.h"
@@ -23,8 +24,6 @@ namespace {
 
 using namespace random_detail;  // NOLINT(google-build-using-namespace)
 
-using Clock = std::chrono::steady_clock;
-
 // The outcome of a particle's search: the first feasible attempt and its pose, or none.
 struct Found {
   static constexpr std::uint64_t kNone = std::numeric_limits<std::uint64_t>::max();
@@ -32,10 +31,6 @@ struct Found {
   Pose pose;
   [[nodiscard]] bool is_found() const { return attempt != kNone; }
 };
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 StoredShape make_stored(const ConvexPolyhedron& grown) {
   StoredShape stored;

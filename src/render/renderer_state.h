@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/core/clock.h"
 #include "aggpack/render/renderer.h"
 #include "depth_pyramid.h"
 
@@ -83,10 +84,6 @@ struct GpuPoint {
   float x, y, z, radius;
   std::uint8_t r, g, b, a;
 };
-
-inline double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Unsigned key that orders like the float (negative values first).
 inline std::uint32_t float_order_key(float value) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "aggpack/core/clock.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/rng.h"
 #include "aggpack/core/text.h"
@@ -18,12 +19,6 @@
 namespace aggpack {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 std::string fmt_fill(const Container& c, std::size_t count) {
   const BoxContainer* box = c.get_if<BoxContainer>();

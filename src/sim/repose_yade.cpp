@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/core/clock.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/temp_paths.h"
 #include "aggpack/core/text.h"
@@ -38,12 +39,6 @@ namespace aggpack {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 // The program `name` on PATH, or "" when it is not there.
 std::string find_on_path(const std::string& name) {
   const char* path = std::getenv("PATH");
@@ -101,9 +96,16 @@ class YadeProcess {
     // (seeds run side by side) may only call async-signal-safe functions.
     std::vector<std::string> environment;
     for (char** entry = environ; *entry != nullptr; ++entry) {
-      if (std::strncmp(*entry, "OMP_NUM_THREADS=", 16) != 0) environment.emplace_back(*entry);
+      if (std::strncmp(*entry, "OMP_NUM_THREADS=", 16) != 0 &&
+          std::strncmp(*entry, "TMPDIR=", 7) != 0) {
+        environment.emplace_back(*entry);
+      }
     }
     environment.emplace_back("OMP_NUM_THREADS=1");  // one core per run, like Bullet's runs
+    // YADE makes a yade-XXXXXX folder in $TMPDIR at start and leaves it behind (always when it
+    // is killed at the time limit, often when it ends normally): put it in the scratch folder,
+    // which is removed with everything in it.
+    environment.emplace_back("TMPDIR=" + folder.path());
     std::vector<char*> envp;
     for (auto& entry : environment) envp.push_back(entry.data());
     envp.push_back(nullptr);

@@ -21,8 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::CliRun;
 
-const std::string kFixtures = test::source_dir() + "/tests/io/fixtures/bad-inputs/";
-const std::string kBase = "'" + kFixtures + "base_s.h5'";
+const std::string kBase = "'" + test::bad_inputs_dir() + "base_s.h5'";
 const std::string kExamples = test::source_dir() + "/examples/";
 
 class FlagNamesCliTest : public test::CliTest {
@@ -193,7 +192,7 @@ TEST_F(FlagNamesCliTest, OutputNameTooLongNamesTheKey) {
   const std::string small =
       " --set container.length=0.6 --set container.width=0.4 --set container.depth=0.4";
   const CliRun result =
-      run("pack '" + kFixtures + "output_path_name_too_long.toml' -o out.h5" + small);
+      run("pack '" + test::bad_inputs_dir() + "output_path_name_too_long.toml' -o out.h5" + small);
   EXPECT_EQ(result.exit_code, 3) << result.err;
   EXPECT_EQ(result.err.rfind("aggpack: error: output.stl: cannot write xxx", 0), 0U) << result.err;
   EXPECT_NE(result.err.find(".stl: file name too long (a name of 304 bytes, at most 255)\n"),

@@ -27,7 +27,6 @@ using test::read_text;
 using test::ScratchFolder;
 
 const std::string kBinary = test::aggpack_binary();
-const std::string kFixtures = test::source_dir() + "/tests/io/fixtures/bad-inputs/";
 
 test::CommandResult aggpack(const std::string& arguments) {
   return test::run_command("'" + kBinary + "' " + arguments);
@@ -49,7 +48,8 @@ TEST(OutputsCli, ForceRefusesFifoDeviceAndFolder) {
   ScratchFolder folder;
   const std::string fifo = folder.file("fifo.stl");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
-  const auto on_fifo = aggpack("export " + kFixtures + "base_s.h5 -o " + fifo + " --force");
+  const auto on_fifo =
+      aggpack("export " + test::bad_inputs_dir() + "base_s.h5 -o " + fifo + " --force");
   EXPECT_EQ(on_fifo.exit_code, 3);
   EXPECT_EQ(on_fifo.output,
             "aggpack: error: refusing to replace " + fifo + ": not a regular file (FIFO)\n");
@@ -57,7 +57,8 @@ TEST(OutputsCli, ForceRefusesFifoDeviceAndFolder) {
 
   const std::string sub = folder.file("sub.stl");
   fs::create_directory(sub);
-  const auto on_folder = aggpack("export " + kFixtures + "base_s.h5 -o " + sub + " --force");
+  const auto on_folder =
+      aggpack("export " + test::bad_inputs_dir() + "base_s.h5 -o " + sub + " --force");
   EXPECT_EQ(on_folder.exit_code, 3);
   EXPECT_EQ(on_folder.output,
             "aggpack: error: refusing to replace " + sub + ": not a regular file (directory)\n");
@@ -66,8 +67,8 @@ TEST(OutputsCli, ForceRefusesFifoDeviceAndFolder) {
   if (::geteuid() == 0) {
     const std::string node = folder.file("null");
     ASSERT_EQ(::mknod(node.c_str(), S_IFCHR | 0666, makedev(1, 3)), 0);
-    const auto on_node =
-        aggpack("export " + kFixtures + "base_s.h5 --format stl -o " + node + " --force");
+    const auto on_node = aggpack("export " + test::bad_inputs_dir() + "base_s.h5 --format stl -o " +
+                                 node + " --force");
     EXPECT_EQ(on_node.exit_code, 3);
     EXPECT_EQ(on_node.output, "aggpack: error: refusing to replace " + node +
                                   ": not a regular file (character device)\n");
@@ -77,7 +78,8 @@ TEST(OutputsCli, ForceRefusesFifoDeviceAndFolder) {
     EXPECT_EQ(fs::status(node).type(), fs::file_type::character);
   }
   // The real /dev/null, without --force only (so that a regression cannot replace it).
-  const auto dev_null = aggpack("export " + kFixtures + "base_s.h5 --format stl -o /dev/null");
+  const auto dev_null =
+      aggpack("export " + test::bad_inputs_dir() + "base_s.h5 --format stl -o /dev/null");
   EXPECT_EQ(dev_null.exit_code, 3);
   EXPECT_EQ(dev_null.output,
             "aggpack: error: refusing to replace /dev/null: not a regular file (character "
@@ -87,7 +89,9 @@ TEST(OutputsCli, ForceRefusesFifoDeviceAndFolder) {
   std::ofstream(target) << "old";
   const std::string link = folder.file("link.stl");
   fs::create_symlink(target, link);
-  EXPECT_EQ(aggpack("export " + kFixtures + "base_s.h5 -o " + link + " --force").exit_code, 0);
+  EXPECT_EQ(
+      aggpack("export " + test::bad_inputs_dir() + "base_s.h5 -o " + link + " --force").exit_code,
+      0);
   EXPECT_TRUE(fs::is_symlink(link));
   EXPECT_GT(fs::file_size(target), 1000U);
   EXPECT_FALSE(has_temporary(folder));
@@ -176,8 +180,8 @@ TEST(OutputsCli, FailedOutputExportLeavesNoNativeFile) {
   ScratchFolder folder;
   // pack_output_proc.toml: refused before packing.
   const std::string native = folder.file("run.h5");
-  const auto proc =
-      aggpack("pack " + kFixtures + "pack_output_proc.toml --progress none -o " + native);
+  const auto proc = aggpack("pack " + test::bad_inputs_dir() +
+                            "pack_output_proc.toml --progress none -o " + native);
   EXPECT_EQ(proc.exit_code, 3);
   EXPECT_NE(proc.output.find("aggpack: error: output.stl: cannot write /proc/x.stl: cannot create "
                              "a file in "
@@ -236,7 +240,7 @@ TEST(OutputsCli, DiskFullNamesTheFile) {
       "pack --set container.length=0.6 --set container.width=0.4 --set container.depth=0.4 "
       "--progress none -o " +
       disk + "/x.h5");
-  const auto stl = aggpack("export " + kFixtures + "base_s.h5 -o " + disk + "/x.stl");
+  const auto stl = aggpack("export " + test::bad_inputs_dir() + "base_s.h5 -o " + disk + "/x.stl");
   std::vector<std::string> left;
   for (const auto& entry : fs::directory_iterator(disk)) {
     left.push_back(entry.path().filename().string());
@@ -255,7 +259,7 @@ TEST(OutputsCli, ConfigMessagesAreOneBoundedLine) {
   // out_of_scope_invalid_values.toml: the lattice packer ignores these keys, but their values are
   // still wrong: an error for the run and for --print-config alike.
   ScratchFolder folder;
-  const std::string fixture = kFixtures + "out_of_scope_invalid_values.toml";
+  const std::string fixture = test::bad_inputs_dir() + "out_of_scope_invalid_values.toml";
   const std::string expected = "aggpack: error: " + fixture +
                                ":4: invalid grading.kind = \"fullerr\" (allowed: uniform | fuller "
                                "| sieve); did you mean 'fuller'?\n";

@@ -28,10 +28,9 @@ class RunawayCliTest : public test::CliTest {
   RunawayCliTest() : CliTest("aggpack_runaway_") {}
 };
 
-const std::string kFixtures = test::source_dir() + "/tests/io/fixtures/bad-inputs/";
-
 TEST_F(RunawayCliTest, CountTheBoxCannotHoldIsRefusedUpFront) {
-  const CliRun pack = run("pack '" + kFixtures + "count_1e8_default_box.toml' -o out.h5");
+  const CliRun pack =
+      run("pack '" + test::bad_inputs_dir() + "count_1e8_default_box.toml' -o out.h5");
   EXPECT_EQ(pack.exit_code, 2) << pack.err;
   EXPECT_EQ(pack.err.rfind("aggpack: error: limit exceeded for packer.target_count = 100000000 "
                            "(allowed: at most ~",
@@ -45,8 +44,9 @@ TEST_F(RunawayCliTest, CountTheBoxCannotHoldIsRefusedUpFront) {
 
 TEST_F(RunawayCliTest, SizeListBeyondTheMemoryLimitIsRefusedUpFront) {
   // ~5 x 10^7 particles of 5-20 mm at 35 % of the default box: ~50 GB of shapes.
-  const CliRun pack = run("pack '" + kFixtures + "fuller_in_default_box.toml' -o out.h5",
-                          "AGGPACK_MEMORY_LIMIT=8G");
+  const CliRun pack =
+      run("pack '" + test::bad_inputs_dir() + "fuller_in_default_box.toml' -o out.h5",
+          "AGGPACK_MEMORY_LIMIT=8G");
   EXPECT_EQ(pack.exit_code, 2) << pack.err;
   EXPECT_EQ(pack.err.rfind("aggpack: error: limit exceeded for packer.target_fraction = 0.35", 0),
             0u)
@@ -57,13 +57,14 @@ TEST_F(RunawayCliTest, SizeListBeyondTheMemoryLimitIsRefusedUpFront) {
   EXPECT_EQ(std::count(pack.err.begin(), pack.err.end(), '\n'), 1) << pack.err;
   EXPECT_TRUE(fs::is_empty(folder_));
   // --print-config refuses it the same way.
-  EXPECT_EQ(run("pack '" + kFixtures + "fuller_in_default_box.toml' --print-config",
+  EXPECT_EQ(run("pack '" + test::bad_inputs_dir() + "fuller_in_default_box.toml' --print-config",
                 "AGGPACK_MEMORY_LIMIT=8G")
                 .exit_code,
             2);
   // A bad limit is named.
-  const CliRun bad = run("pack '" + kFixtures + "fuller_in_default_box.toml' -o out.h5",
-                         "AGGPACK_MEMORY_LIMIT=lots");
+  const CliRun bad =
+      run("pack '" + test::bad_inputs_dir() + "fuller_in_default_box.toml' -o out.h5",
+          "AGGPACK_MEMORY_LIMIT=lots");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("AGGPACK_MEMORY_LIMIT = lots"), std::string::npos) << bad.err;
 }

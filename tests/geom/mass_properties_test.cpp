@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "aggpack/core/rng.h"
+#include "support/random_rotation.h"
 
 namespace aggpack {
 namespace {
@@ -21,11 +22,6 @@ void expect_matrix_near(const Mat3& actual, const Mat3& expected, double toleran
       EXPECT_NEAR(actual(i, j), expected(i, j), tolerance) << "(" << i << "," << j << ")";
     }
   }
-}
-
-Quat random_rotation(Rng& rng) {
-  Quat q(rng.normal(), rng.normal(), rng.normal(), rng.normal());
-  return q.normalized();
 }
 
 TEST(MassProperties, UnitCube) {
@@ -114,7 +110,7 @@ TEST(MassProperties, InvariantUnderRigidMotion) {
     const auto reference = mass_properties(body);
     for (const double distance : {1.0, 1e3, 1e6}) {
       const Pose pose{.position = distance * Vec3(rng.normal(), rng.normal(), rng.normal()),
-                      .rotation = random_rotation(rng)};
+                      .rotation = test::random_rotation(rng)};
       const auto m = mass_properties(body.transformed(pose));
       const double tolerance = 1e-15 * distance * 10;
       EXPECT_NEAR(m.volume, reference.volume, 1e-12 * reference.volume + 1e-14 * distance);

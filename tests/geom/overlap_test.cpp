@@ -19,6 +19,7 @@
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/shape/generator.h"
 #include "support/ellipsoid.h"
+#include "support/random_rotation.h"
 
 namespace aggpack {
 namespace {
@@ -37,12 +38,6 @@ const ConvexPolyhedron& unit_cube() {
 
 Quat axis_angle(const Vec3& axis, double angle) {
   return Quat(Eigen::AngleAxisd(angle, axis.normalized()));
-}
-
-Quat random_rotation(Rng& rng) {
-  Quat q(rng.normal(), rng.normal(), rng.normal(), rng.normal());
-  q.normalize();
-  return q;
 }
 
 Vec3 random_unit(Rng& rng) {
@@ -165,7 +160,7 @@ TEST(Overlap, RigidMotionOfBothBodiesKeepsDistance) {
     const CubePair base = trial % 3 == 0   ? face_face(0.25)
                           : trial % 3 == 1 ? edge_edge(0.25)
                                            : vertex_face(0.25);
-    const Quat motion = random_rotation(rng);
+    const Quat motion = test::random_rotation(rng);
     const Vec3 shift = Vec3(rng.uniform(-1e3, 1e3), rng.uniform(-1e3, 1e3), rng.uniform(-1e3, 1e3));
     const Pose a{motion * base.a.position + shift, motion * base.a.rotation};
     const Pose b{motion * base.b.position + shift, motion * base.b.rotation};
@@ -213,8 +208,8 @@ TEST(Overlap, ScaledBodyWithoutCopyMatchesTheScaledCopy) {
         static_cast<std::uint64_t>(i));
     const double scale = 0.3 + 2.0 * rng.uniform();
     const ConvexPolyhedron copy = b.body.scaled(scale);
-    const Pose pose_a{Vec3::Zero(), random_rotation(rng)};
-    const Pose pose_b{random_unit(rng) * (0.5 + 2.5 * rng.uniform()), random_rotation(rng)};
+    const Pose pose_a{Vec3::Zero(), test::random_rotation(rng)};
+    const Pose pose_b{random_unit(rng) * (0.5 + 2.5 * rng.uniform()), test::random_rotation(rng)};
     const double gap = 0.1 * rng.uniform();
     const double radius_a = bounding_radius(a.body);
     const double radius_b = bounding_radius(copy);
@@ -454,7 +449,7 @@ Contact touching_pair(const Particle& a, const Particle& b, Rng& rng) {
   const Feature fb = random_feature(b, rng);
   Contact contact;
   contact.pose_a = {Vec3(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)),
-                    random_rotation(rng)};
+                    test::random_rotation(rng)};
   contact.normal = contact.pose_a.rotation * fa.direction;
   const Vec3 touch = contact.pose_a.apply(fa.point);
   const Quat spin = axis_angle(contact.normal, rng.uniform(0, 2 * std::numbers::pi));
@@ -485,9 +480,9 @@ TEST(Overlap, AgreesWithBruteForceOnRandomPairs) {
     double eps = 0;
     if (category <= 1) {
       pose_a = {Vec3(rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)),
-                random_rotation(rng)};
+                test::random_rotation(rng)};
       pose_b = {pose_a.position + rng.uniform(0, 1.6 * scale) * random_unit(rng),
-                random_rotation(rng)};
+                test::random_rotation(rng)};
     } else {
       const Contact contact = touching_pair(a, b, rng);
       pose_a = contact.pose_a;
@@ -621,8 +616,8 @@ TEST(Overlap, EllipsoidsHillClimbAndAgreeWithScan) {
   const double radius_small = bounding_radius(small);
   const double radius_large = bounding_radius(large);
   for (int trial = 0; trial < 3000; ++trial) {
-    const Pose pose_a{Vec3::Zero(), random_rotation(rng)};
-    const Pose pose_b{rng.uniform(0.0, 2.2) * random_unit(rng), random_rotation(rng)};
+    const Pose pose_a{Vec3::Zero(), test::random_rotation(rng)};
+    const Pose pose_b{rng.uniform(0.0, 2.2) * random_unit(rng), test::random_rotation(rng)};
     const bool is_large_a = trial % 2 == 0;
     const ConvexPolyhedron& a = is_large_a ? large : small;
     const SupportShape& shape_a = is_large_a ? large_shape : small_shape;

@@ -17,7 +17,7 @@
 namespace aggpack::gui {
 namespace {
 
-constexpr auto kCount = static_cast<int>(Text::kCount);
+constexpr auto kTextCount = static_cast<int>(Text::kCount);
 
 // The fmt placeholders ("{}", "{:.2f}") and printf conversions ("%.0f", "%d") in order.
 std::vector<std::string> placeholders(const std::string& text) {
@@ -50,10 +50,10 @@ bool has_chinese(const std::string& text) {
 }
 
 TEST(GuiCatalogue, EveryTextHasChineseWordsOnce) {
-  EXPECT_EQ(catalogue_size(Language::kEnglish), static_cast<std::size_t>(kCount));
-  EXPECT_EQ(catalogue_size(Language::kChinese), static_cast<std::size_t>(kCount))
+  EXPECT_EQ(catalogue_size(Language::kEnglish), static_cast<std::size_t>(kTextCount));
+  EXPECT_EQ(catalogue_size(Language::kChinese), static_cast<std::size_t>(kTextCount))
       << "zh_CN.h lists an id twice or misses one";
-  for (int k = 0; k < kCount; ++k) {
+  for (int k = 0; k < kTextCount; ++k) {
     const auto id = static_cast<Text>(k);
     const char* chinese = catalogue_text(Language::kChinese, id);
     ASSERT_NE(chinese, nullptr) << text_name(id) << " has no Chinese words (zh_CN.h)";
@@ -63,7 +63,7 @@ TEST(GuiCatalogue, EveryTextHasChineseWordsOnce) {
 }
 
 TEST(GuiCatalogue, ChineseKeepsPlaceholdersAndWidgetIds) {
-  for (int k = 0; k < kCount; ++k) {
+  for (int k = 0; k < kTextCount; ++k) {
     const auto id = static_cast<Text>(k);
     const std::string english = catalogue_text(Language::kEnglish, id);
     const std::string chinese = catalogue_text(Language::kChinese, id);
@@ -77,7 +77,7 @@ TEST(GuiCatalogue, ChineseIsNotEnglishLeftOver) {
   const std::vector<Text> same = {
       Text::kLanguageEnglish, Text::kLanguageChinese, Text::kProgressOverlay, Text::kStatsThousands,
       Text::kSieveCellFormat, Text::kMesomodelMsh,    Text::kMesomodelVtu};
-  for (int k = 0; k < kCount; ++k) {
+  for (int k = 0; k < kTextCount; ++k) {
     const auto id = static_cast<Text>(k);
     if (std::find(same.begin(), same.end(), id) != same.end()) continue;
     const std::string chinese = words_of(catalogue_text(Language::kChinese, id));

@@ -32,7 +32,7 @@ TEST(YadeDeck, YadeRunsTheExportedScript) {
                   .rest_time = 0.02};
   write(packing, folder.file("trough.py"), options);
   const auto result = test::run_command("cd " + folder.path().string() +
-                                        " && OMP_NUM_THREADS=1 yade -n -x trough.py");
+                                        " && TMPDIR=. OMP_NUM_THREADS=1 yade -n -x trough.py");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   std::smatch match;
   ASSERT_TRUE(std::regex_search(result.output, match,

@@ -15,6 +15,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
 #include "export_fixture.h"
+#include "support/files.h"
 
 namespace aggpack {
 namespace {
@@ -44,11 +45,6 @@ constexpr ExportFormat kEveryFormat[] = {
     ExportFormat::kStl,  ExportFormat::kRockDat, ExportFormat::kAbaqus,    ExportFormat::kVtu,
     ExportFormat::kGmsh, ExportFormat::kLsDyna,  ExportFormat::kAnsysApdl, ExportFormat::kObj,
     ExportFormat::kYade, ExportFormat::kNative};
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 TEST(FormatTable, EveryFormatHasOneCompleteRow) {
   std::set<ExportFormat> seen;
@@ -144,7 +140,8 @@ TEST(FormatTable, NativeThroughTheGenericEntry) {
   EXPECT_EQ(summary.particles, packing.particles.size());
   EXPECT_EQ(summary.files, 1U);
   write_packing(packing, folder.file("direct.h5"));
-  EXPECT_EQ(read_bytes(folder.file("generic.h5")), read_bytes(folder.file("direct.h5")));
+  EXPECT_TRUE(test::same_bytes(test::file_text(folder.file("generic.h5")),
+                               test::file_text(folder.file("direct.h5"))));
 
   const Packing loaded = read_packing(folder.file("generic.h5"));
   ASSERT_EQ(loaded.shapes.size(), packing.shapes.size());
@@ -173,8 +170,9 @@ TEST(FormatTable, NativeThroughTheGenericEntry) {
             {.format = ExportFormat::kNative, .compression = 6, .write_xdmf = true});
   EXPECT_EQ(both.files, 2U);
   write_packing(packing, folder.file("direct6.data"), {.compression = 6, .write_xdmf = true});
-  EXPECT_EQ(read_bytes(folder.file("options.data")), read_bytes(folder.file("direct6.data")));
-  EXPECT_NE(read_bytes(folder.file("options.xdmf")).find("options.data"), std::string::npos);
+  EXPECT_TRUE(test::same_bytes(test::file_text(folder.file("options.data")),
+                               test::file_text(folder.file("direct6.data"))));
+  EXPECT_NE(test::file_text(folder.file("options.xdmf")).find("options.data"), std::string::npos);
 
   // An existing file is kept unless overwrite allows it.
   EXPECT_THROW(write(packing, folder.file("generic.h5")), IoError);

@@ -148,7 +148,7 @@ TEST(MesomodelCohesiveFiles, GmshAndMeshioReadTheWedgesAsPrisms) {
 
 // VTK_WEDGE: the first triangle's right-hand normal points away from the second; for a wedge of
 // zero thickness that means into the aggregate (towards its cell's centre).
-constexpr const char* kVtkScript = R"(
+constexpr const char* kCohesiveVtkScript = R"(
 import sys
 import numpy as np
 from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
@@ -178,7 +178,7 @@ TEST(MesomodelCohesiveFiles, VtkReadsWedgesFacingIntoTheirAggregate) {
   ScratchFolder folder;
   const std::string path = folder.file("s.vtu");
   write_mesomodel(path, cohesive_specimen(), {});
-  const auto result = test::run_python(folder, kVtkScript, path);
+  const auto result = test::run_python(folder, kCohesiveVtkScript, path);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_EQ(test::trim(result.output), "140 402 18 18 18");
 }

@@ -25,8 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kFixtures = test::source_dir() + "/tests/io/fixtures/bad-inputs/";
-
 struct CliRun {
   int exit_code = -1;
   std::string out;
@@ -126,7 +124,9 @@ void expect_one_line_error(const CliRun& run, const BadFile& bad, const std::str
   ASSERT_FALSE(run.err.empty());
   EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;  // exactly one line
   EXPECT_LT(run.err.size(), 400U) << run.err;
-  EXPECT_EQ(run.err.rfind("aggpack: error: " + kFixtures + bad.name + bad.field, 0), 0U) << run.err;
+  EXPECT_EQ(run.err.rfind("aggpack: error: " + test::bad_inputs_dir() + bad.name + bad.field, 0),
+            0U)
+      << run.err;
   EXPECT_NE(run.err.find(bad.reason), std::string::npos) << run.err;
 }
 
@@ -134,7 +134,7 @@ void expect_one_line_error(const CliRun& run, const BadFile& bad, const std::str
 // without an expectation fails here.
 TEST_F(NativeBadInputTest, EveryFixtureIsChecked) {
   std::size_t bad_count = 0;
-  for (const auto& entry : fs::directory_iterator(kFixtures)) {
+  for (const auto& entry : fs::directory_iterator(test::bad_inputs_dir())) {
     const std::string name = entry.path().filename().string();
     if (entry.path().extension() != ".h5") continue;
     const bool is_bad = std::any_of(std::begin(kBadFiles), std::end(kBadFiles),
@@ -170,7 +170,7 @@ TEST_F(NativeBadInputTest, EveryEntryPointRefusesEveryBadFile) {
   }
   if (has_sim) commands.emplace_back("settle", " -o settled.h5 --max-time 0.02");
   for (const BadFile& bad : kBadFiles) {
-    const std::string input = "'" + kFixtures + bad.name + "'";
+    const std::string input = "'" + test::bad_inputs_dir() + bad.name + "'";
     for (const auto& [command, options] : commands) {
       expect_one_line_error(run(command + " " + input + options), bad, command + options);
     }
@@ -186,8 +186,9 @@ TEST_F(NativeBadInputTest, SettleRejectsTheTinyScaleFile) {
   }
   const BadFile& bad = kBadFiles[2];
   ASSERT_EQ(std::string(bad.name), "settle_hang_scale_1e-200.h5");
-  expect_one_line_error(run("settle '" + kFixtures + bad.name + "' -o dense.h5 --max-time 0.02"),
-                        bad, "settle");
+  expect_one_line_error(
+      run("settle '" + test::bad_inputs_dir() + bad.name + "' -o dense.h5 --max-time 0.02"), bad,
+      "settle");
   EXPECT_EQ(left_behind(), std::vector<std::string>{});
 }
 
@@ -195,11 +196,11 @@ TEST_F(NativeBadInputTest, SettleRejectsTheTinyScaleFile) {
 TEST_F(NativeBadInputTest, ReadPackingThrowsTheSameMessage) {
   for (const BadFile& bad : kBadFiles) {
     try {
-      read_packing(kFixtures + bad.name);
+      read_packing(test::bad_inputs_dir() + bad.name);
       ADD_FAILURE() << bad.name << " was accepted";
     } catch (const FormatError& error) {
       const std::string message = error.what();
-      EXPECT_EQ(message.rfind(kFixtures + bad.name + bad.field, 0), 0U) << message;
+      EXPECT_EQ(message.rfind(test::bad_inputs_dir() + bad.name + bad.field, 0), 0U) << message;
       EXPECT_NE(message.find(bad.reason), std::string::npos) << message;
     }
   }
@@ -207,17 +208,18 @@ TEST_F(NativeBadInputTest, ReadPackingThrowsTheSameMessage) {
 
 // h5py's default str attributes (variable-length UTF-8) and variable-length ASCII are read.
 TEST_F(NativeBadInputTest, VariableLengthStringsAreRead) {
-  const Packing base = read_packing(kFixtures + "base_s.h5");
+  const Packing base = read_packing(test::bad_inputs_dir() + "base_s.h5");
   for (const char* name : {"vlen_utf8_config_toml.h5", "vlen_format_name.h5", "vlen_ascii.h5"}) {
     SCOPED_TRACE(name);
-    const Packing packing = read_packing(kFixtures + name);
+    const Packing packing = read_packing(test::bad_inputs_dir() + name);
     EXPECT_EQ(packing.particles.size(), base.particles.size());
     EXPECT_EQ(packing.provenance.config_toml, base.provenance.config_toml);
-    const CliRun info = run("info '" + kFixtures + name + "'");
+    const CliRun info = run("info '" + test::bad_inputs_dir() + name + "'");
     EXPECT_EQ(info.exit_code, 0) << info.err;
     EXPECT_NE(info.out.find("particles        12"), std::string::npos) << info.out;
     EXPECT_EQ(info.out.find("stored configuration not readable"), std::string::npos);
-    const CliRun stl = run("export '" + kFixtures + name + "' --format stl -o out.stl");
+    const CliRun stl =
+        run("export '" + test::bad_inputs_dir() + name + "' --format stl -o out.stl");
     EXPECT_EQ(stl.exit_code, 0) << stl.err;
     EXPECT_TRUE(fs::is_regular_file(base_ / "work" / "out.stl"));
     fs::remove(base_ / "work" / "out.stl");
@@ -226,7 +228,7 @@ TEST_F(NativeBadInputTest, VariableLengthStringsAreRead) {
 
 // No particles is a valid, empty packing: `info` reports 0 (documented in docs/formats.md).
 TEST_F(NativeBadInputTest, ZeroParticlesIsAnEmptyPacking) {
-  const CliRun info = run("info '" + kFixtures + "zero_particles.h5'");
+  const CliRun info = run("info '" + test::bad_inputs_dir() + "zero_particles.h5'");
   EXPECT_EQ(info.exit_code, 0) << info.err;
   EXPECT_EQ(info.err, "");
   EXPECT_NE(info.out.find("particles        0 "), std::string::npos) << info.out;
@@ -237,7 +239,7 @@ TEST_F(NativeBadInputTest, ZeroParticlesIsAnEmptyPacking) {
 // A stored config that is not TOML is provenance only: `info` still reports, with one note line
 // naming the attribute and the parse error.
 TEST_F(NativeBadInputTest, UnreadableStoredConfigIsOneNoteLine) {
-  const CliRun info = run("info '" + kFixtures + "unparsable_config_toml.h5'");
+  const CliRun info = run("info '" + test::bad_inputs_dir() + "unparsable_config_toml.h5'");
   EXPECT_EQ(info.exit_code, 0) << info.err;
   EXPECT_NE(info.out.find("note            stored configuration not readable "
                           "(/provenance/config_toml:2:8: TOML syntax error"),
@@ -279,7 +281,7 @@ class NativeH5pyEditTest : public NativeBadInputTest {
   // Copies base_s.h5 to `name` in the test folder and runs `edit` on it (h5py file object `f`).
   std::string edited(const std::string& name, const std::string& edit) const {
     const fs::path path = base_ / name;
-    fs::copy_file(kFixtures + "base_s.h5", path);
+    fs::copy_file(test::bad_inputs_dir() + "base_s.h5", path);
     fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write);
     const std::string script = "import h5py, numpy as np\nf = h5py.File('" + path.string() +
                                "', 'r+')\n" + edit + "\nf.close()\n";

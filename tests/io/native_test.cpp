@@ -24,6 +24,7 @@
 #include "aggpack/io/native.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/shape/generator.h"
+#include "support/files.h"
 #include "support/readers.h"
 
 namespace aggpack {
@@ -126,16 +127,6 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
   return ::testing::AssertionSuccess();
 }
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-}
-
 int run_python(const std::string& script) {
   const std::string command = "/usr/bin/python3 -c '" + script + "'";
   return std::system(command.c_str());
@@ -222,9 +213,9 @@ TEST_F(NativeFileTest, SameInputGivesByteIdenticalFiles) {
   // HDF5 timestamps have one-second resolution; cross a second boundary to prove they are off.
   std::this_thread::sleep_for(std::chrono::milliseconds(1100));
   write_packing(packing, path("b.h5"));
-  const std::string a = read_bytes(path("a.h5"));
+  const std::string a = test::file_text(path("a.h5"));
   ASSERT_FALSE(a.empty());
-  EXPECT_TRUE(a == read_bytes(path("b.h5")));
+  EXPECT_TRUE(a == test::file_text(path("b.h5")));
 }
 
 TEST_F(NativeFileTest, WritesAtomicallyAndLeavesNoTemporaryFile) {
@@ -258,8 +249,8 @@ TEST_F(NativeFileTest, MissingFileOrFolderIsIoError) {
 }
 
 TEST_F(NativeFileTest, NotHdf5IsFormatError) {
-  write_bytes(path("text.h5"), "[packer]\nkind = \"lattice\"\n");
-  write_bytes(path("empty.h5"), "");
+  test::write_file(path("text.h5"), "[packer]\nkind = \"lattice\"\n");
+  test::write_file(path("empty.h5"), "");
   for (const char* name : {"text.h5", "empty.h5"}) {
     try {
       read_packing(path(name));
@@ -273,10 +264,10 @@ TEST_F(NativeFileTest, NotHdf5IsFormatError) {
 
 TEST_F(NativeFileTest, TruncatedFileIsFormatError) {
   write_packing(sample_packing(), path("run.h5"));
-  const std::string bytes = read_bytes(path("run.h5"));
+  const std::string bytes = test::file_text(path("run.h5"));
   for (std::size_t length : {std::size_t{0}, std::size_t{8}, std::size_t{100}, bytes.size() / 4,
                              bytes.size() / 2, bytes.size() - 100, bytes.size() - 1}) {
-    write_bytes(path("cut.h5"), bytes.substr(0, length));
+    test::write_file(path("cut.h5"), bytes.substr(0, length));
     EXPECT_EQ(error_kind_of([&] { read_packing(path("cut.h5")); }), ErrorKind::kFormatError)
         << "length " << length;
   }
@@ -292,7 +283,7 @@ TEST_F(NativeFileTest, TruncatedFileIsFormatError) {
 TEST_F(NativeFileTest, FlippedBytesAreDetectedOrHarmless) {
   const Packing packing = sample_packing(3);
   write_packing(packing, path("run.h5"));
-  const std::string bytes = read_bytes(path("run.h5"));
+  const std::string bytes = test::file_text(path("run.h5"));
   struct Outcome {
     std::uint64_t detected = 0;
     std::uint64_t harmless = 0;
@@ -312,7 +303,7 @@ TEST_F(NativeFileTest, FlippedBytesAreDetectedOrHarmless) {
       std::string corrupted = bytes;
       corrupted[position] = static_cast<char>(corrupted[position] ^ 0x5A);
       fs::remove(path("bad.h5"));
-      write_bytes(path("bad.h5"), corrupted);
+      test::write_file(path("bad.h5"), corrupted);
       try {
         if (identical(packing, read_packing(path("bad.h5")))) {
           ++outcome.harmless;
@@ -508,7 +499,7 @@ TEST_F(NativeFileTest, XdmfParticleAttributeCountsFromOne) {
                              "print(got); sys.exit(0 if got == \"" +
                              expected + "\" else 1)";
   EXPECT_EQ(run_python(script), 0);
-  EXPECT_NE(read_bytes(path("run.xdmf")).find("1-based particle number"), std::string::npos);
+  EXPECT_NE(test::file_text(path("run.xdmf")).find("1-based particle number"), std::string::npos);
 }
 
 }  // namespace

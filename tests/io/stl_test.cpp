@@ -22,6 +22,7 @@
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/io/export.h"
 #include "aggpack/shape/generator.h"
+#include "support/files.h"
 
 namespace aggpack {
 namespace {
@@ -50,15 +51,6 @@ class StlFolder {
  private:
   fs::path path_;
 };
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_bytes(const std::string& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
 
 ConvexPolyhedron particle(std::uint64_t index = 0) {
   return generate_particle(
@@ -110,7 +102,7 @@ TEST(Stl, BinaryRoundTrip) {
   const auto body = particle();
   const std::string path = folder.file("p.stl");
   write_bodies(path, {body});
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = test::file_text(path);
   EXPECT_EQ(bytes.size(), 84 + 50 * body.triangle_count());
   EXPECT_NE(bytes.rfind("solid", 0), 0U) << "a binary header must not start with 'solid'";
   const StlMesh mesh = read_stl(path);
@@ -124,7 +116,7 @@ TEST(Stl, AsciiRoundTrip) {
   const auto body = particle(1);
   const std::string path = folder.file("p.stl");
   write_bodies(path, {body}, {.overwrite = Overwrite::kAllow, .stl_encoding = StlEncoding::kAscii});
-  const std::string text = read_bytes(path);
+  const std::string text = test::file_text(path);
   EXPECT_EQ(text.rfind("solid aggpack\n", 0), 0U);
   EXPECT_NE(text.find("endsolid aggpack\n"), std::string::npos);
   const StlMesh mesh = read_stl(path);
@@ -149,9 +141,9 @@ TEST(Stl, ScaleAndSeveralBodies) {
 TEST(Stl, WriteIsAtomicAndRespectsOverwrite) {
   StlFolder folder;
   const std::string path = folder.file("keep.stl");
-  write_bytes(path, "keep me");
+  test::write_file(path, "keep me");
   EXPECT_THROW(write_bodies(path, {particle()}, {.overwrite = Overwrite::kForbid}), IoError);
-  EXPECT_EQ(read_bytes(path), "keep me");
+  EXPECT_EQ(test::file_text(path), "keep me");
   EXPECT_EQ(folder.entry_count(), 1U) << "no temporary file left behind";
   write_bodies(path, {particle()}, {.overwrite = Overwrite::kAllow});
   EXPECT_EQ(read_stl(path).triangles.size(), particle().triangle_count());
@@ -174,43 +166,43 @@ TEST(StlRead, MalformedFilesAreFormatErrors) {
 
   const std::string good = folder.file("good.stl");
   write_bodies(good, {particle()});
-  const std::string bytes = read_bytes(good);
+  const std::string bytes = test::file_text(good);
   const std::string truncated = folder.file("truncated.stl");
-  write_bytes(truncated, bytes.substr(0, bytes.size() - 20));
+  test::write_file(truncated, bytes.substr(0, bytes.size() - 20));
   EXPECT_THROW(read_stl(truncated), FormatError);
 
   const std::string ascii = folder.file("ascii.stl");
   write_bodies(ascii, {particle()},
                {.overwrite = Overwrite::kAllow, .stl_encoding = StlEncoding::kAscii});
-  const std::string text = read_bytes(ascii);
+  const std::string text = test::file_text(ascii);
   const std::string cut = folder.file("cut.stl");
-  write_bytes(cut, text.substr(0, text.size() / 2));
+  test::write_file(cut, text.substr(0, text.size() / 2));
   EXPECT_THROW(read_stl(cut), FormatError);
   const std::string no_end = folder.file("no_end.stl");
-  write_bytes(no_end, text.substr(0, text.rfind("endsolid")));
+  test::write_file(no_end, text.substr(0, text.rfind("endsolid")));
   EXPECT_THROW(read_stl(no_end), FormatError);
   const std::string bad_vertex = folder.file("bad_vertex.stl");
   std::string corrupted = text;
   corrupted.replace(corrupted.find("vertex"), 6, "vortex");
-  write_bytes(bad_vertex, corrupted);
+  test::write_file(bad_vertex, corrupted);
   EXPECT_THROW(read_stl(bad_vertex), FormatError);
 
   const std::string bad_normal = folder.file("bad_normal.stl");
   corrupted = text;
   corrupted.replace(corrupted.find("normal"), 6, "nermal");
-  write_bytes(bad_normal, corrupted);
+  test::write_file(bad_normal, corrupted);
   EXPECT_THROW(read_stl(bad_normal), FormatError);
   const std::string bad_loop = folder.file("bad_loop.stl");
   corrupted = text;
   corrupted.replace(corrupted.find("outer loop"), 10, "outer hoop");
-  write_bytes(bad_loop, corrupted);
+  test::write_file(bad_loop, corrupted);
   EXPECT_THROW(read_stl(bad_loop), FormatError);
 
   const std::string garbage = folder.file("garbage.stl");
-  write_bytes(garbage, std::string(200, 'x'));
+  test::write_file(garbage, std::string(200, 'x'));
   EXPECT_THROW(read_stl(garbage), FormatError);
   const std::string empty = folder.file("empty.stl");
-  write_bytes(empty, "");
+  test::write_file(empty, "");
   EXPECT_THROW(read_stl(empty), FormatError);
 }
 

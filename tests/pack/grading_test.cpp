@@ -14,7 +14,7 @@ namespace {
 
 using testing::invalid_field;
 
-Grading fuller(double lo, double hi, double q) {
+Grading fuller_curve(double lo, double hi, double q) {
   return {.kind = GradingKind::kFuller, .size_min = lo, .size_max = hi, .exponent = q};
 }
 
@@ -43,7 +43,7 @@ std::vector<double> sampled_passing(const Grading& grading, const std::vector<do
 }
 
 TEST(Grading, FullerCurveKnownValues) {
-  const Grading g = fuller(0.005, 0.02, 0.5);
+  const Grading g = fuller_curve(0.005, 0.02, 0.5);
   EXPECT_DOUBLE_EQ(passing_fraction(g, 0.005), 0.0);
   EXPECT_DOUBLE_EQ(passing_fraction(g, 0.02), 1.0);
   EXPECT_DOUBLE_EQ(passing_fraction(g, 0.03), 1.0);
@@ -88,7 +88,7 @@ TEST(Grading, SieveTableIsRenormalisedAboveTheSmallestSieve) {
 
 TEST(Grading, SamplesAreMonotoneAndInRange) {
   for (const Grading& g :
-       {fuller(0.005, 0.02, 0.5), fuller(0.01, 0.04, 3.0), sieve_table(),
+       {fuller_curve(0.005, 0.02, 0.5), fuller_curve(0.01, 0.04, 3.0), sieve_table(),
         Grading{.kind = GradingKind::kUniform, .radius_min = 0.01, .radius_max = 0.02}}) {
     double previous = 0.0;
     for (int k = 0; k <= 1000; ++k) {
@@ -106,7 +106,8 @@ TEST(Grading, SamplesAreMonotoneAndInRange) {
 // kind and several seeds (the statistical error is ~0.2 points).
 TEST(Grading, SampledSizesReproduceTheTargetByVolume) {
   const std::vector<Grading> gradings = {
-      fuller(0.005, 0.02, 0.5), fuller(0.0025, 0.02, 0.45), fuller(0.01, 0.04, 3.0), sieve_table(),
+      fuller_curve(0.005, 0.02, 0.5), fuller_curve(0.0025, 0.02, 0.45),
+      fuller_curve(0.01, 0.04, 3.0), sieve_table(),
       Grading{.kind = GradingKind::kUniform, .radius_min = 0.01, .radius_max = 0.03}};
   for (const Grading& g : gradings) {
     const auto sizes = report_sizes(g);
@@ -121,7 +122,8 @@ TEST(Grading, SampledSizesReproduceTheTargetByVolume) {
 }
 
 TEST(Grading, MeanCubedSizeMatchesTheNumberDensity) {
-  for (const Grading& g : {fuller(0.005, 0.02, 0.5), fuller(0.01, 0.04, 3.0), sieve_table()}) {
+  for (const Grading& g :
+       {fuller_curve(0.005, 0.02, 0.5), fuller_curve(0.01, 0.04, 3.0), sieve_table()}) {
     // Midpoint rule over u: E[d^3] = integral of sample_size(u)^3 du.
     const int n = 400000;
     double sum = 0.0;
@@ -137,10 +139,10 @@ TEST(Grading, EachBadFieldIsNamed) {
   EXPECT_EQ(invalid_field([] { validate(Grading{.radius_min = 0.0}); }), "grading.radius_min");
   EXPECT_EQ(invalid_field([] { validate(Grading{.radius_min = 0.2, .radius_max = 0.1}); }),
             "grading.radius_max");
-  EXPECT_EQ(invalid_field([] { validate(fuller(-1, 0.02, 0.5)); }), "grading.size_min");
-  EXPECT_EQ(invalid_field([] { validate(fuller(0.02, 0.02, 0.5)); }), "grading.size_max");
-  EXPECT_EQ(invalid_field([] { validate(fuller(0.01, 0.02, 0.0)); }), "grading.exponent");
-  EXPECT_EQ(invalid_field([] { validate(fuller(0.01, 0.02, 11.0)); }), "grading.exponent");
+  EXPECT_EQ(invalid_field([] { validate(fuller_curve(-1, 0.02, 0.5)); }), "grading.size_min");
+  EXPECT_EQ(invalid_field([] { validate(fuller_curve(0.02, 0.02, 0.5)); }), "grading.size_max");
+  EXPECT_EQ(invalid_field([] { validate(fuller_curve(0.01, 0.02, 0.0)); }), "grading.exponent");
+  EXPECT_EQ(invalid_field([] { validate(fuller_curve(0.01, 0.02, 11.0)); }), "grading.exponent");
   Grading g = sieve_table();
   g.sieve.resize(1);
   EXPECT_EQ(invalid_field([&] { validate(g); }), "grading.sieve");

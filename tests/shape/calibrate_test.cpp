@@ -29,13 +29,13 @@ CalibrationOptions small_options(std::vector<CalibrationGoal> goals, double diam
 
 // Mean descriptors of the particles of `result`, computed here from the generator and the
 // descriptors, not through calibrate.cpp.
-struct Means {
+struct Regenerated {
   double enclosed_volume_ratio = 0;
   double enclosing_diameter = 0;
   double elongation = 0;
   double flatness = 0;
 };
-Means regenerate(const CalibrationOptions& options, const CalibrationResult& result) {
+Regenerated regenerate(const CalibrationOptions& options, const CalibrationResult& result) {
   GeneratorOptions generator{.alpha = result.inputs.alpha,
                              .radius_min = result.radius,
                              .radius_max = result.radius,
@@ -44,7 +44,7 @@ Means regenerate(const CalibrationOptions& options, const CalibrationResult& res
                              .form = options.form};
   generator.form.elongation = result.inputs.elongation;
   generator.form.flatness = result.inputs.flatness;
-  Means means;
+  Regenerated means;
   const auto n = static_cast<double>(options.samples);
   for (std::size_t i = 0; i < options.samples; ++i) {
     const auto d = describe(generate_particle(generator, i).body);
@@ -68,7 +68,7 @@ TEST(Calibrate, BothAcrylicParticlesWithinTwoPercent) {
     const auto result = calibrate(options);
     SCOPED_TRACE("volume " + std::to_string(volume));
     EXPECT_TRUE(result.within_tolerance);
-    const Means means = regenerate(options, result);
+    const Regenerated means = regenerate(options, result);
     ASSERT_EQ(result.achieved.size(), 1u);
     EXPECT_NEAR(means.enclosed_volume_ratio, result.achieved[0].mean, 1e-12);
     EXPECT_LE(std::abs(means.enclosed_volume_ratio - volume / sphere) / (volume / sphere), 0.02);
@@ -94,7 +94,7 @@ TEST(Calibrate, ThreeTargetsAtOnce) {
                      {.target = CalibrationTarget::kFlatness, .value = 0.6}});
   const auto result = calibrate(options);
   EXPECT_TRUE(result.within_tolerance);
-  const Means means = regenerate(options, result);
+  const Regenerated means = regenerate(options, result);
   EXPECT_LE(std::abs(means.enclosed_volume_ratio - 0.2) / 0.2, 0.02);
   EXPECT_LE(std::abs(means.elongation - 0.7) / 0.7, 0.02);
   EXPECT_LE(std::abs(means.flatness - 0.6) / 0.6, 0.02);

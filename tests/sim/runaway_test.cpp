@@ -99,8 +99,7 @@ TEST(SimulationLimits, SettleOnAParticleAtScale1e200EndsWithOneLine) {
       fs::temp_directory_path() / ("aggpack_settle_limits_" + std::to_string(::getpid()));
   fs::remove_all(folder);
   fs::create_directories(folder);
-  const std::string input =
-      test::source_dir() + "/tests/io/fixtures/bad-inputs/settle_hang_scale_1e-200.h5";
+  const std::string input = test::bad_inputs_dir() + "settle_hang_scale_1e-200.h5";
   const std::string command =
       "cd '" + folder.string() + "' && '" + test::aggpack_binary() + "' settle '" + input +
       "' -o out.h5 --max-time 0.02 --progress lines " + ">stdout.txt 2>stderr.txt";

@@ -11,11 +11,12 @@
 #include "aggpack/shape/generator.h"
 #include "aggpack/sim/world.h"
 #include "support/packings.h"
+#include "support/random_rotation.h"
 
 namespace aggpack {
 namespace {
 
-constexpr double kDegree = std::numbers::pi / 180.0;
+constexpr double kOneDegree = std::numbers::pi / 180.0;
 
 using test::box_container;
 
@@ -33,11 +34,6 @@ ConvexPolyhedron aggregate(std::uint64_t index, double alpha = 0.5, double radiu
                                  .seed = 7,
                                  .form = {.growth = Growth::kMidpoint}};
   return centred(generate_particle(options, index).body);
-}
-
-Quat random_rotation(Rng& rng) {
-  Quat q(rng.normal(), rng.normal(), rng.normal(), rng.normal());
-  return q.normalized();
 }
 
 // A cube of side `side` resting on the floor of a long box, with gravity tilted by `theta` about
@@ -70,7 +66,7 @@ TEST(World, MassAndInertiaComeFromTheExactPolyhedron) {
     Particle particle;
     particle.shape = static_cast<std::uint32_t>(i);
     particle.pose.position = Vec3(0.3 + 0.4 * static_cast<double>(i), 1.0, 1.0);
-    particle.pose.rotation = random_rotation(rng);
+    particle.pose.rotation = test::random_rotation(rng);
     packing.particles.push_back(particle);
   }
   const double density = 2000.0;
@@ -103,7 +99,7 @@ TEST(World, PosesRoundTripThroughThePrincipalFrame) {
     Particle particle;
     particle.shape = static_cast<std::uint32_t>(i);
     particle.pose.position = Vec3(0.2 + 0.3 * static_cast<double>(i), 1.0, 1.0);
-    particle.pose.rotation = random_rotation(rng);
+    particle.pose.rotation = test::random_rotation(rng);
     particle.scale = 0.5 + 0.1 * static_cast<double>(i);
     packing.particles.push_back(particle);
   }
@@ -143,10 +139,10 @@ TEST(World, BlockOnAnInclineSlidesIffTanThetaExceedsMu) {
   for (const double mu : {0.2, 0.5, 0.8}) {
     const double critical = std::atan(mu);
     // Below the friction angle: sticks (any creep far below the block size).
-    const Incline below = cube_on_incline(critical - 3.0 * kDegree, mu, mu);
+    const Incline below = cube_on_incline(critical - 3.0 * kOneDegree, mu, mu);
     EXPECT_LT(std::abs(below.slide), 1e-3) << "mu " << mu;
     // Above: slides.
-    const Incline above = cube_on_incline(critical + 3.0 * kDegree, mu, mu);
+    const Incline above = cube_on_incline(critical + 3.0 * kOneDegree, mu, mu);
     EXPECT_GT(above.slide, 0.02) << "mu " << mu;
   }
 }
@@ -154,7 +150,7 @@ TEST(World, BlockOnAnInclineSlidesIffTanThetaExceedsMu) {
 TEST(World, SlidingAccelerationIsCoulombs) {
   // Well above the friction angle the block slides with a = g (sin theta - mu cos theta).
   for (const double mu : {0.0, 0.3, 0.6}) {
-    const double theta = std::atan(mu) + 12.0 * kDegree;
+    const double theta = std::atan(mu) + 12.0 * kOneDegree;
     const Incline run = cube_on_incline(theta, mu, mu);
     const double expected =
         0.5 * 9.81 * (std::sin(theta) - mu * std::cos(theta)) * run.time * run.time;
@@ -163,7 +159,7 @@ TEST(World, SlidingAccelerationIsCoulombs) {
 }
 
 TEST(World, ParticleAndWallFrictionAreSeparate) {
-  const double theta = 25.0 * kDegree;  // tan = 0.466
+  const double theta = 25.0 * kOneDegree;  // tan = 0.466
   // The floor is a wall: only the wall coefficient counts for a block on it.
   EXPECT_GT(cube_on_incline(theta, 0.9, 0.3).slide, 0.05);
   EXPECT_LT(std::abs(cube_on_incline(theta, 0.1, 0.8).slide), 1e-3);
@@ -204,7 +200,7 @@ Packing gas(std::uint64_t seed, int per_axis) {
         const double spacing = 1.0 / per_axis;
         particle.pose.position =
             Vec3(spacing * (i + 0.5), spacing * (j + 0.5), spacing * (k + 0.5));
-        particle.pose.rotation = random_rotation(rng);
+        particle.pose.rotation = test::random_rotation(rng);
         packing.particles.push_back(particle);
       }
     }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "support/files.h"
 #include "support/paths.h"
 
 namespace aggpack::test {
@@ -42,12 +44,6 @@ inline bool has_subcommand(const std::string& subcommand) {
     return text;
   }();
   return help.find("\n  " + subcommand + " ") != std::string::npos;
-}
-
-/// A whole file as bytes ("" when it cannot be read).
-inline std::string file_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 /// Fixture: folder_ = <tmp>/<prefix><test name>_<pid>, created empty before and removed after

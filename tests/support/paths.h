@@ -10,6 +10,9 @@ namespace aggpack::test {
 /// The source tree's root, absolute, without a trailing slash.
 const std::string& source_dir();
 
+/// tests/io/fixtures/bad-inputs/ (inputs that broke earlier versions), with a trailing slash.
+inline std::string bad_inputs_dir() { return source_dir() + "/tests/io/fixtures/bad-inputs/"; }
+
 /// The built `aggpack` program's absolute path.
 const std::string& aggpack_binary();
 

@@ -84,6 +84,10 @@ constexpr Range open_closed(double lo, double hi) {
   return {.lo = lo, .hi = hi, .lo_end = End::kOpen};
 }
 
+/// The largest length (m), speed (m/s) or time (s) a key accepts: 1e6 (1000 km); any larger
+/// value is a unit mistake.
+inline constexpr double kMaxMagnitude = 1e6;
+
 /// Whether a key that is not given takes its default (kDefaulted) or stays unset (kOptional:
 /// its setter is not called, e.g. output paths, packer.target_count, grading.sieve).
 enum class Presence { kDefaulted, kOptional };
