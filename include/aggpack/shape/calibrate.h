@@ -72,7 +72,7 @@ constexpr double kMinSearchedAxisRatio = 0.15;
 
 struct CalibrationOptions {
   /// 1 to 3 goals, each descriptor at most once.
-  std::vector<CalibrationGoal> goals = {{}};
+  std::vector<CalibrationGoal> goals = std::vector<CalibrationGoal>(1);
   /// Circumscribed diameter D (m), > 0: of the control sphere (D = 2 r), or, with a
   /// kEnclosedVolumeRatio goal, the mean diameter of the particles' smallest enclosing spheres
   /// (the control radius is then scaled to give it).
