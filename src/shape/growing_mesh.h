@@ -9,6 +9,7 @@
 
 #include "aggpack/geom/convex_polyhedron.h"
 #include "aggpack/shape/generator.h"
+#include "edge_queue.h"
 
 namespace aggpack::detail {
 
@@ -72,7 +73,7 @@ class GrowingMesh {
  private:
   // A heap key: the squared length's bits (positive doubles order as their bits) above the
   // complemented vertex pair, so the larger key is the longer edge, ties to the smaller pair.
-  __extension__ using Key = unsigned __int128;
+  using Key = EdgeQueue::Key;
   static Key key_of(const EdgeEntry& entry);
   static EdgeEntry entry_of(Key key);
   // A face's plane as the hull rule tests it: the normal (v1 - v0) x (v2 - v0) and its squared
@@ -106,8 +107,6 @@ class GrowingMesh {
   void grow_face_arrays(std::size_t count);
   // Heap entries for the new vertex's edges to `neighbours` that are longer than L.
   void push_edges_of(std::uint32_t vertex, const std::uint32_t* neighbours, std::size_t count);
-  void insert(Key key);
-  void pop();
 
   double limit_squared_ = 0.0;
   double min_edge_squared_ = 0.0;
@@ -116,7 +115,7 @@ class GrowingMesh {
   std::vector<Twins> twins_;
   std::vector<Plane> planes_;
   std::vector<std::uint32_t> corner_faces_;   // one face containing each vertex
-  std::vector<Key> heap_;                     // edges longer than L
+  EdgeQueue queue_;                           // edges longer than L
   std::vector<std::uint8_t> is_dead_vertex_;  // hull rule: vertices that ended up inside
   std::vector<std::uint8_t> is_free_face_;    // hull rule: slots of replaced faces
   std::vector<std::uint32_t> free_faces_;
