@@ -41,7 +41,9 @@ class EdgeQueue {
 
   [[nodiscard]] bool empty() const { return heap_.empty() && !has_bins(); }
 
-  void push(Key key) {
+  // Always inlined: GCC kept it out of line (the bin's append has a reallocating path), a call
+  // per push (-0.8 % instructions of the hull growth).
+  [[gnu::always_inline]] void push(Key key) {
     const std::size_t bin = bin_of(key);
     if (bin >= level_) {
       push_heap(key);
