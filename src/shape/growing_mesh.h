@@ -1,6 +1,7 @@
 #pragma once
-// The triangle mesh a particle grows in (shape/generator.cpp): twin half-edges, a heap of the
-// edges longer than L, and the two growth rules' insertions of a new vertex. Internal to shape/.
+// The triangle mesh a particle grows in (shape/generator.cpp): twin half-edges, a queue of the
+// edges longer than L (edge_queue.h), and the two growth rules' insertions of a new vertex.
+// Internal to shape/.
 
 #include <array>
 #include <cstdint>
@@ -31,10 +32,10 @@ using DrawDistance = std::function<double(const Vec3& direction)>;
 //
 // Speed (bench/RESULTS.md, "Generator" and "Hull growth vs the midpoint rule"): storage is
 // reserved from the expected vertex count rather than the cap; adjacency is kept as twin
-// half-edges, so an insertion rewires its neighbours without searching; the heap holds only edges
-// longer than L (shorter ones can never be chosen), as a 4-ary heap of 128-bit keys (squared
-// length, then the vertex pair: one integer comparison), so an insertion pushes only its new
-// edges. Under the midpoint rule no entry ever goes stale (an edge leaves the mesh only by being
+// half-edges, so an insertion rewires its neighbours without searching; the queue holds only
+// edges longer than L (shorter ones can never be chosen), as 128-bit keys (squared length, then
+// the vertex pair: one integer comparison) binned by length over a small heap (EdgeQueue), so an
+// insertion pushes only its new edges. Under the midpoint rule no entry ever goes stale (an edge leaves the mesh only by being
 // split, which pops it); under the hull rule an edge can vanish inside the replaced patch, and
 // its entry is dropped when it reaches the top (vertices never move, so a live entry's length is
 // still right; keys are distinct, so the order of the live edges never depends on stale ones).
