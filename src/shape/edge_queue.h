@@ -93,7 +93,8 @@ class EdgeQueue {
     std::size_t word = level_ == kNoLevel ? used_.size() : level_ / 64 + 1;
     while (used_[word - 1] == 0) --word;  // not empty: some bin is used
     --word;
-    const std::size_t bin = 64 * word + 63 - static_cast<std::size_t>(std::countl_zero(used_[word]));
+    const std::size_t bin =
+        64 * word + 63 - static_cast<std::size_t>(std::countl_zero(used_[word]));
     used_[word] &= ~(std::uint64_t{1} << (bin % 64));
     level_ = bin;
     for (const Key key : bins_[bin]) push_heap(key);

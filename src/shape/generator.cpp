@@ -152,7 +152,8 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const Grow
   for (std::size_t k = 0; k < 6; ++k) {
     const Vec3 direction =
         params.form.is_sphere() ? kBaseDirections[k] : Vec3(params.axes * kBaseDirections[k]);
-    base[k] = eq3_radius(params.alpha, growth_control_radius(params, direction), rng.uniform()) * direction;
+    base[k] = eq3_radius(params.alpha, growth_control_radius(params, direction), rng.uniform()) *
+              direction;
   }
   // Reserve for the estimate, not for the cap: a 20,000-vertex reservation per particle costs more
   // in page faults than the growth itself.

@@ -35,14 +35,14 @@ using DrawDistance = std::function<double(const Vec3& direction)>;
 // half-edges, so an insertion rewires its neighbours without searching; the queue holds only
 // edges longer than L (shorter ones can never be chosen), as 128-bit keys (squared length, then
 // the vertex pair: one integer comparison) binned by length over a small heap (EdgeQueue), so an
-// insertion pushes only its new edges. Under the midpoint rule no entry ever goes stale (an edge leaves the mesh only by being
-// split, which pops it); under the hull rule an edge can vanish inside the replaced patch, and
-// its entry is dropped when it reaches the top (vertices never move, so a live entry's length is
-// still right; keys are distinct, so the order of the live edges never depends on stale ones).
-// The hull rule's visibility walk tests each face once per insertion (faces are stamped with the
-// insertion's number instead of flags that need resetting), keeps each face's normal once
-// computed (the same arithmetic as before: the bits do not change), collects the patch's border
-// during the walk and chains it into a loop through a per-vertex link.
+// insertion pushes only its new edges. Under the midpoint rule no entry ever goes stale (an edge
+// leaves the mesh only by being split, which pops it); under the hull rule an edge can vanish
+// inside the replaced patch, and its entry is dropped when it reaches the top (vertices never move,
+// so a live entry's length is still right; keys are distinct, so the order of the live edges never
+// depends on stale ones). The hull rule's visibility walk tests each face once per insertion (faces
+// are stamped with the insertion's number instead of flags that need resetting), keeps each face's
+// normal once computed (the same arithmetic as before: the bits do not change), collects the
+// patch's border during the walk and chains it into a loop through a per-vertex link.
 class GrowingMesh {
  public:
   // Starts a particle: the base octahedron (make_octahedron's vertex and triangle order) with
