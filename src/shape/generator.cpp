@@ -62,11 +62,26 @@ class MeshLease {
   detail::GrowingMesh* mesh_ = nullptr;
 };
 
-}  // namespace
-
-double eq3_distance(double alpha, double radius, double u) {
+// The bodies of eq3_distance and control_radius_along, which the growth loop calls twice per
+// insertion: the library is compiled with -fPIC, where GCC does not inline a function with
+// external linkage (it could be interposed), so the loop calls these local copies instead.
+inline double eq3_radius(double alpha, double radius, double u) {
   return radius * (alpha + (1.0 - alpha) * (0.2 + 0.8 * u));
 }
+
+inline double growth_control_radius(const GrowthParams& params, const Vec3& direction) {
+  if (params.form.is_sphere()) return params.radius;
+  const Vec3 local = params.axes.conjugate() * direction;
+  const double b = params.form.elongation;
+  const double c = b * params.form.flatness;
+  const double y = local.y() / b;
+  const double z = local.z() / c;
+  return params.radius / std::sqrt(local.x() * local.x() + y * y + z * z);
+}
+
+}  // namespace
+
+double eq3_distance(double alpha, double radius, double u) { return eq3_radius(alpha, radius, u); }
 
 double estimated_vertex_count(double radius, double edge_length, Growth growth) {
   // Adjacent base vertices lie on perpendicular half-axes within r, so every base edge is at most
@@ -127,13 +142,7 @@ void validate(const GrowthForm& form, const std::string& prefix) {
 }
 
 double control_radius_along(const GrowthParams& params, const Vec3& direction) {
-  if (params.form.is_sphere()) return params.radius;
-  const Vec3 local = params.axes.conjugate() * direction;
-  const double b = params.form.elongation;
-  const double c = b * params.form.flatness;
-  const double y = local.y() / b;
-  const double z = local.z() / c;
-  return params.radius / std::sqrt(local.x() * local.x() + y * y + z * z);
+  return growth_control_radius(params, direction);
 }
 
 ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const GrowthLimit& limit) {
@@ -143,7 +152,7 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const Grow
   for (std::size_t k = 0; k < 6; ++k) {
     const Vec3 direction =
         params.form.is_sphere() ? kBaseDirections[k] : Vec3(params.axes * kBaseDirections[k]);
-    base[k] = eq3_distance(params.alpha, control_radius_along(params, direction), rng.uniform()) *
+    base[k] = eq3_radius(params.alpha, growth_control_radius(params, direction), rng.uniform()) *
               direction;
   }
   // Reserve for the estimate, not for the cap: a 20,000-vertex reservation per particle costs more
@@ -158,7 +167,7 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const Grow
       params.form.growth == Growth::kHull ? params.form.min_edge_ratio * params.edge_length : 0.0,
       expected);
   const detail::DrawDistance draw = [&](const Vec3& direction) {
-    return eq3_distance(params.alpha, control_radius_along(params, direction), rng.uniform());
+    return eq3_radius(params.alpha, growth_control_radius(params, direction), rng.uniform());
   };
   const bool is_hull = params.form.growth == Growth::kHull;
   const double min_edge = params.form.min_edge_ratio * params.edge_length;

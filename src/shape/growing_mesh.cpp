@@ -91,8 +91,7 @@ void GrowingMesh::reset(const std::array<Vec3, 6>& base, double edge_length, dou
   const std::size_t expected_faces = 2 * expected_vertices;
   vertices_.reserve(expected_vertices);
   triangles_.reserve(expected_faces);
-  heap_.reserve(expected_faces);
-  heap_.clear();
+  queue_.reset(limit_squared_);
   free_faces_.clear();
   live_vertices_ = 6;
   top_half_ = kNone;
@@ -117,7 +116,7 @@ void GrowingMesh::reset(const std::array<Vec3, 6>& base, double edge_length, dou
       const std::uint32_t to = t[kNext[k]];
       if (from > to) continue;  // each edge once
       const double length_squared = (vertices_[from] - vertices_[to]).squaredNorm();
-      if (length_squared > limit_squared_) insert(key_of({length_squared, from, to}));
+      if (length_squared > limit_squared_) queue_.push(key_of({length_squared, from, to}));
     }
   }
 }
@@ -138,8 +137,8 @@ inline EdgeEntry GrowingMesh::entry_of(Key key) {
 }
 
 bool GrowingMesh::longest_edge(EdgeEntry& entry) {
-  while (!heap_.empty()) {
-    entry = entry_of(heap_.front());
+  while (!queue_.empty()) {
+    entry = entry_of(queue_.top());
     // Only the hull rule removes edges; a removed edge's entry is dropped here.
     if (!may_be_stale_) {
       top_half_ = kNone;
@@ -149,7 +148,7 @@ bool GrowingMesh::longest_edge(EdgeEntry& entry) {
       top_half_ = find_outgoing(entry.from, entry.to);
       if (top_half_ != kNone) return true;
     }
-    pop();
+    queue_.pop();
   }
   return false;
 }
@@ -188,7 +187,7 @@ void GrowingMesh::split_midpoint(const EdgeEntry& entry, const DrawDistance& dra
   }
   if (limit) distance = std::min(distance, limit(direction, midpoint_distance, distance));
   distance = std::max(distance, midpoint_distance);
-  pop();
+  queue_.pop();
   split_at(ab, distance * direction);
 }
 
@@ -239,7 +238,7 @@ inline void GrowingMesh::split_at(std::uint32_t ab, const Vec3& point) {
 void GrowingMesh::insert_hull(const EdgeEntry& entry, double t, const DrawDistance& draw,
                               const GrowthLimit& limit) {
   const std::uint32_t ab = top_half(entry);
-  pop();
+  queue_.pop();
   const Vec3 on_edge = vertices_[entry.from] + t * (vertices_[entry.to] - vertices_[entry.from]);
   const double on_edge_distance = on_edge.norm();
   const Vec3 direction = on_edge / on_edge_distance;
@@ -419,7 +418,7 @@ inline void GrowingMesh::replace_patch(const Vec3& point) {
   // The new vertex's edges to the loop.
   for (std::size_t i = 0; i < n; ++i) {
     const double length_squared = sides[i].length_squared;
-    if (length_squared > limit_squared_) insert(key_of({length_squared, sides[i].from, p}));
+    if (length_squared > limit_squared_) queue_.push(key_of({length_squared, sides[i].from, p}));
   }
 }
 
@@ -518,61 +517,8 @@ inline void GrowingMesh::push_edges_of(std::uint32_t vertex, const std::uint32_t
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t v = neighbours[i];
     const double length_squared = (vertices_[v] - point).squaredNorm();
-    if (length_squared > limit_squared_) insert(key_of({length_squared, v, vertex}));
+    if (length_squared > limit_squared_) queue_.push(key_of({length_squared, v, vertex}));
   }
-}
-
-// The heap is 4-ary (children of i: 4 i + 1 .. 4 i + 4): half the depth of a binary heap, and the
-// largest of four children is found without unpredictable branches. The order in which live
-// edges come out depends only on their keys, not on the heap's shape.
-inline void GrowingMesh::insert(Key key) {
-  std::size_t hole = heap_.size();
-  heap_.push_back(key);
-  Key* heap = heap_.data();
-  while (hole > 0) {
-    const std::size_t parent = (hole - 1) / 4;
-    if (!(heap[parent] < key)) break;
-    heap[hole] = heap[parent];
-    hole = parent;
-  }
-  heap[hole] = key;
-}
-
-inline void GrowingMesh::pop() {
-  // The root's hole goes down to a leaf along the largest children, then the last key sifts up
-  // from there (it nearly always belongs near the bottom: fewer comparisons than sifting it down).
-  const Key last = heap_.back();
-  heap_.pop_back();
-  const std::size_t size = heap_.size();
-  if (size == 0) return;
-  Key* heap = heap_.data();
-  std::size_t hole = 0;
-  for (;;) {
-    const std::size_t first = 4 * hole + 1;
-    if (first + 4 <= size) {
-      const std::size_t a = first + static_cast<std::size_t>(heap[first] < heap[first + 1]);
-      const std::size_t b = first + 2 + static_cast<std::size_t>(heap[first + 2] < heap[first + 3]);
-      const std::size_t child = heap[a] < heap[b] ? b : a;
-      heap[hole] = heap[child];
-      hole = child;
-      continue;
-    }
-    if (first >= size) break;
-    std::size_t child = first;
-    for (std::size_t c = first + 1; c < size; ++c) {
-      if (heap[child] < heap[c]) child = c;
-    }
-    heap[hole] = heap[child];
-    hole = child;
-    break;
-  }
-  while (hole > 0) {
-    const std::size_t parent = (hole - 1) / 4;
-    if (!(heap[parent] < last)) break;
-    heap[hole] = heap[parent];
-    hole = parent;
-  }
-  heap[hole] = last;
 }
 
 }  // namespace aggpack::detail

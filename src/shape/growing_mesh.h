@@ -1,6 +1,7 @@
 #pragma once
-// The triangle mesh a particle grows in (shape/generator.cpp): twin half-edges, a heap of the
-// edges longer than L, and the two growth rules' insertions of a new vertex. Internal to shape/.
+// The triangle mesh a particle grows in (shape/generator.cpp): twin half-edges, a queue of the
+// edges longer than L (edge_queue.h), and the two growth rules' insertions of a new vertex.
+// Internal to shape/.
 
 #include <array>
 #include <cstdint>
@@ -9,6 +10,7 @@
 
 #include "aggpack/geom/convex_polyhedron.h"
 #include "aggpack/shape/generator.h"
+#include "edge_queue.h"
 
 namespace aggpack::detail {
 
@@ -30,17 +32,17 @@ using DrawDistance = std::function<double(const Vec3& direction)>;
 //
 // Speed (bench/RESULTS.md, "Generator" and "Hull growth vs the midpoint rule"): storage is
 // reserved from the expected vertex count rather than the cap; adjacency is kept as twin
-// half-edges, so an insertion rewires its neighbours without searching; the heap holds only edges
-// longer than L (shorter ones can never be chosen), as a 4-ary heap of 128-bit keys (squared
-// length, then the vertex pair: one integer comparison), so an insertion pushes only its new
-// edges. Under the midpoint rule no entry ever goes stale (an edge leaves the mesh only by being
-// split, which pops it); under the hull rule an edge can vanish inside the replaced patch, and
-// its entry is dropped when it reaches the top (vertices never move, so a live entry's length is
-// still right; keys are distinct, so the order of the live edges never depends on stale ones).
-// The hull rule's visibility walk tests each face once per insertion (faces are stamped with the
-// insertion's number instead of flags that need resetting), keeps each face's normal once
-// computed (the same arithmetic as before: the bits do not change), collects the patch's border
-// during the walk and chains it into a loop through a per-vertex link.
+// half-edges, so an insertion rewires its neighbours without searching; the queue holds only
+// edges longer than L (shorter ones can never be chosen), as 128-bit keys (squared length, then
+// the vertex pair: one integer comparison) binned by length over a small heap (EdgeQueue), so an
+// insertion pushes only its new edges. Under the midpoint rule no entry ever goes stale (an edge
+// leaves the mesh only by being split, which pops it); under the hull rule an edge can vanish
+// inside the replaced patch, and its entry is dropped when it reaches the top (vertices never move,
+// so a live entry's length is still right; keys are distinct, so the order of the live edges never
+// depends on stale ones). The hull rule's visibility walk tests each face once per insertion (faces
+// are stamped with the insertion's number instead of flags that need resetting), keeps each face's
+// normal once computed (the same arithmetic as before: the bits do not change), collects the
+// patch's border during the walk and chains it into a loop through a per-vertex link.
 class GrowingMesh {
  public:
   // Starts a particle: the base octahedron (make_octahedron's vertex and triangle order) with
@@ -72,7 +74,7 @@ class GrowingMesh {
  private:
   // A heap key: the squared length's bits (positive doubles order as their bits) above the
   // complemented vertex pair, so the larger key is the longer edge, ties to the smaller pair.
-  __extension__ using Key = unsigned __int128;
+  using Key = EdgeQueue::Key;
   static Key key_of(const EdgeEntry& entry);
   static EdgeEntry entry_of(Key key);
   // A face's plane as the hull rule tests it: the normal (v1 - v0) x (v2 - v0) and its squared
@@ -106,8 +108,6 @@ class GrowingMesh {
   void grow_face_arrays(std::size_t count);
   // Heap entries for the new vertex's edges to `neighbours` that are longer than L.
   void push_edges_of(std::uint32_t vertex, const std::uint32_t* neighbours, std::size_t count);
-  void insert(Key key);
-  void pop();
 
   double limit_squared_ = 0.0;
   double min_edge_squared_ = 0.0;
@@ -116,7 +116,7 @@ class GrowingMesh {
   std::vector<Twins> twins_;
   std::vector<Plane> planes_;
   std::vector<std::uint32_t> corner_faces_;   // one face containing each vertex
-  std::vector<Key> heap_;                     // edges longer than L
+  EdgeQueue queue_;                           // edges longer than L
   std::vector<std::uint8_t> is_dead_vertex_;  // hull rule: vertices that ended up inside
   std::vector<std::uint8_t> is_free_face_;    // hull rule: slots of replaced faces
   std::vector<std::uint32_t> free_faces_;
