@@ -12,12 +12,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
 #include "aggpack/core/error.h"
 #include "aggpack/io/native.h"
+#include "support/files.h"
 #include "support/paths.h"
 
 namespace aggpack {
@@ -30,11 +30,6 @@ struct CliRun {
   std::string out;
   std::string err;
 };
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 class NativeBadInputTest : public ::testing::Test {
  protected:
@@ -56,8 +51,8 @@ class NativeBadInputTest : public ::testing::Test {
     const int status = std::system(command.c_str());
     CliRun result;
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read_text(base_ / "stdout.txt");
-    result.err = read_text(base_ / "stderr.txt");
+    result.out = test::file_text(base_ / "stdout.txt");
+    result.err = test::file_text(base_ / "stderr.txt");
     return result;
   }
 

@@ -10,14 +10,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <string>
 
 #include "aggpack/core/error.h"
 #include "aggpack/sim/settle.h"
 #include "aggpack/sim/world.h"
+#include "support/files.h"
 #include "support/paths.h"
 
 namespace aggpack {
@@ -106,8 +105,7 @@ TEST(SimulationLimits, SettleOnAParticleAtScale1e200EndsWithOneLine) {
   const int status = std::system(command.c_str());
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
-  std::ifstream in(folder / "stderr.txt");
-  const std::string err((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string err = test::file_text(folder / "stderr.txt");
   // Refused by World (or by the native reader, which may reject the scale first): one line that
   // names the file and the scale.
   EXPECT_EQ(err.rfind("aggpack: error: ", 0), 0u) << err;
