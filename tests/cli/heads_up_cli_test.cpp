@@ -125,12 +125,12 @@ TEST_F(HeadsUpCliTest, Mesomodel) {
 TEST_F(HeadsUpCliTest, ExportShapesAndRender) {
   make_small_packing();
   // TetGen under a volume bound of 1e-12 m^3 (of the stored shape): ~10^9 C3D10 elements of
-  // ~275 bytes, hundreds of GB written (the run is stopped once the line is there).
+  // ~275 bytes, terabytes written (the run is stopped once the line is there).
   const std::string heavy_export = stderr_until_heads_up(
       "export small.h5 --format inp --quadratic --tet-method tetgen --max-volume 1e-12 -o "
       "heavy.inp --progress none");
   expect_heads_up(heavy_export, "12", "~");
-  EXPECT_NE(heavy_export.find(" GB written, ~"), std::string::npos) << heavy_export;
+  EXPECT_NE(heavy_export.find(" TB written, ~"), std::string::npos) << heavy_export;
   const CliRun light_export = run("export small.h5 --format inp --quadratic -o light.inp");
   EXPECT_EQ(light_export.exit_code, 0) << light_export.err;
   EXPECT_EQ(light_export.err.find("large run"), std::string::npos) << light_export.err;
