@@ -47,6 +47,7 @@ struct DensifyFlags {
   std::string progress = "auto";
   bool is_forced = false;
   std::string trace;
+  bool has_trace = false;  // --trace given (--trace '' is refused, not taken as none)
   double bed_temperature = DensifyOptions{}.bed_temperature;
   double bed_cooling = DensifyOptions{}.bed_cooling;
 };
@@ -160,7 +161,7 @@ void run_densify(const DensifyFlags& flags) {
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   if (flags.threads < 0) throw InvalidInput("-j/--threads", std::to_string(flags.threads), ">= 0");
   check_output_file_flag("-o/--output", flags.output);
-  if (!flags.trace.empty()) check_output_file_flag("--trace", flags.trace);
+  if (flags.has_trace) check_output_file_flag("--trace", flags.trace);
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   check_writable(flags.output, overwrite);
   Packing start = read_packing(flags.input);
@@ -276,7 +277,10 @@ void register_densify(CLI::App& app) {
   command->add_option("--trace", flags->trace,
                       "write 'seconds sweeps solid_fraction' lines (every progress update) to "
                       "this file, for a fraction-vs-time plot");
-  command->callback([flags]() { run_densify(*flags); });
+  command->callback([flags, command]() {
+    flags->has_trace = command->count("--trace") > 0;
+    run_densify(*flags);
+  });
 }
 
 }  // namespace aggpack::cli

@@ -6,17 +6,22 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "aggpack/config/schema.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
+#include "aggpack/geom/mass_properties.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/native.h"
+#include "aggpack/mesh/quality.h"
+#include "aggpack/pack/resources.h"
 #include "commands.h"
 #include "output_flags.h"
 #include "progress.h"
@@ -163,6 +168,74 @@ const std::map<std::string, std::string>& export_flag_names() {
       {"output extension", "-o/--output extension"},
   };
   return names;
+}
+
+// What this export will write (for the heads-up and the TetGen stage's ETA): the cells of every
+// particle, TetGen's per shape estimated from its triangles and volume (resources.h).
+ExportWork export_work(const Packing& packing, const ExportOptions& options) {
+  const FormatInfo& info = format_info(options.format);
+  const MeshCells cells = options.cells == MeshCells::kDefault ? info.default_cells : options.cells;
+  const bool is_tetra =
+      options.is_quadratic || (info.has_tetrahedra && cells != MeshCells::kSurface);
+  const bool is_tetgen = is_tetra && options.tetrahedra.method == TetMethod::kTetGen;
+  ExportWork work{.particles = static_cast<double>(packing.particles.size()),
+                  .is_wide = options.is_quadratic ||
+                             (info.has_ascii && options.stl_encoding == StlEncoding::kAscii)};
+  std::vector<double> cells_of(packing.shapes.size(), -1.0);  // -1: not used
+  for (const ConvexPolyhedron& shape : packing.shapes) work.shape_bytes += heap_bytes(shape);
+  if (!info.has_surface && !info.has_tetrahedra) return work;  // the native file: no cells
+  for (const Particle& particle : packing.particles) {
+    double& count = cells_of.at(particle.shape);
+    if (count < 0.0) {
+      const ConvexPolyhedron& shape = packing.shapes[particle.shape];
+      const auto triangles = static_cast<double>(shape.triangle_count());
+      count = is_tetgen ? estimated_tetgen_elements(triangles, mass_properties(shape).volume,
+                                                    options.tetrahedra.max_volume)
+                        : triangles;
+      work.tetgen_shapes += is_tetgen ? 1.0 : 0.0;
+    }
+    work.cells += count;
+  }
+  return work;
+}
+
+// One line saying whether the tetrahedra are fine for a solver, and what to do if not.
+// Thresholds: kPoorDihedralDegrees (10 deg, the mesh module's "poorly shaped"); below it, what
+// solvers are known to take: CalculiX solved the 3,439-aggregate mesomodel whose smallest angle
+// was 0.017 deg (bench/RESULTS.md, "Concrete mesomodel mesh"); what it refuses is a Jacobian
+// below 1e-20 in the file's units (docs/mesomodel.md), so a flat tetrahedron of a small particle
+// written in metres can stop it where millimetres (--scale 1000) do not. A degenerate tetrahedron
+// (no volume: infinite aspect ratio) stops every solver.
+constexpr double kSolvedDihedralDegrees = 0.017;
+
+std::string quality_verdict(const TetQuality& quality, const TetOptions& tetrahedra, double scale) {
+  const bool is_tetgen = tetrahedra.method == TetMethod::kTetGen;
+  if (!std::isfinite(quality.max_aspect_ratio) || !(quality.min_dihedral_degrees > 0.0)) {
+    return "warning: degenerate tetrahedra (no volume): solvers stop on them (CalculiX: "
+           "nonpositive jacobian); please report it with the input file";
+  }
+  if (quality.min_dihedral_degrees >= kPoorDihedralDegrees) {
+    return fmt::format("fine for solvers: no tetrahedron below {} deg", kPoorDihedralDegrees);
+  }
+  const std::string why =
+      !is_tetgen                   ? "the centroid fan: flat over small or steep surface triangles"
+      : tetrahedra.is_surface_kept ? "TetGen keeps the surface triangles: flat where --radius-edge "
+                                     "would split one"
+                                   : "TetGen's --radius-edge bound does not remove slivers";
+  const std::string better = !is_tetgen                   ? "--tet-method tetgen --split-surface"
+                             : tetrahedra.is_surface_kept ? "--split-surface"
+                                                          : "a smaller --radius-edge";
+  if (quality.min_dihedral_degrees >= kSolvedDihedralDegrees) {
+    return fmt::format(
+        "as expected ({}); solvers run such meshes (CalculiX down to {} deg{}); better-shaped: "
+        "{}",
+        why, kSolvedDihedralDegrees,
+        scale < 100.0 ? "; in mm, --scale 1000, if it reports a nonpositive jacobian" : "", better);
+  }
+  return fmt::format(
+      "warning: smallest angle {:.3g} deg, below the {} deg CalculiX is known to solve ({}); "
+      "if the solver stops on a jacobian, write in mm (--scale 1000) or use {}",
+      quality.min_dihedral_degrees, kSolvedDihedralDegrees, why, better);
 }
 
 }  // namespace
@@ -316,8 +389,8 @@ void register_export(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--progress", flags->progress,
-                   "tetgen: elapsed time while the shapes are meshed, on stderr: auto (redrawn "
-                   "on a terminal, else a line every 2 s), bar, lines, none")
+                   "tetgen: elapsed time and ETA while the shapes are meshed, on stderr: auto "
+                   "(redrawn on a terminal, else a line every 2 s), bar, lines, none")
       ->capture_default_str();
 
   command->callback([flags]() {
@@ -346,12 +419,20 @@ void register_export(CLI::App& app) {
     const auto start = std::chrono::steady_clock::now();
     const ProgressStyle style = parse_progress_style("--progress", flags->progress);
     const Packing packing = read_packing(flags->input);
+    const ExportWork work = export_work(packing, options);
+    announce_heavy_run(estimate_export(work));
     ExportSummary summary;
     {
-      // TetGen meshes the shapes in worker processes and reports nothing until all are done.
-      const bool is_tetgen = options.tetrahedra.method == TetMethod::kTetGen;
+      // TetGen meshes the shapes in worker processes and reports nothing until all are done:
+      // the time taken, the ETA of TetGen's share of the estimate and the per-shape time limit.
       std::optional<StageTimer> timer;
-      if (is_tetgen) timer.emplace("meshing shapes (TetGen)", style);
+      if (work.tetgen_shapes > 0.0) {
+        timer.emplace(
+            "meshing shapes (TetGen)", style,
+            StageTiming{.item_limit_seconds = options.tetrahedra.time_limit,
+                        .expected_seconds =
+                            estimate_export({.tetgen_shapes = work.tetgen_shapes}).seconds});
+      }
       with_key_names({}, export_flag_names(),
                      [&] { summary = write(packing, flags->output, options); });
     }
@@ -363,6 +444,13 @@ void register_export(CLI::App& app) {
                format_seconds(seconds));
     if (summary.quality.tetrahedra > 0) {
       fmt::print("tetrahedron quality: {}\n", describe_quality(summary.quality));
+      const std::string verdict =
+          quality_verdict(summary.quality, options.tetrahedra, options.scale);
+      if (verdict.starts_with("warning")) {
+        std::fprintf(stderr, "aggpack: %s\n", verdict.c_str());
+      } else {
+        fmt::print("quality verdict: {}\n", verdict);
+      }
     }
     if (summary.tetgen_shapes > 0) fmt::print("{}\n", tetgen_report(summary));
   });

@@ -88,14 +88,21 @@ void run_voxels(const MesomodelFlags& flags, const Overwrite overwrite) {
       check_writable(base + suffix, overwrite);
     }
   }
+  const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
   // At most resolution^3 voxels (the longest side has `resolution`).
-  announce_heavy_run(estimate_mesomodel(static_cast<double>(packing.particles.size()),
-                                        std::pow(static_cast<double>(options.resolution), 3)));
+  const RunEstimate estimate =
+      estimate_mesomodel(static_cast<double>(packing.particles.size()),
+                         std::pow(static_cast<double>(options.resolution), 3));
+  announce_heavy_run(estimate);
   VoxelImage image;  // voxelize checks the ITZ against the container; its messages name the flags
-  with_key_names({}, {{"itz_thickness", "--itz"}, {"voxels", "--voxels"}},
-                 [&] { image = voxelize(packing, options); });
+  {
+    // voxelize reports nothing while it runs: show the time taken and the estimate's ETA.
+    StageTimer timer("voxelising", style, {.expected_seconds = estimate.seconds});
+    with_key_names({}, {{"itz_thickness", "--itz"}, {"voxels", "--voxels"}},
+                   [&] { image = voxelize(packing, options); });
+  }
   if (is_vti) {
     write_vti(flags.output, image, overwrite);
   } else {
@@ -222,13 +229,18 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   check_writable(flags.output, overwrite);
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
-  announce_heavy_run(estimate_mesomodel(static_cast<double>(packing.particles.size()), 0.0));
+  const RunEstimate estimate =
+      estimate_mesomodel(static_cast<double>(packing.particles.size()), 0.0);
+  announce_heavy_run(estimate);
   MesoReport report;
   const ProgressStyle style = parse_progress_style("--progress", flags.progress);
   MesoMesh mesh;
   {
-    // TetGen reports nothing while it meshes (one worker process): show the time it has taken.
-    StageTimer timer("meshing (TetGen)", style, flags.mesh.time_limit);
+    // TetGen reports nothing while it meshes (one worker process): show the time it has taken,
+    // the estimate's ETA and the time limit.
+    StageTimer timer(
+        "meshing (TetGen)", style,
+        {.limit_seconds = flags.mesh.time_limit, .expected_seconds = estimate.seconds});
     mesh = build_mesomodel(packing, flags.mesh, &report);
   }
   print_report(mesh, report);
@@ -324,8 +336,8 @@ void register_mesomodel(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--progress", flags->progress,
-                   "elapsed time while TetGen meshes, on stderr: auto (redrawn on a terminal, "
-                   "else a line every 2 s), bar, lines, none")
+                   "elapsed time and ETA while TetGen meshes (or the voxels are filled), on "
+                   "stderr: auto (redrawn on a terminal, else a line every 2 s), bar, lines, none")
       ->capture_default_str();
   command->add_flag("-f,--force", flags->is_forced, "replace existing output files");
   command->callback([flags]() {

@@ -17,7 +17,9 @@
 #include "aggpack/mesh/mesomodel.h"
 #include "aggpack/mesh/mesomodel_cut.h"
 #include "aggpack/pack/container.h"
+#include "aggpack/pack/resources.h"
 #include "commands.h"
+#include "progress.h"
 
 namespace aggpack::cli {
 
@@ -55,6 +57,7 @@ void render_mesomodel_cut(const MesomodelCutRequest& request) {
         fmt::format("{} in [{}, {}] m (the container's extent along {})", axis_name(plane.axis),
                     format_value(lowest), format_value(highest), axis_name(plane.axis)));
   }
+  announce_heavy_run(estimate_mesomodel(static_cast<double>(packing.particles.size()), 0.0));
   MesoReport report;
   const MesoMesh mesh = build_mesomodel(packing, request.meso, &report);
   const std::vector<CutPolygon> polygons =

@@ -216,22 +216,48 @@ void ProgressBar::finish() {
   std::fflush(stream_);
 }
 
-StageTimer::StageTimer(std::string label, ProgressStyle style, double limit_seconds,
+std::string stage_text(const std::string& label, double elapsed, const StageTiming& timing,
+                       bool is_final) {
+  if (is_final) return fmt::format("{}: done in {} s", label, format_seconds(elapsed));
+  std::string text = fmt::format("{}: {} elapsed", label, format_duration(elapsed));
+  if (timing.expected_seconds > 0) {
+    text += elapsed < timing.expected_seconds
+                ? fmt::format(", ETA ~{} by the estimate",
+                              format_duration(timing.expected_seconds - elapsed))
+                : fmt::format(", longer than the estimate of {}",
+                              format_duration(timing.expected_seconds));
+  }
+  if (timing.limit_seconds > 0) {
+    text += fmt::format(" (stops at the time limit, {} from now at most)",
+                        format_duration(std::max(0.0, timing.limit_seconds - elapsed)));
+  }
+  if (timing.item_limit_seconds > 0) {
+    text += fmt::format(" (each {} stops at its time limit of {} s)", timing.item,
+                        format_seconds(timing.item_limit_seconds));
+  }
+  return text;
+}
+
+StageTimer::StageTimer(std::string label, ProgressStyle style, StageTiming timing,
                        std::FILE* stream)
     : label_(std::move(label)),
       style_(style),
-      limit_(limit_seconds),
+      timing_(std::move(timing)),
       stream_(stream),
       start_(std::chrono::steady_clock::now()) {
   if (style_ == ProgressStyle::kAuto) {
     style_ = ::isatty(::fileno(stream_)) != 0 ? ProgressStyle::kBar : ProgressStyle::kLines;
   }
   if (style_ == ProgressStyle::kNone) return;
+  // A stage the estimate expects to be long is shown at once, with its ETA.
+  const bool is_shown_at_once = timing_.expected_seconds >= kProgressHeartbeat;
+  if (is_shown_at_once) draw(0.0, false);
   ticker_ = std::thread([this] {
     const double interval = style_ == ProgressStyle::kBar ? 1.0 : kProgressHeartbeat;
     std::unique_lock lock(mutex_);
     for (int tick = 1; !is_stopping_; ++tick) {
-      // Quiet for the first interval: a step that ends at once prints nothing.
+      // Quiet for the first interval (unless shown at once): a step that ends at once prints
+      // nothing.
       wake_.wait_until(lock, start_ + std::chrono::duration<double>(tick * interval));
       if (is_stopping_) break;
       const auto no_fork = section_without_fork();
@@ -243,12 +269,7 @@ StageTimer::StageTimer(std::string label, ProgressStyle style, double limit_seco
 StageTimer::~StageTimer() { finish(); }
 
 void StageTimer::draw(double elapsed, bool is_final) {
-  std::string text = is_final ? fmt::format("{}: done in {} s", label_, format_seconds(elapsed))
-                              : fmt::format("{}: {} elapsed", label_, format_duration(elapsed));
-  if (!is_final && limit_ > 0) {
-    text += fmt::format(" (stops at the time limit, {} from now at most)",
-                        format_duration(std::max(0.0, limit_ - elapsed)));
-  }
+  const std::string text = stage_text(label_, elapsed, timing_, is_final);
   if (style_ == ProgressStyle::kBar) {
     std::fprintf(stream_, "\r\033[K%s%s", text.c_str(), is_final ? "\n" : "");
   } else {

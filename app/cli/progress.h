@@ -104,13 +104,30 @@ class ProgressBar {
   std::thread ticker_;
 };
 
-/// A step that reports nothing while it runs (TetGen meshing in a worker process): shows the
-/// elapsed time every kProgressHeartbeat seconds (a bar is redrawn every second) so the user sees
-/// it is alive, with the step's time limit when it has one, and a final line with its duration.
+/// What a StageTimer knows of its stage's duration besides the clock (all in seconds; <= 0 =
+/// not known).
+struct StageTiming {
+  double limit_seconds = 0.0;       ///< the whole stage stops at this (mesomodel's --time-limit)
+  double item_limit_seconds = 0.0;  ///< each item stops at this (export's --tet-time-limit)
+  std::string item = "shape";       ///< what item_limit_seconds is per
+  /// The estimate of aggpack/pack/resources.h (the heads-up's): gives an ETA ("ETA ~0:12 by the
+  /// estimate"), and a stage expected to take kProgressHeartbeat or more shows its line at once.
+  double expected_seconds = 0.0;
+};
+
+/// A StageTimer's line after `elapsed` seconds: "meshing (TetGen): 0:04 elapsed, ETA ~0:06 by
+/// the estimate (stops at the time limit, 59:56 from now at most)"; `is_final`: "LABEL: done in
+/// T s".
+std::string stage_text(const std::string& label, double elapsed, const StageTiming& timing,
+                       bool is_final);
+
+/// A step that reports nothing while it runs (TetGen meshing in a worker process, voxelisation):
+/// shows the elapsed time every kProgressHeartbeat seconds (a bar is redrawn every second) so the
+/// user sees it is alive, with the step's ETA by the estimate and its time limits when it has
+/// them (stage_text), and a final line with its duration.
 class StageTimer {
  public:
-  /// `limit_seconds` <= 0: none.
-  StageTimer(std::string label, ProgressStyle style, double limit_seconds = 0,
+  StageTimer(std::string label, ProgressStyle style, StageTiming timing = {},
              std::FILE* stream = stderr);
   StageTimer(const StageTimer&) = delete;
   StageTimer& operator=(const StageTimer&) = delete;
@@ -124,7 +141,7 @@ class StageTimer {
 
   std::string label_;
   ProgressStyle style_;
-  double limit_;
+  StageTiming timing_;
   std::FILE* stream_;
   std::chrono::steady_clock::time_point start_;
   bool has_output_ = false;

@@ -16,9 +16,11 @@
 #include "aggpack/core/error.h"
 #include "aggpack/io/native.h"
 #include "aggpack/mesh/mesomodel.h"
+#include "aggpack/pack/resources.h"
 #include "aggpack/render/headless.h"
 #include "commands.h"
 #include "output_flags.h"
+#include "progress.h"
 
 namespace aggpack::cli {
 
@@ -88,6 +90,11 @@ void run_render(const RenderFlags& flags, bool has_output) {
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
   check_writable(output, overwrite);  // fail before the (slower) load and render
   const Packing packing = read_packing(flags.input);
+  double shape_bytes = 0.0;
+  for (const ConvexPolyhedron& shape : packing.shapes) shape_bytes += heap_bytes(shape);
+  announce_heavy_run(estimate_render(static_cast<double>(packing.particles.size()), shape_bytes,
+                                     static_cast<double>(options.width) * options.height,
+                                     options.samples));
   const Image image = render_image(packing, options);
   write_png(image, output, overwrite);
   fmt::print("wrote {} ({}x{}, {} particles, view {}, colour {}{})\n", output, image.width,

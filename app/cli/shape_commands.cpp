@@ -13,10 +13,12 @@
 #include "aggpack/core/parallel.h"
 #include "aggpack/io/export.h"
 #include "aggpack/io/shape_library_files.h"
+#include "aggpack/pack/resources.h"
 #include "aggpack/shape/descriptors.h"
 #include "aggpack/shape/generator.h"
 #include "commands.h"
 #include "output_flags.h"
+#include "progress.h"
 
 namespace aggpack::cli {
 
@@ -309,6 +311,8 @@ void register_shapes(CLI::App& app) {
     set_thread_count(flags->threads);
     const Overwrite overwrite = *is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!output->empty()) check_writable(*output, overwrite);
+    announce_heavy_run(
+        estimate_shapes(flags->generator, static_cast<double>(*count), !output->empty()));
 
     // Generated in chunks (in parallel), written and summarised in index order: memory stays
     // bounded by one chunk however large --count is (issue 12).

@@ -107,6 +107,10 @@ EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& o
   fmt::print("ensemble: {} seeds{}\n", seeds.size(),
              share.is_split() ? fmt::format(" (worker {} of {})", share.worker, share.of) : "");
   ProgressBar bar("ensemble", "seeds", style);
+  // The bar from the start (0 of this process's seeds), not first when a whole run has ended.
+  std::size_t owned = 0;
+  for (std::size_t i = 0; i < seeds.size(); ++i) owned += share.owns(i) ? 1 : 0;
+  bar.update(0.0, 0, owned);
   EnsembleResult ensemble;
   with_sweep_key_names([&] {
     ensemble = run_ensemble(
@@ -199,6 +203,10 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
   std::map<std::uint64_t, std::size_t> seed_index;
   for (std::size_t k = 0; k < options.seeds.size(); ++k) seed_index[options.seeds[k]] = k;
   ProgressBar bar("sweep", "cases", style);
+  // The bar from the start (0 of this process's runs), not first when a whole run has ended.
+  std::size_t owned = 0;
+  for (std::size_t i = 0; i < total * seed_count; ++i) owned += share.owns(i) ? 1 : 0;
+  bar.update(0.0, 0, owned);
   std::vector<SweepCase> runs;
   with_sweep_key_names([&] {
     runs = run_sweep_runs(

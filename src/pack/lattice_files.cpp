@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -122,17 +124,24 @@ PackResult pack_lattice_files(const LatticeOptions& options, const Lattice& latt
   packing.container = options.container;
   packing.provenance.seed = options.seed;
   packing.provenance.packer = "lattice";
-  packing.shapes.reserve(library.shapes.size());
-  std::vector<double> unit_volumes(library.shapes.size());
-  for (std::size_t k = 0; k < library.shapes.size(); ++k) {
-    packing.shapes.push_back(library.shapes[k].body);
-    unit_volumes[k] = library.shapes[k].volume / std::pow(library.shapes[k].size / 2.0, 3);
-  }
+  // Only the shapes the placed particles use are stored, in order of first use (as the random
+  // packer's library runs): the file holds what was placed, not the whole library.
+  constexpr std::uint32_t kUnused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> stored_index(library.shapes.size(), kUnused);
+  std::vector<double> unit_volumes;  // per stored shape
   packing.particles.resize(done);
   double solid = 0.0;
   for (std::size_t i = 0; i < done; ++i) {
+    std::uint32_t& index = stored_index[sites[i].shape];
+    if (index == kUnused) {
+      const LibraryShape& shape = library.shapes[sites[i].shape];
+      index = static_cast<std::uint32_t>(packing.shapes.size());
+      packing.shapes.push_back(shape.body);
+      unit_volumes.push_back(shape.volume / std::pow(shape.size / 2.0, 3));
+      result.library_shapes.push_back(sites[i].shape);
+    }
     Particle& particle = packing.particles[i];
-    particle.shape = sites[i].shape;
+    particle.shape = index;
     particle.pose = pose_of(i);
     particle.scale = sites[i].scale;
     particle.control_radius = radius;

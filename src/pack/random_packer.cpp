@@ -425,6 +425,7 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
       if (index == kUnused) {
         index = static_cast<std::uint32_t>(packing.shapes.size());
         packing.shapes.push_back(std::move(shapes[item.shape].body));
+        result.library_shapes.push_back(item.shape);
       }
       particle.shape = index;
     } else {

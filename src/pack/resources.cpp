@@ -19,6 +19,7 @@
 #include "aggpack/core/rng.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/pack/grading.h"
+#include "aggpack/pack/packing.h"
 #include "aggpack/shape/generator.h"
 
 namespace aggpack {
@@ -57,6 +58,22 @@ constexpr double kMeshBytesPerAggregate = 1.9e5;
 constexpr double kVoxelBytes = 5.0;
 constexpr double kVoxelSeconds = 8e-7;
 constexpr double kGravity = 9.81;
+// export (bench/RESULTS.md, "Exports", idle machine): 100,000 paper particles, 3.65 M cells;
+// C3D4 .inp 301 MB in 1.17 s, C3D10 998 MB in 5.10 s (ASCII STL alike: 999 MB). TetGen: the
+// paper's 1,050 shapes in 1.1 s with -j 1, the whole export included (2026-12-05, loaded VM).
+constexpr double kExportBytesPerCell = 85.0;
+constexpr double kExportWideBytesPerCell = 275.0;
+constexpr double kExportSecondsPerCell = 3.2e-7;
+constexpr double kExportWideSecondsPerCell = 1.4e-6;
+constexpr double kTetGenSecondsPerShape = 1e-3;
+constexpr double kTetGenBytesPerElement = 40.0;  // 4 node numbers, face flags, ~0.5 node
+// render (bench/RESULTS.md, "Rendering", loaded VM): 1,050 particles 1.65 s, 100,000 9.05 s.
+constexpr double kRenderSetupSeconds = 1.5;
+constexpr double kRenderSecondsPerParticle = 8e-5;
+constexpr double kRenderBytesPerParticle = 200.0;  // pose, colour, draw lists, per-instance data
+// shapes -n: a chunk of 65,536 descriptor rows in memory; a CSV row of ~13 numbers of 17 digits.
+constexpr double kShapesChunk = 65536.0;
+constexpr double kShapesBytesPerRow = 300.0;
 // A shape library may hold this many times the particles a target needs (and at least
 // kLibraryFloor shapes): beyond that most shapes are grown and never used.
 constexpr double kLibraryHeadroom = 10.0;
@@ -414,8 +431,59 @@ RunEstimate estimate_mesomodel(double particles, double voxels) {
   return estimate;
 }
 
+double estimated_tetgen_elements(double triangles, double volume, double max_volume) {
+  const double bounded = max_volume > 0.0 ? 0.45 * volume / max_volume : 0.0;
+  return std::max(1.5 * triangles, bounded);
+}
+
+RunEstimate estimate_export(const ExportWork& work) {
+  RunEstimate estimate;
+  estimate.particles = work.particles;
+  const double threads = std::max(1, allowed_threads());
+  estimate.seconds =
+      work.tetgen_shapes * kTetGenSecondsPerShape / threads +
+      work.cells * (work.is_wide ? kExportWideSecondsPerCell : kExportSecondsPerCell);
+  // TetGen's meshes are kept per shape: at most one per cell written (one shape per particle).
+  const double tetgen_cells = work.tetgen_shapes > 0.0 ? work.cells : 0.0;
+  estimate.bytes = work.shape_bytes + work.particles * static_cast<double>(sizeof(Particle)) +
+                   tetgen_cells * kTetGenBytesPerElement;
+  estimate.output_bytes =
+      work.cells * (work.is_wide ? kExportWideBytesPerCell : kExportBytesPerCell);
+  return estimate;
+}
+
+RunEstimate estimate_render(double particles, double shape_bytes, double pixels, int samples) {
+  RunEstimate estimate;
+  estimate.particles = particles;
+  estimate.seconds = kRenderSetupSeconds + particles * kRenderSecondsPerParticle;
+  estimate.bytes =
+      3.0 * shape_bytes + particles * kRenderBytesPerParticle + pixels * 4.0 * std::max(1, samples);
+  return estimate;
+}
+
+RunEstimate estimate_shapes(const GeneratorOptions& options, double count, bool has_output) {
+  const double vertices =
+      estimated_vertex_count(options.radius_max, options.edge_length, options.form.growth);
+  const int sample_count =
+      std::min(sample_size_for(vertices, static_cast<std::uint64_t>(std::max(1.0, count))), 16);
+  const ShapeSample sample = sample_shapes(sample_count, [&](std::uint64_t i) {
+    GeneratedParticle particle = generate_particle(options, i);
+    return std::make_pair(std::move(particle.body), particle.control_radius);
+  });
+  RunEstimate estimate;
+  estimate.particles = count;
+  estimate.seconds = count * sample.seconds_per_shape / std::max(1, allowed_threads());
+  estimate.bytes = std::min(count, kShapesChunk) * kShapesBytesPerRow +
+                   static_cast<double>(std::max(1, allowed_threads())) * sample.mean_bytes;
+  if (has_output) estimate.output_bytes = count * kShapesBytesPerRow;
+  return estimate;
+}
+
 std::string heavy_run_note(const RunEstimate& estimate) {
-  if (!(estimate.seconds > kHeavySeconds) && !(estimate.bytes > kHeavyBytes)) return "";
+  if (!(estimate.seconds > kHeavySeconds) && !(estimate.bytes > kHeavyBytes) &&
+      !(estimate.output_bytes > kHeavyBytes)) {
+    return "";
+  }
   const double seconds = estimate.seconds;
   char time[64];
   if (seconds < 120.0) {
@@ -427,6 +495,8 @@ std::string heavy_run_note(const RunEstimate& estimate) {
   }
   return "a large run: ~" + count_text(estimate.particles) + " particles, ~" +
          format_bytes(estimate.bytes) + " of memory, " +
+         (estimate.output_bytes > 0.0 ? "~" + format_bytes(estimate.output_bytes) + " written, "
+                                      : std::string()) +
          (estimate.is_upper_bound ? "up to ~" : "~") + time + " (rough estimate; Ctrl-C stops it)";
 }
 

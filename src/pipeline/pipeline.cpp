@@ -147,7 +147,7 @@ PipelineResult pack(const PackerOptions& options, const PackControl& control) {
       run_options);
   stamp_provenance(result.packing, packer_kind_name(options), packer_seed(options), {});
   if (files != nullptr && files->loaded) {
-    result.packing.provenance.shape_library = files->loaded->provenance();
+    result.packing.provenance.shape_library = files->loaded->provenance(result.library_shapes);
     result.library = files->loaded;
   }
   return result;

@@ -53,11 +53,15 @@ std::string ShapeLibrary::hull_summary() const {
   return text;
 }
 
-std::string ShapeLibrary::provenance() const {
+std::string ShapeLibrary::provenance(std::span<const std::uint32_t> stored) const {
   std::string text = "library " + source + " (units " + std::string(length_unit_name(units)) +
                      ", " + std::to_string(shapes.size()) + " shapes, " +
-                     std::to_string(skipped.size()) + " skipped)\n";
-  for (const LibraryShape& shape : shapes) text += shape.name + "\t" + shape.hash + "\n";
+                     std::to_string(skipped.size()) + " skipped, " + std::to_string(stored.size()) +
+                     " stored)\n";
+  for (const std::uint32_t k : stored) {
+    const LibraryShape& shape = shapes.at(k);
+    text += shape.name + "\t" + shape.hash + "\n";
+  }
   return text;
 }
 

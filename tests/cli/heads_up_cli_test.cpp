@@ -1,7 +1,8 @@
 // The one-line heads-up before a heavy run (estimated particles, memory, time; even with
 // --progress none) in the commands besides `pack` (runaway_cli_test.cpp): densify, settle,
-// repose (one run, a seed ensemble, a sweep) and mesomodel. A heavy configuration must print it
-// as its first line of stderr (the run is stopped once it is there); a light one must not.
+// repose (one run, a seed ensemble, a sweep), mesomodel, export, shapes -n and render. A heavy
+// configuration must print it as its first line of stderr (the run is stopped once it is there); a
+// light one must not.
 
 #include <gtest/gtest.h>
 
@@ -119,6 +120,33 @@ TEST_F(HeadsUpCliTest, Mesomodel) {
   const CliRun light = run("mesomodel small.h5 --voxels 32 -o light.vti");
   EXPECT_EQ(light.exit_code, 0) << light.err;
   EXPECT_EQ(light.err.find("large run"), std::string::npos) << light.err;
+}
+
+TEST_F(HeadsUpCliTest, ExportShapesAndRender) {
+  make_small_packing();
+  // TetGen under a volume bound of 1e-12 m^3 (of the stored shape): ~10^9 C3D10 elements of
+  // ~275 bytes, terabytes written (the run is stopped once the line is there).
+  const std::string heavy_export = stderr_until_heads_up(
+      "export small.h5 --format inp --quadratic --tet-method tetgen --max-volume 1e-12 -o "
+      "heavy.inp --progress none");
+  expect_heads_up(heavy_export, "12", "~");
+  EXPECT_NE(heavy_export.find(" TB written, ~"), std::string::npos) << heavy_export;
+  const CliRun light_export = run("export small.h5 --format inp --quadratic -o light.inp");
+  EXPECT_EQ(light_export.exit_code, 0) << light_export.err;
+  EXPECT_EQ(light_export.err.find("large run"), std::string::npos) << light_export.err;
+  // 10^8 particles grown and described: tens of minutes on any machine.
+  expect_heads_up(stderr_until_heads_up("shapes -n 100000000"), "1e+08", "~");
+  const CliRun light_shapes = run("shapes -n 100");
+  EXPECT_EQ(light_shapes.exit_code, 0) << light_shapes.err;
+  EXPECT_EQ(light_shapes.err.find("large run"), std::string::npos) << light_shapes.err;
+  if (!has_subcommand("render")) GTEST_SKIP() << "built without rendering";
+  // 8192 x 8192 pixels x 16 samples x 4 bytes: 4.3 GB of image.
+  expect_heads_up(
+      stderr_until_heads_up("render small.h5 --size 8192x8192 --samples 16 -o heavy.png"), "12",
+      "~");
+  const CliRun light_render = run("render small.h5 --size 64x64 -o light.png");
+  EXPECT_EQ(light_render.exit_code, 0) << light_render.err;
+  EXPECT_EQ(light_render.err.find("large run"), std::string::npos) << light_render.err;
 }
 
 }  // namespace

@@ -76,10 +76,15 @@ TEST_F(LibraryCli, PackStoresTheLibraryOnceAndInfoShowsIt) {
       << json.out;
   const CliRun info = run("info rocks.h5");
   ASSERT_EQ(info.exit_code, 0) << info.err;
-  EXPECT_NE(info.out.find("shape library   library rocks (units mm, 3 shapes, 0 skipped)"),
+  EXPECT_NE(info.out.find("shape library   library rocks (units mm, 3 shapes, 0 skipped, 3 "
+                          "stored)"),
             std::string::npos)
       << info.out;
-  EXPECT_NE(info.out.find("  shape 0      cube.stl fnv1a64:"), std::string::npos) << info.out;
+  // The stored shapes in order of first use (seed 2: rock.obj first), one provenance line each:
+  // shape k's line names the file the packing's shape k came from (it used to list the library
+  // in folder order, which named the wrong file for shape 0).
+  EXPECT_NE(info.out.find("  shape 0      rock.obj fnv1a64:"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("  shape 1      cube.stl fnv1a64:"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("(3 distinct shapes)"), std::string::npos) << info.out;
   // Exports take the packing unchanged.
   const CliRun exported = run("export rocks.h5 -o rocks.stl");

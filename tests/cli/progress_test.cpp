@@ -107,5 +107,41 @@ TEST(ProgressBar, TerminalBarIsRedrawnBetweenSlowUpdates) {
   std::fclose(stream);
 }
 
+// A stage that reports nothing (TetGen, voxels): its line carries the estimate's ETA counted
+// down, then "longer than the estimate", and the stage's and each item's time limits.
+TEST(StageText, EtaByTheEstimateAndTheLimits) {
+  EXPECT_EQ(stage_text("voxelising", 4.0, {.expected_seconds = 10.0}, false),
+            "voxelising: 0:04 elapsed, ETA ~0:06 by the estimate");
+  EXPECT_EQ(stage_text("voxelising", 12.0, {.expected_seconds = 10.0}, false),
+            "voxelising: 0:12 elapsed, longer than the estimate of 0:10");
+  EXPECT_EQ(stage_text("meshing (TetGen)", 4.0, {.limit_seconds = 3600.0}, false),
+            "meshing (TetGen): 0:04 elapsed (stops at the time limit, 59:56 from now at most)");
+  EXPECT_EQ(stage_text("meshing shapes (TetGen)", 2.0,
+                       {.item_limit_seconds = 20.0, .expected_seconds = 5.0}, false),
+            "meshing shapes (TetGen): 0:02 elapsed, ETA ~0:03 by the estimate (each shape stops "
+            "at its time limit of 20 s)");
+  EXPECT_EQ(stage_text("voxelising", 3.14159, {.expected_seconds = 10.0}, true),
+            "voxelising: done in 3.1 s");
+}
+
+// A stage the estimate expects to take kProgressHeartbeat or more shows its line at once; a short
+// one that ends at once shows nothing.
+TEST(StageTimer, ShownAtOnceOnlyWhenExpectedToBeLong) {
+  std::FILE* stream = std::tmpfile();
+  ASSERT_NE(stream, nullptr);
+  { StageTimer quick("quick", ProgressStyle::kLines, {.expected_seconds = 0.5}, stream); }
+  EXPECT_EQ(contents(stream), "");
+  {
+    StageTimer slow("slow", ProgressStyle::kLines, {.expected_seconds = 30.0}, stream);
+    const std::string text = contents(stream);
+    EXPECT_EQ(text, "slow: 0:00 elapsed, ETA ~0:30 by the estimate\n");
+    std::fseek(stream, 0, SEEK_END);
+  }
+  const std::string text = contents(stream);
+  EXPECT_EQ(text.rfind("slow: 0:00 elapsed, ETA ~0:30 by the estimate\nslow: done in ", 0), 0U)
+      << text;
+  std::fclose(stream);
+}
+
 }  // namespace
 }  // namespace aggpack::cli

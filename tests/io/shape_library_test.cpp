@@ -216,7 +216,14 @@ TEST(ShapeLibraryFiles, LoadsAFolderInNameOrderWithHashes) {
   EXPECT_NE(library.shapes[1].hash, library.shapes[3].hash);
   EXPECT_NEAR(library.shapes[1].hull_volume, 1000e-9, 1e-18);
   EXPECT_NEAR(library.shapes[0].hull_volume, test::icosahedron_volume(6e-3), 1e-16);
-  EXPECT_NE(library.provenance().find("a_rock.OBJ\tfnv1a64:"), std::string::npos);
+  // The provenance lists the stored shapes only, in the packing's order (library 3, then 0).
+  const std::vector<std::uint32_t> stored = {3, 0};
+  const std::string provenance = library.provenance(stored);
+  EXPECT_NE(provenance.find("4 shapes, 0 skipped, 2 stored)\nd_cube_ascii.stl\tfnv1a64:"),
+            std::string::npos)
+      << provenance;
+  EXPECT_NE(provenance.find("\na_rock.OBJ\tfnv1a64:"), std::string::npos) << provenance;
+  EXPECT_EQ(provenance.find("b_"), std::string::npos) << provenance;
 }
 
 TEST(ShapeLibraryFiles, BadFilesStopTheLoadOrAreSkippedAndCounted) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -71,7 +72,13 @@ void expect_library_packing(const Packing& packing, std::size_t library_size) {
                 1e-9);
   }
   EXPECT_GE(used.size(), 3u);
-  EXPECT_NE(packing.provenance.shape_library.find("cube.stl\tfnv1a64:"), std::string::npos);
+  // Only used shapes are stored, one provenance line each after the header.
+  EXPECT_EQ(used.size(), packing.shapes.size());
+  const std::string& provenance = packing.provenance.shape_library;
+  EXPECT_EQ(static_cast<std::size_t>(std::count(provenance.begin(), provenance.end(), '\n')),
+            packing.shapes.size() + 1)
+      << provenance;
+  EXPECT_NE(provenance.find("cube.stl\tfnv1a64:"), std::string::npos);
 }
 
 TEST(LibraryPipeline, RandomPackerPlacesLibraryShapesAtTheirSieveSizes) {
@@ -104,6 +111,27 @@ TEST(LibraryPipeline, LatticeAndDensePackersUseTheLibrary) {
       config_text(library, "kind = \"dense\"\ntarget_fraction = 0.15",
                   "radius_min = 0.02\nradius_max = 0.035", "[densify]\nmax_sweeps = 20\n")));
   expect_library_packing(dense.packing, 4);
+}
+
+// A lattice of fewer sites than library shapes stores the shapes placed, not the whole library
+// (issue 35: a large library made a file of every shape).
+TEST(LibraryPipeline, LatticeStoresOnlyTheShapesItPlaced) {
+  const Library library;
+  const std::string text =
+      "[container]\nkind = \"box\"\nlength = 0.07\nwidth = 0.07\n"
+      "depth = 0.07\n[particle]\nlibrary = \"" +
+      library.path() + "\"\nradius = 0.03\n[packer]\nkind = \"lattice\"\nseed = 5\n";
+  const PipelineResult result = pack(parse_pack_config(text));
+  const Packing& packing = result.packing;
+  ASSERT_EQ(packing.particles.size(), 1u);
+  ASSERT_EQ(packing.shapes.size(), 1u);  // was 4: every library shape
+  EXPECT_EQ(packing.particles[0].shape, 0u);
+  ASSERT_EQ(result.library_shapes.size(), 1u);
+  const std::string& provenance = packing.provenance.shape_library;
+  EXPECT_NE(provenance.find("4 shapes, 0 skipped, 1 stored)\n"), std::string::npos) << provenance;
+  EXPECT_EQ(std::count(provenance.begin(), provenance.end(), '\n'), 2) << provenance;
+  // The stored shape is the library's shape library_shapes[0], unscaled (enclosing radius 1).
+  EXPECT_NEAR(minimal_enclosing_sphere(packing.shapes[0].vertices()).radius, 1.0, 1e-9);
 }
 
 TEST(LibraryPipeline, UseOnceNeedsEnoughShapesAndErrorsAreOneLine) {

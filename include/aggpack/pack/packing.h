@@ -66,7 +66,8 @@ struct Provenance {
   std::string packer{};  ///< "lattice", "random", "settled", ...
   /// particle.library's files (ShapeLibrary::provenance(): a header line, then one line per
   /// shape: file name, TAB, content hash); empty when the
-  /// particles were grown. Shape k of the packing is the library's line k.
+  /// particles were grown. Shape k of the packing is the library's line k + 1 (only the shapes
+  /// some particle uses are stored).
   std::string shape_library{};
 };
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "aggpack/pack/packing.h"
 
@@ -76,6 +77,10 @@ struct PackReport {
 struct PackResult {
   Packing packing{};
   PackReport report{};
+  /// A packing of library shapes: the library index of each stored shape (packing.shapes[k] is
+  /// library shape library_shapes[k]); only the shapes some particle uses are stored, in order of
+  /// first use. Empty for grown particles.
+  std::vector<std::uint32_t> library_shapes{};
 };
 
 }  // namespace aggpack

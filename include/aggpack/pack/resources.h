@@ -10,6 +10,7 @@
 #include "aggpack/geom/convex_polyhedron.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/random_packer.h"
+#include "aggpack/shape/generator.h"
 
 namespace aggpack {
 
@@ -50,6 +51,8 @@ struct RunEstimate {
   /// `seconds` is a budget's worth (a sweep or simulated-time limit) that the run may stop well
   /// before: the note says "up to".
   bool is_upper_bound = false;
+  /// Bytes the run writes (0 = not estimated): a heavy run's note says "~1.2 GB written".
+  double output_bytes = 0.0;
 };
 
 /// Estimates for options that passed the packer's own range checks. The random packer's sample:
@@ -90,13 +93,41 @@ double automatic_time_step(double d_min, double time_step_factor);
 /// `voxels` voxels.
 RunEstimate estimate_mesomodel(double particles, double voxels);
 
+/// TetGen's tetrahedra for one shape of `triangles` surface triangles and volume `volume` (m^3)
+/// under a volume bound `max_volume` (0 = none), the surface kept: 1.5 per surface triangle, or
+/// 0.45 per bound's volume when more (the paper's 1,050 shapes: 58,487 without a bound, 80,230
+/// with 1e-5 m^3).
+double estimated_tetgen_elements(double triangles, double volume, double max_volume);
+
+/// What an export writes (the CLI adds it up from the packing and the options).
+struct ExportWork {
+  double particles = 0.0;
+  double cells = 0.0;          ///< elements or triangles written, all particles
+  double tetgen_shapes = 0.0;  ///< shapes meshed by TetGen first (0: fan or a surface format)
+  bool is_wide = false;        ///< C3D10 or ASCII STL: ~275 bytes a cell instead of ~85
+  double shape_bytes = 0.0;    ///< heap_bytes of the packing's shapes
+};
+/// export: TetGen at 1 ms per shape on the allowed threads, then the cells formatted and
+/// written (bench/RESULTS.md, "Exports": 100,000 particles, 3.65 M cells: C3D4 301 MB in 1.2 s,
+/// C3D10 998 MB in 5.1 s); memory: the packing and TetGen's meshes (the writers stream).
+RunEstimate estimate_export(const ExportWork& work);
+/// render (3D, headless): ~1.5 s for the context, the read and the first frame, then ~80 us per
+/// particle (bench/RESULTS.md, "Rendering": 1,050 particles 1.65 s, 100,000 in 9.05 s);
+/// memory: the packing's shapes three times (packing, drawing data, GPU copy) and the image's
+/// `pixels` x `samples`.
+RunEstimate estimate_render(double particles, double shape_bytes, double pixels, int samples);
+/// shapes -n: `count` particles of `options` grown and described on the allowed threads (a
+/// sample of the first few timed, as estimate_run's), a CSV row each when `has_output`.
+RunEstimate estimate_shapes(const GeneratorOptions& options, double count, bool has_output);
+
 /// A run is heavy above either of these: it is announced before it starts.
 inline constexpr double kHeavySeconds = 10.0;
 inline constexpr double kHeavyBytes = 1e9;
 
 /// One line announcing a heavy run ("a large run: ~600000 particles, ~4.8 GB of memory, ~3 min
-/// (rough estimate; Ctrl-C stops it)"; "up to ~3 min" for an upper bound), or "" when the
-/// estimate is below kHeavySeconds and kHeavyBytes.
+/// (rough estimate; Ctrl-C stops it)"; "up to ~3 min" for an upper bound; ", ~1.2 GB written"
+/// after the memory when output_bytes is set), or "" when the estimate is below kHeavySeconds
+/// and kHeavyBytes (memory and output).
 std::string heavy_run_note(const RunEstimate& estimate);
 
 }  // namespace aggpack

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -73,9 +74,10 @@ struct ShapeLibrary {
   std::vector<LibraryShape> shapes;
   std::vector<std::string> skipped;  ///< one line per skipped file: "name: reason"
 
-  /// Provenance text stored in the native file: a header line, then one line per shape
-  /// ("name<TAB>hash"), shape k on line k + 1.
-  [[nodiscard]] std::string provenance() const;
+  /// Provenance text stored in the native file: a header line ("library SRC (units mm, 40
+  /// shapes, 1 skipped, 12 stored)"), then one line per stored shape ("name<TAB>hash"): the
+  /// packing's shape k, library shape stored[k], on line k + 1.
+  [[nodiscard]] std::string provenance(std::span<const std::uint32_t> stored) const;
   /// "rocks/ (12 shapes, 1 skipped, units mm)": what was loaded, for the front ends.
   [[nodiscard]] std::string summary() const;
   /// "add 1.2e-06 m^3 to 3.4e-05 m^3 of meshes (+3.529 %)": the volume the convex hulls added,

@@ -1,0 +1,102 @@
+// Progress of the long stages end to end (issue 36, item 2): `sweep` and `repose --seeds` show
+// their bar at 0 of N before the first run ends; `mesomodel --voxels` shows its stage; export's
+// TetGen stage shows the estimate's ETA and the per-shape time limit; export's tetrahedron
+// quality gets a one-line verdict (item 4). The display's text itself: progress_test.cpp.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "support/cli_test.h"
+#include "support/paths.h"
+
+namespace aggpack {
+namespace {
+
+using test::CliRun;
+using test::has_subcommand;
+
+// The tiny trough of the golden sweep case (a few seconds a run).
+const std::string kStageTrough = "'" + test::source_dir() + "/tests/cli/cases/sweep/trough.toml'";
+
+using ProgressCliTest = test::CliTest;
+
+// `before` occurs in `text`, and before `after` when that occurs too.
+void expect_before(const std::string& text, const std::string& before, const std::string& after) {
+  const auto first = text.find(before);
+  ASSERT_NE(first, std::string::npos) << text;
+  const auto second = text.find(after);
+  ASSERT_NE(second, std::string::npos) << text;
+  EXPECT_LT(first, second) << text;
+}
+
+TEST_F(ProgressCliTest, SweepAndSeedEnsembleShowTheBarFromTheStart) {
+  if (!has_subcommand("sweep") || !has_subcommand("repose")) GTEST_SKIP() << "built without Bullet";
+  // One run at a time: "0/2" can only come from the start, "1/2" after the first run.
+  const CliRun sweep = run("sweep " + kStageTrough +
+                           " -o grid --set sweep.alphas=[0.5] --set sweep.frictions=[0.2,0.4] "
+                           "--width 64 --no-plot --progress bar -j 1");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  expect_before(sweep.err, "0.0%  0/2 cases", "1/2 cases");
+  const CliRun seeds =
+      run("repose " + kStageTrough + " --seeds 1-2 -o seeds --width 64 --progress bar -j 1");
+  ASSERT_EQ(seeds.exit_code, 0) << seeds.err;
+  expect_before(seeds.err, "0.0%  0/2 seeds", "1/2 seeds");
+}
+
+TEST_F(ProgressCliTest, MesomodelVoxelsShowsItsStage) {
+  ASSERT_EQ(run("pack --progress none -o small.h5 --set container.length=0.6 --set "
+                "container.width=0.4 --set container.depth=0.4")
+                .exit_code,
+            0);
+  // 160^3 voxels at 0.8 us each: 3.3 s by the estimate, so the stage is shown at once.
+  const CliRun heavy = run("mesomodel small.h5 --voxels 160 -o heavy.vti --progress lines");
+  ASSERT_EQ(heavy.exit_code, 0) << heavy.err;
+  EXPECT_EQ(heavy.err.rfind("voxelising: 0:00 elapsed, ETA ~0:03 by the estimate\n", 0), 0U)
+      << heavy.err;
+  EXPECT_NE(heavy.err.find("voxelising: done in "), std::string::npos) << heavy.err;
+  // A light image ends before any line is due: nothing.
+  const CliRun light = run("mesomodel small.h5 --voxels 32 -o light.vti --progress lines");
+  ASSERT_EQ(light.exit_code, 0) << light.err;
+  EXPECT_EQ(light.err.find("voxelising"), std::string::npos) << light.err;
+}
+
+TEST_F(ProgressCliTest, ExportTetGenStageShowsEtaAndShapeLimitAndQualityVerdict) {
+  // Particles of R = 0.07 m in the paper's box: ~3,000 shapes, ~3 s of TetGen by the estimate
+  // on one thread, so the stage is shown at once.
+  ASSERT_EQ(run("pack --progress none -o many.h5 --set particle.radius=0.07 --set "
+                "particle.edge_length=0.07")
+                .exit_code,
+            0);
+  const CliRun tetgen =
+      run("export many.h5 --format inp --tet-method tetgen --tet-time-limit 30 -o many.inp -j 1 "
+          "--progress lines");
+  ASSERT_EQ(tetgen.exit_code, 0) << tetgen.err;
+  EXPECT_EQ(tetgen.err.rfind("meshing shapes (TetGen): 0:00 elapsed, ETA ~0:0", 0), 0U)
+      << tetgen.err;
+  const std::string first = tetgen.err.substr(0, tetgen.err.find('\n'));
+  EXPECT_NE(first.find(" by the estimate (each shape stops at its time limit of 30 s)"),
+            std::string::npos)
+      << first;
+  EXPECT_NE(tetgen.err.find("meshing shapes (TetGen): done in "), std::string::npos) << tetgen.err;
+  // The quality line is followed by its verdict, one line, naming what made the flat
+  // tetrahedra and what to do.
+  EXPECT_NE(tetgen.out.find("\nquality verdict: as expected (TetGen keeps the surface "
+                            "triangles: flat where --radius-edge would split one); solvers run "
+                            "such meshes (CalculiX down to 0.017 deg"),
+            std::string::npos)
+      << tetgen.out;
+  EXPECT_NE(tetgen.out.find("better-shaped: --split-surface\n"), std::string::npos) << tetgen.out;
+  const CliRun fan = run("export many.h5 --format inp -o fan.inp --progress lines");
+  ASSERT_EQ(fan.exit_code, 0) << fan.err;
+  EXPECT_EQ(fan.err.find("meshing shapes"), std::string::npos) << fan.err;
+  EXPECT_NE(fan.out.find("\nquality verdict: as expected (the centroid fan: flat over small or "
+                         "steep surface triangles)"),
+            std::string::npos)
+      << fan.out;
+  EXPECT_NE(fan.out.find("better-shaped: --tet-method tetgen --split-surface\n"), std::string::npos)
+      << fan.out;
+}
+
+}  // namespace
+}  // namespace aggpack
