@@ -82,9 +82,9 @@ std::string error_words(const std::exception& error) {
   const auto* library = dynamic_cast<const Error*>(&error);
   if (library == nullptr) return trs(Text::kErrorOther, error.what());
   if (library->has_value()) {
-    return trs(library->kind() == ErrorKind::kLimitExceeded ? Text::kLimitNotAllowed
-                                                            : Text::kNotAllowed,
-               library->field(), library->value(), wording_words(library->wording()));
+    return trs(
+        library->kind() == ErrorKind::kLimitExceeded ? Text::kLimitNotAllowed : Text::kNotAllowed,
+        library->field(), library->value(), wording_words(library->wording()));
   }
   if (library->wording().sentence == Sentence::kText) return without_origin(error.what());
   return wording_words(library->wording());

@@ -27,7 +27,8 @@ std::string wording_words(const Wording& wording);
 
 /// An error in the current language: a refused value as "FIELD: VALUE is not allowed; allowed:
 /// ..." (a limit: "... is over a limit ..."), another aggpack error as its sentence, anything else
-/// as "Error: what()". A ConfigError's origin ("gui: ", "--set K=V: ") is left out: the panel is it.
+/// as "Error: what()". A ConfigError's origin ("gui: ", "--set K=V: ") is left out: the panel is
+/// it.
 std::string error_words(const std::exception& error);
 
 /// The packer's report line (in English, PackReport::summary()'s words).

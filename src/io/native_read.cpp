@@ -554,7 +554,8 @@ Packing read_hdf5(const std::string& path) {
 
 Packing read_packing(const std::string& path) {
   std::error_code error;
-  if (!std::filesystem::exists(path, error)) throw IoError(Wording{Sentence::kReadNoSuchFile, {path}});
+  if (!std::filesystem::exists(path, error))
+    throw IoError(Wording{Sentence::kReadNoSuchFile, {path}});
   if (std::filesystem::is_directory(path, error)) {
     throw IoError(Wording{Sentence::kReadFolder, {path}});
   }

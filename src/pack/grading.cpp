@@ -63,16 +63,18 @@ void validate(const Grading& grading) {
       require_positive("grading.radius_min", grading.radius_min);
       require_positive("grading.radius_max", grading.radius_max);
       if (grading.radius_max < grading.radius_min) {
-        throw InvalidInput("grading.radius_max", format_value(grading.radius_max),
-                           {Sentence::kAtLeastKey, {"grading.radius_min", format_value(grading.radius_min)}});
+        throw InvalidInput(
+            "grading.radius_max", format_value(grading.radius_max),
+            {Sentence::kAtLeastKey, {"grading.radius_min", format_value(grading.radius_min)}});
       }
       return;
     case GradingKind::kFuller:
       require_positive("grading.size_min", grading.size_min);
       require_positive("grading.size_max", grading.size_max);
       if (!(grading.size_max > grading.size_min)) {
-        throw InvalidInput("grading.size_max", format_value(grading.size_max),
-                           {Sentence::kAboveKey, {"grading.size_min", format_value(grading.size_min)}});
+        throw InvalidInput(
+            "grading.size_max", format_value(grading.size_max),
+            {Sentence::kAboveKey, {"grading.size_min", format_value(grading.size_min)}});
       }
       if (!std::isfinite(grading.exponent) || grading.exponent <= 0.0 || grading.exponent > 10.0) {
         throw InvalidInput("grading.exponent", format_value(grading.exponent), "(0, 10]");
@@ -94,9 +96,9 @@ void validate(const Grading& grading) {
               Wording{Sentence::kSieveSizesIncrease, {format_value(rows[k - 1].size)}});
         }
         if (k > 0 && rows[k].percent_passing < rows[k - 1].percent_passing) {
-          throw InvalidInput(prefix + ".percent_passing", format_value(rows[k].percent_passing),
-                             Wording{Sentence::kSievePassingRises,
-                                     {format_value(rows[k - 1].percent_passing)}});
+          throw InvalidInput(
+              prefix + ".percent_passing", format_value(rows[k].percent_passing),
+              Wording{Sentence::kSievePassingRises, {format_value(rows[k - 1].percent_passing)}});
         }
       }
       if (rows.back().percent_passing != 100.0) {

@@ -204,7 +204,8 @@ void validate(const LatticeOptions& options) {
   require_positive("lattice.radius", options.radius);
   require_positive("lattice.edge_length", options.edge_length);
   if (!std::isfinite(options.gap) || options.gap < 0.0) {
-    throw InvalidInput("lattice.gap", format_value(options.gap), Wording{Sentence::kFiniteAtLeastZero, {}});
+    throw InvalidInput("lattice.gap", format_value(options.gap),
+                       Wording{Sentence::kFiniteAtLeastZero, {}});
   }
   if (!std::isfinite(options.spacing) || options.spacing < 0.0) {
     throw InvalidInput("lattice.spacing", format_value(options.spacing),
@@ -228,9 +229,8 @@ void validate(const LatticeOptions& options) {
   }
   const double sites = static_cast<double>(counts[0]) * counts[1] * counts[2];
   if (sites > 1e8) {
-    throw LimitExceeded(
-        "lattice.radius", format_value(options.radius),
-        Wording{Sentence::kLatticeSites, {format_value(sites)}});
+    throw LimitExceeded("lattice.radius", format_value(options.radius),
+                        Wording{Sentence::kLatticeSites, {format_value(sites)}});
   }
   check_resources(options, sites);  // shapes that would not fit in memory (issue 12)
 }

@@ -32,9 +32,10 @@ void validate_shape(const ShapeOptions& shape, double largest_radius) {
     throw InvalidInput("shape.library_size", std::to_string(shape.library_size), "[0, 1000000]");
   }
   if (shape.library_size > 0 && shape.edge_length > 0.0) {
-    throw InvalidInput("shape.library_size", std::to_string(shape.library_size),
-                       Wording{Sentence::kLibraryNeedsRelativeLength,
-                               {"shape.edge_length", "shape.edge_length", "shape.edge_length_ratio"}});
+    throw InvalidInput(
+        "shape.library_size", std::to_string(shape.library_size),
+        Wording{Sentence::kLibraryNeedsRelativeLength,
+                {"shape.edge_length", "shape.edge_length", "shape.edge_length_ratio"}});
   }
   if (shape.files.is_used()) {
     if (shape.library_size > 0) {
@@ -52,8 +53,9 @@ void validate_shape(const ShapeOptions& shape, double largest_radius) {
         shape.edge_length > 0.0 ? "shape.edge_length" : "shape.edge_length_ratio";
     throw LimitExceeded(
         field, format_value(shape.edge_length > 0.0 ? shape.edge_length : shape.edge_length_ratio),
-        Wording{Sentence::kVerticesNeeded, {"shape.max_vertices", std::to_string(shape.max_vertices),
-                                            format_value(std::round(estimate))}});
+        Wording{Sentence::kVerticesNeeded,
+                {"shape.max_vertices", std::to_string(shape.max_vertices),
+                 format_value(std::round(estimate))}});
   }
 }
 
@@ -69,10 +71,10 @@ void validate(const RandomPackOptions& options) {
     }
     const ShapeFiles& files = options.shape.files;
     if (files.loaded && files.options.is_use_once && options.count > files.loaded->shapes.size()) {
-      throw LimitExceeded("random.count", std::to_string(options.count),
-                          Wording{Sentence::kCountAtMostLibrary,
-                                  {std::to_string(files.loaded->shapes.size()),
-                                   "particle.library_use_once"}});
+      throw LimitExceeded(
+          "random.count", std::to_string(options.count),
+          Wording{Sentence::kCountAtMostLibrary,
+                  {std::to_string(files.loaded->shapes.size()), "particle.library_use_once"}});
     }
   } else if (options.target == PackTarget::kVolumeFraction) {
     if (!std::isfinite(options.volume_fraction) || options.volume_fraction <= 0.0 ||
@@ -85,7 +87,8 @@ void validate(const RandomPackOptions& options) {
                        "count or volume_fraction");
   }
   if (!std::isfinite(options.gap) || options.gap < 0.0) {
-    throw InvalidInput("random.gap", format_value(options.gap), Wording{Sentence::kFiniteAtLeastZero, {}});
+    throw InvalidInput("random.gap", format_value(options.gap),
+                       Wording{Sentence::kFiniteAtLeastZero, {}});
   }
   if (options.max_attempts_per_particle < 1 || options.max_attempts_per_particle > 1000000000ULL) {
     throw InvalidInput("random.max_attempts_per_particle",
@@ -108,9 +111,9 @@ void validate(const RandomPackOptions& options) {
                                (options.shape.alpha + 0.2 * (1.0 - options.shape.alpha)) /
                                std::sqrt(3.0);
   if (2.0 * smallest_ball > interior) {
-    throw InvalidInput(
-        "grading", "smallest size " + format_value(smallest_size(options.grading)) + " m",
-        Wording{Sentence::kGradingFitsInterior, {format_value(interior)}});
+    throw InvalidInput("grading",
+                       "smallest size " + format_value(smallest_size(options.grading)) + " m",
+                       Wording{Sentence::kGradingFitsInterior, {format_value(interior)}});
   }
   if (options.target == PackTarget::kVolumeFraction) {
     // Lower bound on the list length: particles no larger than their control spheres.

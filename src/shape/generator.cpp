@@ -104,11 +104,11 @@ void validate(const GrowthParams& params) {
                           : std::min(no_growth, params.radius * std::sqrt(4.0 * std::numbers::pi /
                                                                           (std::sqrt(3.0) / 4.0) /
                                                                           (2.0 * half_faces)));
-    throw LimitExceeded("edge_length", format_value(params.edge_length),
-                        Wording{Sentence::kEdgeLengthForVertexCap,
-                                {format_value(smallest), format_value(params.radius),
-                                 format_value(std::round(estimate)),
-                                 std::to_string(params.max_vertices)}});
+    throw LimitExceeded(
+        "edge_length", format_value(params.edge_length),
+        Wording{Sentence::kEdgeLengthForVertexCap,
+                {format_value(smallest), format_value(params.radius),
+                 format_value(std::round(estimate)), std::to_string(params.max_vertices)}});
   }
 }
 

@@ -29,8 +29,8 @@ constexpr auto kSentenceCount = static_cast<int>(Sentence::kCount);
 std::set<std::string> english_words_of(const std::string& text) {
   static const std::regex word("[A-Za-z]{3,}");
   std::set<std::string> words;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), word);
-       it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), word); it != std::sregex_iterator();
+       ++it) {
     words.insert(it->str());
   }
   return words;
@@ -89,7 +89,8 @@ TEST(LibraryWords, RefusedValueInChinese) {
   } catch (const InvalidInput& error) {
     ASSERT_TRUE(error.has_value());
     EXPECT_EQ(error.wording().sentence, Sentence::kAtLeastKey);
-    EXPECT_STREQ(error.what(), "invalid grading.radius_max = 0.01 (allowed: >= grading.radius_min = 0.02)");
+    EXPECT_STREQ(error.what(),
+                 "invalid grading.radius_max = 0.01 (allowed: >= grading.radius_min = 0.02)");
     EXPECT_EQ(in_chinese([&] { return error_words(error); }),
               "grading.radius_max：不允许取值 0.01；允许范围：不小于 grading.radius_min = 0.02");
     EXPECT_EQ(error_words(error),
@@ -100,9 +101,9 @@ TEST(LibraryWords, RefusedValueInChinese) {
 TEST(LibraryWords, RuleBetweenKeysInChinese) {
   // The configuration's own rule (as the panel's Pack meets it): a ConfigError with its parts.
   try {
-    (void)parse_pack_config("", "gui",
-                            {"packer.kind=\"random\"", "particle.radius_min=0.02",
-                             "particle.radius_max=0.01"});
+    (void)parse_pack_config(
+        "", "gui",
+        {"packer.kind=\"random\"", "particle.radius_min=0.02", "particle.radius_max=0.01"});
     FAIL() << "radius_max < radius_min was accepted";
   } catch (const ConfigError& error) {
     ASSERT_TRUE(error.has_value()) << error.what();
@@ -123,7 +124,8 @@ TEST(LibraryWords, ReadErrorsInChinese) {
   } catch (const IoError& error) {
     EXPECT_EQ(error.wording().sentence, Sentence::kReadNoSuchFile);
     EXPECT_EQ(error_words(error), std::string(error.what()));  // English: the library's words
-    EXPECT_EQ(in_chinese([&] { return error_words(error); }), "无法读取 " + missing + "：文件不存在");
+    EXPECT_EQ(in_chinese([&] { return error_words(error); }),
+              "无法读取 " + missing + "：文件不存在");
   }
   const auto text_file = std::filesystem::temp_directory_path() / "aggpack-gui-not-hdf5.h5";
   std::ofstream(text_file) << "not a packing\n";
@@ -132,8 +134,9 @@ TEST(LibraryWords, ReadErrorsInChinese) {
     FAIL() << "a text file was read as a packing";
   } catch (const FormatError& error) {
     EXPECT_EQ(error.wording().sentence, Sentence::kNotHdf5);
-    EXPECT_EQ(in_chinese([&] { return error_words(error); }),
-              text_file.string() + "：不是 HDF5 文件（应为 aggpack 堆积文件，格式 aggpack-packing）");
+    EXPECT_EQ(
+        in_chinese([&] { return error_words(error); }),
+        text_file.string() + "：不是 HDF5 文件（应为 aggpack 堆积文件，格式 aggpack-packing）");
   }
   std::filesystem::remove(text_file);
 }

@@ -94,10 +94,10 @@ class LimitExceeded : public Error {
   LimitExceeded(const std::string& field, const std::string& value, const std::string& allowed)
       : LimitExceeded(field, value, Wording{Sentence::kText, {allowed}}) {}
   LimitExceeded(const std::string& field, const std::string& value, Wording allowed)
-      : Error(ErrorKind::kLimitExceeded,
-              "limit exceeded for " + field + " = " + value + " (allowed: " + english(allowed) +
-                  ")",
-              field, value, allowed) {}
+      : Error(
+            ErrorKind::kLimitExceeded,
+            "limit exceeded for " + field + " = " + value + " (allowed: " + english(allowed) + ")",
+            field, value, allowed) {}
 };
 
 /// Formats a double for error messages with enough digits to be unambiguous.
