@@ -25,9 +25,9 @@ namespace {
 
 constexpr auto kSentenceCount = static_cast<int>(Sentence::kCount);
 
-// Words of three or more letters ("allowed", "finite").
+// Words of three or more characters ("allowed", "finite", "format_name", "HDF5").
 std::set<std::string> english_words_of(const std::string& text) {
-  static const std::regex word("[A-Za-z]{3,}");
+  static const std::regex word("[A-Za-z_][A-Za-z0-9_]{2,}");
   std::set<std::string> words;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), word); it != std::sregex_iterator();
        ++it) {
