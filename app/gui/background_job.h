@@ -12,6 +12,7 @@
 
 #include "aggpack/pack/packing.h"
 #include "aggpack/render/renderer.h"
+#include "library_words.h"
 
 #ifdef AGGPACK_HAS_TBB
 #include <tbb/task_scheduler_observer.h>
@@ -55,7 +56,7 @@ struct JobResult {
 class BackgroundJob {
  public:
   /// The task gets the job so it can publish progress and poll cancellation; it returns its
-  /// result or throws (the exception text becomes the status message).
+  /// result or throws (the error, in the window's language, becomes the status message).
   using Task = std::function<JobResult(BackgroundJob&)>;
 
   BackgroundJob() = default;
@@ -80,7 +81,7 @@ class BackgroundJob {
         result = task(*this);
       } catch (const std::exception& error) {
         result.is_ok = false;
-        result.message = error.what();
+        result.message = error_words(error);
       }
       {
         std::lock_guard lock(mutex_);

@@ -18,6 +18,7 @@
 #include "error_colours.h"
 #include "gui_app.h"
 #include "i18n.h"
+#include "library_words.h"
 
 namespace aggpack::gui {
 
@@ -229,10 +230,10 @@ void GuiApp::draw_sieve_table(std::vector<SieveRow>& rows) {
   try {
     validate(Grading{.kind = GradingKind::kSieve, .sieve = rows});
   } catch (const InvalidInput& invalid) {
-    error = invalid.what();
+    error = error_words(invalid);
     error_field = invalid.field();
   } catch (const Error& other) {
-    error = other.what();
+    error = error_words(other);
   }
   ImGui::TextUnformatted(tr(Text::kSieveTitle));
   int insert_after = -1, remove = -1;

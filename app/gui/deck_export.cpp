@@ -15,6 +15,7 @@
 #include "file_dialog.h"
 #include "gui_app.h"
 #include "i18n.h"
+#include "library_words.h"
 
 namespace aggpack::gui {
 
@@ -77,20 +78,6 @@ struct DeckField {
   double* value;
 };
 
-// "invalid friction = 11 (allowed: [0, 10])" as "friction: 11 is not allowed; allowed: [0, 10]."
-std::string plain_words(const InvalidInput& invalid) {
-  const std::string message = invalid.what();
-  const auto equals = message.find(" = ");
-  const auto allowed = message.find(" (allowed: ");
-  if (equals == std::string::npos || allowed == std::string::npos || allowed < equals ||
-      message.back() != ')') {
-    return plain_error(message);
-  }
-  const std::string value = message.substr(equals + 3, allowed - equals - 3);
-  const std::string range = message.substr(allowed + 11, message.size() - allowed - 12);
-  return trs(Text::kNotAllowed, invalid.field(), value, range);
-}
-
 }  // namespace
 
 std::string GuiApp::draw_deck_fields(DeckKind deck) {
@@ -106,10 +93,10 @@ std::string GuiApp::draw_deck_fields(DeckKind deck) {
   try {  // the library's own check: the words and ranges `aggpack export --deck` uses
     validate(options, options.format);
   } catch (const InvalidInput& invalid) {
-    error = plain_words(invalid);
+    error = error_words(invalid);
     error_field = invalid.field();
   } catch (const Error& other) {
-    error = plain_error(other.what());
+    error = error_words(other);
   }
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%s", trf(Text::kTroughTest, deck_run_hint(deck)).c_str());

@@ -11,6 +11,7 @@
 #include "aggpack/core/error.h"
 #include "gui_app.h"
 #include "i18n.h"
+#include "library_words.h"
 
 namespace aggpack::gui {
 
@@ -72,16 +73,18 @@ void GuiApp::update_field_errors() {
   try {
     (void)fields_.build();
   } catch (const ConfigError& error) {
-    std::string message = plain_error(error.what());
-    const std::string prefix = error.key() + ": ";
+    // Worded from the error's parts (library_words.h); beside its field without the key.
+    const std::string words = error_words(error);
+    std::string message = words;
+    const std::string prefix = error.key() + tr(Text::kKeySeparator);
     if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
     if (error.key().empty() || !fields_.has(error.key())) {
-      form_error_ = plain_error(error.what());
+      form_error_ = words;
     } else {
       field_errors_[error.key()] = message;
     }
   } catch (const Error& error) {
-    form_error_ = plain_error(error.what());
+    form_error_ = error_words(error);
   }
 }
 

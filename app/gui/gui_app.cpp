@@ -21,6 +21,7 @@
 #include "aggpack/pack/random_packer.h"
 #include "aggpack/shape/generator.h"
 #include "i18n.h"
+#include "library_words.h"
 
 namespace aggpack::gui {
 
@@ -29,34 +30,6 @@ namespace {
 constexpr float kPanelWidth = 360.0f;
 
 }  // namespace
-
-std::string plain_error(std::string message) {
-  // The panel is the origin: no "gui: " or "--set KEY=VALUE: " before the message.
-  for (const std::string_view prefix :
-       {std::string_view("gui: "), std::string_view("defaults: ")}) {
-    if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
-  }
-  if (message.rfind("--set ", 0) == 0) {
-    const auto colon = message.find(": ");
-    if (colon != std::string::npos) message.erase(0, colon + 2);
-  }
-  // "invalid KEY = VALUE (allowed: RANGE)" -> "KEY: VALUE is not allowed; allowed: RANGE".
-  const std::string lead = "invalid ";
-  const auto equals = message.find(" = ");
-  const auto allowed = message.find(" (allowed: ");
-  if (message.rfind(lead, 0) == 0 && equals != std::string::npos && allowed != std::string::npos &&
-      equals < allowed) {
-    const std::string key = message.substr(lead.size(), equals - lead.size());
-    // Only a configuration key ("particle.alpha"); other subjects keep their sentence.
-    if (key.find(' ') != std::string::npos || key.find('.') == std::string::npos) return message;
-    const std::string value = message.substr(equals + 3, allowed - equals - 3);
-    std::string rest = message.substr(allowed + 11);
-    const auto close = rest.rfind(')');
-    if (close != std::string::npos) rest.erase(close, 1);
-    return trs(Text::kNotAllowed, key, value, rest);
-  }
-  return message;
-}
 
 GuiApp::GuiApp(GLFWwindow* window, GuiOptions options)
     : window_(window), options_(std::move(options)) {
@@ -167,7 +140,7 @@ void GuiApp::show_packing(std::shared_ptr<const Packing> packing, std::shared_pt
   try {
     upload_.begin(*renderer_, std::move(packing), std::move(scene), std::move(entries));
   } catch (const Error& error) {
-    set_status(error.what(), true);
+    set_status(error_words(error), true);
     return;
   }
   finish_upload_if_done();

@@ -70,10 +70,6 @@ struct GuiOptions {
   std::string settings_dir;
 };
 
-/// An error message in the panel's words: no "gui: " or "--set KEY=VALUE: " origin, and
-/// "invalid KEY = V (allowed: R)" as "KEY: V is not allowed; allowed: R".
-std::string plain_error(std::string message);
-
 class GuiApp {
  public:
   /// Needs the window's OpenGL 3.3 core context current. \throw Error for a bad configuration.

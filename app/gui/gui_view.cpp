@@ -17,6 +17,7 @@
 #include "aggpack/core/error.h"
 #include "gui_app.h"
 #include "i18n.h"
+#include "library_words.h"
 
 namespace aggpack::gui {
 
@@ -226,7 +227,7 @@ void GuiApp::save_screenshot(const std::string& path) {
     set_status(trs(Text::kSavedScreenshot, path), false);
   } catch (const Error& error) {
     std::fprintf(stderr, "aggpack-gui: error: %s\n", error.what());
-    set_status(error.what(), true);
+    set_status(error_words(error), true);
     exit_code_ = 3;
   }
 }

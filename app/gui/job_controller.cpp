@@ -15,6 +15,7 @@
 #include "aggpack/pipeline/pipeline.h"
 #include "gui_app.h"
 #include "i18n.h"
+#include "library_words.h"
 
 namespace aggpack::gui {
 
@@ -28,30 +29,6 @@ void build_scene(BackgroundJob& job, JobResult& out) {
   out.scene = prepare_scene(*out.packing, [&job](double fraction) { job.set_progress(fraction); });
 }
 
-// The packer's report line in the window's language (in English, PackReport::summary()'s).
-std::string report_summary(const PackReport& report) {
-  Text reason = Text::kStopTarget;
-  switch (report.stop_reason) {
-    case StopReason::kTargetReached:
-      break;
-    case StopReason::kAttemptBudget:
-      reason = Text::kStopBudget;
-      break;
-    case StopReason::kConsecutiveFailures:
-      reason = Text::kStopFailures;
-      break;
-    case StopReason::kSizeListExhausted:
-      reason = Text::kStopSizeList;
-      break;
-    case StopReason::kCancelled:
-      reason = Text::kStopCancelled;
-      break;
-  }
-  return trs(Text::kReportSummary, report.placed, report.requested, report.rejected,
-             report.solid_volume, report.container_volume, 100.0 * report.solid_fraction,
-             tr(reason));
-}
-
 }  // namespace
 
 void GuiApp::start_pack() {
@@ -62,7 +39,7 @@ void GuiApp::start_pack() {
   try {
     config = fields_.build();
   } catch (const Error& error) {
-    set_status(plain_error(error.what()), true);
+    set_status(error_words(error), true);
     if (script_.is_waiting_for_first_job()) exit_code_ = 2;
     return;
   }
@@ -87,19 +64,19 @@ void GuiApp::start_pack() {
     JobResult out;
     const bool is_cancelled = result.report.stop_reason == StopReason::kCancelled;
     out.is_ok = true;
-    // The densifier's summary and the shortfall warnings are the library's words (English).
+    // Every line from the reports' numbers, in the window's language (library_words.h).
     out.message = trs(is_cancelled ? Text::kPackCancelled : Text::kPackFinished,
                       result.packing.particles.size(), 100.0 * result.report.solid_fraction) +
                   "\n" +
-                  (result.fill ? tr(Text::kFillPrefix) + report_summary(result.fill->report)
-                               : report_summary(result.report));
+                  (result.fill ? tr(Text::kFillPrefix) + report_words(result.fill->report)
+                               : report_words(result.report));
     // The dense kind: the densifier, the asked fraction, and what fell short of it.
     if (result.densify)
-      out.message += "\n" + (tr(Text::kDensifyPrefix) + result.densify->summary());
+      out.message += "\n" + (tr(Text::kDensifyPrefix) + densify_words(*result.densify));
     if (result.fill && result.fill->asked_fraction > 0) {
       out.message += trs(Text::kAskedFraction, 100.0 * result.fill->asked_fraction);
     }
-    for (const std::string& line : dense_shortfalls(result)) {
+    for (const std::string& line : shortfall_words(result)) {
       out.message += "\n" + (tr(Text::kWarningPrefix) + line);
     }
     out.packing = std::make_shared<const Packing>(std::move(result.packing));
@@ -141,7 +118,7 @@ void GuiApp::start_export(const std::string& format, DeckKind deck, const std::s
   try {  // the fields' errors at once, before the job
     validate(options, options.format);
   } catch (const Error& error) {
-    set_status(plain_error(error.what()), true);
+    set_status(error_words(error), true);
     return;
   }
   set_status(trs(Text::kStatusWriting, path), false);
@@ -171,7 +148,7 @@ void GuiApp::poll_job() {
     }
   }
   if (result.packing && job_kind_ == "open") entries = fields_.set_entries();
-  set_status(plain_error(message), !result.is_ok);
+  set_status(message, !result.is_ok);
   if (result.packing) show_packing(result.packing, result.scene, std::move(entries));
   script_.on_job_result(result);
 }

@@ -18,6 +18,7 @@
 #include "error_colours.h"
 #include "gui_app.h"
 #include "i18n.h"
+#include "library_words.h"
 
 namespace aggpack::gui {
 
@@ -113,7 +114,7 @@ void GuiApp::start_mesomodel_export(const std::string& extension) {
   try {
     validate(meso);
   } catch (const Error& error) {
-    set_status(plain_error(error.what()), true);
+    set_status(error_words(error), true);
     return;
   }
   const std::string path = export_base_ + "-mesomodel" + extension;

@@ -17,9 +17,8 @@ void check_cross_key_rules(const PackConfig& config, const GivenValues& given) {
   };
   if (const auto* lattice = find_options<LatticeOptions>(config.packer)) {
     if (lattice->edge_length == 0) {
-      fail_key(given, "particle.edge_length",
-               "invalid particle.edge_length = 0 (allowed: > 0 with packer.kind = lattice; "
-               "0 = relative edge length exists only for the random packer)");
+      fail_key(given, "particle.edge_length", "particle.edge_length", "0",
+               {Sentence::kEdgeLengthLattice, {}});
     }
     return;
   }
@@ -29,17 +28,14 @@ void check_cross_key_rules(const PackConfig& config, const GivenValues& given) {
   if (g.kind == GradingKind::kUniform && g.radius_max < g.radius_min) {
     fail_key(given,
              given.count("particle.radius_max") > 0 ? "particle.radius_max" : "particle.radius_min",
-             "invalid particle.radius_max = " + format_value(value_of("particle.radius_max")) +
-                 " (allowed: >= particle.radius_min = " +
-                 format_value(value_of("particle.radius_min")) + " m)");
+             "particle.radius_max", format_value(value_of("particle.radius_max")),
+             {Sentence::kAtLeastKeyMetres,
+              {"particle.radius_min", format_value(value_of("particle.radius_min"))}});
   } else if (g.kind == GradingKind::kFuller && g.size_max <= g.size_min) {
-    fail_key(given, "grading.size_max",
-             "invalid grading.size_max = " + format_value(g.size_max) +
-                 " (allowed: > grading.size_min = " + format_value(g.size_min) + " m)");
+    fail_key(given, "grading.size_max", "grading.size_max", format_value(g.size_max),
+             {Sentence::kAboveKeyMetres, {"grading.size_min", format_value(g.size_min)}});
   } else if (g.kind == GradingKind::kSieve && given.count("grading.sieve") == 0) {
-    throw ConfigError("grading.sieve",
-                      "grading.kind = \"sieve\" needs grading.sieve = [[size_m, "
-                      "percent_passing], ...] (at least 2 rows)");
+    throw ConfigError("grading.sieve", Wording{Sentence::kSieveNeeded, {}});
   }
 }
 

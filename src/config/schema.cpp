@@ -154,6 +154,13 @@ void fail_key(const GivenValues& given, const std::string& key, const std::strin
   throw ConfigError(key, where + message);
 }
 
+void fail_key(const GivenValues& given, const std::string& key, const std::string& field,
+              const std::string& value, const Wording& allowed) {
+  const auto found = given.find(key);
+  const std::string where = found != given.end() ? found->second.origin + ": " : "";
+  throw ConfigError(key, where, field, value, allowed);
+}
+
 std::string to_key_names(const std::vector<KeyView>& keys,
                          const std::map<std::string, std::string>& aliases, std::string message) {
   std::map<std::string, std::string> names = aliases;
@@ -192,12 +199,32 @@ std::string to_key_names(const std::vector<KeyView>& keys,
 void with_key_names(const std::vector<KeyView>& keys,
                     const std::map<std::string, std::string>& aliases,
                     const std::function<void()>& check) {
+  // A name in the error's parts, renamed ("lattice.radius" -> the key), as in its message.
+  auto renamed = [&](const std::string& name) {
+    const std::string lead = to_key_names(keys, aliases, "invalid " + name + " = ");
+    return lead.substr(8, lead.size() - 11);
+  };
+  auto renamed_wording = [&](Wording wording) {
+    for (std::string& value : wording.values) value = to_key_names(keys, aliases, value);
+    return wording;
+  };
   try {
     check();
   } catch (const InvalidInput& error) {
-    // The key: the field's message lead, renamed ("invalid lattice.radius = " -> the key).
-    const std::string lead = to_key_names(keys, aliases, "invalid " + error.field() + " = ");
-    throw ConfigError(lead.substr(8, lead.size() - 11), to_key_names(keys, aliases, error.what()));
+    const std::string key = renamed(error.field());
+    ConfigError renamed_error(key, "", key, error.value(), renamed_wording(error.wording()));
+    // The message as before (also the names within the allowed text's own words).
+    if (renamed_error.what() != to_key_names(keys, aliases, error.what())) {
+      throw ConfigError(renamed(error.field()), to_key_names(keys, aliases, error.what()));
+    }
+    throw renamed_error;
+  } catch (const LimitExceeded& error) {
+    LimitExceeded renamed_error(renamed(error.field()), error.value(),
+                                renamed_wording(error.wording()));
+    if (renamed_error.what() != to_key_names(keys, aliases, error.what())) {
+      throw Error(error.kind(), to_key_names(keys, aliases, error.what()));
+    }
+    throw renamed_error;
   } catch (const Error& error) {
     if (error.kind() != ErrorKind::kInvalidInput && error.kind() != ErrorKind::kLimitExceeded) {
       throw;

@@ -1,7 +1,9 @@
 #include "aggpack/core/error.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
+#include <iterator>
 
 namespace aggpack {
 
@@ -20,8 +22,36 @@ void require_in_range(const std::string& field, double value, double lo, double 
 
 void require_positive(const std::string& field, double value) {
   if (!std::isfinite(value) || value <= 0.0) {
-    throw InvalidInput(field, format_value(value), "finite and > 0");
+    throw InvalidInput(field, format_value(value), Wording{Sentence::kFinitePositive, {}});
   }
+}
+
+}  // namespace aggpack
+
+namespace aggpack {
+
+const char* english_words(Sentence sentence) {
+  static constexpr const char* kWords[] = {
+#define AGGPACK_SENTENCE_WORDS(name, english) english,
+      AGGPACK_ERROR_SENTENCES(AGGPACK_SENTENCE_WORDS)
+#undef AGGPACK_SENTENCE_WORDS
+  };
+  const auto index = static_cast<std::size_t>(sentence);
+  return index < std::size(kWords) ? kWords[index] : "{}";
+}
+
+std::string fill_words(const char* words, const std::vector<std::string>& values) {
+  std::string text;
+  std::size_t next = 0;
+  for (const char* at = words; *at != '\0'; ++at) {
+    if (at[0] == '{' && at[1] == '}' && next < values.size()) {
+      text += values[next++];
+      ++at;
+    } else {
+      text += *at;
+    }
+  }
+  return text;
 }
 
 }  // namespace aggpack

@@ -83,12 +83,16 @@ class Reader {
       : path_(std::move(path)), file_size_(file_size) {}
 
   // "<file>: <what>" for the file as a whole; "<file>: <field>: <reason>" for one object.
-  [[noreturn]] void fail(const std::string& what) const { throw FormatError(path_ + ": " + what); }
+  // (Each a sentence of core/error_words.h, so a front end words it in its own language.)
+  [[noreturn]] void fail(Sentence sentence, std::vector<std::string> values) const {
+    values.insert(values.begin(), path_);
+    throw FormatError(Wording{sentence, std::move(values)});
+  }
   [[noreturn]] void fail(const std::string& field, const std::string& reason) const {
-    fail(field + ": " + reason);
+    fail(Sentence::kFieldInvalid, {field, reason});
   }
   [[noreturn]] void fail_hdf5(const std::string& field, const std::string& what) const {
-    fail(field, what + " (" + hdf5_reason() + "; the file is truncated or corrupted)");
+    fail(Sentence::kFieldCorrupt, {field, what, hdf5_reason()});
   }
 
   // H5Lexists / H5Aexists: < 0 means the lookup itself failed (corrupt metadata), 0 absent.
@@ -351,12 +355,11 @@ bool has_hdf5_signature(const std::string& path) {
 
 Packing read_hdf5(const std::string& path) {
   if (!has_hdf5_signature(path)) {
-    throw FormatError(path + ": not an HDF5 file (expected an aggpack packing, format " +
-                      kNativeFormatName + ")");
+    throw FormatError(Wording{Sentence::kNotHdf5, {path, kNativeFormatName}});
   }
   std::error_code size_error;
   const std::uint64_t file_size = std::filesystem::file_size(path, size_error);
-  if (size_error) throw IoError("cannot read " + path + ": " + size_error.message());
+  if (size_error) throw IoError(Wording{Sentence::kReadSystemError, {path, size_error.message()}});
   const Reader reader(path, file_size);
   Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   // Strong close: closing the file closes every object still open in it, so a read that failed
@@ -365,25 +368,22 @@ Packing read_hdf5(const std::string& path) {
   H5Pset_fclose_degree(access.get(), H5F_CLOSE_STRONG);
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.get()), H5Fclose);
   if (!file.is_valid()) {
-    reader.fail("cannot open as HDF5 (" + hdf5_reason() + "; the file is truncated or corrupted)");
+    reader.fail(Sentence::kHdf5Unreadable, {hdf5_reason()});
   }
   const hid_t root = file.get();
 
   if (!reader.exists(H5Aexists(root, "format_name"), "/format_name")) {
-    reader.fail(std::string("not an aggpack packing (no format_name attribute; expected ") +
-                kNativeFormatName + ")");
+    reader.fail(Sentence::kNoFormatName, {kNativeFormatName});
   }
   const std::string format_name = reader.read_attribute_string(root, "", "format_name");
   if (format_name != kNativeFormatName) {
-    reader.fail("/format_name = " + echo(format_name),
-                std::string("not an aggpack packing (expected \"") + kNativeFormatName + "\")");
+    reader.fail(Sentence::kWrongFormatName, {echo(format_name), kNativeFormatName});
   }
   const std::uint64_t version = reader.read_attribute_unsigned(root, "", "format_version");
   if (version != kNativeFormatVersion) {
-    reader.fail("/format_version = " + std::to_string(version),
-                "format version " + std::to_string(version) + " is not supported (this aggpack " +
-                    AGGPACK_VERSION + " reads version " + std::to_string(kNativeFormatVersion) +
-                    ")");
+    reader.fail(Sentence::kWrongFormatVersion,
+                {std::to_string(version), std::to_string(version), AGGPACK_VERSION,
+                 std::to_string(kNativeFormatVersion)});
   }
 
   Packing packing;
@@ -555,12 +555,12 @@ Packing read_hdf5(const std::string& path) {
 Packing read_packing(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::exists(path, error))
-    throw IoError("cannot read " + path + ": no such file");
+    throw IoError(Wording{Sentence::kReadNoSuchFile, {path}});
   if (std::filesystem::is_directory(path, error)) {
-    throw IoError("cannot read " + path + ": it is a folder");
+    throw IoError(Wording{Sentence::kReadFolder, {path}});
   }
   if (!std::ifstream(path, std::ios::binary)) {
-    throw IoError("cannot read " + path + ": permission denied");
+    throw IoError(Wording{Sentence::kReadPermission, {path}});
   }
   const SilenceHdf5Errors silence;
   return read_hdf5(path);

@@ -21,7 +21,7 @@ using Limits = NativeLimits;
 
 [[noreturn]] void fail(const std::string& source, const std::string& field,
                        const std::string& reason) {
-  throw FormatError(source + ": " + field + ": " + reason);
+  throw FormatError(Wording{Sentence::kFieldInvalid, {source, field, reason}});
 }
 
 std::string range_text(double lo, double hi) {

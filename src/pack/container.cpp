@@ -77,16 +77,16 @@ double Container::volume() const {
 
 void validate(const Container& container) {
   if (!std::isfinite(container.wall_gap) || container.wall_gap < 0.0) {
-    throw InvalidInput("container.wall_gap", format_value(container.wall_gap), "finite and >= 0");
+    throw InvalidInput("container.wall_gap", format_value(container.wall_gap),
+                       Wording{Sentence::kFiniteAtLeastZero, {}});
   }
   for (const ContainerParam& param : container_kind_info(container).params) {
     require_positive(std::string("container.") + param.name, param.get(container));
   }
   const double smallest = container.visit([](const auto& kind) { return kind.smallest_extent(); });
   if (2.0 * container.wall_gap >= smallest) {
-    throw InvalidInput(
-        "container.wall_gap", format_value(container.wall_gap),
-        "< half the smallest container extent (" + format_value(smallest / 2.0) + " m)");
+    throw InvalidInput("container.wall_gap", format_value(container.wall_gap),
+                       {Sentence::kBelowHalfExtent, {format_value(smallest / 2.0)}});
   }
 }
 

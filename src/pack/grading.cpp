@@ -63,16 +63,18 @@ void validate(const Grading& grading) {
       require_positive("grading.radius_min", grading.radius_min);
       require_positive("grading.radius_max", grading.radius_max);
       if (grading.radius_max < grading.radius_min) {
-        throw InvalidInput("grading.radius_max", format_value(grading.radius_max),
-                           ">= grading.radius_min = " + format_value(grading.radius_min));
+        throw InvalidInput(
+            "grading.radius_max", format_value(grading.radius_max),
+            {Sentence::kAtLeastKey, {"grading.radius_min", format_value(grading.radius_min)}});
       }
       return;
     case GradingKind::kFuller:
       require_positive("grading.size_min", grading.size_min);
       require_positive("grading.size_max", grading.size_max);
       if (!(grading.size_max > grading.size_min)) {
-        throw InvalidInput("grading.size_max", format_value(grading.size_max),
-                           "> grading.size_min = " + format_value(grading.size_min));
+        throw InvalidInput(
+            "grading.size_max", format_value(grading.size_max),
+            {Sentence::kAboveKey, {"grading.size_min", format_value(grading.size_min)}});
       }
       if (!std::isfinite(grading.exponent) || grading.exponent <= 0.0 || grading.exponent > 10.0) {
         throw InvalidInput("grading.exponent", format_value(grading.exponent), "(0, 10]");
@@ -82,7 +84,7 @@ void validate(const Grading& grading) {
       const auto& rows = grading.sieve;
       if (rows.size() < 2) {
         throw InvalidInput("grading.sieve", std::to_string(rows.size()) + " rows",
-                           "at least 2 rows (size, percent passing)");
+                           Wording{Sentence::kSieveRows, {}});
       }
       for (std::size_t k = 0; k < rows.size(); ++k) {
         const std::string prefix = "grading.sieve[" + std::to_string(k) + "]";
@@ -91,23 +93,23 @@ void validate(const Grading& grading) {
         if (k > 0 && !(rows[k].size > rows[k - 1].size)) {
           throw InvalidInput(
               prefix + ".size", format_value(rows[k].size),
-              "> previous size " + format_value(rows[k - 1].size) + " (sizes strictly increasing)");
+              Wording{Sentence::kSieveSizesIncrease, {format_value(rows[k - 1].size)}});
         }
         if (k > 0 && rows[k].percent_passing < rows[k - 1].percent_passing) {
-          throw InvalidInput(prefix + ".percent_passing", format_value(rows[k].percent_passing),
-                             ">= previous " + format_value(rows[k - 1].percent_passing) +
-                                 " (percent passing non-decreasing)");
+          throw InvalidInput(
+              prefix + ".percent_passing", format_value(rows[k].percent_passing),
+              Wording{Sentence::kSievePassingRises, {format_value(rows[k - 1].percent_passing)}});
         }
       }
       if (rows.back().percent_passing != 100.0) {
         throw InvalidInput("grading.sieve[" + std::to_string(rows.size() - 1) + "].percent_passing",
                            format_value(rows.back().percent_passing),
-                           "100 (the largest sieve passes everything)");
+                           Wording{Sentence::kSieveLastPassesAll, {}});
       }
       if (rows.front().percent_passing >= 100.0) {
         throw InvalidInput("grading.sieve[0].percent_passing",
                            format_value(rows.front().percent_passing),
-                           "< 100 (some material must be retained on the smallest sieve)");
+                           Wording{Sentence::kSieveFirstRetains, {}});
       }
       return;
     }

@@ -40,9 +40,9 @@ PackResult pack_lattice_files(const LatticeOptions& options, const Lattice& latt
   const bool is_use_once = options.files.options.is_use_once;
   if (is_use_once && site_count > library.shapes.size()) {
     throw LimitExceeded("particle.library_use_once", "true",
-                        "at most the library's " + std::to_string(library.shapes.size()) +
-                            " shapes for the lattice's " + std::to_string(site_count) +
-                            " sites (a smaller container, or a larger particle.radius)");
+                        Wording{Sentence::kLibraryShapesForSites,
+                                {std::to_string(library.shapes.size()), std::to_string(site_count),
+                                 "particle.radius"}});
   }
   const std::vector<std::uint32_t> order =
       is_use_once ? detail::use_once_order(library.shapes.size(), options.seed)

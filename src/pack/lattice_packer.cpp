@@ -204,17 +204,18 @@ void validate(const LatticeOptions& options) {
   require_positive("lattice.radius", options.radius);
   require_positive("lattice.edge_length", options.edge_length);
   if (!std::isfinite(options.gap) || options.gap < 0.0) {
-    throw InvalidInput("lattice.gap", format_value(options.gap), "finite and >= 0");
+    throw InvalidInput("lattice.gap", format_value(options.gap),
+                       Wording{Sentence::kFiniteAtLeastZero, {}});
   }
   if (!std::isfinite(options.spacing) || options.spacing < 0.0) {
     throw InvalidInput("lattice.spacing", format_value(options.spacing),
-                       "0 (= 2 radius + gap) or > radius + gap");
+                       Wording{Sentence::kLatticeSpacing, {}});
   }
   // A site must lie clear (by gap) of every neighbour, which reaches at most R from its own site.
   if (options.spacing > 0.0 && !(options.spacing > options.radius + options.gap)) {
     throw InvalidInput(
         "lattice.spacing", format_value(options.spacing),
-        "0 (= 2 radius + gap) or > radius + gap = " + format_value(options.radius + options.gap));
+        Wording{Sentence::kLatticeSpacingAbove, {format_value(options.radius + options.gap)}});
   }
   if (options.max_vertices < 6 || options.max_vertices > 1000000) {
     throw InvalidInput("lattice.max_vertices", std::to_string(options.max_vertices),
@@ -224,14 +225,12 @@ void validate(const LatticeOptions& options) {
   const auto counts = axis_counts(options);
   if (counts[0] == 0 || counts[1] == 0 || counts[2] == 0) {
     throw InvalidInput("lattice.radius", format_value(options.radius),
-                       "small enough that a particle of diameter 2 R fits in the container "
-                       "(minus wall gaps)");
+                       Wording{Sentence::kRadiusFitsContainer, {}});
   }
   const double sites = static_cast<double>(counts[0]) * counts[1] * counts[2];
   if (sites > 1e8) {
-    throw LimitExceeded(
-        "lattice.radius", format_value(options.radius),
-        "a radius giving at most 10^8 lattice sites (gives " + format_value(sites) + ")");
+    throw LimitExceeded("lattice.radius", format_value(options.radius),
+                        Wording{Sentence::kLatticeSites, {format_value(sites)}});
   }
   check_resources(options, sites);  // shapes that would not fit in memory (issue 12)
 }
@@ -247,7 +246,7 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
   const Lattice lattice = make_lattice(options);
   if (lattice.sites.empty()) {
     throw InvalidInput("lattice.radius", format_value(options.radius),
-                       "small enough that at least one site fits in the container");
+                       Wording{Sentence::kRadiusOneSite, {}});
   }
   if (options.files.is_used()) {
     if (!options.files.loaded) {

@@ -50,31 +50,24 @@ void validate(const DensePackOptions& options) {
   const double gap = std::visit([](const auto& fill) { return fill.gap; }, options.fill);
   if (options.densify.gap > gap) {
     throw InvalidInput("densify.gap", format_value(options.densify.gap),
-                       "[0, " + format_value(gap) + "], at most the fill's gap");
+                       Wording{Sentence::kDensifyGapAtMostFill, {format_value(gap)}});
   }
   // Fixed mode with a fraction target ends in the given container: the random fill runs in it
   // enlarged by (densify.target_fraction / packer.target_fraction)^(1/3) (the pipeline).
   const double asked = options.densify.target_fraction;
   if (options.densify.mode != DensifyMode::kFixed || asked <= 0.0) return;
-  const std::string why =
-      " with densify.mode = fixed and densify.target_fraction = " + format_value(asked) + " > 0";
   if (std::holds_alternative<LatticeOptions>(options.fill)) {
     throw InvalidInput("packer.fill", "lattice",
-                       "random" + why +
-                           " (to compress a lattice packing: aggpack pack it, then aggpack "
-                           "densify it; or set densify.target_fraction = 0)");
+                       Wording{Sentence::kFillRandomWhenFixed, {format_value(asked)}});
   }
   const auto& random = std::get<RandomPackOptions>(options.fill);
   if (random.target == PackTarget::kCount) {
     throw InvalidInput("random.count", format_value(static_cast<double>(random.count)),
-                       "unset" + why + " (use packer.target_fraction: the fill's fraction)");
+                       Wording{Sentence::kCountUnsetWhenFixed, {format_value(asked)}});
   }
   if (random.volume_fraction >= asked) {
     throw InvalidInput("random.volume_fraction", format_value(random.volume_fraction),
-                       "(0, " + format_value(asked) +
-                           "), below densify.target_fraction: the fill " +
-                           "runs in the container enlarged by (densify.target_fraction / " +
-                           "packer.target_fraction)^(1/3) and is compressed into the given one");
+                       Wording{Sentence::kFillBelowTarget, {format_value(asked)}});
   }
 }
 

@@ -199,14 +199,14 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
     }
     if (is_by_volume && !is_cancelled && list_volume < target_volume && !use_once.empty()) {
       throw LimitExceeded("particle.library_use_once", "true",
-                          "a library whose " + std::to_string(use_once.size()) +
-                              " shapes, each used once, reach random.volume_fraction = " +
-                              format_value(options.volume_fraction) + " (they reach " +
-                              format_value(list_volume / container_volume) + ")");
+                          Wording{Sentence::kLibraryReachesFraction,
+                                  {std::to_string(use_once.size()), "random.volume_fraction",
+                                   format_value(options.volume_fraction),
+                                   format_value(list_volume / container_volume)}});
     }
     if (is_by_volume && !is_cancelled && list_volume < target_volume) {
       throw LimitExceeded("random.volume_fraction", format_value(options.volume_fraction),
-                          "a target reachable with 10^8 particles");
+                          Wording{Sentence::kFractionReachable, {}});
     }
   }
   report.requested = items.size();

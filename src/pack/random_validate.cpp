@@ -20,7 +20,7 @@ void validate_shape(const ShapeOptions& shape, double largest_radius) {
   require_in_range("shape.alpha", shape.alpha, 0.0, 1.0);
   if (!std::isfinite(shape.edge_length) || shape.edge_length < 0.0) {
     throw InvalidInput("shape.edge_length", format_value(shape.edge_length),
-                       "finite and >= 0 (0 = relative, use shape.edge_length_ratio)");
+                       Wording{Sentence::kFiniteAtLeastZeroRelative, {"shape.edge_length_ratio"}});
   }
   if (shape.edge_length == 0.0) {
     require_in_range("shape.edge_length_ratio", shape.edge_length_ratio, 0.05, 10.0);
@@ -32,14 +32,15 @@ void validate_shape(const ShapeOptions& shape, double largest_radius) {
     throw InvalidInput("shape.library_size", std::to_string(shape.library_size), "[0, 1000000]");
   }
   if (shape.library_size > 0 && shape.edge_length > 0.0) {
-    throw InvalidInput("shape.library_size", std::to_string(shape.library_size),
-                       "0 when shape.edge_length > 0 (a library rescales shapes, so L must be "
-                       "relative: set shape.edge_length = 0 and use shape.edge_length_ratio)");
+    throw InvalidInput(
+        "shape.library_size", std::to_string(shape.library_size),
+        Wording{Sentence::kLibraryNeedsRelativeLength,
+                {"shape.edge_length", "shape.edge_length", "shape.edge_length_ratio"}});
   }
   if (shape.files.is_used()) {
     if (shape.library_size > 0) {
       throw InvalidInput("shape.library_size", std::to_string(shape.library_size),
-                         "0 when particle.library is given (shapes come from the files)");
+                         Wording{Sentence::kLibrarySizeWithFiles, {"particle.library"}});
     }
     return;  // the growth options do not apply (the pipeline loads the files before a run)
   }
@@ -52,8 +53,9 @@ void validate_shape(const ShapeOptions& shape, double largest_radius) {
         shape.edge_length > 0.0 ? "shape.edge_length" : "shape.edge_length_ratio";
     throw LimitExceeded(
         field, format_value(shape.edge_length > 0.0 ? shape.edge_length : shape.edge_length_ratio),
-        "a value needing at most shape.max_vertices = " + std::to_string(shape.max_vertices) +
-            " vertices (needs about " + format_value(std::round(estimate)) + ")");
+        Wording{Sentence::kVerticesNeeded,
+                {"shape.max_vertices", std::to_string(shape.max_vertices),
+                 format_value(std::round(estimate))}});
   }
 }
 
@@ -69,9 +71,10 @@ void validate(const RandomPackOptions& options) {
     }
     const ShapeFiles& files = options.shape.files;
     if (files.loaded && files.options.is_use_once && options.count > files.loaded->shapes.size()) {
-      throw LimitExceeded("random.count", std::to_string(options.count),
-                          "at most the library's " + std::to_string(files.loaded->shapes.size()) +
-                              " shapes when particle.library_use_once = true");
+      throw LimitExceeded(
+          "random.count", std::to_string(options.count),
+          Wording{Sentence::kCountAtMostLibrary,
+                  {std::to_string(files.loaded->shapes.size()), "particle.library_use_once"}});
     }
   } else if (options.target == PackTarget::kVolumeFraction) {
     if (!std::isfinite(options.volume_fraction) || options.volume_fraction <= 0.0 ||
@@ -84,7 +87,8 @@ void validate(const RandomPackOptions& options) {
                        "count or volume_fraction");
   }
   if (!std::isfinite(options.gap) || options.gap < 0.0) {
-    throw InvalidInput("random.gap", format_value(options.gap), "finite and >= 0");
+    throw InvalidInput("random.gap", format_value(options.gap),
+                       Wording{Sentence::kFiniteAtLeastZero, {}});
   }
   if (options.max_attempts_per_particle < 1 || options.max_attempts_per_particle > 1000000000ULL) {
     throw InvalidInput("random.max_attempts_per_particle",
@@ -107,9 +111,9 @@ void validate(const RandomPackOptions& options) {
                                (options.shape.alpha + 0.2 * (1.0 - options.shape.alpha)) /
                                std::sqrt(3.0);
   if (2.0 * smallest_ball > interior) {
-    throw InvalidInput(
-        "grading", "smallest size " + format_value(smallest_size(options.grading)) + " m",
-        "particles that fit in the container's interior (" + format_value(interior) + " m across)");
+    throw InvalidInput("grading",
+                       "smallest size " + format_value(smallest_size(options.grading)) + " m",
+                       Wording{Sentence::kGradingFitsInterior, {format_value(interior)}});
   }
   if (options.target == PackTarget::kVolumeFraction) {
     // Lower bound on the list length: particles no larger than their control spheres.
@@ -117,8 +121,7 @@ void validate(const RandomPackOptions& options) {
     const double least = options.volume_fraction * options.container.volume() / sphere;
     if (least > static_cast<double>(kMaxParticles)) {
       throw LimitExceeded("random.volume_fraction", format_value(options.volume_fraction),
-                          "a target needing at most 10^8 particles (needs more than " +
-                              format_value(std::round(least)) + ")");
+                          Wording{Sentence::kFractionParticles, {format_value(std::round(least))}});
     }
   }
   // Runs the container cannot hold or the memory cannot take (issue 12), before any work.

@@ -16,10 +16,12 @@ namespace aggpack {
 
 VerifyResult verify(const Packing& packing, const VerifyOptions& options) {
   if (!std::isfinite(options.gap) || options.gap < 0.0) {
-    throw InvalidInput("verify.gap", format_value(options.gap), "finite and >= 0");
+    throw InvalidInput("verify.gap", format_value(options.gap),
+                       Wording{Sentence::kFiniteAtLeastZero, {}});
   }
   if (!std::isfinite(options.tolerance) || options.tolerance < 0.0) {
-    throw InvalidInput("verify.tolerance", format_value(options.tolerance), "finite and >= 0");
+    throw InvalidInput("verify.tolerance", format_value(options.tolerance),
+                       Wording{Sentence::kFiniteAtLeastZero, {}});
   }
   validate(packing.container);
   const std::size_t n = packing.particles.size();

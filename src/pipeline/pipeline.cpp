@@ -153,40 +153,57 @@ PipelineResult pack(const PackerOptions& options, const PackControl& control) {
   return result;
 }
 
+std::vector<DenseShortfall> dense_shortfall_kinds(const PipelineResult& result) {
+  std::vector<DenseShortfall> kinds;
+  if (!result.fill) return kinds;
+  const DenseFill& fill = *result.fill;
+  if (result.report.stop_reason == StopReason::kCancelled) return {DenseShortfall::kCancelled};
+  if (fill.scale != 1.0 && fill.report.stop_reason != StopReason::kTargetReached) {
+    kinds.push_back(DenseShortfall::kFillBelowTarget);
+  }
+  if (!result.densify) return kinds;
+  const DensifyStop stop = result.densify->stop;
+  if (stop != DensifyStop::kTargetReached && stop != DensifyStop::kSettled) {
+    kinds.push_back(DenseShortfall::kDensifyStopped);
+    if (!(result.packing.container.shape == fill.given.shape)) {
+      kinds.push_back(DenseShortfall::kContainerLarger);
+    }
+  }
+  return kinds;
+}
+
 std::vector<std::string> dense_shortfalls(const PipelineResult& result) {
   std::vector<std::string> lines;
-  if (!result.fill) return lines;
-  const DenseFill& fill = *result.fill;
-  const PackReport& report = result.report;
-  if (report.stop_reason == StopReason::kCancelled) {
-    lines.emplace_back("cancelled; the packing holds the last verified state");
-    return lines;
-  }
   char text[1024];
-  if (fill.scale != 1.0 && fill.report.stop_reason != StopReason::kTargetReached) {
-    std::snprintf(text, sizeof text,
-                  "the random fill stopped at %.4f solid, below packer.target_fraction %.4f in the "
-                  "enlarged container (%s); compressed into the given container it is %.4f "
-                  "solid, below densify.target_fraction %.4f (lower packer.target_fraction or "
-                  "raise packer.attempts)",
-                  fill.report.solid_fraction, fill.report.target_solid_fraction,
-                  to_string(fill.report.stop_reason).c_str(), report.solid_fraction,
-                  fill.asked_fraction);
-    lines.emplace_back(text);
-  }
-  if (!result.densify) return lines;
-  const DensifyReport& dense = *result.densify;
-  if (dense.stop != DensifyStop::kTargetReached && dense.stop != DensifyStop::kSettled) {
-    std::string line = "densify target not reached: " + dense.summary() +
-                       "; the packing holds the densest verified state";
-    if (!(result.packing.container.shape == fill.given.shape)) {
-      std::snprintf(text, sizeof text,
-                    ", its container %.6g m^3, larger than the given %.6g m^3 (raise "
-                    "densify.max_sweeps or lower densify.target_fraction)",
-                    result.packing.container.volume(), fill.given.volume());
-      line += text;
+  for (const DenseShortfall kind : dense_shortfall_kinds(result)) {
+    const DenseFill& fill = *result.fill;
+    switch (kind) {
+      case DenseShortfall::kCancelled:
+        lines.emplace_back("cancelled; the packing holds the last verified state");
+        break;
+      case DenseShortfall::kFillBelowTarget:
+        std::snprintf(text, sizeof text,
+                      "the random fill stopped at %.4f solid, below packer.target_fraction %.4f in "
+                      "the enlarged container (%s); compressed into the given container it is "
+                      "%.4f solid, below densify.target_fraction %.4f (lower "
+                      "packer.target_fraction or raise packer.attempts)",
+                      fill.report.solid_fraction, fill.report.target_solid_fraction,
+                      to_string(fill.report.stop_reason).c_str(), result.report.solid_fraction,
+                      fill.asked_fraction);
+        lines.emplace_back(text);
+        break;
+      case DenseShortfall::kDensifyStopped:
+        lines.push_back("densify target not reached: " + result.densify->summary() +
+                        "; the packing holds the densest verified state");
+        break;
+      case DenseShortfall::kContainerLarger:
+        std::snprintf(text, sizeof text,
+                      ", its container %.6g m^3, larger than the given %.6g m^3 (raise "
+                      "densify.max_sweeps or lower densify.target_fraction)",
+                      result.packing.container.volume(), fill.given.volume());
+        lines.back() += text;
+        break;
     }
-    lines.push_back(std::move(line));
   }
   return lines;
 }

@@ -119,11 +119,11 @@ void validate(const GrowthParams& params) {
                           : std::min(no_growth, params.radius * std::sqrt(4.0 * std::numbers::pi /
                                                                           (std::sqrt(3.0) / 4.0) /
                                                                           (2.0 * half_faces)));
-    throw LimitExceeded("edge_length", format_value(params.edge_length),
-                        ">= about " + format_value(smallest) + " m for radius " +
-                            format_value(params.radius) + " m: may need up to " +
-                            format_value(std::round(estimate)) + " vertices, max_vertices is " +
-                            std::to_string(params.max_vertices));
+    throw LimitExceeded(
+        "edge_length", format_value(params.edge_length),
+        Wording{Sentence::kEdgeLengthForVertexCap,
+                {format_value(smallest), format_value(params.radius),
+                 format_value(std::round(estimate)), std::to_string(params.max_vertices)}});
   }
 }
 
@@ -178,9 +178,9 @@ ConvexPolyhedron grow_aggregate(const GrowthParams& params, Rng& rng, const Grow
   while (mesh.longest_edge(longest)) {
     if (mesh.vertex_count() >= params.max_vertices || insertions++ >= max_insertions) {
       throw LimitExceeded("max_vertices", std::to_string(params.max_vertices),
-                          "a larger cap or a longer edge_length (growth still had edges of " +
-                              format_value(std::sqrt(longest.length_squared)) +
-                              " m > L = " + format_value(params.edge_length) + " m)");
+                          Wording{Sentence::kVertexCapReached,
+                                  {format_value(std::sqrt(longest.length_squared)),
+                                   format_value(params.edge_length)}});
     }
     if (is_hull) {
       // The random point keeps min_edge from both ends (the edge is longer than L >= 2 min_edge).

@@ -14,7 +14,8 @@
 #   6. Chinese: started with LANG=zh_CN.UTF-8 the window speaks Chinese (the status line's words,
 #      CJK glyphs drawn: denser text than the English run's); with no Chinese font it falls
 #      back to English with a one-line note; View > Language (clicked with xdotool) switches and
-#      is remembered by the next start.
+#      is remembered by the next start. The library's messages in Chinese too: a rule between
+#      keys beside its field, a file that is not a packing and a missing file in the status line.
 # Settings go to a folder of the test's own (--settings-dir), so runs do not share them.
 # Usage: ui_test.sh AGGPACK_GUI OUTPUT_DIR
 set -euo pipefail
@@ -121,6 +122,33 @@ grep -q "^已投放 45 / 45 个颗粒" "$out/zh.txt" ||
 run en "${small[@]}" --pack --screenshot "$out/en.png"
 grep -q "^status: Packing finished! 45 particles" "$out/en.txt"
 python3 "$here/check_ui.py" cjk "$out/zh.png" 1200 760 "$out/en.png"
+# The library's messages in Chinese, worded from their parts: a rule between keys next to its
+# field, and Open of a file that is not a packing and of a missing one in the status line.
+# (particle.radius_max is unset: it is particle.radius, 0.1, so the rule marks radius_min.)
+LANG=zh_CN.UTF-8 run zh-rule "${small[@]}" --set packer.kind=random \
+  --edit particle.radius_min=0.2 --screenshot "$out/zh-rule.png"
+grep -q "^field error: particle.radius_min: particle.radius_max：不允许取值 0.1；允许范围：不小于 particle.radius_min = 0.2 m$" \
+  "$out/zh-rule.txt" || { echo "the rule between keys is not in Chinese"; exit 1; }
+python3 "$here/check_ui.py" error "$out/zh-rule.png" 1200 760
+printf 'not a packing\n' > "$out/not-a-packing.h5"
+open_bad() {  # open_bad NAME FILE [ARGS]: a refused Open (exit 2) run in $out, output in NAME.txt
+  local name="$1" file="$2" code=0
+  shift 2
+  (cd "$out" && xvfb-run -a -s "-screen 0 1280x800x24" "$gui" --settings-dir "$out/settings" \
+    --quit --size 1200x760 --open "$file" "$@" > "$out/$name.txt" 2>&1) || code=$?
+  cat "$out/$name.txt"
+  [ "$code" -eq 2 ] || { echo "$name: exit $code, expected 2"; exit 1; }
+}
+LANG=zh_CN.UTF-8 open_bad zh-open not-a-packing.h5
+grep -qF "status: not-a-packing.h5：不是 HDF5 文件（应为 aggpack 堆积文件，格式 aggpack-packing）" \
+  "$out/zh-open.txt" || { echo "the read error is not in Chinese"; exit 1; }
+# A missing file, with its screenshot (check_ui.py's cjk test measures the white status text of
+# step 6; an error line is red, whose ink it does not tell apart, so the words are checked here).
+LANG=zh_CN.UTF-8 open_bad zh-missing nope.h5 --screenshot "$out/zh-missing.png"
+grep -qF "status: 无法读取 nope.h5：文件不存在" "$out/zh-missing.txt" ||
+  { echo "the missing file's error is not in Chinese"; exit 1; }
+open_bad en-missing nope.h5
+grep -qF "status: cannot read nope.h5: no such file" "$out/en-missing.txt"
 # No Chinese font: English, and one line saying why.
 AGGPACK_GUI_FONT=none LANG=zh_CN.UTF-8 run zh-nofont "${small[@]}" --pack
 grep -q "^aggpack-gui: No Chinese font is installed (apt-get install fonts-noto-cjk)" \

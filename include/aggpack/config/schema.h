@@ -35,6 +35,18 @@ class ConfigError : public Error {
  public:
   ConfigError(std::string key, const std::string& message)
       : Error(ErrorKind::kInvalidInput, message), key_(std::move(key)) {}
+  /// A message in one sentence (error_words.h).
+  ConfigError(std::string key, Wording wording)
+      : Error(ErrorKind::kInvalidInput, std::move(wording)), key_(std::move(key)) {}
+  /// A refused value: "WHERE: invalid FIELD = VALUE (allowed: ALLOWED)" (`where` is "" or ends in
+  /// ": "; `field` is the key, or the key a rule between keys names first), with its parts
+  /// (has_value(), field(), value(), wording() = allowed).
+  ConfigError(std::string key, const std::string& where, const std::string& field,
+              const std::string& value, const Wording& allowed)
+      : Error(ErrorKind::kInvalidInput,
+              where + "invalid " + field + " = " + value + " (allowed: " + english(allowed) + ")",
+              field, value, allowed),
+        key_(std::move(key)) {}
   /// The dotted key at fault ("packer.gap"), or "" for a syntax error.
   [[nodiscard]] const std::string& key() const { return key_; }
 
@@ -209,6 +221,10 @@ std::string read_config_file(const std::string& path);
 /// Throws ConfigError for `key`, the message prefixed with where the key was given (if given).
 [[noreturn]] void fail_key(const GivenValues& given, const std::string& key,
                            const std::string& message);
+/// Throws ConfigError for `key` refusing `field` = `value` (see ConfigError), prefixed so.
+[[noreturn]] void fail_key(const GivenValues& given, const std::string& key,
+                           const std::string& field, const std::string& value,
+                           const Wording& allowed);
 
 /// "allowed" text of a key: its range (numbers) or words, unit and note.
 std::string allowed_text(const KeyView& key);

@@ -4,6 +4,9 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
+
+#include "aggpack/core/error_words.h"
 
 namespace aggpack {
 
@@ -15,51 +18,86 @@ enum class ErrorKind {
   kLimitExceeded  ///< a computation would exceed a set cap (vertex cap, attempt budget)
 };
 
-/// Base of all aggpack exceptions.
+/// Base of all aggpack exceptions. Besides its English message, an error carries its parts
+/// (error_words.h), so a front end words it in its own language without parsing the text: the
+/// field, value and allowed wording of a refused value (has_value()), else the whole message's
+/// wording.
 class Error : public std::runtime_error {
  public:
-  Error(ErrorKind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+  /// A free-form message: its wording is Sentence::kText of the message.
+  Error(ErrorKind kind, const std::string& message)
+      : std::runtime_error(message), kind_(kind), wording_{Sentence::kText, {message}} {}
+  /// A message in one sentence (english(wording)).
+  Error(ErrorKind kind, Wording wording)
+      : std::runtime_error(english(wording)), kind_(kind), wording_(std::move(wording)) {}
   [[nodiscard]] ErrorKind kind() const { return kind_; }
+  /// True when the error refuses one value: field(), value() and wording() (the allowed part).
+  [[nodiscard]] bool has_value() const { return has_value_; }
+  /// The field or key at fault ("" unless has_value()).
+  [[nodiscard]] const std::string& field() const { return field_; }
+  /// The refused value as text ("" unless has_value()).
+  [[nodiscard]] const std::string& value() const { return value_; }
+  /// has_value(): what is allowed; else the whole message.
+  [[nodiscard]] const Wording& wording() const { return wording_; }
+
+ protected:
+  /// A refused value: `message` is the English sentence around field, value and allowed.
+  Error(ErrorKind kind, const std::string& message, std::string field, std::string value,
+        Wording allowed)
+      : std::runtime_error(message),
+        kind_(kind),
+        has_value_(true),
+        field_(std::move(field)),
+        value_(std::move(value)),
+        wording_(std::move(allowed)) {}
 
  private:
   ErrorKind kind_;
+  bool has_value_ = false;
+  std::string field_;
+  std::string value_;
+  Wording wording_;
 };
 
-/// A parameter outside its allowed range. The message names the field, the value and the range.
+/// A parameter outside its allowed range. The message names the field, the value and the range:
+/// "invalid FIELD = VALUE (allowed: ALLOWED)".
 class InvalidInput : public Error {
  public:
   InvalidInput(const std::string& field, const std::string& value, const std::string& allowed)
+      : InvalidInput(field, value, Wording{Sentence::kText, {allowed}}) {}
+  InvalidInput(const std::string& field, const std::string& value, Wording allowed)
       : Error(ErrorKind::kInvalidInput,
-              "invalid " + field + " = " + value + " (allowed: " + allowed + ")"),
-        field_(field),
-        allowed_(allowed) {}
-  [[nodiscard]] const std::string& field() const { return field_; }
-  /// The allowed text, for a front end that names the field in the user's words.
-  [[nodiscard]] const std::string& allowed() const { return allowed_; }
-
- private:
-  std::string field_;
-  std::string allowed_;
+              "invalid " + field + " = " + value + " (allowed: " + english(allowed) + ")", field,
+              value, allowed) {}
+  /// The allowed text in English.
+  [[nodiscard]] std::string allowed() const { return english(wording()); }
 };
 
 /// A file that cannot be opened, created or renamed.
 class IoError : public Error {
  public:
   explicit IoError(const std::string& message) : Error(ErrorKind::kIoError, message) {}
+  explicit IoError(Wording wording) : Error(ErrorKind::kIoError, std::move(wording)) {}
 };
 
 /// A file whose content is not what it should be.
 class FormatError : public Error {
  public:
   explicit FormatError(const std::string& message) : Error(ErrorKind::kFormatError, message) {}
+  explicit FormatError(Wording wording) : Error(ErrorKind::kFormatError, std::move(wording)) {}
 };
 
-/// A computation that would exceed a configured cap.
+/// A computation that would exceed a configured cap:
+/// "limit exceeded for FIELD = VALUE (allowed: ALLOWED)".
 class LimitExceeded : public Error {
  public:
   LimitExceeded(const std::string& field, const std::string& value, const std::string& allowed)
-      : Error(ErrorKind::kLimitExceeded,
-              "limit exceeded for " + field + " = " + value + " (allowed: " + allowed + ")") {}
+      : LimitExceeded(field, value, Wording{Sentence::kText, {allowed}}) {}
+  LimitExceeded(const std::string& field, const std::string& value, Wording allowed)
+      : Error(
+            ErrorKind::kLimitExceeded,
+            "limit exceeded for " + field + " = " + value + " (allowed: " + english(allowed) + ")",
+            field, value, allowed) {}
 };
 
 /// Formats a double for error messages with enough digits to be unambiguous.

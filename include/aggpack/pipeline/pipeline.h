@@ -59,6 +59,16 @@ struct PipelineResult : PackResult {
 /// given one).
 std::vector<std::string> dense_shortfalls(const PipelineResult& result);
 
+/// The shortfalls of dense_shortfalls, for a front end that words them itself (its numbers are
+/// the result's: fill->report, report, densify, packing.container, fill->given).
+enum class DenseShortfall {
+  kCancelled,        ///< cancelled; the packing holds the last verified state
+  kFillBelowTarget,  ///< the random fill stopped below packer.target_fraction (enlarged)
+  kDensifyStopped,   ///< the densifier stopped before its target (jammed, budget)
+  kContainerLarger   ///< ... and the packing's container is larger than the given one
+};
+std::vector<DenseShortfall> dense_shortfall_kinds(const PipelineResult& result);
+
 /// The "dense" kind's fill options as pack() runs them: in fixed mode with
 /// densify.target_fraction > 0 the random fill's container enlarged by DenseFill::scale (same
 /// wall_gap); otherwise the fill unchanged. \throw InvalidInput as validate(DensePackOptions).

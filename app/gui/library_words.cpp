@@ -1,0 +1,132 @@
+#include "library_words.h"
+
+#include <array>
+#include <cstddef>
+#include <string_view>
+
+#include "aggpack/config/schema.h"
+#include "aggpack/core/error.h"
+#include "aggpack/core/text.h"
+#include "aggpack/pipeline/pipeline.h"
+
+namespace aggpack::gui {
+
+namespace {
+
+// Every sentence's entry: a sentence without one is a compile error here (no kSentence<Name>).
+constexpr std::array<Text, static_cast<std::size_t>(Sentence::kCount)> kSentenceTexts = {{
+#define AGGPACK_SENTENCE_TEXT(name, english) Text::kSentence##name,
+    AGGPACK_ERROR_SENTENCES(AGGPACK_SENTENCE_TEXT)
+#undef AGGPACK_SENTENCE_TEXT
+}};
+
+// A free-form message without the origin the panel is ("gui: ", "defaults: ", "--set K=V: ").
+std::string without_origin(std::string message) {
+  for (const std::string_view prefix :
+       {std::string_view("gui: "), std::string_view("defaults: ")}) {
+    if (message.rfind(prefix, 0) == 0) message.erase(0, prefix.size());
+  }
+  if (message.rfind("--set ", 0) == 0) {
+    const auto colon = message.find(": ");
+    if (colon != std::string::npos) message.erase(0, colon + 2);
+  }
+  return message;
+}
+
+Text stop_text(StopReason reason) {
+  switch (reason) {
+    case StopReason::kTargetReached:
+      return Text::kStopTarget;
+    case StopReason::kAttemptBudget:
+      return Text::kStopBudget;
+    case StopReason::kConsecutiveFailures:
+      return Text::kStopFailures;
+    case StopReason::kSizeListExhausted:
+      return Text::kStopSizeList;
+    case StopReason::kCancelled:
+      return Text::kStopCancelled;
+  }
+  return Text::kStopTarget;
+}
+
+Text densify_stop_text(DensifyStop stop) {
+  switch (stop) {
+    case DensifyStop::kTargetReached:
+      return Text::kStopTarget;
+    case DensifyStop::kSettled:
+      return Text::kDensifySettled;
+    case DensifyStop::kJammed:
+      return Text::kDensifyJammed;
+    case DensifyStop::kSweepBudget:
+      return Text::kDensifySweepBudget;
+    case DensifyStop::kTimeBudget:
+      return Text::kDensifyTimeBudget;
+    case DensifyStop::kCancelled:
+      return Text::kStopCancelled;
+  }
+  return Text::kStopTarget;
+}
+
+}  // namespace
+
+Text sentence_text(Sentence sentence) {
+  const auto index = static_cast<std::size_t>(sentence);
+  return index < kSentenceTexts.size() ? kSentenceTexts[index] : Text::kSentenceText;
+}
+
+std::string wording_words(const Wording& wording) {
+  return fill_words(tr(sentence_text(wording.sentence)), wording.values);
+}
+
+std::string error_words(const std::exception& error) {
+  const auto* library = dynamic_cast<const Error*>(&error);
+  if (library == nullptr) return trs(Text::kErrorOther, error.what());
+  if (library->has_value()) {
+    return trs(
+        library->kind() == ErrorKind::kLimitExceeded ? Text::kLimitNotAllowed : Text::kNotAllowed,
+        library->field(), library->value(), wording_words(library->wording()));
+  }
+  if (library->wording().sentence == Sentence::kText) return without_origin(error.what());
+  return wording_words(library->wording());
+}
+
+std::string report_words(const PackReport& report) {
+  return trs(Text::kReportSummary, report.placed, report.requested, report.rejected,
+             report.solid_volume, report.container_volume, 100.0 * report.solid_fraction,
+             tr(stop_text(report.stop_reason)));
+}
+
+std::string densify_words(const DensifyReport& report) {
+  const std::string bulk =
+      report.bulk_fraction > 0.0 ? trs(Text::kDensifyBulk, report.bulk_fraction) : std::string();
+  return trs(Text::kDensifySummary, report.start_fraction, report.solid_fraction, bulk,
+             report.sweeps, format_seconds(report.seconds), tr(densify_stop_text(report.stop)));
+}
+
+std::vector<std::string> shortfall_words(const PipelineResult& result) {
+  std::vector<std::string> lines;
+  for (const DenseShortfall kind : dense_shortfall_kinds(result)) {
+    switch (kind) {
+      case DenseShortfall::kCancelled:
+        lines.emplace_back(tr(Text::kShortfallCancelled));
+        break;
+      case DenseShortfall::kFillBelowTarget: {
+        const PackReport& fill = result.fill->report;
+        lines.push_back(trs(Text::kShortfallFill, fill.solid_fraction, fill.target_solid_fraction,
+                            tr(stop_text(fill.stop_reason)), result.report.solid_fraction,
+                            result.fill->asked_fraction));
+        break;
+      }
+      case DenseShortfall::kDensifyStopped:
+        lines.push_back(trs(Text::kShortfallDensify, densify_words(*result.densify)));
+        break;
+      case DenseShortfall::kContainerLarger:
+        lines.back() += trs(Text::kShortfallLarger, result.packing.container.volume(),
+                            result.fill->given.volume());
+        break;
+    }
+  }
+  return lines;
+}
+
+}  // namespace aggpack::gui

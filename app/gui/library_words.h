@@ -1,0 +1,43 @@
+#pragma once
+// The library's errors and reports in the window's language, built from their parts (the
+// sentence and values of core/error_words.h, the report structs), never from the library's
+// English text: a Chinese window shows no English sentence of the library's. Free-form parts
+// (an OS or HDF5 reason, a file name, a key name) appear as they are inside the translated words.
+
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "aggpack/core/error_words.h"
+#include "aggpack/pack/dense_packer.h"
+#include "aggpack/pack/progress.h"
+#include "i18n.h"
+
+namespace aggpack {
+struct PipelineResult;
+}
+
+namespace aggpack::gui {
+
+/// The catalogue entry of `sentence` (kSentence<Name>).
+Text sentence_text(Sentence sentence);
+
+/// The wording in the current language.
+std::string wording_words(const Wording& wording);
+
+/// An error in the current language: a refused value as "FIELD: VALUE is not allowed; allowed:
+/// ..." (a limit: "... is over a limit ..."), another aggpack error as its sentence, anything else
+/// as "Error: what()". A ConfigError's origin ("gui: ", "--set K=V: ") is left out: the panel is
+/// it.
+std::string error_words(const std::exception& error);
+
+/// The packer's report line (in English, PackReport::summary()'s words).
+std::string report_words(const PackReport& report);
+
+/// The densifier's report line (in English, DensifyReport::summary()'s words).
+std::string densify_words(const DensifyReport& report);
+
+/// What a dense run fell short of, one line each (in English, dense_shortfalls()'s).
+std::vector<std::string> shortfall_words(const PipelineResult& result);
+
+}  // namespace aggpack::gui

@@ -1,0 +1,163 @@
+// The library's errors and reports in aggpack-gui's words (app/gui/library_words.h): every
+// sentence of core/error_words.h has an entry in each catalogue (English: the library's own
+// words), a Chinese window words a refused value, a rule between keys, a read error and the
+// densifier's summary from their parts, with no English word of the library's sentence left.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "aggpack/config/config.h"
+#include "aggpack/core/error.h"
+#include "aggpack/io/native.h"
+#include "aggpack/pack/grading.h"
+#include "i18n.h"
+#include "library_words.h"
+
+namespace aggpack::gui {
+namespace {
+
+constexpr auto kSentenceCount = static_cast<int>(Sentence::kCount);
+
+// Words of three or more characters ("allowed", "finite", "format_name", "HDF5").
+std::set<std::string> english_words_of(const std::string& text) {
+  static const std::regex word("[A-Za-z_][A-Za-z0-9_]{2,}");
+  std::set<std::string> words;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), word); it != std::sregex_iterator();
+       ++it) {
+    words.insert(it->str());
+  }
+  return words;
+}
+
+bool has_chinese_text(const std::string& text) {
+  for (const char c : text) {
+    if ((static_cast<unsigned char>(c) & 0xF0U) == 0xE0U) return true;
+  }
+  return false;
+}
+
+// Runs `words` with the window in Chinese, then back in English.
+template <typename F>
+std::string in_chinese(F words) {
+  set_language(Language::kChinese);
+  std::string text = words();
+  set_language(Language::kEnglish);
+  return text;
+}
+
+TEST(LibraryWords, EverySentenceHasAnEntryInEachCatalogue) {
+  for (int k = 0; k < kSentenceCount; ++k) {
+    const auto sentence = static_cast<Sentence>(k);
+    const Text id = sentence_text(sentence);
+    EXPECT_STREQ(catalogue_text(Language::kEnglish, id), english_words(sentence))
+        << text_name(id) << ": the English catalogue differs from the library's words";
+    ASSERT_NE(catalogue_text(Language::kChinese, id), nullptr)
+        << text_name(id) << " has no Chinese words (zh_CN.h)";
+  }
+}
+
+TEST(LibraryWords, ChineseSentencesHaveNoEnglishWordOfTheLibrary) {
+  // Names that stay as they are in every language: the format, the program, HDF5 attributes,
+  // a configuration value as typed ("particle.library_use_once = true").
+  const std::set<std::string> names = {"HDF5", "aggpack", "format_name", "format_version", "true"};
+  for (int k = 0; k < kSentenceCount; ++k) {
+    const auto sentence = static_cast<Sentence>(k);
+    if (sentence == Sentence::kText) continue;  // free-form: its one value
+    const std::string chinese = catalogue_text(Language::kChinese, sentence_text(sentence));
+    const std::set<std::string> left = english_words_of(chinese);
+    for (const std::string& word : english_words_of(english_words(sentence))) {
+      if (names.count(word) > 0) continue;
+      EXPECT_EQ(left.count(word), 0U)
+          << text_name(sentence_text(sentence)) << " keeps the English word '" << word << "'";
+    }
+    if (!english_words_of(english_words(sentence)).empty()) {
+      EXPECT_TRUE(has_chinese_text(chinese)) << text_name(sentence_text(sentence));
+    }
+  }
+}
+
+TEST(LibraryWords, RefusedValueInChinese) {
+  try {
+    validate(Grading{.kind = GradingKind::kUniform, .radius_min = 0.02, .radius_max = 0.01});
+    FAIL() << "radius_max < radius_min was accepted";
+  } catch (const InvalidInput& error) {
+    ASSERT_TRUE(error.has_value());
+    EXPECT_EQ(error.wording().sentence, Sentence::kAtLeastKey);
+    EXPECT_STREQ(error.what(),
+                 "invalid grading.radius_max = 0.01 (allowed: >= grading.radius_min = 0.02)");
+    EXPECT_EQ(in_chinese([&] { return error_words(error); }),
+              "grading.radius_max：不允许取值 0.01；允许范围：不小于 grading.radius_min = 0.02");
+    EXPECT_EQ(error_words(error),
+              "grading.radius_max: 0.01 is not allowed; allowed: >= grading.radius_min = 0.02");
+  }
+}
+
+TEST(LibraryWords, RuleBetweenKeysInChinese) {
+  // The configuration's own rule (as the panel's Pack meets it): a ConfigError with its parts.
+  try {
+    (void)parse_pack_config(
+        "", "gui",
+        {"packer.kind=\"random\"", "particle.radius_min=0.02", "particle.radius_max=0.01"});
+    FAIL() << "radius_max < radius_min was accepted";
+  } catch (const ConfigError& error) {
+    ASSERT_TRUE(error.has_value()) << error.what();
+    const std::string chinese = in_chinese([&] { return error_words(error); });
+    EXPECT_TRUE(has_chinese_text(chinese)) << chinese;
+    for (const char* english : {"invalid", "allowed", "gui"}) {
+      EXPECT_EQ(chinese.find(english), std::string::npos) << chinese;
+    }
+    EXPECT_NE(chinese.find("particle.radius_min = 0.02 m"), std::string::npos) << chinese;
+  }
+}
+
+TEST(LibraryWords, ReadErrorsInChinese) {
+  const std::string missing = "/nonexistent-aggpack-folder/packing.h5";
+  try {
+    (void)read_packing(missing);
+    FAIL() << "a missing file was read";
+  } catch (const IoError& error) {
+    EXPECT_EQ(error.wording().sentence, Sentence::kReadNoSuchFile);
+    EXPECT_EQ(error_words(error), std::string(error.what()));  // English: the library's words
+    EXPECT_EQ(in_chinese([&] { return error_words(error); }),
+              "无法读取 " + missing + "：文件不存在");
+  }
+  const auto text_file = std::filesystem::temp_directory_path() / "aggpack-gui-not-hdf5.h5";
+  std::ofstream(text_file) << "not a packing\n";
+  try {
+    (void)read_packing(text_file.string());
+    FAIL() << "a text file was read as a packing";
+  } catch (const FormatError& error) {
+    EXPECT_EQ(error.wording().sentence, Sentence::kNotHdf5);
+    EXPECT_EQ(
+        in_chinese([&] { return error_words(error); }),
+        text_file.string() + "：不是 HDF5 文件（应为 aggpack 堆积文件，格式 aggpack-packing）");
+  }
+  std::filesystem::remove(text_file);
+}
+
+TEST(LibraryWords, OtherErrorsAreNamedAsErrors) {
+  const std::runtime_error other("std::bad_alloc");
+  EXPECT_EQ(in_chinese([&] { return error_words(other); }), "错误：std::bad_alloc");
+}
+
+TEST(LibraryWords, DensifySummaryFromTheReport) {
+  DensifyReport report;
+  report.stop = DensifyStop::kJammed;
+  report.start_fraction = 0.41;
+  report.solid_fraction = 0.6125;
+  report.sweeps = 800;
+  report.seconds = 12.1;
+  EXPECT_EQ(densify_words(report), report.summary());  // English: the library's words
+  EXPECT_EQ(in_chinese([&] { return densify_words(report); }),
+            "固体体积分数 0.4100 -> 0.6125，800 轮（12 秒），已卡死（体积分数不再上升）");
+}
+
+}  // namespace
+}  // namespace aggpack::gui
