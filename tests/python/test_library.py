@@ -127,7 +127,14 @@ def test_every_particle_is_a_listed_library_shape(library):
     assert seen == {4, 6, 8}
     provenance = packing.provenance["shape_library"].splitlines()
     assert provenance[0].startswith("library " + ", ".join(files) + " (units mm, 3 shapes, 0 ")
-    assert [row.split("\t")[0] for row in provenance[1:]] == files
+    # One row per stored shape, in the order the packing stores them (first use), so row k
+    # names the file of shape index k: every placed particle has its file's vertex count.
+    rows = [row.split("\t")[0] for row in provenance[1:]]
+    assert sorted(rows) == files
+    vertices_of_file = dict(zip(files, (4, 6, 8)))
+    for i in range(packing.particle_count):
+        shape = int(packing.shape_indices[i])
+        assert len(packing.world_vertices(i)) == vertices_of_file[rows[shape]], (i, rows[shape])
     # The resolved configuration writes the list back as an array that reads again.
     assert "library = [" in packing.provenance["config_toml"]
 
