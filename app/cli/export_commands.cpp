@@ -25,6 +25,7 @@
 #include "commands.h"
 #include "output_flags.h"
 #include "progress.h"
+#include "quality_verdict.h"
 
 namespace aggpack::cli {
 
@@ -197,45 +198,6 @@ ExportWork export_work(const Packing& packing, const ExportOptions& options) {
     work.cells += count;
   }
   return work;
-}
-
-// One line saying whether the tetrahedra are fine for a solver, and what to do if not.
-// Thresholds: kPoorDihedralDegrees (10 deg, the mesh module's "poorly shaped"); below it, what
-// solvers are known to take: CalculiX solved the 3,439-aggregate mesomodel whose smallest angle
-// was 0.017 deg (bench/RESULTS.md, "Concrete mesomodel mesh"); what it refuses is a Jacobian
-// below 1e-20 in the file's units (docs/mesomodel.md), so a flat tetrahedron of a small particle
-// written in metres can stop it where millimetres (--scale 1000) do not. A degenerate tetrahedron
-// (no volume: infinite aspect ratio) stops every solver.
-constexpr double kSolvedDihedralDegrees = 0.017;
-
-std::string quality_verdict(const TetQuality& quality, const TetOptions& tetrahedra, double scale) {
-  const bool is_tetgen = tetrahedra.method == TetMethod::kTetGen;
-  if (!std::isfinite(quality.max_aspect_ratio) || !(quality.min_dihedral_degrees > 0.0)) {
-    return "warning: degenerate tetrahedra (no volume): solvers stop on them (CalculiX: "
-           "nonpositive jacobian); please report it with the input file";
-  }
-  if (quality.min_dihedral_degrees >= kPoorDihedralDegrees) {
-    return fmt::format("fine for solvers: no tetrahedron below {} deg", kPoorDihedralDegrees);
-  }
-  const std::string why =
-      !is_tetgen                   ? "the centroid fan: flat over small or steep surface triangles"
-      : tetrahedra.is_surface_kept ? "TetGen keeps the surface triangles: flat where --radius-edge "
-                                     "would split one"
-                                   : "TetGen's --radius-edge bound does not remove slivers";
-  const std::string better = !is_tetgen                   ? "--tet-method tetgen --split-surface"
-                             : tetrahedra.is_surface_kept ? "--split-surface"
-                                                          : "a smaller --radius-edge";
-  if (quality.min_dihedral_degrees >= kSolvedDihedralDegrees) {
-    return fmt::format(
-        "as expected ({}); solvers run such meshes (CalculiX down to {} deg{}); better-shaped: "
-        "{}",
-        why, kSolvedDihedralDegrees,
-        scale < 100.0 ? "; in mm, --scale 1000, if it reports a nonpositive jacobian" : "", better);
-  }
-  return fmt::format(
-      "warning: smallest angle {:.3g} deg, below the {} deg CalculiX is known to solve ({}); "
-      "if the solver stops on a jacobian, write in mm (--scale 1000) or use {}",
-      quality.min_dihedral_degrees, kSolvedDihedralDegrees, why, better);
 }
 
 }  // namespace
@@ -444,13 +406,8 @@ void register_export(CLI::App& app) {
                format_seconds(seconds));
     if (summary.quality.tetrahedra > 0) {
       fmt::print("tetrahedron quality: {}\n", describe_quality(summary.quality));
-      const std::string verdict =
-          quality_verdict(summary.quality, options.tetrahedra, options.scale);
-      if (verdict.starts_with("warning")) {
-        std::fprintf(stderr, "aggpack: %s\n", verdict.c_str());
-      } else {
-        fmt::print("quality verdict: {}\n", verdict);
-      }
+      print_verdict("quality verdict: ",
+                    tet_quality_verdict(summary.quality, options.tetrahedra, options.scale));
     }
     if (summary.tetgen_shapes > 0) fmt::print("{}\n", tetgen_report(summary));
   });

@@ -25,6 +25,7 @@
 #include "commands.h"
 #include "output_flags.h"
 #include "progress.h"
+#include "quality_verdict.h"
 
 namespace aggpack::cli {
 
@@ -122,36 +123,6 @@ void run_voxels(const MesomodelFlags& flags, const Overwrite overwrite) {
              format_seconds(seconds));
 }
 
-// One line saying whether the table's numbers are what this mesh is expected to have: the ITZ
-// layer's tetrahedra are flat by design (T over millimetre triangles) and the mortar's worst
-// sit in the thin gaps TetGen must keep; a volume off its exact value or a relabelled
-// tetrahedron is not expected, and is a warning.
-void print_quality_verdict(const MesoReport& report) {
-  std::string problems;
-  for (const MesoPhase phase : {MesoPhase::kAggregate, MesoPhase::kItz, MesoPhase::kMortar}) {
-    const MesoPhaseReport& p = report.phases[static_cast<int>(phase)];
-    if (p.expected_volume <= 0.0) continue;
-    const double error = std::abs(p.meshed_volume - p.expected_volume) / p.expected_volume;
-    if (error > 1e-6) {
-      problems += fmt::format("{}{} volume off its exact value by {:.2e} (expected ~1e-14)",
-                              problems.empty() ? "" : "; ", phase_set_name(phase), error);
-    }
-  }
-  if (report.relabelled_tetrahedra > 0) {
-    problems += fmt::format("{}{} tetrahedra relabelled by the phase check (expected 0)",
-                            problems.empty() ? "" : "; ", report.relabelled_tetrahedra);
-  }
-  if (!problems.empty()) {
-    std::fprintf(stderr, "aggpack: warning: mesomodel: %s; please report it with the input file\n",
-                 problems.c_str());
-    return;
-  }
-  fmt::print(
-      "quality       as expected: ITZ tetrahedra are flat by design (the layer is thin over "
-      "the aggregate's triangles) and the mortar's smallest angles sit in the thin gaps between "
-      "layers and walls (docs/mesomodel.md, \"Quality, honestly\")\n");
-}
-
 void print_report(const MesoMesh& mesh, const MesoReport& report) {
   fmt::print("mesomodel     {} aggregates, ITZ {:.6g} m, container {:.6g} m^3 ({})\n",
              mesh.particle_count, mesh.itz_thickness, report.container_volume,
@@ -179,7 +150,7 @@ void print_report(const MesoMesh& mesh, const MesoReport& report) {
         p.quality.tetrahedra > 0 ? p.quality.min_dihedral_degrees : 0.0, p.quality.max_aspect_ratio,
         p.quality.below_10_degrees);
   }
-  print_quality_verdict(report);
+  print_verdict("quality       ", mesomodel_verdict(report));
   if (report.cohesive_elements > 0) {
     const double error =
         (report.interface_area - report.expected_interface_area) / report.expected_interface_area;
