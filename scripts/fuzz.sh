@@ -18,8 +18,12 @@ seconds=${1:-90}
 shift || true
 targets=${AGGPACK_FUZZ_TARGETS:-native_reader config_reader repose_config mesh_reader}
 build=build-fuzz
+# -O1 -g1 (as the sanitized build) instead of RelWithDebInfo's -O2 -g: 12 % less compile time
+# (src/io's first unity batch: 16.2 vs 18.4 s of CPU, 2026-12-05), and line tables are all a
+# finding's stack trace needs.
 CC=${CC_FUZZ:-clang-14} CXX=${CXX_FUZZ:-clang++-14} cmake -S . -B "$build" -G Ninja \
-  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAGGPACK_BUILD_FUZZ=ON -DAGGPACK_BUILD_TESTS=OFF \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DAGGPACK_BUILD_FUZZ=ON -DAGGPACK_BUILD_TESTS=OFF \
   -DAGGPACK_BUILD_BENCH=OFF -DAGGPACK_BUILD_GUI=OFF -DAGGPACK_BUILD_RENDER=OFF \
   -DAGGPACK_BUILD_SIM=ON -DAGGPACK_BUILD_PYTHON=OFF "$@" >/dev/null
 cmake --build "$build" -j "$(nproc)" --target $(printf 'fuzz_%s ' $targets)
