@@ -6,7 +6,10 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -385,15 +388,20 @@ void register_export(CLI::App& app) {
     announce_heavy_run(estimate_export(work));
     ExportSummary summary;
     {
-      // TetGen meshes the shapes in worker processes and reports nothing until all are done:
-      // the time taken, the ETA of TetGen's share of the estimate and the per-shape time limit.
+      // TetGen meshes the shapes in worker processes: the shapes done so far, their rate and
+      // the ETA from it (before the first, the ETA of TetGen's share of the estimate), and the
+      // per-shape time limit.
       std::optional<StageTimer> timer;
+      const std::function<void(std::size_t, std::size_t)> count_shapes =
+          [&timer](std::size_t done, std::size_t total) { timer->set_items(done, total); };
       if (work.tetgen_shapes > 0.0) {
         timer.emplace(
             "meshing shapes (TetGen)", style,
-            StageTiming{.item_limit_seconds = options.tetrahedra.time_limit,
-                        .expected_seconds =
-                            estimate_export({.tetgen_shapes = work.tetgen_shapes}).seconds});
+            StageTiming{
+                .item_limit_seconds = options.tetrahedra.time_limit,
+                .expected_seconds = estimate_export({.tetgen_shapes = work.tetgen_shapes}).seconds,
+                .items_total = static_cast<std::uint64_t>(work.tetgen_shapes)});
+        options.tetrahedra.on_progress = &count_shapes;
       }
       with_key_names({}, export_flag_names(),
                      [&] { summary = write(packing, flags->output, options); });

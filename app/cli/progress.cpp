@@ -220,7 +220,17 @@ std::string stage_text(const std::string& label, double elapsed, const StageTimi
                        bool is_final) {
   if (is_final) return fmt::format("{}: done in {} s", label, format_seconds(elapsed));
   std::string text = fmt::format("{}: {} elapsed", label, format_duration(elapsed));
-  if (timing.expected_seconds > 0) {
+  if (timing.items_total > 0) {
+    text += fmt::format(", {} of {} {}s", timing.items_done, timing.items_total, timing.item);
+  }
+  if (timing.items_done > 0 && elapsed > 0) {
+    // Measured: the items settled so far at their mean rate.
+    const double rate = static_cast<double>(timing.items_done) / elapsed;
+    const double left =
+        static_cast<double>(timing.items_total - std::min(timing.items_done, timing.items_total));
+    text += fmt::format(", {} {}s/s, ETA {}", format_rate(rate), timing.item,
+                        format_duration(left / rate));
+  } else if (timing.expected_seconds > 0) {
     text += elapsed < timing.expected_seconds
                 ? fmt::format(", ETA ~{} by the estimate",
                               format_duration(timing.expected_seconds - elapsed))
@@ -267,6 +277,12 @@ StageTimer::StageTimer(std::string label, ProgressStyle style, StageTiming timin
 }
 
 StageTimer::~StageTimer() { finish(); }
+
+void StageTimer::set_items(std::uint64_t done, std::uint64_t total) {
+  const std::lock_guard lock(mutex_);
+  timing_.items_done = done;
+  timing_.items_total = total;
+}
 
 void StageTimer::draw(double elapsed, bool is_final) {
   const std::string text = stage_text(label_, elapsed, timing_, is_final);

@@ -113,6 +113,10 @@ struct StageTiming {
   /// The estimate of aggpack/pack/resources.h (the heads-up's): gives an ETA ("ETA ~0:12 by the
   /// estimate"), and a stage expected to take kProgressHeartbeat or more shows its line at once.
   double expected_seconds = 0.0;
+  /// Items settled so far of items_total (0 = not counted): once one is done, the line shows
+  /// the count, the rate and an ETA measured from them instead of the estimate's.
+  std::uint64_t items_done = 0;
+  std::uint64_t items_total = 0;
 };
 
 /// A StageTimer's line after `elapsed` seconds: "meshing (TetGen): 0:04 elapsed, ETA ~0:06 by
@@ -135,6 +139,8 @@ class StageTimer {
   /// Stops the display with "label: done in T s" (when anything was shown). Called by the
   /// destructor.
   void finish();
+  /// Counts the stage's items (StageTiming::items_done, items_total); any thread.
+  void set_items(std::uint64_t done, std::uint64_t total);
 
  private:
   void draw(double elapsed, bool is_final);

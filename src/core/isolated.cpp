@@ -248,6 +248,7 @@ class Pool {
       }
       used += sizeof header + header.length;
       ++worker.next;
+      count_settled();
       worker.item_start = Clock::now();
     }
     worker.buffer.erase(0, used);
@@ -258,9 +259,15 @@ class Pool {
   void fail_current(Worker& worker, const std::string& failure) {
     if (worker.next >= worker.items.size()) return;
     outcomes_[worker.items[worker.next]].failure = failure;
+    count_settled();
     std::vector<std::size_t> rest(
         worker.items.begin() + static_cast<std::ptrdiff_t>(worker.next) + 1, worker.items.end());
     if (!rest.empty()) queue_.push_front(std::move(rest));
+  }
+
+  void count_settled() {
+    ++settled_;
+    if (options_.on_settled) options_.on_settled(settled_, outcomes_.size());
   }
 
   static int reap(Worker& worker) {
@@ -287,6 +294,7 @@ class Pool {
   const std::function<std::string(std::size_t)>& work_;
   const IsolatedOptions& options_;
   std::vector<IsolatedOutcome> outcomes_;
+  std::size_t settled_ = 0;
   std::deque<std::vector<std::size_t>> queue_;
   std::vector<Worker> workers_;
   std::size_t max_workers_ = 1;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <string>
 #include <unordered_map>
 
@@ -196,7 +197,11 @@ std::vector<TetGenOutcome> tetgen_meshes(std::span<const ConvexPolyhedron* const
     return detail::worker_answer([&] { return serialize(mesh_here(*bodies[i], options)); });
   };
   const std::vector<IsolatedOutcome> results =
-      run_isolated(bodies.size(), work, {.time_limit = options.time_limit});
+      run_isolated(bodies.size(), work,
+                   {.time_limit = options.time_limit,
+                    .on_settled = options.on_progress != nullptr
+                                      ? *options.on_progress
+                                      : std::function<void(std::size_t, std::size_t)>()});
   std::vector<TetGenOutcome> outcomes(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     TetGenOutcome& outcome = outcomes[i];

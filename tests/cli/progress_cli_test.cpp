@@ -72,9 +72,18 @@ TEST_F(ProgressCliTest, ExportTetGenStageShowsEtaAndShapeLimitAndQualityVerdict)
       run("export many.h5 --format inp --tet-method tetgen --tet-time-limit 30 -o many.inp -j 1 "
           "--progress lines");
   ASSERT_EQ(tetgen.exit_code, 0) << tetgen.err;
-  EXPECT_EQ(tetgen.err.rfind("meshing shapes (TetGen): 0:00 elapsed, ETA ~0:0", 0), 0U)
-      << tetgen.err;
+  // The first line: no shape done yet, the count and the estimate's ETA.
+  EXPECT_EQ(tetgen.err.rfind("meshing shapes (TetGen): 0:00 elapsed, 0 of ", 0), 0U) << tetgen.err;
   const std::string first = tetgen.err.substr(0, tetgen.err.find('\n'));
+  EXPECT_NE(first.find(" shapes, ETA ~0:0"), std::string::npos) << first;
+  // Any later line (every 2 s while it runs) counts the shapes meshed, with a measured rate.
+  std::size_t line_start = first.size() + 1;
+  for (std::size_t end = tetgen.err.find('\n', line_start); end != std::string::npos;
+       line_start = end + 1, end = tetgen.err.find('\n', line_start)) {
+    const std::string line = tetgen.err.substr(line_start, end - line_start);
+    if (line.find(" elapsed, ") == std::string::npos) continue;
+    EXPECT_NE(line.find(" shapes/s, ETA "), std::string::npos) << line;
+  }
   EXPECT_NE(first.find(" by the estimate (each shape stops at its time limit of 30 s)"),
             std::string::npos)
       << first;

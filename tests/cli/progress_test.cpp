@@ -124,6 +124,25 @@ TEST(StageText, EtaByTheEstimateAndTheLimits) {
             "voxelising: done in 3.1 s");
 }
 
+// A stage that counts its items (TetGen's shapes, one per worker result): the count from the
+// start, then the measured rate and an ETA from it instead of the estimate's.
+TEST(StageText, CountedItemsGiveRateAndMeasuredEta) {
+  const StageTiming before{.item_limit_seconds = 20.0, .expected_seconds = 5.0, .items_total = 300};
+  EXPECT_EQ(stage_text("meshing shapes (TetGen)", 0.0, before, false),
+            "meshing shapes (TetGen): 0:00 elapsed, 0 of 300 shapes, ETA ~0:05 by the estimate "
+            "(each shape stops at its time limit of 20 s)");
+  StageTiming during = before;
+  during.items_done = 100;
+  // 100 shapes in 4 s: 25 shapes/s, 200 left: 8 s (the estimate said 1 s more is left).
+  EXPECT_EQ(stage_text("meshing shapes (TetGen)", 4.0, during, false),
+            "meshing shapes (TetGen): 0:04 elapsed, 100 of 300 shapes, 25 shapes/s, ETA 0:08 "
+            "(each shape stops at its time limit of 20 s)");
+  during.items_done = 300;
+  EXPECT_EQ(stage_text("meshing shapes (TetGen)", 6.0, during, false),
+            "meshing shapes (TetGen): 0:06 elapsed, 300 of 300 shapes, 50 shapes/s, ETA 0:00 "
+            "(each shape stops at its time limit of 20 s)");
+}
+
 // A stage the estimate expects to take kProgressHeartbeat or more shows its line at once; a short
 // one that ends at once shows nothing.
 TEST(StageTimer, ShownAtOnceOnlyWhenExpectedToBeLong) {

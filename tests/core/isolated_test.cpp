@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <future>
 #include <string>
+#include <vector>
 
 #include "aggpack/core/error.h"
 
@@ -62,7 +63,15 @@ TEST(RunIsolated, AbortCrashThrowAndExitFailOnlyTheirItem) {
     return square(i);
   };
   for (const int workers : {1, 2}) {
-    const auto outcomes = run_isolated(12, work, {.workers = workers});
+    // Every item is counted once as it settles, the failed ones too, in the calling process.
+    std::vector<std::size_t> settled;
+    const auto outcomes = run_isolated(
+        12, work, {.workers = workers, .on_settled = [&](std::size_t done, std::size_t count) {
+                     EXPECT_EQ(count, 12U);
+                     settled.push_back(done);
+                   }});
+    ASSERT_EQ(settled.size(), 12U);
+    for (std::size_t k = 0; k < settled.size(); ++k) EXPECT_EQ(settled[k], k + 1);
     ASSERT_EQ(outcomes.size(), 12U);
     for (std::size_t i = 0; i < outcomes.size(); ++i) {
       const bool is_bad = i == 3 || i == 4 || i == 7 || i == 8;

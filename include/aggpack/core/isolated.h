@@ -27,6 +27,9 @@ struct IsolatedOptions {
   /// Seconds one item may take before its worker is killed and the item fails, in
   /// [0.001, 604800] (a week).
   double time_limit = 60.0;
+  /// Called in the calling process each time an item's outcome is settled (its result arrived
+  /// or it failed): (items settled so far, count). For a progress display; must not throw.
+  std::function<void(std::size_t settled, std::size_t count)> on_settled = {};
 };
 
 /// Runs work(i) for every i in [0, count) in forked worker processes and returns the outcomes in

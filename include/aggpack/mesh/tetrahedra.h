@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -79,6 +80,10 @@ struct TetOptions {
   /// counts as failed, in [0.001, 604800]. A generated shape takes milliseconds; Debian's TetGen
   /// 1.5 loops forever on a few (tests/mesh/fixtures/tetgen-hang).
   double time_limit = 20.0;
+  /// TetGen only (tetgen_meshes): when set, called in the calling process as each shape is
+  /// meshed or fails, (shapes settled so far, shapes); for a progress display, must not throw.
+  /// A pointer (owned by the caller) keeps the options a plain value.
+  const std::function<void(std::size_t done, std::size_t total)>* on_progress = nullptr;
 };
 
 /// The centroid fan's tetrahedron on surface triangle (a, b, c), `centre` being the centroid's
