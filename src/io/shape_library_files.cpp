@@ -160,9 +160,10 @@ ShapeLibrary load_shape_library(const ShapeLibraryOptions& options) {
     library.skipped.push_back(files[i].second + ": " + outcome.message);
   }
   if (library.shapes.empty()) {
-    throw InvalidInput("particle.library", aggpack::quoted(library.source),
-                       Wording{Sentence::kLibraryAllSkipped,
-                               {std::to_string(files.size()), clipped(library.skipped.front(), 160)}});
+    throw InvalidInput(
+        "particle.library", aggpack::quoted(library.source),
+        Wording{Sentence::kLibraryAllSkipped,
+                {std::to_string(files.size()), clipped(library.skipped.front(), 160)}});
   }
   return library;
 }

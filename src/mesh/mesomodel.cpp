@@ -393,10 +393,11 @@ void add_itz_layers(const std::vector<Inclusion>& inclusions,
     }
     const double expected = inclusion.shell_volume - inclusion.aggregate_volume;
     if (!(std::abs(volume - expected) <= 1e-9 * expected)) {
-      throw LimitExceeded(Wording{Sentence::kText, {"itz_thickness"}},
-                          Wording{Sentence::kItzFolds,
-                                  {std::to_string(i + 1), number((volume - expected) / expected, 3)}},
-                          Wording{Sentence::kThinnerItz, {}});
+      throw LimitExceeded(
+          Wording{Sentence::kText, {"itz_thickness"}},
+          Wording{Sentence::kItzFolds,
+                  {std::to_string(i + 1), number((volume - expected) / expected, 3)}},
+          Wording{Sentence::kThinnerItz, {}});
     }
   }
 }

@@ -369,11 +369,11 @@ void check_resources(const RandomPackOptions& options) {
   const double library = options.shape.library_size;
   const double most = std::max(kLibraryFloor, std::ceil(kLibraryHeadroom * estimate.particles));
   if (library > most) {
-    throw LimitExceeded("shape.library_size", std::to_string(options.shape.library_size),
-                        Wording{Sentence::kLibraryHeadroom,
-                                {count_text(most), format_value(kLibraryHeadroom),
-                                 count_text(estimate.particles), count_text(kLibraryFloor),
-                                 format_bytes(estimate.bytes)}});
+    throw LimitExceeded(
+        "shape.library_size", std::to_string(options.shape.library_size),
+        Wording{Sentence::kLibraryHeadroom,
+                {count_text(most), format_value(kLibraryHeadroom), count_text(estimate.particles),
+                 count_text(kLibraryFloor), format_bytes(estimate.bytes)}});
   }
 }
 

@@ -47,9 +47,9 @@ std::set<std::string> words_of_text(const std::string& text) {
 // library_words_test.cpp has the same list).
 bool is_kept_name(const std::string& word) {
   static const std::set<std::string> names = {
-      "HDF5", "aggpack", "TetGen", "ITZ",   "PNG",   "FIFO",   "cgroup", "ulimit",
-      "STL",  "ASCII",   "OpenGL", "OBJ",   "facet", "normal", "outer",  "loop",
-      "vertex", "solid", "endsolid", "stl", "obj", "ply"};
+      "HDF5",   "aggpack", "TetGen",   "ITZ", "PNG",   "FIFO",   "cgroup", "ulimit",
+      "STL",    "ASCII",   "OpenGL",   "OBJ", "facet", "normal", "outer",  "loop",
+      "vertex", "solid",   "endsolid", "stl", "obj",   "ply"};
   return names.count(word) > 0 || word.find('_') != std::string::npos;
 }
 
@@ -92,8 +92,8 @@ std::string expect_worded(const Error& error) {
   const std::set<std::string> left = words_of_text(chinese);
   for (const std::string& word : words_of_text(error.what())) {
     if (value_words.count(word) > 0 || is_kept_name(word)) continue;
-    EXPECT_EQ(left.count(word), 0U) << "'" << word << "' left in " << chinese << "\n(English: "
-                                    << error.what() << ")";
+    EXPECT_EQ(left.count(word), 0U)
+        << "'" << word << "' left in " << chinese << "\n(English: " << error.what() << ")";
   }
   return chinese;
 }
@@ -111,7 +111,8 @@ std::string expect_chinese_error(const std::function<void()>& run) {
 
 // A scratch folder of its own, removed afterwards.
 struct ErrorsScratch {
-  fs::path folder = fs::temp_directory_path() / ("aggpack-gui-errors-" + std::to_string(::getpid()));
+  fs::path folder =
+      fs::temp_directory_path() / ("aggpack-gui-errors-" + std::to_string(::getpid()));
   ErrorsScratch() { fs::create_directories(folder); }
   ~ErrorsScratch() { fs::remove_all(folder); }
   [[nodiscard]] std::string path(const std::string& name) const { return (folder / name).string(); }
@@ -128,12 +129,12 @@ TEST(LibraryErrors, WritingAFile) {
   const ExportOptions stl{.format = parse_export_format("stl"), .overwrite = Overwrite::kAllow};
   expect_chinese_error([&] { (void)write(packing, "/nonexistent-aggpack-folder/rock.stl", stl); });
   fs::create_directories(scratch.path("rock.stl"));
-  const std::string folder = expect_chinese_error([&] {
-    (void)write(packing, scratch.path("rock.stl"), stl);
-  });
+  const std::string folder =
+      expect_chinese_error([&] { (void)write(packing, scratch.path("rock.stl"), stl); });
   EXPECT_NE(folder.find("文件夹"), std::string::npos) << folder;  // "directory", a phrase
   expect_chinese_error([] { check_writable("", Overwrite::kAllow); });
-  expect_chinese_error([&] { check_writable(scratch.path(std::string(300, 'a')), Overwrite::kAllow); });
+  expect_chinese_error(
+      [&] { check_writable(scratch.path(std::string(300, 'a')), Overwrite::kAllow); });
 }
 
 TEST(LibraryErrors, LimitsCheckedBeforeAPack) {
@@ -196,7 +197,8 @@ TEST(LibraryErrors, SolverDeckFields) {
   EXPECT_NE(poisson.find("泊松比"), std::string::npos) << poisson;  // the field's label
   options.material.poisson_ratio = 0.2;
   options.deck.baffle_position = 0.01;  // in front of the particles
-  expect_chinese_error([&] { (void)write(two_cubes(0.3, 0.7), scratch.path("trough.inp"), options); });
+  expect_chinese_error(
+      [&] { (void)write(two_cubes(0.3, 0.7), scratch.path("trough.inp"), options); });
 }
 
 }  // namespace

@@ -68,10 +68,11 @@ TEST(LibraryWords, ChineseSentencesHaveNoEnglishWordOfTheLibrary) {
   // a configuration value as typed ("particle.library_use_once = true"), other programs and
   // formats and file extensions, the keywords of a mesh file ("facet normal", "outer loop").
   const std::set<std::string> names = {
-      "HDF5",   "aggpack", "format_name", "format_version", "true",  "TetGen", "ITZ",
-      "PNG",    "FIFO",    "cgroup",      "ulimit",         "STL",   "ASCII",  "OpenGL",
-      "OBJ",    "facet",   "normal",      "outer",          "loop",  "vertex", "solid",
-      "endsolid", "stl",   "obj",         "ply"};
+      "HDF5",  "aggpack", "format_name", "format_version", "true",   "TetGen",
+      "ITZ",   "PNG",     "FIFO",        "cgroup",         "ulimit", "STL",
+      "ASCII", "OpenGL",  "OBJ",         "facet",          "normal", "outer",
+      "loop",  "vertex",  "solid",       "endsolid",       "stl",    "obj",
+      "ply"};
   // A configuration key ("shape.library_size") is a name too.
   static const std::regex key("[a-z_]+\\.[a-z_]+");
   for (int k = 0; k < kSentenceCount; ++k) {

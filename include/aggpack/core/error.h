@@ -87,8 +87,8 @@ class InvalidInput : public Error {
   /// A field and value that are phrases ("particles 3 and 5" = "0.1 mm apart").
   InvalidInput(Wording field, Wording value, Wording allowed)
       : Error(ErrorKind::kInvalidInput,
-              "invalid " + english(field) + " = " + english(value) + " (allowed: " +
-                  english(allowed) + ")",
+              "invalid " + english(field) + " = " + english(value) +
+                  " (allowed: " + english(allowed) + ")",
               field, value, allowed) {}
   /// The allowed text in English.
   [[nodiscard]] std::string allowed() const { return english(wording()); }
@@ -122,8 +122,8 @@ class LimitExceeded : public Error {
   /// A field and value that are phrases ("mesomodel mesh" = "TetGen moved ...").
   LimitExceeded(Wording field, Wording value, Wording allowed)
       : Error(ErrorKind::kLimitExceeded,
-              "limit exceeded for " + english(field) + " = " + english(value) + " (allowed: " +
-                  english(allowed) + ")",
+              "limit exceeded for " + english(field) + " = " + english(value) +
+                  " (allowed: " + english(allowed) + ")",
               field, value, allowed) {}
 };
 
