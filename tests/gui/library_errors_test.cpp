@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -68,9 +70,11 @@ std::string chinese_words(const Error& error) {
   return text;
 }
 
-// The error's words in Chinese carry no English word of its message but names and values; its
-// whole message (or the allowed part of a refused value) is a sentence unless it has no words.
-std::string expect_worded(const Error& error) {
+// What is wrong with the error's words in Chinese ("" when nothing): they must carry no English
+// word of its message but names and values, and its whole message (or the allowed part of a
+// refused value) must be a sentence unless it has no words. `chinese` gets the words.
+std::string problems_in_chinese(const Error& error, std::string& chinese) {
+  std::string problems;
   std::vector<const Wording*> parts = {&error.wording()};
   if (error.has_value()) {
     parts.push_back(&error.field_wording());
@@ -84,17 +88,27 @@ std::string expect_worded(const Error& error) {
   }
   if (error.wording().sentence == Sentence::kText) {
     for (const std::string& word : words_of_text(english(error.wording()))) {
-      EXPECT_TRUE(is_kept_name(word)) << "free-form English: " << error.what();
+      if (!is_kept_name(word)) problems += " free-form English word '" + word + "';";
     }
   }
-  const std::string chinese = chinese_words(error);
-  EXPECT_TRUE(has_chinese_words(chinese)) << chinese;
+  chinese = chinese_words(error);
+  if (!has_chinese_words(chinese)) problems += " no Chinese;";
   const std::set<std::string> left = words_of_text(chinese);
   for (const std::string& word : words_of_text(error.what())) {
     if (value_words.count(word) > 0 || is_kept_name(word)) continue;
-    EXPECT_EQ(left.count(word), 0U)
-        << "'" << word << "' left in " << chinese << "\n(English: " << error.what() << ")";
+    if (left.count(word) > 0) problems += " '" + word + "' left;";
   }
+  return problems;
+}
+
+// Checks the error's Chinese words (AGGPACK_SHOW_WORDS=1 prints both languages).
+std::string expect_worded(const Error& error) {
+  std::string chinese;
+  const std::string problems = problems_in_chinese(error, chinese);
+  if (std::getenv("AGGPACK_SHOW_WORDS") != nullptr) {
+    std::printf("%s\n%s\n\n", error.what(), chinese.c_str());
+  }
+  EXPECT_EQ(problems, "") << chinese << "\n(English: " << error.what() << ")";
   return chinese;
 }
 
@@ -121,6 +135,15 @@ struct ErrorsScratch {
 Packing two_cubes(double first_x, double second_x) {
   const ConvexPolyhedron cube = make_box(Vec3::Constant(-0.1), Vec3::Constant(0.1));
   return test::box_with(1.0, {cube, cube}, {Vec3(first_x, 0.5, 0.5), Vec3(second_x, 0.5, 0.5)});
+}
+
+TEST(LibraryErrors, FreeFormEnglishFails) {
+  // The check itself: a message without a sentence of its own is caught.
+  std::string chinese;
+  const std::string problems =
+      problems_in_chinese(FormatError("x.ply: PLY header has no format line"), chinese);
+  EXPECT_NE(problems.find("free-form English word 'header'"), std::string::npos) << problems;
+  EXPECT_NE(problems.find("'header' left"), std::string::npos) << problems;
 }
 
 TEST(LibraryErrors, WritingAFile) {
