@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string_view>
 
+#include "aggpack/config/config.h"
 #include "aggpack/config/schema.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
@@ -75,11 +76,18 @@ constexpr std::array<bool, static_cast<std::size_t>(Sentence::kCount)> kIsPhrase
 }};
 
 // A value in the window's language: a phrase's words, anything else (a number, a file or key
-// name, an operating-system reason) as it is.
+// name, an operating-system reason) as it is. A phrase naming an options field is matched, and
+// worded, with the configuration key's name (as with_key_names renames it in the error).
 std::string value_words(const std::string& value) {
+  const auto& schema = pack_schema();
+  static const std::vector<KeyView> keys = key_views(schema);
   for (std::size_t k = 0; k < kIsPhrase.size(); ++k) {
-    const auto sentence = static_cast<Sentence>(k);
-    if (kIsPhrase[k] && value == english_words(sentence)) return tr(kSentenceTexts[k]);
+    if (!kIsPhrase[k]) continue;
+    const std::string english = english_words(static_cast<Sentence>(k));
+    if (value == english) return tr(kSentenceTexts[k]);
+    if (value == to_key_names(keys, schema.aliases, english)) {
+      return to_key_names(keys, schema.aliases, tr(kSentenceTexts[k]));
+    }
   }
   return value;
 }

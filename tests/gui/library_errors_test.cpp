@@ -77,13 +77,24 @@ std::string problems_in_chinese(const Error& error, std::string& chinese) {
   std::string problems;
   std::vector<const Wording*> parts = {&error.wording()};
   if (error.has_value()) {
-    parts.push_back(&error.field_wording());
     parts.push_back(&error.value_wording());
+    parts.push_back(&error.field_wording());  // last: a field's name is a name
   }
   std::set<std::string> value_words;
   for (const Wording* part : parts) {
     for (const std::string& value : part->values) {
-      for (const std::string& word : words_of_text(value)) value_words.insert(word);
+      // Words in a value (a path, a number with its unit) are names; English words in a value
+      // with spaces are prose, unless the window words it (a Phrase* sentence).
+      const std::set<std::string> words = words_of_text(value);
+      value_words.insert(words.begin(), words.end());
+      if (part == &error.field_wording() || value.find(' ') == std::string::npos) continue;
+      std::size_t english = 0;
+      for (const std::string& word : words) english += is_kept_name(word) ? 0 : 1;
+      const std::string worded =
+          chinese_words(LimitExceeded("x", "1", Wording{Sentence::kAtMost, {value}}));
+      if (english >= 2 && worded.find(value) != std::string::npos) {
+        problems += " English value '" + value + "';";
+      }
     }
   }
   if (error.wording().sentence == Sentence::kText) {
@@ -143,7 +154,16 @@ TEST(LibraryErrors, FreeFormEnglishFails) {
   const std::string problems =
       problems_in_chinese(FormatError("x.ply: PLY header has no format line"), chinese);
   EXPECT_NE(problems.find("free-form English word 'header'"), std::string::npos) << problems;
-  EXPECT_NE(problems.find("'header' left"), std::string::npos) << problems;
+  EXPECT_NE(problems.find("no Chinese"), std::string::npos) << problems;
+  // A value in English words is caught too, unless it is a phrase the window words.
+  const LimitExceeded prose(Wording{Sentence::kText, {"grading"}},
+                            Wording{Sentence::kText, {"sizes out of range"}},
+                            Wording{Sentence::kAtMost, {"1"}});
+  EXPECT_NE(problems_in_chinese(prose, chinese).find("English value"), std::string::npos);
+  const LimitExceeded phrase(
+      Wording{Sentence::kText, {"grading"}}, Wording{Sentence::kText, {"1"}},
+      Wording{Sentence::kMemorySize, {english_words(Sentence::kPhraseUseLargerParticles)}});
+  EXPECT_EQ(problems_in_chinese(phrase, chinese), "") << chinese;
 }
 
 TEST(LibraryErrors, WritingAFile) {
