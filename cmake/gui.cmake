@@ -64,9 +64,11 @@ if(AGGPACK_BUILD_GUI)
     include(GoogleTest)
     add_executable(test_gui_i18n ${PROJECT_SOURCE_DIR}/tests/gui/i18n_test.cpp
                                  ${PROJECT_SOURCE_DIR}/tests/gui/library_words_test.cpp
+                                 ${PROJECT_SOURCE_DIR}/tests/gui/library_errors_test.cpp
                                  ${PROJECT_SOURCE_DIR}/app/gui/i18n.cpp
                                  ${PROJECT_SOURCE_DIR}/app/gui/library_words.cpp)
-    target_include_directories(test_gui_i18n PRIVATE ${PROJECT_SOURCE_DIR}/app/gui)
+    target_include_directories(test_gui_i18n PRIVATE ${PROJECT_SOURCE_DIR}/app/gui
+                                                     ${PROJECT_SOURCE_DIR}/tests)
     target_link_libraries(test_gui_i18n PRIVATE aggpack_pipeline aggpack_config aggpack_core fmt::fmt
                           GTest::gtest_main)
     gtest_discover_tests(test_gui_i18n DISCOVERY_TIMEOUT 60)

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string_view>
 
+#include "aggpack/config/config.h"
 #include "aggpack/config/schema.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
@@ -67,6 +68,61 @@ Text densify_stop_text(DensifyStop stop) {
   return Text::kStopTarget;
 }
 
+// The sentences named Phrase*: a value that is one of them is worded too ("directory").
+constexpr std::array<bool, static_cast<std::size_t>(Sentence::kCount)> kIsPhrase = {{
+#define AGGPACK_SENTENCE_IS_PHRASE(name, english) std::string_view(#name).rfind("Phrase", 0) == 0,
+    AGGPACK_ERROR_SENTENCES(AGGPACK_SENTENCE_IS_PHRASE)
+#undef AGGPACK_SENTENCE_IS_PHRASE
+}};
+
+// A value in the window's language: a phrase's words, anything else (a number, a file or key
+// name, an operating-system reason) as it is. A phrase naming an options field is matched, and
+// worded, with the configuration key's name (as with_key_names renames it in the error).
+std::string value_words(const std::string& value) {
+  const auto& schema = pack_schema();
+  static const std::vector<KeyView> keys = key_views(schema);
+  for (std::size_t k = 0; k < kIsPhrase.size(); ++k) {
+    if (!kIsPhrase[k]) continue;
+    const std::string english = english_words(static_cast<Sentence>(k));
+    if (value == english) return tr(kSentenceTexts[k]);
+    if (value == to_key_names(keys, schema.aliases, english)) {
+      return to_key_names(keys, schema.aliases, tr(kSentenceTexts[k]));
+    }
+  }
+  return value;
+}
+
+// A field of the solver deck's panel by the name the library gives it ("baffle position"): its
+// label there ("挡板位置 m"), without the widget id.
+std::string field_words(const Wording& field) {
+  struct DeckLabel {
+    std::string_view field;
+    Text label;
+  };
+  static constexpr DeckLabel kLabels[] = {
+      {"friction", Text::kDeckFriction},
+      {"gravity", Text::kDeckGravity},
+      {"baffle speed", Text::kDeckBaffleSpeed},
+      {"baffle position", Text::kDeckBafflePosition},
+      {"trough length", Text::kDeckTroughLength},
+      {"settle time", Text::kDeckSettle},
+      {"rest time", Text::kDeckRest},
+      {"density", Text::kDeckDensity},
+      {"youngs modulus", Text::kDeckYoungs},
+      {"poisson ratio", Text::kDeckPoisson},
+      {"contact distance", Text::kDeckContact},
+      {"time step", Text::kDeckTimeStep},
+  };
+  if (field.sentence == Sentence::kText && field.values.size() == 1) {
+    for (const DeckLabel& deck : kLabels) {
+      if (field.values.front() != deck.field) continue;
+      const std::string label = tr(deck.label);
+      return label.substr(0, label.find("##"));
+    }
+  }
+  return wording_words(field);
+}
+
 }  // namespace
 
 Text sentence_text(Sentence sentence) {
@@ -75,7 +131,10 @@ Text sentence_text(Sentence sentence) {
 }
 
 std::string wording_words(const Wording& wording) {
-  return fill_words(tr(sentence_text(wording.sentence)), wording.values);
+  std::vector<std::string> values;
+  values.reserve(wording.values.size());
+  for (const std::string& value : wording.values) values.push_back(value_words(value));
+  return fill_words(tr(sentence_text(wording.sentence)), values);
 }
 
 std::string error_words(const std::exception& error) {
@@ -84,7 +143,8 @@ std::string error_words(const std::exception& error) {
   if (library->has_value()) {
     return trs(
         library->kind() == ErrorKind::kLimitExceeded ? Text::kLimitNotAllowed : Text::kNotAllowed,
-        library->field(), library->value(), wording_words(library->wording()));
+        field_words(library->field_wording()), wording_words(library->value_wording()),
+        wording_words(library->wording()));
   }
   if (library->wording().sentence == Sentence::kText) return without_origin(error.what());
   return wording_words(library->wording());

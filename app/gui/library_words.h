@@ -22,13 +22,15 @@ namespace aggpack::gui {
 /// The catalogue entry of `sentence` (kSentence<Name>).
 Text sentence_text(Sentence sentence);
 
-/// The wording in the current language.
+/// The wording in the current language; a value that is a Sentence::kPhrase* word ("directory")
+/// in it too, any other value as it is.
 std::string wording_words(const Wording& wording);
 
 /// An error in the current language: a refused value as "FIELD: VALUE is not allowed; allowed:
-/// ..." (a limit: "... is over a limit ..."), another aggpack error as its sentence, anything else
-/// as "Error: what()". A ConfigError's origin ("gui: ", "--set K=V: ") is left out: the panel is
-/// it.
+/// ..." (a limit: "... is over a limit ..."; FIELD and VALUE worded when they are sentences, a
+/// solver deck field by its label in the deck panel), another aggpack error as its sentence,
+/// anything else as "Error: what()". A ConfigError's origin ("gui: ", "--set K=V: ") is left
+/// out: the panel is it.
 std::string error_words(const std::exception& error);
 
 /// The packer's report line (in English, PackReport::summary()'s words).

@@ -208,9 +208,17 @@ void with_key_names(const std::vector<KeyView>& keys,
     for (std::string& value : wording.values) value = to_key_names(keys, aliases, value);
     return wording;
   };
+  // A field or value in words of its own ("sizes from 0.001 m") is kept as it is when the
+  // message names no field to rename.
+  auto is_phrase = [&](const Error& error) {
+    return (error.field_wording().sentence != Sentence::kText ||
+            error.value_wording().sentence != Sentence::kText) &&
+           to_key_names(keys, aliases, error.what()) == error.what();
+  };
   try {
     check();
   } catch (const InvalidInput& error) {
+    if (is_phrase(error)) throw;
     const std::string key = renamed(error.field());
     ConfigError renamed_error(key, "", key, error.value(), renamed_wording(error.wording()));
     // The message as before (also the names within the allowed text's own words).
@@ -219,6 +227,7 @@ void with_key_names(const std::vector<KeyView>& keys,
     }
     throw renamed_error;
   } catch (const LimitExceeded& error) {
+    if (is_phrase(error)) throw;
     LimitExceeded renamed_error(renamed(error.field()), error.value(),
                                 renamed_wording(error.wording()));
     if (renamed_error.what() != to_key_names(keys, aliases, error.what())) {

@@ -54,18 +54,18 @@ int create_temporary(const std::string& folder, std::string& created, int& slot)
 
 }  // namespace
 
-std::string write_failure_message(const std::string& path, int error) {
+Wording write_failure_wording(const std::string& path, int error) {
   switch (error) {
     case ENOSPC:
-      return "cannot write " + path + ": disk full";
+      return {Sentence::kWriteDiskFull, {path}};
     case EDQUOT:
-      return "cannot write " + path + ": disk quota exceeded";
+      return {Sentence::kWriteQuota, {path}};
     case EFBIG:
-      return "cannot write " + path + ": file too large (file size limit)";
+      return {Sentence::kWriteTooLarge, {path}};
     case 0:
-      return "cannot write " + path + ": write error";
+      return {Sentence::kWriteError, {path}};
     default:
-      return "cannot write " + path + ": " + std::strerror(error);
+      return {Sentence::kWriteSystemError, {path, std::strerror(error)}};
   }
 }
 
@@ -135,14 +135,15 @@ namespace {
 
 // "cannot write <path>: file name too long (300 bytes, at most 255)": the longest name of the path
 // against NAME_MAX, else the whole path against PATH_MAX. The path is clipped: it is long.
-std::string name_too_long_message(const std::string& path) {
+Wording name_too_long_wording(const std::string& path) {
   std::size_t longest = 0;
   for (const auto& part : fs::path(path)) longest = std::max(longest, part.native().size());
-  const std::string size =
-      longest > NAME_MAX
-          ? "a name of " + std::to_string(longest) + " bytes, at most " + std::to_string(NAME_MAX)
-          : std::to_string(path.size()) + " bytes, at most " + std::to_string(PATH_MAX);
-  return "cannot write " + clipped(path, 80) + ": file name too long (" + size + ")";
+  if (longest > NAME_MAX) {
+    return {Sentence::kWriteNameTooLong,
+            {clipped(path, 80), std::to_string(longest), std::to_string(NAME_MAX)}};
+  }
+  return {Sentence::kWritePathTooLong,
+          {clipped(path, 80), std::to_string(path.size()), std::to_string(PATH_MAX)}};
 }
 
 }  // namespace
@@ -150,42 +151,41 @@ std::string name_too_long_message(const std::string& path) {
 // ---- what may be replaced ----------------------------------------------------------------------
 
 std::string output_destination(const std::string& path, Overwrite overwrite) {
-  if (path.empty()) throw IoError("output path is empty");
+  if (path.empty()) throw IoError(Wording{Sentence::kOutputPathEmpty, {}});
   struct stat link_status {};
   if (::lstat(path.c_str(), &link_status) != 0) {
-    if (errno == ENAMETOOLONG) throw IoError(name_too_long_message(path));
+    if (errno == ENAMETOOLONG) throw IoError(name_too_long_wording(path));
     return path;  // absent (or its folder is missing: check_writable says so)
   }
   const auto exists = [&] {
-    return IoError("cannot write " + path + ": file exists (use --force to replace it)");
+    return IoError(Wording{Sentence::kWriteFileExists, {path, "--force"}});
   };
   if (S_ISREG(link_status.st_mode)) {
     if (overwrite == Overwrite::kForbid) throw exists();
     return path;
   }
   if (!S_ISLNK(link_status.st_mode)) {
-    throw IoError("refusing to replace " + path + ": not a regular file (" +
-                  kind_of(link_status.st_mode) + ")");
+    throw IoError(Wording{Sentence::kReplaceNotRegular, {path, kind_of(link_status.st_mode)}});
   }
   struct stat target_status {};
   if (::stat(path.c_str(), &target_status) != 0) {
-    throw IoError("refusing to replace " + path + ": symbolic link to a missing file");
+    throw IoError(Wording{Sentence::kReplaceMissingLink, {path}});
   }
   if (!S_ISREG(target_status.st_mode)) {
-    throw IoError("refusing to replace " + path + ": not a regular file (symbolic link to a " +
-                  kind_of(target_status.st_mode) + ")");
+    throw IoError(
+        Wording{Sentence::kReplaceLinkNotRegular, {path, kind_of(target_status.st_mode)}});
   }
   if (overwrite == Overwrite::kForbid) throw exists();
   std::unique_ptr<char, decltype(&std::free)> resolved(::realpath(path.c_str(), nullptr),
                                                        &std::free);
   if (!resolved) {
-    throw IoError("cannot resolve symbolic link " + path + ": " + std::strerror(errno));
+    throw IoError(Wording{Sentence::kResolveLink, {path, std::strerror(errno)}});
   }
   return resolved.get();
 }
 
 void check_writable(const std::string& path, Overwrite overwrite) {
-  if (path.empty()) throw IoError("output path is empty");
+  if (path.empty()) throw IoError(Wording{Sentence::kOutputPathEmpty, {}});
   check_folder_writable(folder_of(output_destination(path, overwrite)), path);
 }
 
@@ -194,10 +194,10 @@ namespace {
 void check_folder(const std::string& folder, const std::string& path) {
   std::error_code error;
   if (!fs::is_directory(folder, error)) {
-    throw IoError("cannot write " + path + ": folder " + folder + " does not exist");
+    throw IoError(Wording{Sentence::kWriteNoFolder, {path, folder}});
   }
   if (::access(folder.c_str(), W_OK) != 0) {
-    throw IoError("cannot write " + path + ": no permission to write in folder " + folder);
+    throw IoError(Wording{Sentence::kWriteNoPermission, {path, folder}});
   }
 }
 
@@ -211,8 +211,7 @@ void check_folder_writable(const std::string& folder_path, const std::string& pa
   int slot = -1;
   const int descriptor = create_temporary(folder, probe, slot);
   if (descriptor < 0) {
-    throw IoError("cannot write " + path + ": cannot create a file in folder " + folder + " (" +
-                  std::strerror(errno) + ")");
+    throw IoError(Wording{Sentence::kWriteCannotCreate, {path, folder, std::strerror(errno)}});
   }
   ::close(descriptor);
   ::unlink(probe.c_str());
@@ -228,8 +227,8 @@ AtomicFile::AtomicFile(std::string path, Overwrite overwrite, std::ios::openmode
   check_folder(folder_of(destination_), path_);
   const int descriptor = create_temporary(folder_of(destination_), temporary_path_, slot_);
   if (descriptor < 0) {
-    throw IoError("cannot write " + path_ + ": cannot create a temporary file in folder " +
-                  folder_of(destination_) + " (" + std::strerror(errno) + ")");
+    throw IoError(Wording{Sentence::kWriteCannotCreateTemporary,
+                          {path_, folder_of(destination_), std::strerror(errno)}});
   }
   stream_.attach(descriptor);
 }
@@ -242,14 +241,14 @@ AtomicFile::~AtomicFile() {
   }
 }
 
-std::string AtomicFile::write_error_message() const {
-  return write_failure_message(path_, stream_.error());
+Wording AtomicFile::write_error_wording() const {
+  return write_failure_wording(path_, stream_.error());
 }
 
 void AtomicFile::commit() {
   if (stream_.is_open()) {
     stream_.flush();
-    if (!stream_.close() || !stream_.good()) throw IoError(write_error_message());
+    if (!stream_.close() || !stream_.good()) throw IoError(write_error_wording());
   }
   // Files get the usual permissions (mkstemp makes them 0600), less the umask.
   const mode_t mask = ::umask(0);
@@ -257,11 +256,11 @@ void AtomicFile::commit() {
   ::chmod(temporary_path_.c_str(), 0666 & ~mask);
   // The destination may have changed type since the constructor (a long run): check again.
   if (output_destination(path_, overwrite_) != destination_) {
-    throw IoError("cannot write " + path_ + ": it changed while it was being written");
+    throw IoError(Wording{Sentence::kWriteChanged, {path_}});
   }
   if (std::rename(temporary_path_.c_str(), destination_.c_str()) != 0) {
-    throw IoError("cannot rename " + temporary_path_ + " to " + destination_ + ": " +
-                  std::strerror(errno));
+    throw IoError(
+        Wording{Sentence::kRenameFailed, {temporary_path_, destination_, std::strerror(errno)}});
   }
   is_committed_ = true;
   unregister_temporary(slot_);

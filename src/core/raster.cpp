@@ -114,7 +114,7 @@ void write_png_rgb(const std::string& path, int width, int height,
   };
   if (stbi_write_png_to_func(writer, &file.stream(), width, height, 3, rgb.data(), width * 3) ==
       0) {
-    throw IoError("cannot encode PNG " + path);
+    throw IoError(Wording{Sentence::kPngEncode, {path}});
   }
   file.commit();
 }

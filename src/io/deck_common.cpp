@@ -33,7 +33,10 @@ Trough make_trough(const ExportModel& model, const std::vector<ParticleBounds>& 
   const ExportOptions& options = model.options();
   const DeckOptions& deck = options.deck;
   const double scale = options.scale;
-  if (bounds.empty()) throw InvalidInput("deck", "an empty packing", "at least one particle");
+  if (bounds.empty()) {
+    throw InvalidInput(Wording{Sentence::kDeckField, {}}, Wording{Sentence::kEmptyPacking, {}},
+                       Wording{Sentence::kAtLeastOneParticle, {}});
+  }
   const Aabb container = model.packing().container.bounds();
   Trough t;
   t.lower = scale * container.lower;
@@ -49,8 +52,7 @@ Trough make_trough(const ExportModel& model, const std::vector<ParticleBounds>& 
     t.baffle = scale * deck.baffle_position;
     if (t.baffle < particles_end) {
       throw InvalidInput("baffle position", format_value(deck.baffle_position),
-                         ">= " + format_value(particles_end / scale) +
-                             " m (the particles' largest x: they start behind the baffle)");
+                         Wording{Sentence::kBehindBaffle, {format_value(particles_end / scale)}});
     }
   }
   t.upper.x() = t.lower.x() + 2.0 * (t.baffle - t.lower.x());
@@ -58,9 +60,9 @@ Trough make_trough(const ExportModel& model, const std::vector<ParticleBounds>& 
     t.upper.x() = t.lower.x() + scale * deck.trough_length;
     if (!(t.upper.x() > t.baffle)) {
       throw InvalidInput("trough length", format_value(deck.trough_length),
-                         "> " + format_value((t.baffle - t.lower.x()) / scale) +
-                             " m (from the trough's start at x = " +
-                             format_value(t.lower.x() / scale) + " m to beyond the baffle)");
+                         Wording{Sentence::kBeyondBaffle,
+                                 {format_value((t.baffle - t.lower.x()) / scale),
+                                  format_value(t.lower.x() / scale)}});
     }
   }
   t.gravity = scale * deck.gravity;

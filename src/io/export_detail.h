@@ -141,7 +141,7 @@ void stream_items(std::size_t count, std::ostream& out, const Format& format) {
       out.write(buffers[j].data(), static_cast<std::streamsize>(buffers[j].size()));
     }
     // Stop at the first failed write (disk full, file size limit) instead of formatting the rest.
-    if (!out.good()) throw IoError("write error (disk full or file size limit?)");
+    if (!out.good()) throw IoError(Wording{Sentence::kWriteStreamError, {}});
   }
 }
 

@@ -29,8 +29,9 @@ void append_float(std::string& out, double value) {
 void write_stl(const ExportModel& model, std::ostream& out) {
   if (model.options().stl_encoding == StlEncoding::kBinary) {
     if (model.element_count() > 0xFFFFFFFFULL) {
-      throw LimitExceeded("binary STL triangles", std::to_string(model.element_count()),
-                          "<= 2^32-1 (use ASCII STL or --per-particle)");
+      throw LimitExceeded(Wording{Sentence::kBinaryStlTriangles, {}},
+                          Wording{Sentence::kText, {std::to_string(model.element_count())}},
+                          Wording{Sentence::kBinaryStlLimit, {"--per-particle"}});
     }
     char header[80] = {};
     std::snprintf(header, sizeof header, "binary STL from aggpack %s, %zu particles",

@@ -99,7 +99,8 @@ void validate(const ExportOptions& options, ExportFormat format) {
   require_positive("density", material.density);
   require_positive("youngs modulus", material.youngs_modulus);
   if (!(material.poisson_ratio > -1.0 && material.poisson_ratio < 0.5)) {
-    throw InvalidInput("poisson ratio", format_value(material.poisson_ratio), "(-1, 0.5)");
+    throw InvalidInput("poisson ratio", format_value(material.poisson_ratio),
+                       Wording{Sentence::kPoissonRange, {}});
   }
   const bool is_name_ok = !material.name.empty() && material.name.size() <= 32 &&
                           std::isalpha(static_cast<unsigned char>(material.name[0])) &&
@@ -107,7 +108,7 @@ void validate(const ExportOptions& options, ExportFormat format) {
                                       [](unsigned char c) { return std::isalnum(c) || c == '_'; });
   if (!is_name_ok) {
     throw InvalidInput("material name", "'" + material.name + "'",
-                       "a letter, then letters, digits or _, at most 32 characters");
+                       Wording{Sentence::kMaterialName, {}});
   }
   if (options.is_quadratic && !info.has_quadratic) {
     throw InvalidInput("quadratic", "true for " + name,

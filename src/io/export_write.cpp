@@ -46,7 +46,7 @@ void write_one(const Packing& packing, const std::string& path, const ExportOpti
     mesh_writer(info, options)(model, out);
   } catch (const IoError&) {
     // A failed write (disk full, file size limit): name the file and the reason.
-    if (!out.good()) throw IoError(file.write_error_message());
+    if (!out.good()) throw IoError(file.write_error_wording());
     throw;
   }
   file.commit();
@@ -70,8 +70,7 @@ class TemporaryFolder {
     buffer.push_back('\0');
     const CleanupSignalBlock block;
     if (::mkdtemp(buffer.data()) == nullptr) {
-      throw IoError("cannot create a temporary folder beside " + beside.string() + ": " +
-                    std::strerror(errno));
+      throw IoError(Wording{Sentence::kTemporaryFolder, {beside.string(), std::strerror(errno)}});
     }
     path_ = buffer.data();
     slot_ = register_temporary(path_.string(), /*is_folder=*/true);
@@ -114,11 +113,12 @@ void write_per_particle(const Packing& packing, const std::string& path,
   const fs::file_status status = fs::symlink_status(target, error);
   const bool exists = fs::exists(status);
   if (exists && status.type() != fs::file_type::directory) {
-    throw IoError("refusing to replace " + target.string() + " by a folder: it is not a folder" +
-                  (status.type() == fs::file_type::symlink ? " (symbolic link)" : ""));
+    throw IoError(Wording{status.type() == fs::file_type::symlink ? Sentence::kReplaceLinkByFolder
+                                                                  : Sentence::kReplaceByFolder,
+                          {target.string()}});
   }
   if (exists && options.overwrite != Overwrite::kAllow) {
-    throw IoError("cannot write " + target.string() + ": it exists (use --force to replace it)");
+    throw IoError(Wording{Sentence::kFolderExists, {target.string(), "--force"}});
   }
   TemporaryFolder staging(target);
   fs::permissions(staging.path(),
@@ -147,15 +147,15 @@ void write_per_particle(const Packing& packing, const std::string& path,
     // behind under its temporary name).
     old_parking.forget_on_signal();
     fs::rename(target, old_parking.path(), error);
-    if (error) throw IoError("cannot replace " + target.string() + ": " + error.message());
+    if (error) throw IoError(Wording{Sentence::kReplaceFailed, {target.string(), error.message()}});
     fs::rename(staging.path(), target, error);
     if (error) {
       fs::rename(old_parking.path(), target);
-      throw IoError("cannot rename into " + target.string() + ": " + error.message());
+      throw IoError(Wording{Sentence::kRenameInto, {target.string(), error.message()}});
     }
   } else {
     fs::rename(staging.path(), target, error);
-    if (error) throw IoError("cannot rename into " + target.string() + ": " + error.message());
+    if (error) throw IoError(Wording{Sentence::kRenameInto, {target.string(), error.message()}});
   }
   staging.release();
 }

@@ -75,8 +75,10 @@ bool to_double(std::string_view word, double& value) {
 TriangleMesh parse_obj(const std::string& content, const std::string& path) {
   TriangleMesh mesh;
   std::size_t line_number = 0;
-  auto fault = [&](const std::string& what) {
-    return FormatError(path + ":" + std::to_string(line_number) + ": " + what);
+  // "PATH:LINE: what", the sentence's first two values.
+  auto fault = [&](Sentence sentence, std::vector<std::string> values = {}) {
+    values.insert(values.begin(), {path, std::to_string(line_number)});
+    return FormatError(Wording{sentence, std::move(values)});
   };
   std::vector<std::int64_t> polygon;
   for (std::size_t start = 0; start < content.size();) {
@@ -94,7 +96,7 @@ TriangleMesh parse_obj(const std::string& content, const std::string& path) {
       for (int axis = 0; axis < 3; ++axis) {
         const std::string_view word = next_word(line, cursor);
         if (!to_double(word, p[axis])) {
-          throw fault("vertex coordinate '" + shortened(word, 40) + "' is not a finite number");
+          throw fault(Sentence::kObjCoordinate, {shortened(word, 40)});
         }
       }
       mesh.vertices.push_back(p);
@@ -109,17 +111,16 @@ TriangleMesh parse_obj(const std::string& content, const std::string& path) {
         const auto [stop, error] =
             std::from_chars(number.data(), number.data() + number.size(), value);
         if (error != std::errc() || stop != number.data() + number.size() || value == 0) {
-          throw fault("face index '" + shortened(word, 40) + "' is not a vertex number");
+          throw fault(Sentence::kObjFaceIndex, {shortened(word, 40)});
         }
         const auto count = static_cast<std::int64_t>(mesh.vertices.size());
         const std::int64_t index = value > 0 ? value - 1 : count + value;
         if (index < 0 || index >= count) {
-          throw fault("face index " + std::to_string(value) + " names no vertex (" +
-                      std::to_string(count) + " read so far)");
+          throw fault(Sentence::kObjFaceNoVertex, {std::to_string(value), std::to_string(count)});
         }
         polygon.push_back(index);
       }
-      if (polygon.size() < 3) throw fault("face with fewer than 3 vertices");
+      if (polygon.size() < 3) throw fault(Sentence::kObjFaceSmall);
       for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {
         mesh.triangles.push_back({static_cast<std::uint32_t>(polygon[0]),
                                   static_cast<std::uint32_t>(polygon[k]),
@@ -129,11 +130,10 @@ TriangleMesh parse_obj(const std::string& content, const std::string& path) {
                keyword == "o" || keyword == "s" || keyword == "usemtl" || keyword == "mtllib") {
       continue;  // normals, texture, groups and materials do not change the shape
     } else {
-      throw fault("unsupported OBJ statement '" + shortened(keyword, 40) +
-                  "' (a particle is read from v and f lines)");
+      throw fault(Sentence::kObjStatement, {shortened(keyword, 40)});
     }
   }
-  if (mesh.triangles.empty()) throw FormatError(path + ": OBJ file has no faces ('f' lines)");
+  if (mesh.triangles.empty()) throw FormatError(Wording{Sentence::kObjNoFaces, {path}});
   return mesh;
 }
 
@@ -157,22 +157,23 @@ std::string read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
   if (error || !std::filesystem::exists(status))
-    throw IoError("cannot read " + path + ": no such file");
+    throw IoError(Wording{Sentence::kReadNoSuchFile, {path}});
   if (!std::filesystem::is_regular_file(status)) {
-    throw IoError("cannot read " + path + ": not a regular file");
+    throw IoError(Wording{Sentence::kReadNotRegular, {path}});
   }
   const std::uint64_t size = std::filesystem::file_size(path, error);
-  if (error) throw IoError("cannot read " + path + ": " + error.message());
+  if (error) throw IoError(Wording{Sentence::kReadSystemError, {path, error.message()}});
   if (size > max_bytes) {
-    throw LimitExceeded(path + " size", std::to_string(size) + " bytes",
-                        "at most " + std::to_string(max_bytes) + " bytes");
+    throw LimitExceeded(Wording{Sentence::kFileSize, {path}},
+                        Wording{Sentence::kBytes, {std::to_string(size)}},
+                        Wording{Sentence::kAtMostBytes, {std::to_string(max_bytes)}});
   }
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot open " + path);
+  if (!in) throw IoError(Wording{Sentence::kOpenFailed, {path}});
   std::string content(size, '\0');
   in.read(content.data(), static_cast<std::streamsize>(size));
   if (static_cast<std::uint64_t>(in.gcount()) != size) {
-    throw IoError("cannot read " + path + ": it changed while being read");
+    throw IoError(Wording{Sentence::kReadChanged, {path}});
   }
   return content;
 }
@@ -187,7 +188,7 @@ TriangleMesh parse_mesh(const std::string& content, MeshFileFormat format,
     case MeshFileFormat::kPly:
       return io_detail::parse_ply(content, path);
   }
-  throw FormatError(path + ": unknown mesh format");
+  throw FormatError(Wording{Sentence::kUnknownMeshFormat, {path}});
 }
 
 std::string content_hash(std::string_view content) {

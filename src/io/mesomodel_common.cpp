@@ -260,7 +260,7 @@ MesoLayout make_layout(const MesoMesh& mesh) {
 }
 
 void require_good(const std::ostream& out) {
-  if (!out.good()) throw IoError("write error (disk full or file size limit?)");
+  if (!out.good()) throw IoError(Wording{Sentence::kWriteStreamError, {}});
 }
 
 void write_atomically(const std::string& path, Overwrite overwrite,
@@ -272,7 +272,7 @@ void write_atomically(const std::string& path, Overwrite overwrite,
     require_good(out);
   } catch (const IoError&) {
     // A failed write (disk full, file size limit): name the file and the reason.
-    if (!out.good()) throw IoError(file.write_error_message());
+    if (!out.good()) throw IoError(file.write_error_wording());
     throw;
   }
   file.commit();

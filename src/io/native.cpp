@@ -50,11 +50,11 @@ class Writer {
         &error);
     if (error != 0) {
       H5Eclear2(H5E_DEFAULT);
-      throw IoError(write_failure_message(display_path_, error));
+      throw IoError(write_failure_wording(display_path_, error));
     }
     std::string reason = hdf5_reason();
     reason = reason.substr(0, std::min(reason.find('\n'), std::size_t{200}));
-    throw IoError("cannot write " + display_path_ + ": " + what + " (" + reason + ")");
+    throw IoError(Wording{Sentence::kWriteHdf5Failed, {display_path_, what, reason}});
   }
 
   Handle checked(hid_t id, Handle::Closer closer, const std::string& what) const {

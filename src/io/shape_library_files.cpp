@@ -37,24 +37,25 @@ FileList list_files(const std::string& path) {
       const std::string name = entry.path().filename().string();
       if (!mesh_file_format(name, format)) continue;
       if (files.size() >= kMaxFiles) {
-        throw LimitExceeded("particle.library", aggpack::quoted(path), "at most 10^6 mesh files");
+        throw LimitExceeded("particle.library", aggpack::quoted(path),
+                            Wording{Sentence::kLibraryTooManyFiles, {}});
       }
       files.emplace_back(entry.path().string(), name);
     }
-    if (error) throw IoError("cannot list " + path + ": " + error.message());
+    if (error) throw IoError(Wording{Sentence::kLibraryList, {path, error.message()}});
     if (files.empty()) {
       throw InvalidInput("particle.library", aggpack::quoted(path),
-                         "a folder holding .stl, .obj or .ply files (it holds none)");
+                         Wording{Sentence::kLibraryFolderEmpty, {}});
     }
   } else if (!error && fs::is_regular_file(status)) {
     if (!mesh_file_format(path, format)) {
       throw InvalidInput("particle.library", aggpack::quoted(path),
-                         "a folder, or a file ending in .stl, .obj or .ply");
+                         Wording{Sentence::kLibraryFileExtension, {}});
     }
     files.emplace_back(path, fs::path(path).filename().string());
   } else {
     throw InvalidInput("particle.library", aggpack::quoted(path),
-                       "an existing folder, or a .stl, .obj or .ply file");
+                       Wording{Sentence::kLibraryPathMissing, {}});
   }
   std::sort(files.begin(), files.end(),
             [](const auto& a, const auto& b) { return a.second < b.second; });
@@ -70,7 +71,7 @@ FileList list_all_files(const std::vector<std::string>& paths) {
   std::set<fs::path> seen;
   for (const std::string& path : paths) {
     if (path.empty()) {
-      throw InvalidInput("particle.library", "\"\"", "a folder or a .stl, .obj or .ply file");
+      throw InvalidInput("particle.library", "\"\"", Wording{Sentence::kLibraryPathEmpty, {}});
     }
     for (auto& [full, name] : list_files(path)) {
       std::error_code error;
@@ -78,10 +79,11 @@ FileList list_all_files(const std::vector<std::string>& paths) {
       if (error) canonical = fs::path(full).lexically_normal();
       if (!seen.insert(canonical).second) {
         throw InvalidInput("particle.library", aggpack::quoted(path),
-                           "paths naming each mesh file once (" + full + " is named twice)");
+                           Wording{Sentence::kLibraryNamedTwice, {full}});
       }
       if (all.size() >= kMaxFiles) {
-        throw LimitExceeded("particle.library", aggpack::quoted(path), "at most 10^6 mesh files");
+        throw LimitExceeded("particle.library", aggpack::quoted(path),
+                            Wording{Sentence::kLibraryTooManyFiles, {}});
       }
       all.emplace_back(full, full);
     }
@@ -93,6 +95,7 @@ struct Outcome {
   std::optional<LibraryShape> shape;
   ErrorKind kind = ErrorKind::kFormatError;
   std::string message;  // without the file name
+  Wording wording;      // the whole message (the file name first)
 };
 
 Outcome import_file(const std::string& path, const std::string& name,
@@ -114,9 +117,17 @@ Outcome import_file(const std::string& path, const std::string& name,
       message = message.substr(message[1] == ' ' ? 2 : 1);
     }
     outcome.message = message;
+    // A reader's sentence names the file first (its message starts with it); any other message
+    // follows the file name.
+    outcome.wording = error.wording().sentence != Sentence::kText && !error.has_value() &&
+                              !error.wording().values.empty() &&
+                              error.wording().values.front() == path
+                          ? error.wording()
+                          : Wording{Sentence::kMeshProblem, {path, message}};
   } catch (const std::bad_alloc&) {
     outcome.kind = ErrorKind::kLimitExceeded;
     outcome.message = "out of memory while reading it";
+    outcome.wording = {Sentence::kMeshOutOfMemory, {path}};
   }
   return outcome;
 }
@@ -126,7 +137,7 @@ Outcome import_file(const std::string& path, const std::string& name,
 ShapeLibrary load_shape_library(const ShapeLibraryOptions& options) {
   validate(options.import);
   if (options.paths.empty() || (options.paths.size() == 1 && options.paths.front().empty())) {
-    throw InvalidInput("particle.library", "\"\"", "a folder or a .stl, .obj or .ply file");
+    throw InvalidInput("particle.library", "\"\"", Wording{Sentence::kLibraryPathEmpty, {}});
   }
   const FileList files = list_all_files(options.paths);
   std::vector<Outcome> outcomes(files.size());
@@ -144,14 +155,15 @@ ShapeLibrary load_shape_library(const ShapeLibraryOptions& options) {
       continue;
     }
     if (!options.is_skipping_bad) {
-      throw Error(outcome.kind, files[i].first + ": " + outcome.message);
+      throw Error(outcome.kind, outcome.wording);
     }
     library.skipped.push_back(files[i].second + ": " + outcome.message);
   }
   if (library.shapes.empty()) {
-    throw InvalidInput("particle.library", aggpack::quoted(library.source),
-                       "at least one usable mesh (all " + std::to_string(files.size()) +
-                           " were skipped; first: " + clipped(library.skipped.front(), 160) + ")");
+    throw InvalidInput(
+        "particle.library", aggpack::quoted(library.source),
+        Wording{Sentence::kLibraryAllSkipped,
+                {std::to_string(files.size()), clipped(library.skipped.front(), 160)}});
   }
   return library;
 }

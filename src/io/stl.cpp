@@ -15,9 +15,9 @@ namespace aggpack {
 StlMesh read_stl(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error))
-    throw IoError("cannot read " + path + ": it is a folder");
+    throw IoError(Wording{Sentence::kReadFolder, {path}});
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError("cannot open " + path);
+  if (!in) throw IoError(Wording{Sentence::kOpenFailed, {path}});
   const std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return parse_stl(content, path);
 }
@@ -53,7 +53,7 @@ StlMesh parse_stl(const std::string& content, const std::string& path) {
     }
   }
   if (content.rfind("solid", 0) != 0) {
-    throw FormatError(path + ": not an STL file (binary size mismatch and no 'solid' header)");
+    throw FormatError(Wording{Sentence::kStlNotStl, {path}});
   }
   std::istringstream text(content);
   std::string word;
@@ -65,28 +65,30 @@ StlMesh parse_stl(const std::string& content, const std::string& path) {
       has_end = true;
       break;
     }
-    if (word != "facet") throw FormatError(path + ": expected 'facet', found '" + word + "'");
+    if (word != "facet") throw FormatError(Wording{Sentence::kStlExpectedFacet, {path, word}});
     Vec3 normal;
     std::string keyword;
     text >> keyword >> normal.x() >> normal.y() >> normal.z();
-    if (!text || keyword != "normal") throw FormatError(path + ": malformed facet normal line");
+    if (!text || keyword != "normal") throw FormatError(Wording{Sentence::kStlFacetNormal, {path}});
     text >> keyword >> word;
     if (!text || keyword != "outer" || word != "loop") {
-      throw FormatError(path + ": expected 'outer loop'");
+      throw FormatError(Wording{Sentence::kStlOuterLoop, {path}});
     }
     std::array<Vec3, 3> triangle;
     for (auto& v : triangle) {
       text >> keyword >> v.x() >> v.y() >> v.z();
-      if (!text || keyword != "vertex") throw FormatError(path + ": malformed vertex line");
+      if (!text || keyword != "vertex") {
+        throw FormatError(Wording{Sentence::kStlVertexLine, {path}});
+      }
     }
     text >> keyword >> word;  // endloop endfacet
     if (!text || keyword != "endloop" || word != "endfacet") {
-      throw FormatError(path + ": malformed facet (truncated?)");
+      throw FormatError(Wording{Sentence::kStlFacetTruncated, {path}});
     }
     mesh.normals.push_back(normal);
     mesh.triangles.push_back(triangle);
   }
-  if (!has_end) throw FormatError(path + ": missing 'endsolid' (truncated file)");
+  if (!has_end) throw FormatError(Wording{Sentence::kStlNoEnd, {path}});
   return mesh;
 }
 

@@ -30,7 +30,7 @@ void write_block(std::ostream& out, const std::vector<T>& values) {
 }
 
 void commit(AtomicFile& file) {
-  if (!file.stream()) throw IoError(file.write_error_message());
+  if (!file.stream()) throw IoError(file.write_error_wording());
   file.commit();
 }
 

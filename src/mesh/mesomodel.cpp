@@ -187,16 +187,16 @@ void check_gaps(const std::vector<Inclusion>& inclusions, const MesoOptions& opt
   for (const Inclusion& inclusion : inclusions) reach = std::max(reach, inclusion.reach);
   const double needed =
       has_itz ? 2.0 * reach * options.itz_thickness + 2.0 * min_gap : 2.0 * min_gap;
-  const std::string itz =
-      has_itz ? ", their ITZ layers (" + metres(options.itz_thickness) + " thick) meet"
-              : " (aggregates must not touch)";
-  const std::string why = has_itz ? " (2 x the layers' farthest corner reach, " + number(reach, 3) +
-                                        " x the ITZ thickness, plus the mesher's margin)"
-                                  : " (the mesher's margin)";
-  throw InvalidInput(
-      "particles " + std::to_string(worst_a + 1) + " and " + std::to_string(worst_b + 1),
-      metres(gap) + " apart" + itz + " (" + std::to_string(violations) + " such pairs)",
-      "pack with packer.gap >= " + metres(needed) + why);
+  const Wording pair{Sentence::kParticlesPair,
+                     {std::to_string(worst_a + 1), std::to_string(worst_b + 1)}};
+  const std::string pairs = std::to_string(violations);
+  if (has_itz) {
+    throw InvalidInput(
+        pair, Wording{Sentence::kApartItzMeet, {metres(gap), metres(options.itz_thickness), pairs}},
+        Wording{Sentence::kPackWithGapItz, {"packer.gap", metres(needed), number(reach, 3)}});
+  }
+  throw InvalidInput(pair, Wording{Sentence::kApartTouch, {metres(gap), pairs}},
+                     Wording{Sentence::kPackWithGap, {"packer.gap", metres(needed)}});
 }
 
 }  // namespace
@@ -280,11 +280,10 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
   });
   for (std::size_t i = 0; i < inclusions.size(); ++i) {
     if (inclusions[i].wall_clearance <= min_gap) {
-      throw InvalidInput("particle " + std::to_string(i + 1),
-                         metres(inclusions[i].wall_clearance) + " from a wall",
-                         "> " + metres(min_gap) +
-                             " (pack with container.wall_gap > 0, e.g. 1e-4 m: the mesomodel's "
-                             "aggregates must not touch the walls)");
+      throw InvalidInput(
+          Wording{Sentence::kParticleNumber, {std::to_string(i + 1)}},
+          Wording{Sentence::kFromAWall, {metres(inclusions[i].wall_clearance)}},
+          Wording{Sentence::kWallClearance, {metres(min_gap), "container.wall_gap"}});
     }
   }
   return inclusions;
@@ -372,9 +371,9 @@ void add_itz_layers(const std::vector<Inclusion>& inclusions,
     for (std::size_t v = 0; v < inclusion.shell.vertex_count(); ++v) {
       if (mesh.nodes[outer + v] != inclusion.shell.vertices()[v] ||
           mesh.nodes[inner + v] != inclusion.aggregate.vertices()[v]) {
-        throw LimitExceeded("mesomodel mesh",
-                            "TetGen moved an input point of particle " + std::to_string(i + 1),
-                            "a complex TetGen keeps");
+        throw LimitExceeded(Wording{Sentence::kMesomodelMesh, {}},
+                            Wording{Sentence::kTetGenMovedPoint, {std::to_string(i + 1)}},
+                            Wording{Sentence::kComplexTetGenKeeps, {}});
       }
     }
     std::vector<Tetrahedron> layer;
@@ -394,11 +393,11 @@ void add_itz_layers(const std::vector<Inclusion>& inclusions,
     }
     const double expected = inclusion.shell_volume - inclusion.aggregate_volume;
     if (!(std::abs(volume - expected) <= 1e-9 * expected)) {
-      throw LimitExceeded("itz_thickness",
-                          "an ITZ layer that folds at particle " + std::to_string(i + 1) +
-                              " (its prisms overlap by " +
-                              number((volume - expected) / expected, 3) + " of its volume)",
-                          "a thinner ITZ for this packing's sharpest corners");
+      throw LimitExceeded(
+          Wording{Sentence::kText, {"itz_thickness"}},
+          Wording{Sentence::kItzFolds,
+                  {std::to_string(i + 1), number((volume - expected) / expected, 3)}},
+          Wording{Sentence::kThinnerItz, {}});
     }
   }
 }
@@ -545,14 +544,14 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
   }
   if (report != nullptr) *report = measured;
   if (min_dihedral < options.min_dihedral_degrees) {
-    throw LimitExceeded("min_dihedral", number(min_dihedral, 3) + " degrees in the mesh",
-                        ">= " + number(options.min_dihedral_degrees) +
-                            " degrees (lower the bound, or raise the ITZ thickness or the gap: "
-                            "thin shells make flat tetrahedra)");
+    throw LimitExceeded(Wording{Sentence::kText, {"min_dihedral"}},
+                        Wording{Sentence::kDegreesInMesh, {number(min_dihedral, 3)}},
+                        Wording{Sentence::kMinDihedral, {number(options.min_dihedral_degrees)}});
   }
   if (max_aspect > options.max_aspect_ratio) {
-    throw LimitExceeded("max_aspect_ratio", number(max_aspect) + " in the mesh",
-                        "<= " + number(options.max_aspect_ratio));
+    throw LimitExceeded(Wording{Sentence::kText, {"max_aspect_ratio"}},
+                        Wording{Sentence::kInTheMesh, {number(max_aspect)}},
+                        Wording{Sentence::kAtMost, {number(options.max_aspect_ratio)}});
   }
   return mesh;
 }

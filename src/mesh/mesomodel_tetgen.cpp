@@ -200,9 +200,8 @@ PlcMesh tetrahedralize_plc(const Plc& plc, const std::string& switches, double t
     }
     failure.pop_back();
   }
-  throw LimitExceeded("mesomodel mesh", failure,
-                      "a packing TetGen can mesh (a larger packer.gap or container.wall_gap helps "
-                      "with nearly touching surfaces)");
+  throw LimitExceeded(Wording{Sentence::kMesomodelMesh, {}}, Wording{Sentence::kText, {failure}},
+                      Wording{Sentence::kTetGenCanMesh, {"packer.gap", "container.wall_gap"}});
 }
 
 #else

@@ -181,9 +181,9 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
         if (!std::isfinite(item.volume) || !(item.volume > 0.0) ||
             !std::isfinite(item.outer_radius)) {
           throw Error(ErrorKind::kLimitExceeded,
-                      "random packer: draw " + std::to_string(item.draw) + " (size " +
-                          format_value(item.size) + " m) grew a shape of volume " +
-                          format_value(item.volume) + " m^3; stopped (sizes out of range?)");
+                      Wording{Sentence::kGrewBadShape,
+                              {std::to_string(item.draw), format_value(item.size),
+                               format_value(item.volume)}});
         }
         items.push_back(item);
         list_volume += item.volume;

@@ -13,6 +13,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
@@ -171,10 +172,19 @@ std::string volume_text(double value) {
   return buffer;
 }
 
-std::string memory_advice(const RunEstimate& estimate, const MemoryLimit& limit) {
-  return "a run that fits in memory: ~" + count_text(estimate.particles) + " particles at ~" +
-         format_bytes(estimate.bytes_per_particle) + " each need ~" + format_bytes(estimate.bytes) +
-         ", more than the memory limit of " + format_bytes(limit.bytes) + " (" + limit.source + ")";
+// "a run that fits in memory: ... (SOURCE); ADVICE" (advice: a Sentence::kPhrase* word).
+Wording memory_advice(const RunEstimate& estimate, const MemoryLimit& limit,
+                      const std::string& advice) {
+  const std::string variable = "AGGPACK_MEMORY_LIMIT";
+  std::vector<std::string> values = {count_text(estimate.particles),
+                                     format_bytes(estimate.bytes_per_particle),
+                                     format_bytes(estimate.bytes), format_bytes(limit.bytes)};
+  if (!limit.set_text.empty()) {
+    values.insert(values.end(), {variable, limit.set_text, advice});
+    return {Sentence::kMemoryRunSet, values};
+  }
+  values.insert(values.end(), {limit.share_of, limit.share_bytes, variable, advice});
+  return {Sentence::kMemoryRunShare, values};
 }
 
 }  // namespace
@@ -185,33 +195,36 @@ MemoryLimit memory_limit() {
     limit.bytes = parse_size(text);
     if (!(limit.bytes > 0.0)) {
       throw InvalidInput("AGGPACK_MEMORY_LIMIT", std::string(text).substr(0, 40),
-                         "a size in bytes, optionally with K, M, G or T (e.g. 8G)");
+                         Wording{Sentence::kMemorySize, {}});
     }
     limit.source = "AGGPACK_MEMORY_LIMIT=" + std::string(text);
+    limit.set_text = text;
     return limit;
   }
   double bytes =
       static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
-  std::string what = "physical memory";
+  std::string what = english_words(Sentence::kPhrasePhysicalMemory);
   if (!(bytes > 0.0)) bytes = std::numeric_limits<double>::infinity();
   for (const char* path :
        {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
     const double value = cgroup_limit(path);
     if (value < bytes) {
       bytes = value;
-      what = "the cgroup memory limit";
+      what = english_words(Sentence::kPhraseCgroupMemory);
     }
   }
   rlimit address_space{};
   if (getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY &&
       static_cast<double>(address_space.rlim_cur) < bytes) {
     bytes = static_cast<double>(address_space.rlim_cur);
-    what = "the address-space limit (ulimit -v)";
+    what = english_words(Sentence::kPhraseAddressSpace);
   }
   if (!std::isfinite(bytes)) bytes = 1e15;
   limit.bytes = kMemoryShare * bytes;
   limit.source =
       "80% of " + what + " " + format_bytes(bytes) + "; AGGPACK_MEMORY_LIMIT overrides it";
+  limit.share_of = what;
+  limit.share_bytes = format_bytes(bytes);
   return limit;
 }
 
@@ -330,57 +343,52 @@ void check_resources(const RandomPackOptions& options) {
   const std::string value =
       is_count ? std::to_string(options.count) : format_value(options.volume_fraction);
   if (!(estimate.mean_volume > 0.0) || !std::isfinite(estimate.mean_volume)) {
-    throw LimitExceeded("grading",
-                        "sizes from " + format_value(smallest_size(options.grading)) + " m",
-                        "sizes whose grown particles have a positive, finite volume (" +
-                            format_value(estimate.mean_volume) + " m^3 here)");
+    throw LimitExceeded(
+        Wording{Sentence::kText, {"grading"}},
+        Wording{Sentence::kSizesFrom, {format_value(smallest_size(options.grading))}},
+        Wording{Sentence::kPositiveVolume, {format_value(estimate.mean_volume)}});
   }
   if (is_count && estimate.solid_fraction > kMaxSolidFraction) {
     throw LimitExceeded(
         field, value,
-        "at most ~" + count_text(estimate.capacity) +
-            " particles of this grading and shape: the container (" +
-            format_value(options.container.volume()) + " m^3) holds at most a solid fraction of " +
-            format_value(kMaxSolidFraction) + ", and " + count_text(estimate.particles) +
-            " particles of ~" + volume_text(estimate.mean_volume) + " m^3 each would need " +
-            count_text(estimate.solid_fraction) + " times its volume");
+        Wording{Sentence::kContainerCapacity,
+                {count_text(estimate.capacity), format_value(options.container.volume()),
+                 format_value(kMaxSolidFraction), count_text(estimate.particles),
+                 volume_text(estimate.mean_volume), count_text(estimate.solid_fraction)}});
   }
   const MemoryLimit limit = memory_limit();
   if (estimate.bytes > limit.bytes) {
     throw LimitExceeded(field, value,
-                        memory_advice(estimate, limit) +
-                            (options.shape.library_size > 0
-                                 ? "; use larger particles or a smaller container"
-                                 : "; use shape.library_size, larger particles or a smaller "
-                                   "container"));
+                        memory_advice(estimate, limit,
+                                      english_words(options.shape.library_size > 0
+                                                        ? Sentence::kPhraseUseLargerParticles
+                                                        : Sentence::kPhraseUseLibrarySize)));
   }
   // Every library shape is grown before placement: a library far larger than the particles the
   // target needs costs memory and time for shapes never used (the packing stores only used ones).
   const double library = options.shape.library_size;
   const double most = std::max(kLibraryFloor, std::ceil(kLibraryHeadroom * estimate.particles));
   if (library > most) {
-    throw LimitExceeded("shape.library_size", std::to_string(options.shape.library_size),
-                        "at most " + count_text(most) + " (" + format_value(kLibraryHeadroom) +
-                            " x the ~" + count_text(estimate.particles) +
-                            " particles this target needs, at least " + count_text(kLibraryFloor) +
-                            "): every library shape is grown before placement, so the run "
-                            "would need ~" +
-                            format_bytes(estimate.bytes) + ", mostly for shapes it never uses");
+    throw LimitExceeded(
+        "shape.library_size", std::to_string(options.shape.library_size),
+        Wording{Sentence::kLibraryHeadroom,
+                {count_text(most), format_value(kLibraryHeadroom), count_text(estimate.particles),
+                 count_text(kLibraryFloor), format_bytes(estimate.bytes)}});
   }
 }
 
 void check_resources(const LatticeOptions& options, double sites) {
   const RunEstimate estimate = estimate_run(options, sites);
   if (!(estimate.mean_volume > 0.0) || !std::isfinite(estimate.mean_volume)) {
-    throw LimitExceeded("lattice.radius", format_value(options.radius),
-                        "a radius whose grown particles have a positive, finite volume (" +
-                            format_value(estimate.mean_volume) + " m^3 here)");
+    throw LimitExceeded(
+        "lattice.radius", format_value(options.radius),
+        Wording{Sentence::kRadiusPositiveVolume, {format_value(estimate.mean_volume)}});
   }
   const MemoryLimit limit = memory_limit();
   if (estimate.bytes > limit.bytes) {
-    throw LimitExceeded("lattice.radius", format_value(options.radius),
-                        memory_advice(estimate, limit) +
-                            "; use a larger radius or edge length, or a smaller container");
+    throw LimitExceeded(
+        "lattice.radius", format_value(options.radius),
+        memory_advice(estimate, limit, english_words(Sentence::kPhraseUseLargerRadius)));
   }
 }
 

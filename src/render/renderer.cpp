@@ -324,8 +324,9 @@ void PackingRenderer::begin_upload(std::shared_ptr<SceneData> scene) {
   GLint max_texels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
   if (static_cast<double>(particle_count) > static_cast<double>(max_texels)) {  // colours
-    throw LimitExceeded("particle count", std::to_string(particle_count),
-                        "<= " + std::to_string(max_texels) + " for this OpenGL driver");
+    throw LimitExceeded(Wording{Sentence::kParticleCount, {}},
+                        Wording{Sentence::kText, {std::to_string(particle_count)}},
+                        Wording{Sentence::kOpenGlTexels, {std::to_string(max_texels)}});
   }
   s.frame.step = 0;  // the frame under way used the buffers about to change
   s.pending = std::move(scene);

@@ -238,8 +238,9 @@ TEST(AtomicFile, FailedWriteNamesTheFileAndTheReason) {
   ::waitpid(child, &status, 0);
   EXPECT_EQ(message, "cannot write " + path + ": file too large (file size limit)");
   EXPECT_TRUE(scratch.entries().empty());
-  EXPECT_EQ(write_failure_message("x.stl", ENOSPC), "cannot write x.stl: disk full");
-  EXPECT_EQ(write_failure_message("x.stl", EDQUOT), "cannot write x.stl: disk quota exceeded");
+  EXPECT_EQ(english(write_failure_wording("x.stl", ENOSPC)), "cannot write x.stl: disk full");
+  EXPECT_EQ(english(write_failure_wording("x.stl", EDQUOT)),
+            "cannot write x.stl: disk quota exceeded");
 }
 
 TEST(OutputTransaction, RollsBackCreatedAndReplacedFiles) {

@@ -110,7 +110,7 @@ if [ -n "$cli" ]; then
   cat "$out/meso-bad.txt"
   status=$(cat "$out/meso-bad.status" 2> /dev/null || echo none)
   [ "$status" = 2 ] || { echo "a refused mesomodel export exited $status, not 2"; exit 1; }
-  grep -q "status: invalid particles .* ITZ layers" "$out/meso-bad.txt"
+  grep -q "status: particles .* ITZ layers .* is not allowed" "$out/meso-bad.txt"
   [ ! -e "$out/meso-mesomodel.inp" ] || { echo "a refused export left a file"; exit 1; }
 
   # The cohesive ITZ model (the combo "ITZ model: cohesive elements"): the .inp joins aggregates

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/core/error_words.h"
+
 namespace aggpack {
 
 /// Whether an existing destination may be replaced.
@@ -72,7 +74,7 @@ class AtomicFile {
   /// The temporary path (for libraries that open files by name, e.g. HDF5: close stream first).
   [[nodiscard]] const std::string& temporary_path() const { return temporary_path_; }
   /// "cannot write <path>: disk full" (or the reason of the stream's first failed write).
-  [[nodiscard]] std::string write_error_message() const;
+  [[nodiscard]] Wording write_error_wording() const;
   /// Flushes, checks for write errors, and renames onto the destination. \throw IoError
   void commit();
 
@@ -102,8 +104,8 @@ void check_folder_writable(const std::string& folder, const std::string& path);
 std::string output_destination(const std::string& path, Overwrite overwrite);
 
 /// "cannot write <path>: disk full" / "...: disk quota exceeded" / "...: file too large (file
-/// size limit)" / "...: <strerror>".
-std::string write_failure_message(const std::string& path, int error);
+/// size limit)" / "...: <strerror>", in its sentence (error_words.h).
+Wording write_failure_wording(const std::string& path, int error);
 
 /// A command's outputs, all or nothing: add() every output before writing it; unless commit() is
 /// called, the destructor removes each output this run created and puts back each file it

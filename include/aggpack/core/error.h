@@ -37,6 +37,11 @@ class Error : public std::runtime_error {
   [[nodiscard]] const std::string& field() const { return field_; }
   /// The refused value as text ("" unless has_value()).
   [[nodiscard]] const std::string& value() const { return value_; }
+  /// The field in words: Sentence::kText of field() unless the field is a phrase ("particles 3
+  /// and 5").
+  [[nodiscard]] const Wording& field_wording() const { return field_wording_; }
+  /// The value in words: Sentence::kText of value() unless the value is a phrase ("0.1 mm apart").
+  [[nodiscard]] const Wording& value_wording() const { return value_wording_; }
   /// has_value(): what is allowed; else the whole message.
   [[nodiscard]] const Wording& wording() const { return wording_; }
 
@@ -49,7 +54,15 @@ class Error : public std::runtime_error {
         has_value_(true),
         field_(std::move(field)),
         value_(std::move(value)),
-        wording_(std::move(allowed)) {}
+        wording_(std::move(allowed)),
+        field_wording_{Sentence::kText, {field_}},
+        value_wording_{Sentence::kText, {value_}} {}
+  /// A refused value whose field and value are phrases in words.
+  Error(ErrorKind kind, const std::string& message, Wording field, Wording value, Wording allowed)
+      : Error(kind, message, english(field), english(value), std::move(allowed)) {
+    field_wording_ = std::move(field);
+    value_wording_ = std::move(value);
+  }
 
  private:
   ErrorKind kind_;
@@ -57,6 +70,8 @@ class Error : public std::runtime_error {
   std::string field_;
   std::string value_;
   Wording wording_;
+  Wording field_wording_;
+  Wording value_wording_;
 };
 
 /// A parameter outside its allowed range. The message names the field, the value and the range:
@@ -69,6 +84,12 @@ class InvalidInput : public Error {
       : Error(ErrorKind::kInvalidInput,
               "invalid " + field + " = " + value + " (allowed: " + english(allowed) + ")", field,
               value, allowed) {}
+  /// A field and value that are phrases ("particles 3 and 5" = "0.1 mm apart").
+  InvalidInput(Wording field, Wording value, Wording allowed)
+      : Error(ErrorKind::kInvalidInput,
+              "invalid " + english(field) + " = " + english(value) +
+                  " (allowed: " + english(allowed) + ")",
+              field, value, allowed) {}
   /// The allowed text in English.
   [[nodiscard]] std::string allowed() const { return english(wording()); }
 };
@@ -98,6 +119,12 @@ class LimitExceeded : public Error {
             ErrorKind::kLimitExceeded,
             "limit exceeded for " + field + " = " + value + " (allowed: " + english(allowed) + ")",
             field, value, allowed) {}
+  /// A field and value that are phrases ("mesomodel mesh" = "TetGen moved ...").
+  LimitExceeded(Wording field, Wording value, Wording allowed)
+      : Error(ErrorKind::kLimitExceeded,
+              "limit exceeded for " + english(field) + " = " + english(value) +
+                  " (allowed: " + english(allowed) + ")",
+              field, value, allowed) {}
 };
 
 /// Formats a double for error messages with enough digits to be unambiguous.

@@ -87,7 +87,144 @@
     "{}: /format_version = {}: format version {} is not supported (this aggpack {} reads "      \
     "version {})")                                                                              \
   X(FieldCorrupt, "{}: {}: {} ({}; the file is truncated or corrupted)")                        \
-  X(FieldInvalid, "{}: {}: {}")
+  X(FieldInvalid, "{}: {}: {}")                                                                 \
+  /* phrases: a value that is one of these words is worded too (library_words.cpp) */           \
+  X(PhraseDirectory, "directory")                                                               \
+  X(PhraseCharacterDevice, "character device")                                                  \
+  X(PhraseBlockDevice, "block device")                                                          \
+  X(PhraseFifo, "FIFO")                                                                         \
+  X(PhraseSocket, "socket")                                                                     \
+  X(PhraseSymbolicLink, "symbolic link")                                                        \
+  X(PhraseSpecialFile, "special file")                                                          \
+  X(PhrasePhysicalMemory, "physical memory")                                                    \
+  X(PhraseCgroupMemory, "the cgroup memory limit")                                              \
+  X(PhraseAddressSpace, "the address-space limit (ulimit -v)")                                  \
+  X(PhraseUseLargerParticles, "use larger particles or a smaller container")                    \
+  X(PhraseUseLibrarySize, "use shape.library_size, larger particles or a smaller container")    \
+  X(PhraseUseLargerRadius, "use a larger radius or edge length, or a smaller container")        \
+  /* whole messages: writing a file */                                                          \
+  X(OutputPathEmpty, "output path is empty")                                                    \
+  X(WriteNameTooLong, "cannot write {}: file name too long (a name of {} bytes, at most {})")   \
+  X(WritePathTooLong, "cannot write {}: file name too long ({} bytes, at most {})")             \
+  X(WriteFileExists, "cannot write {}: file exists (use {} to replace it)")                     \
+  X(ReplaceNotRegular, "refusing to replace {}: not a regular file ({})")                       \
+  X(ReplaceMissingLink, "refusing to replace {}: symbolic link to a missing file")              \
+  X(ReplaceLinkNotRegular, "refusing to replace {}: not a regular file (symbolic link to a {})")\
+  X(ResolveLink, "cannot resolve symbolic link {}: {}")                                         \
+  X(WriteNoFolder, "cannot write {}: folder {} does not exist")                                 \
+  X(WriteNoPermission, "cannot write {}: no permission to write in folder {}")                  \
+  X(WriteCannotCreate, "cannot write {}: cannot create a file in folder {} ({})")               \
+  X(WriteCannotCreateTemporary,                                                                 \
+    "cannot write {}: cannot create a temporary file in folder {} ({})")                        \
+  X(WriteChanged, "cannot write {}: it changed while it was being written")                     \
+  X(RenameFailed, "cannot rename {} to {}: {}")                                                 \
+  X(WriteDiskFull, "cannot write {}: disk full")                                                \
+  X(WriteQuota, "cannot write {}: disk quota exceeded")                                         \
+  X(WriteTooLarge, "cannot write {}: file too large (file size limit)")                         \
+  X(WriteError, "cannot write {}: write error")                                                 \
+  X(WriteSystemError, "cannot write {}: {}")                                                    \
+  X(WriteStreamError, "write error (disk full or file size limit?)")                            \
+  X(WriteHdf5Failed, "cannot write {}: {} ({})")                                                \
+  X(TemporaryFolder, "cannot create a temporary folder beside {}: {}")                          \
+  X(ReplaceByFolder, "refusing to replace {} by a folder: it is not a folder")                  \
+  X(ReplaceLinkByFolder,                                                                        \
+    "refusing to replace {} by a folder: it is not a folder (symbolic link)")                   \
+  X(FolderExists, "cannot write {}: it exists (use {} to replace it)")                          \
+  X(ReplaceFailed, "cannot replace {}: {}")                                                     \
+  X(RenameInto, "cannot rename into {}: {}")                                                    \
+  X(PngEncode, "cannot encode PNG {}")                                                          \
+  /* limits of a run (pack/resources.cpp) and of the packers */                                 \
+  X(SizesFrom, "sizes from {} m")                                                               \
+  X(PositiveVolume, "sizes whose grown particles have a positive, finite volume ({} m^3 here)") \
+  X(RadiusPositiveVolume,                                                                       \
+    "a radius whose grown particles have a positive, finite volume ({} m^3 here)")              \
+  X(ContainerCapacity,                                                                          \
+    "at most ~{} particles of this grading and shape: the container ({} m^3) holds at most a "  \
+    "solid fraction of {}, and {} particles of ~{} m^3 each would need {} times its volume")    \
+  X(MemoryRunSet,                                                                               \
+    "a run that fits in memory: ~{} particles at ~{} each need ~{}, more than the memory "      \
+    "limit of {} ({}={}); {}")                                                                  \
+  X(MemoryRunShare,                                                                             \
+    "a run that fits in memory: ~{} particles at ~{} each need ~{}, more than the memory "      \
+    "limit of {} (80% of {} {}; {} overrides it); {}")                                          \
+  X(LibraryHeadroom,                                                                            \
+    "at most {} ({} x the ~{} particles this target needs, at least {}): every library shape "  \
+    "is grown before placement, so the run would need ~{}, mostly for shapes it never uses")    \
+  X(MemorySize, "a size in bytes, optionally with K, M, G or T (e.g. 8G)")                      \
+  X(GrewBadShape,                                                                               \
+    "random packer: draw {} (size {} m) grew a shape of volume {} m^3; stopped (sizes out of "  \
+    "range?)")                                                                                  \
+  /* particle.library: the mesh files */                                                        \
+  X(LibraryTooManyFiles, "at most 10^6 mesh files")                                             \
+  X(LibraryList, "cannot list {}: {}")                                                          \
+  X(LibraryFolderEmpty, "a folder holding .stl, .obj or .ply files (it holds none)")            \
+  X(LibraryFileExtension, "a folder, or a file ending in .stl, .obj or .ply")                   \
+  X(LibraryPathMissing, "an existing folder, or a .stl, .obj or .ply file")                     \
+  X(LibraryPathEmpty, "a folder or a .stl, .obj or .ply file")                                  \
+  X(LibraryNamedTwice, "paths naming each mesh file once ({} is named twice)")                  \
+  X(LibraryAllSkipped, "at least one usable mesh (all {} were skipped; first: {})")             \
+  X(MeshOutOfMemory, "{}: out of memory while reading it")                                      \
+  X(MeshProblem, "{}: {}")                                                                      \
+  X(ReadNotRegular, "cannot read {}: not a regular file")                                       \
+  X(OpenFailed, "cannot open {}")                                                               \
+  X(ReadChanged, "cannot read {}: it changed while being read")                                 \
+  X(FileSize, "{} size")                                                                        \
+  X(Bytes, "{} bytes")                                                                          \
+  X(AtMostBytes, "at most {} bytes")                                                            \
+  X(UnknownMeshFormat, "{}: unknown mesh format")                                               \
+  /* the mesomodel (mesh/mesomodel.cpp) */                                                      \
+  X(ParticlesPair, "particles {} and {}")                                                       \
+  X(ParticleNumber, "particle {}")                                                              \
+  X(ApartItzMeet, "{} apart, their ITZ layers ({} thick) meet ({} such pairs)")                 \
+  X(ApartTouch, "{} apart (aggregates must not touch) ({} such pairs)")                         \
+  X(PackWithGapItz,                                                                             \
+    "pack with {} >= {} (2 x the layers' farthest corner reach, {} x the ITZ thickness, plus "  \
+    "the mesher's margin)")                                                                     \
+  X(PackWithGap, "pack with {} >= {} (the mesher's margin)")                                    \
+  X(FromAWall, "{} from a wall")                                                                \
+  X(WallClearance,                                                                              \
+    "> {} (pack with {} > 0, e.g. 1e-4 m: the mesomodel's aggregates must not touch the "       \
+    "walls)")                                                                                   \
+  X(MesomodelMesh, "mesomodel mesh")                                                            \
+  X(TetGenMovedPoint, "TetGen moved an input point of particle {}")                             \
+  X(ComplexTetGenKeeps, "a complex TetGen keeps")                                               \
+  X(ItzFolds, "an ITZ layer that folds at particle {} (its prisms overlap by {} of its volume)")\
+  X(ThinnerItz, "a thinner ITZ for this packing's sharpest corners")                            \
+  X(DegreesInMesh, "{} degrees in the mesh")                                                    \
+  X(MinDihedral,                                                                                \
+    ">= {} degrees (lower the bound, or raise the ITZ thickness or the gap: thin shells make "  \
+    "flat tetrahedra)")                                                                         \
+  X(InTheMesh, "{} in the mesh")                                                                \
+  X(AtMost, "<= {}")                                                                            \
+  X(TetGenCanMesh,                                                                              \
+    "a packing TetGen can mesh (a larger {} or {} helps with nearly touching surfaces)")        \
+  /* solver decks and export limits */                                                          \
+  X(PoissonRange, "(-1, 0.5)")                                                                  \
+  X(MaterialName, "a letter, then letters, digits or _, at most 32 characters")                 \
+  X(DeckField, "deck")                                                                          \
+  X(EmptyPacking, "an empty packing")                                                           \
+  X(AtLeastOneParticle, "at least one particle")                                                \
+  X(BehindBaffle, ">= {} m (the particles' largest x: they start behind the baffle)")           \
+  X(BeyondBaffle, "> {} m (from the trough's start at x = {} m to beyond the baffle)")          \
+  X(BinaryStlTriangles, "binary STL triangles")                                                 \
+  X(BinaryStlLimit, "<= 2^32-1 (use ASCII STL or {})")                                          \
+  X(ParticleCount, "particle count")                                                            \
+  X(OpenGlTexels, "<= {} for this OpenGL driver")                                               \
+  /* mesh files (STL, OBJ) */                                                                   \
+  X(StlNotStl, "{}: not an STL file (binary size mismatch and no 'solid' header)")              \
+  X(StlExpectedFacet, "{}: expected 'facet', found '{}'")                                       \
+  X(StlFacetNormal, "{}: malformed facet normal line")                                          \
+  X(StlOuterLoop, "{}: expected 'outer loop'")                                                  \
+  X(StlVertexLine, "{}: malformed vertex line")                                                 \
+  X(StlFacetTruncated, "{}: malformed facet (truncated?)")                                      \
+  X(StlNoEnd, "{}: missing 'endsolid' (truncated file)")                                        \
+  X(ObjCoordinate, "{}:{}: vertex coordinate '{}' is not a finite number")                      \
+  X(ObjFaceIndex, "{}:{}: face index '{}' is not a vertex number")                              \
+  X(ObjFaceNoVertex, "{}:{}: face index {} names no vertex ({} read so far)")                   \
+  X(ObjFaceSmall, "{}:{}: face with fewer than 3 vertices")                                     \
+  X(ObjStatement,                                                                               \
+    "{}:{}: unsupported OBJ statement '{}' (a particle is read from v and f lines)")            \
+  X(ObjNoFaces, "{}: OBJ file has no faces ('f' lines)")
 // clang-format on
 
 namespace aggpack {

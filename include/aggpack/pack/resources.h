@@ -22,6 +22,11 @@ inline constexpr double kMaxSolidFraction = 0.74;
 struct MemoryLimit {
   double bytes = 0.0;
   std::string source;  ///< "80% of physical memory (23 GB)", "AGGPACK_MEMORY_LIMIT=2G", ...
+  /// The source's parts, for its words in another language: the variable's text when set, else
+  /// what the 80% are of ("physical memory", a Sentence::kPhrase* word) and its size.
+  std::string set_text;
+  std::string share_of;
+  std::string share_bytes;
 };
 
 /// The environment variable AGGPACK_MEMORY_LIMIT (bytes, optional suffix K, M, G or T = powers
