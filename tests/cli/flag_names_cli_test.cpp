@@ -109,6 +109,16 @@ TEST_F(FlagNamesCliTest, Mesomodel) {
                  "invalid --material mortar E = -1 (allowed: (0, 1e13] Pa)");
   expect_refused(meso + " --material itz=15e9,0.7,2000", 2,
                  "invalid --material itz NU = 0.7 (allowed: (-1, 0.5))");
+  // --voxels given is a voxel run whatever its value: 0 is refused, not ignored.
+  expect_refused(meso + " --voxels 0", 2, "invalid --voxels = 0 (allowed: [2, 4096])");
+  expect_refused(meso + " --voxels 5000", 2, "invalid --voxels = 5000 (allowed: [2, 4096])");
+  // A wrong extension names the flag typed.
+  expect_refused("mesomodel " + kBase + " -o m.vti", 2,
+                 "invalid -o/--output = \"m.vti\" (allowed: a name ending in .inp, .msh or "
+                 ".vtu; .vti or .raw with --voxels)");
+  expect_refused(meso + " --voxels 32", 2,
+                 "invalid -o/--output = \"out.inp\" (allowed: a name ending in .vti or .raw "
+                 "with --voxels)");
 }
 
 TEST_F(FlagNamesCliTest, Render) {
