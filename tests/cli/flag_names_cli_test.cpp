@@ -153,6 +153,8 @@ TEST_F(FlagNamesCliTest, EmptyOutputIsOneErrorEverywhere) {
   expect_refused("mesomodel " + kBase + " -o ''", 2, file);
   expect_refused("calibrate --alpha 0.5 --table ''", 2,
                  "invalid --table = \"\" (allowed: a file path)");
+  expect_refused("config-keys --update-doc ''", 2,
+                 "invalid --update-doc = \"\" (allowed: a file path)");
   if (has("render")) expect_refused("render " + kBase + " -o ''", 2, file);
   if (has("settle")) {
     expect_refused("settle " + kBase + " -o ''", 2, file);
@@ -183,6 +185,13 @@ TEST_F(FlagNamesCliTest, OutputThatIsAFolderIsOneErrorEverywhere) {
   expect_folder_refused("export " + kBase);
   expect_folder_refused("densify " + kBase);
   expect_folder_refused("mesomodel " + kBase);
+  {
+    SCOPED_TRACE("config-keys --update-doc");
+    const CliRun result = run("config-keys --update-doc '" + sub + "'");
+    EXPECT_EQ(result.exit_code, 3) << result.err;
+    EXPECT_EQ(result.err,
+              "aggpack: error: refusing to replace " + sub + ": not a regular file (directory)\n");
+  }
   if (has("render")) expect_folder_refused("render " + kBase);
   if (has("settle")) expect_folder_refused("settle " + kBase);
   if (has("repose")) {
