@@ -39,7 +39,7 @@ struct PackFlags {
   std::string config_path;
   std::vector<std::string> overrides;
   std::optional<std::string> output;
-  std::optional<std::uint64_t> seed;
+  std::optional<std::string> seed;  // as typed: parse_seed_flag
   std::optional<int> threads;
   bool is_forced = false;
   bool has_xdmf = false;
@@ -175,7 +175,9 @@ std::string library_json(const ShapeLibrary& library) {
 void run_pack(const PackFlags& flags) {
   std::vector<std::string> overrides = flags.overrides;
   // --seed and --threads are shortcuts for --set and win over it.
-  if (flags.seed) overrides.push_back("packer.seed=" + std::to_string(*flags.seed));
+  if (flags.seed) {
+    overrides.push_back("packer.seed=" + std::to_string(parse_seed_flag("--seed", *flags.seed)));
+  }
   const std::string threads_override =
       flags.threads ? "packer.threads=" + std::to_string(*flags.threads) : std::string();
   if (flags.threads) overrides.push_back(threads_override);

@@ -66,6 +66,12 @@ TEST_F(FlagNamesCliTest, Pack) {
                  "--set packer.threads=-1: invalid packer.threads = -1 (allowed: [0, 4096])");
   expect_refused("pack --compression 11 -o out.h5", 2,
                  "invalid --compression = 11 (allowed: [0, 9])");
+  // --seed is typed as a flag: named as the flag, not as the --set packer.seed it stands for
+  // (-1 used to be wrapped to 2^64 - 1 on the way).
+  expect_refused("pack --seed -1 -o out.h5", 2,
+                 "invalid --seed = -1 (allowed: an integer in [0, 2^63 - 1])");
+  expect_refused("pack --seed 9223372036854775808 -o out.h5", 2,
+                 "invalid --seed = 9223372036854775808 (allowed: an integer in [0, 2^63 - 1])");
 }
 
 TEST_F(FlagNamesCliTest, ParticleAndShapes) {
@@ -135,6 +141,8 @@ TEST_F(FlagNamesCliTest, ReposeAndSweep) {
   for (const std::string command : {"repose", "sweep"}) {
     expect_refused(command + config + " --mu 20", 2, "invalid --mu = 20 (allowed: [0, 10])");
     expect_refused(command + config + " --alpha 3", 2, "invalid --alpha = 3 (allowed: [0, 1])");
+    expect_refused(command + config + " --seed -1", 2,
+                   "invalid --seed = -1 (allowed: an integer in [0, 2^63 - 1])");
     expect_refused(command + config + " --set physics.friction=20", 2,
                    "--set physics.friction=20: invalid physics.friction = 20 (allowed: [0, 10])");
   }
