@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <regex>
 #include <string>
 
 #include "support/cli_test.h"
@@ -96,6 +97,42 @@ TEST_F(ProgressCliTest, ExportTetGenStageShowsEtaAndShapeLimitAndQualityVerdict)
       << fan.out;
   EXPECT_NE(fan.out.find("better-shaped: --tet-method tetgen --split-surface\n"), std::string::npos)
       << fan.out;
+}
+
+// The first capture of the last match of `pattern` in `text` ("" when it does not match).
+std::string captured(const std::string& text, const std::string& pattern) {
+  std::string last;
+  const std::regex expression(pattern);
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), expression);
+       it != std::sregex_iterator(); ++it) {
+    last = (*it)[1].str();
+  }
+  return last;
+}
+
+// A stage's time is measured once: its display's final line ("shapes: ... in T s") and the
+// summary ("T s shapes") print the same number; so do densify's display and its summary.
+TEST_F(ProgressCliTest, StageTimesAgreeBetweenDisplayAndSummary) {
+  const CliRun pack =
+      run("pack --progress lines -o small.h5 --set packer.kind=random --set container.length=0.3 "
+          "--set container.width=0.3 --set container.depth=0.3 --set particle.radius_min=0.02 "
+          "--set particle.radius_max=0.03 --set packer.target_fraction=0.25");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  const std::string shapes = captured(pack.err, R"((?:^|\n)shapes: [^\n]* in ([0-9.e-]+) s)");
+  const std::string placing = captured(pack.err, R"((?:^|\n)placing: [^\n]* in ([0-9.e-]+) s)");
+  ASSERT_FALSE(shapes.empty()) << pack.err;
+  ASSERT_FALSE(placing.empty()) << pack.err;
+  EXPECT_NE(pack.out.find("time            " + shapes + " s shapes + " + placing + " s placement"),
+            std::string::npos)
+      << pack.out << pack.err;
+
+  const CliRun densify =
+      run("densify small.h5 -o dense.h5 --sweeps 30 --target-fraction 0.3 --progress lines");
+  ASSERT_EQ(densify.exit_code, 0) << densify.err;
+  const std::string shown = captured(densify.err, R"(densify: [^\n]* in ([0-9.e-]+) s)");
+  ASSERT_FALSE(shown.empty()) << densify.err;
+  EXPECT_NE(densify.out.find(" sweeps (" + shown + " s)"), std::string::npos)
+      << densify.out << densify.err;
 }
 
 }  // namespace
