@@ -356,16 +356,24 @@ void check_resources(const RandomPackOptions& options) {
   }
   // Every library shape is grown before placement: a library far larger than the particles the
   // target needs costs memory and time for shapes never used (the packing stores only used ones).
+  // Refused only when growing it is heavy (above kHeavyBytes or kHeavySeconds, the heads-up's
+  // thresholds): a few thousand spare shapes cost megabytes and a second or two.
   const double library = options.shape.library_size;
   const double most = std::max(kLibraryFloor, std::ceil(kLibraryHeadroom * estimate.particles));
-  if (library > most) {
+  const double library_bytes = estimate.bytes - estimate.particles * estimate.bytes_per_particle;
+  const double library_seconds =
+      estimate.seconds - estimate.particles * kPlacementSecondsPerParticle;
+  if (library > most && (library_bytes > kHeavyBytes || library_seconds > kHeavySeconds)) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2g", library_seconds);
     throw LimitExceeded("shape.library_size", std::to_string(options.shape.library_size),
                         "at most " + count_text(most) + " (" + format_value(kLibraryHeadroom) +
                             " x the ~" + count_text(estimate.particles) +
                             " particles this target needs, at least " + count_text(kLibraryFloor) +
                             "): every library shape is grown before placement, so the run "
                             "would need ~" +
-                            format_bytes(estimate.bytes) + ", mostly for shapes it never uses");
+                            format_bytes(estimate.bytes) + " and ~" + seconds +
+                            " s, mostly for shapes it never uses");
   }
 }
 
