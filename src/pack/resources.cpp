@@ -71,8 +71,9 @@ constexpr double kTetGenBytesPerElement = 40.0;  // 4 node numbers, face flags, 
 constexpr double kRenderSetupSeconds = 1.5;
 constexpr double kRenderSecondsPerParticle = 8e-5;
 constexpr double kRenderBytesPerParticle = 200.0;  // pose, colour, draw lists, per-instance data
-// shapes -n: a chunk of 65,536 descriptor rows in memory; a CSV row of ~13 numbers of 17 digits.
-constexpr double kShapesChunk = 65536.0;
+// shapes -n: a chunk of 8,192 descriptor rows in memory (app/cli/shape_commands.cpp); a CSV row of
+// ~13 numbers of 17 digits.
+constexpr double kShapesChunk = 8192.0;
 constexpr double kShapesBytesPerRow = 300.0;
 // A shape library may hold this many times the particles a target needs (and at least
 // kLibraryFloor shapes): beyond that most shapes are grown and never used.

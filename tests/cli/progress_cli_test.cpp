@@ -135,5 +135,19 @@ TEST_F(ProgressCliTest, StageTimesAgreeBetweenDisplayAndSummary) {
       << densify.out << densify.err;
 }
 
+// `shapes -n` shows its particles grown over its chunks (a run of 2 s or more), with the rate;
+// a short run prints nothing, and --progress none nothing at all.
+TEST_F(ProgressCliTest, ShapesShowsTheParticlesGrown) {
+  const CliRun heavy = run("shapes -n 150000 --progress lines");
+  ASSERT_EQ(heavy.exit_code, 0) << heavy.err;
+  EXPECT_NE(heavy.err.find("growing: 100.0%  150000/150000 particles in "), std::string::npos)
+      << heavy.err;
+  EXPECT_NE(heavy.out.find("sphericity"), std::string::npos) << heavy.out;
+  const CliRun light = run("shapes -n 100 --progress lines");
+  ASSERT_EQ(light.exit_code, 0) << light.err;
+  EXPECT_EQ(light.err, "");
+  EXPECT_EQ(run("shapes -n 10 --progress sometimes").exit_code, 2);
+}
+
 }  // namespace
 }  // namespace aggpack
