@@ -10,6 +10,7 @@
 #include "aggpack/config/docs.h"
 #include "aggpack/core/atomic_file.h"
 #include "commands.h"
+#include "output_flags.h"
 
 namespace aggpack::cli {
 
@@ -18,10 +19,11 @@ namespace {
 struct ConfigKeysFlags {
   std::string markdown_table;
   std::string update_doc;
+  bool has_update_doc = false;  // given, even as "" (refused, not ignored)
 };
 
 void run_config_keys(const ConfigKeysFlags& flags) {
-  if (!flags.update_doc.empty()) {
+  if (flags.has_update_doc) {
     const std::string before = read_config_file(flags.update_doc);
     const std::string after = regenerate_config_doc(before);
     if (after == before) {
@@ -58,7 +60,11 @@ void register_config_keys(CLI::App& app) {
                       "output, trough, particles, physics, rest, measure, sweep)");
   command->add_option("--update-doc", flags->update_doc,
                       "rewrite the generated tables of this file (docs/config.md)");
-  command->callback([flags]() { run_config_keys(*flags); });
+  command->callback([flags, command]() {
+    flags->has_update_doc = command->count("--update-doc") > 0;
+    if (flags->has_update_doc) check_output_file_flag("--update-doc", flags->update_doc);
+    run_config_keys(*flags);
+  });
 }
 
 }  // namespace aggpack::cli

@@ -79,7 +79,8 @@ void run_voxels(const MesomodelFlags& flags, const Overwrite overwrite) {
   options.itz_thickness = flags.itz;
   const bool is_vti = flags.output.ends_with(".vti");
   if (!is_vti && !flags.output.ends_with(".raw")) {
-    throw InvalidInput("--output", flags.output, "a name ending in .vti or .raw with --voxels");
+    throw InvalidInput("-o/--output", aggpack::quoted(flags.output),
+                       "a name ending in .vti or .raw with --voxels");
   }
   const std::string base = is_vti ? flags.output : flags.output.substr(0, flags.output.size() - 4);
   if (is_vti) {
@@ -196,7 +197,13 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
     }
   }
   with_key_names({}, file_flags, [&] { validate(flags.file); });
-  (void)mesomodel_format(flags.output);  // refuse a wrong extension before the work
+  // Refuse a wrong extension before the work, naming the flag typed.
+  try {
+    (void)mesomodel_format(flags.output);
+  } catch (const InvalidInput&) {
+    throw InvalidInput("-o/--output", aggpack::quoted(flags.output),
+                       "a name ending in .inp, .msh or .vtu; .vti or .raw with --voxels");
+  }
   check_writable(flags.output, overwrite);
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
@@ -311,14 +318,15 @@ void register_mesomodel(CLI::App& app) {
                    "stderr: auto (redrawn on a terminal, else a line every 2 s), bar, lines, none")
       ->capture_default_str();
   command->add_flag("-f,--force", flags->is_forced, "replace existing output files");
-  command->callback([flags]() {
+  command->callback([flags, command]() {
     set_thread_count(flags->threads);
     check_output_file_flag("-o/--output", flags->output);
     if (!(flags->itz >= 0.0) || !std::isfinite(flags->itz)) {
       throw InvalidInput("--itz", format_value(flags->itz), ">= 0 (m)");
     }
     const Overwrite overwrite = flags->is_forced ? Overwrite::kAllow : Overwrite::kForbid;
-    if (flags->resolution != 0) {
+    // Given at all (even --voxels 0) is a voxel run: its range is checked, never ignored.
+    if (command->count("--voxels") > 0) {
       if (flags->itz_kind != "solid") {
         throw InvalidInput("--itz-kind", flags->itz_kind,
                            "solid with --voxels (the phase image has no cohesive elements)");

@@ -2,6 +2,9 @@
 
 #include <sys/stat.h>
 
+#include <charconv>
+#include <system_error>
+
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
 
@@ -28,6 +31,18 @@ void check_output_folder_flag(std::string_view flag, const std::string& path) {
     throw IoError("cannot write " + clipped(path) + ": not a folder; " + std::string(flag) +
                   " takes a folder path");
   }
+}
+
+std::uint64_t parse_seed_flag(std::string_view flag, const std::string& text) {
+  constexpr std::uint64_t kLargestSeed = 9223372036854775807ULL;  // 2^63 - 1
+  std::uint64_t seed = 0;
+  const char* end = text.data() + text.size();
+  const auto [last, status] = std::from_chars(text.data(), end, seed);  // no sign allowed
+  if (text.empty() || status != std::errc() || last != end || seed > kLargestSeed) {
+    throw InvalidInput(std::string(flag), text.empty() ? "\"\"" : clipped(text, 40),
+                       "an integer in [0, 2^63 - 1]");
+  }
+  return seed;
 }
 
 }  // namespace aggpack::cli

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -39,7 +40,7 @@ struct PackFlags {
   std::string config_path;
   std::vector<std::string> overrides;
   std::optional<std::string> output;
-  std::optional<std::uint64_t> seed;
+  std::optional<std::string> seed;  // as typed: parse_seed_flag
   std::optional<int> threads;
   bool is_forced = false;
   bool has_xdmf = false;
@@ -175,7 +176,9 @@ std::string library_json(const ShapeLibrary& library) {
 void run_pack(const PackFlags& flags) {
   std::vector<std::string> overrides = flags.overrides;
   // --seed and --threads are shortcuts for --set and win over it.
-  if (flags.seed) overrides.push_back("packer.seed=" + std::to_string(*flags.seed));
+  if (flags.seed) {
+    overrides.push_back("packer.seed=" + std::to_string(parse_seed_flag("--seed", *flags.seed)));
+  }
   const std::string threads_override =
       flags.threads ? "packer.threads=" + std::to_string(*flags.threads) : std::string();
   if (flags.threads) overrides.push_back(threads_override);
@@ -274,10 +277,18 @@ void run_pack(const PackFlags& flags) {
   // time counts from there, so it agrees with the summary's "s shapes + s placement".
   auto stage_start = std::chrono::steady_clock::now();
   auto last_report = stage_start;
+  // The duration each stage's display showed: the summary prints the same numbers.
+  std::map<PackStage, double> shown_seconds;
+  const auto finish_bar = [&](double seconds) {
+    if (!bar) return;
+    bar->finish(seconds);
+    if (const auto shown = bar->shown_seconds()) shown_seconds[*stage] = *shown;
+    bar.reset();
+  };
   PackControl control;
   control.on_progress = [&](const PackProgress& progress) {
     if (!stage || *stage != progress.stage) {
-      bar.reset();  // finishes the previous stage's display
+      finish_bar(-1.0);  // the previous stage's display, by its clock
       if (stage) stage_start = last_report;
       stage = progress.stage;
       bar = std::make_unique<ProgressBar>(
@@ -297,7 +308,20 @@ void run_pack(const PackFlags& flags) {
     }
   };
   PipelineResult result = pack(config, control);
-  bar.reset();
+  // The last stage's display ends with the run's own measurement of it.
+  if (stage) {
+    const PackReport& measured = result.report;
+    finish_bar(*stage == PackStage::kShapes    ? measured.shape_seconds
+               : *stage == PackStage::kDensify ? (result.densify ? result.densify->seconds : -1.0)
+                                               : measured.placement_seconds);
+  }
+  const auto seconds_of = [&](PackStage which, double measured) {
+    const auto found = shown_seconds.find(which);
+    return found != shown_seconds.end() ? found->second : measured;
+  };
+  const double shape_seconds = seconds_of(PackStage::kShapes, result.report.shape_seconds);
+  const double placement_seconds =
+      seconds_of(PackStage::kPlacement, result.report.placement_seconds);
 
   Packing& packing = result.packing;
   write(packing, output,
@@ -352,8 +376,8 @@ void run_pack(const PackFlags& flags) {
                written_json.empty() ? "" : ",\n  \"exports\": [" + exports_json + "\n  ]");
   } else if (result.fill) {
     print_dense_summary(result, grading);
-    fmt::print("time            {} s shapes + {} s placement{}\n",
-               format_seconds(report.shape_seconds), format_seconds(report.placement_seconds),
+    fmt::print("time            {} s shapes + {} s placement{}\n", format_seconds(shape_seconds),
+               format_seconds(placement_seconds),
                result.densify
                    ? fmt::format(" + {} s densify", format_seconds(result.densify->seconds))
                    : "");
@@ -362,8 +386,8 @@ void run_pack(const PackFlags& flags) {
     fmt::print("particles       {}\n", report.placed);
     fmt::print("solid volume    {:.6g} m^3\n", report.solid_volume);
     fmt::print("solid fraction  {:.4f}\n", report.solid_fraction);
-    fmt::print("time            {} s shapes + {} s placement\n",
-               format_seconds(report.shape_seconds), format_seconds(report.placement_seconds));
+    fmt::print("time            {} s shapes + {} s placement\n", format_seconds(shape_seconds),
+               format_seconds(placement_seconds));
   }
   if (!flags.is_json) {
     if (result.library) print_library(*result.library);

@@ -195,7 +195,7 @@ void ProgressBar::heartbeat() {
   if (since >= (style_ == ProgressStyle::kBar ? 1.0 : kProgressHeartbeat)) draw(elapsed);
 }
 
-void ProgressBar::finish() {
+void ProgressBar::finish(double seconds) {
   if (style_ != ProgressStyle::kNone && !clock_) stop_thread();
   const std::lock_guard lock(mutex_);
   if (is_finished_) return;
@@ -203,8 +203,10 @@ void ProgressBar::finish() {
   if (style_ == ProgressStyle::kNone || !has_update_) return;
   // A finished display reports the time to its last update: it may be ended later (a stage's
   // display ends when the next stage first reports).
-  const double elapsed = fraction_ >= 1 ? last_update_ : now();
-  const double span = elapsed - first_time_;
+  const double clock_elapsed = fraction_ >= 1 ? last_update_ : now();
+  const double elapsed = seconds >= 0 ? seconds : clock_elapsed;
+  shown_seconds_ = elapsed;
+  const double span = clock_elapsed - first_time_;  // the rate: the display's own updates
   std::string line = fmt::format("{}: {:.1f}%  {} in {} s", label_, 100.0 * fraction_, count_text(),
                                  format_seconds(elapsed));
   if (span > 0.2) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -68,7 +69,12 @@ class ProgressBar {
   /// by the heartbeat thread, or by tests with their own clock.
   void heartbeat();
   /// Ends the display with a final line (elapsed time, mean rate). Called by the destructor.
-  void finish();
+  /// `seconds` >= 0: the line shows this duration instead of the display's clock, so that a
+  /// summary printing the work's own measurement afterwards shows the same number.
+  void finish(double seconds = -1.0);
+  /// The duration the final line showed, once finished; nullopt when it showed none (kNone, or
+  /// no update): a summary prints this number, so the two agree.
+  [[nodiscard]] std::optional<double> shown_seconds() const { return shown_seconds_; }
 
   [[nodiscard]] bool is_bar() const { return style_ == ProgressStyle::kBar; }
 
@@ -98,6 +104,7 @@ class ProgressBar {
   bool has_update_ = false;
   bool is_finished_ = false;
   bool is_eta_bound_ = false;
+  std::optional<double> shown_seconds_;
   std::mutex mutex_;
   std::condition_variable wake_;
   bool is_stopping_ = false;

@@ -48,26 +48,79 @@ Verdict tet_quality_verdict(const TetQuality& quality, const TetOptions& tetrahe
 
 Verdict mesomodel_verdict(const MesoReport& report) {
   std::string problems;
+  const auto add_problem = [&problems](const std::string& text) {
+    problems += (problems.empty() ? "" : "; ") + text;
+  };
   for (const MesoPhase phase : {MesoPhase::kAggregate, MesoPhase::kItz, MesoPhase::kMortar}) {
     const MesoPhaseReport& p = report.phases[static_cast<int>(phase)];
     if (p.expected_volume <= 0.0) continue;
     const double error = std::abs(p.meshed_volume - p.expected_volume) / p.expected_volume;
     if (!(error <= 1e-6)) {
-      problems += fmt::format("{}{} volume off its exact value by {:.2e} (expected ~1e-14)",
-                              problems.empty() ? "" : "; ", phase_set_name(phase), error);
+      add_problem(fmt::format("{} volume off its exact value by {:.2e} (expected ~1e-14)",
+                              phase_set_name(phase), error));
     }
   }
   if (report.relabelled_tetrahedra > 0) {
-    problems += fmt::format("{}{} tetrahedra relabelled by the phase check (expected 0)",
-                            problems.empty() ? "" : "; ", report.relabelled_tetrahedra);
+    add_problem(fmt::format("{} tetrahedra relabelled by the phase check (expected 0)",
+                            report.relabelled_tetrahedra));
   }
-  if (!problems.empty()) {
-    return {true, "mesomodel: " + problems + "; please report it with the input file"};
+  if (!problems.empty()) problems += "; please report it with the input file";
+  // The angles, per phase that has tetrahedra (a cohesive ITZ has none): below what CalculiX is
+  // known to solve, or degenerate (0, NaN, an infinite aspect ratio), is a warning.
+  std::string angles;
+  const auto add_angle = [&angles](const std::string& text) {
+    angles += (angles.empty() ? "" : "; ") + text;
+  };
+  const auto quality_of = [&report](MesoPhase phase) -> const TetQuality& {
+    return report.phases[static_cast<int>(phase)].quality;
+  };
+  for (const MesoPhase phase : {MesoPhase::kAggregate, MesoPhase::kItz, MesoPhase::kMortar}) {
+    const TetQuality& q = quality_of(phase);
+    if (q.tetrahedra == 0) continue;
+    if (!std::isfinite(q.max_aspect_ratio) || !(q.min_dihedral_degrees > 0.0)) {
+      add_angle(fmt::format("degenerate {} tetrahedra (no volume): solvers stop on them",
+                            phase_set_name(phase)));
+    } else if (q.min_dihedral_degrees < kSolvedDihedralDegrees) {
+      add_angle(
+          fmt::format("smallest {} angle {:.3g} deg, below the {} deg CalculiX is known to "
+                      "solve",
+                      phase_set_name(phase), q.min_dihedral_degrees, kSolvedDihedralDegrees));
+    }
   }
-  return {false,
-          "as expected: ITZ tetrahedra are flat by design (the layer is thin over the "
-          "aggregate's triangles) and the mortar's smallest angles sit in the thin gaps between "
-          "layers and walls (docs/mesomodel.md, \"Quality, honestly\")"};
+  if (!angles.empty()) {
+    problems += (problems.empty() ? "" : "; ") + angles +
+                "; if the solver stops on a nonpositive jacobian, see docs/mesomodel.md, "
+                "\"Quality, honestly\"";
+  }
+  if (!problems.empty()) return {true, "mesomodel: " + problems};
+  // What explains the angles below kPoorDihedralDegrees, phase by phase.
+  const bool has_itz = report.phases[static_cast<int>(MesoPhase::kItz)].expected_volume > 0.0 &&
+                       quality_of(MesoPhase::kItz).tetrahedra > 0;
+  const auto is_poor = [&quality_of](MesoPhase phase) {
+    const TetQuality& q = quality_of(phase);
+    return q.tetrahedra > 0 && q.min_dihedral_degrees < kPoorDihedralDegrees;
+  };
+  std::string reasons;
+  const auto add_reason = [&reasons](const std::string& text) {
+    reasons += (reasons.empty() ? "" : "; ") + text;
+  };
+  if (has_itz && is_poor(MesoPhase::kItz)) {
+    add_reason(
+        "ITZ tetrahedra are flat by design (the layer is thin over the aggregate's "
+        "triangles)");
+  }
+  if (is_poor(MesoPhase::kMortar)) {
+    add_reason(fmt::format("the mortar's smallest angles sit in the thin gaps between {} and walls",
+                           has_itz ? "layers" : "aggregates"));
+  }
+  if (is_poor(MesoPhase::kAggregate)) {
+    add_reason("aggregate tetrahedra follow the particles' surface triangles");
+  }
+  if (reasons.empty()) {
+    return {false,
+            fmt::format("fine for solvers: no tetrahedron below {} deg", kPoorDihedralDegrees)};
+  }
+  return {false, "as expected: " + reasons + " (docs/mesomodel.md, \"Quality, honestly\")"};
 }
 
 void print_verdict(const std::string& label, const Verdict& verdict) {

@@ -25,8 +25,11 @@ inline constexpr double kSolvedDihedralDegrees = 0.017;
 /// (degenerate, or below what a solver is known to take). `scale` = the export's --scale.
 Verdict tet_quality_verdict(const TetQuality& quality, const TetOptions& tetrahedra, double scale);
 
-/// A mesomodel: flat ITZ and thin-gap mortar tetrahedra are expected; a phase volume off its
-/// exact value (relative error above 1e-6) or a relabelled tetrahedron is a warning.
+/// A mesomodel, from its phases' quality: angles below kPoorDihedralDegrees are explained per
+/// phase that has them (a flat ITZ layer, when there is one; mortar in thin gaps; aggregate
+/// tetrahedra on the particles' surface triangles), none is "fine for solvers". A phase angle
+/// below kSolvedDihedralDegrees or degenerate, a phase volume off its exact value (relative
+/// error above 1e-6) or a relabelled tetrahedron is a warning naming the phase and the number.
 Verdict mesomodel_verdict(const MesoReport& report);
 
 /// Prints `verdict`: "<label>: <text>" on stdout, or "aggpack: warning: <text>" on stderr.

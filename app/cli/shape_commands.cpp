@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -275,6 +276,12 @@ void register_shapes(CLI::App& app) {
   command->add_option("-j,--threads", flags->threads, "worker threads (0 = all cores)")
       ->capture_default_str();
   command->add_flag("-f,--force", *is_forced, "replace an existing output file");
+  auto progress = std::make_shared<std::string>("auto");
+  command
+      ->add_option("--progress", *progress,
+                   "particles grown, rate and ETA on stderr for a run of 2 s or more: auto "
+                   "(redrawn on a terminal, else a line every 2 s), bar, lines, none")
+      ->capture_default_str();
   auto library = std::make_shared<LibraryFlags>();
   command
       ->add_option("--library", library->paths,
@@ -308,16 +315,35 @@ void register_shapes(CLI::App& app) {
     if (*count < 1 || *count > 100000000ULL) {
       throw InvalidInput("--count", std::to_string(*count), "[1, 100000000]");
     }
+    const ProgressStyle style = parse_progress_style("--progress", *progress);
     set_thread_count(flags->threads);
     const Overwrite overwrite = *is_forced ? Overwrite::kAllow : Overwrite::kForbid;
     if (!output->empty()) check_writable(*output, overwrite);
-    announce_heavy_run(
-        estimate_shapes(flags->generator, static_cast<double>(*count), !output->empty()));
+    const RunEstimate estimate =
+        estimate_shapes(flags->generator, static_cast<double>(*count), !output->empty());
+    announce_heavy_run(estimate);
 
     // Generated in chunks (in parallel), written and summarised in index order: memory stays
-    // bounded by one chunk however large --count is (issue 12).
+    // bounded by one chunk however large --count is (issue 12). A chunk is small enough for the
+    // progress display to move every fraction of a second.
     const auto n = static_cast<std::size_t>(*count);
-    constexpr std::size_t kChunk = 65536;
+    constexpr std::size_t kChunk = 8192;
+    // The display: from the start for a run estimated at kProgressHeartbeat or more, else from
+    // when it has taken that long (a short run prints nothing).
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<ProgressBar> bar;
+    const auto show_progress = [&](std::size_t done) {
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!bar && (estimate.seconds >= kProgressHeartbeat || elapsed >= kProgressHeartbeat)) {
+        bar = std::make_unique<ProgressBar>("growing", "particles", style);
+        bar->set_start(start);
+      }
+      if (bar) {
+        bar->update(static_cast<double>(done) / static_cast<double>(n), done, n);
+      }
+    };
+    show_progress(0);
     const auto& columns = descriptor_columns();
     std::vector<RunningSummary> summaries(columns.size());
     std::unique_ptr<AtomicFile> file;
@@ -351,7 +377,9 @@ void register_shapes(CLI::App& app) {
           out << '\n';
         }
       }
+      show_progress(begin + size);
     }
+    bar.reset();  // its final line, before the summary
     if (file) {
       file->commit();
       fmt::print("wrote {} ({} particles)\n", *output, n);

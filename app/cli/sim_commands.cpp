@@ -60,7 +60,7 @@ SweepOptions resolve_repose_flags(const ReposeFlags& flags) {
     with_key_names({}, flag_names, [&] { with_sweep_key_names([&] { validate(options.base); }); });
   }
   if (flags.seed) {
-    options.base.seed = *flags.seed;
+    options.base.seed = parse_seed_flag("--seed", *flags.seed);
     options.seeds.clear();  // --seed: one run at that seed, whatever ensemble.seeds says
   }
   if (flags.has_seeds) options.seeds = parse_seed_list(flags.seeds, "--seeds");

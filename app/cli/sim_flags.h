@@ -47,7 +47,7 @@ struct ReposeFlags {
   std::string output = "repose-out";
   std::optional<double> friction;
   std::optional<double> alpha;
-  std::optional<std::uint64_t> seed;
+  std::optional<std::string> seed;    // as typed: parse_seed_flag
   std::optional<std::string> engine;  ///< --engine, same as --set physics.engine
   std::optional<double> time_limit;   ///< --time-limit, same as --set yade.time_limit
   std::string seeds;                  ///< an ensemble, "1-16" or "1,4,9" (overrides ensemble.seeds)

@@ -4,6 +4,7 @@
 #include "aggpack/io/mesh_read.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
@@ -14,6 +15,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
 #include "aggpack/io/stl.h"
+#include "read_failure.h"
 
 namespace aggpack {
 
@@ -156,8 +158,7 @@ bool mesh_file_format(std::string_view path, MeshFileFormat& format) {
 std::string read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
   std::error_code error;
   const auto status = std::filesystem::status(path, error);
-  if (error || !std::filesystem::exists(status))
-    throw IoError(Wording{Sentence::kReadNoSuchFile, {path}});
+  if (error) throw IoError(io_detail::read_failure_wording(path, error.value()));
   if (!std::filesystem::is_regular_file(status)) {
     throw IoError(Wording{Sentence::kReadNotRegular, {path}});
   }
@@ -168,8 +169,9 @@ std::string read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
                         Wording{Sentence::kBytes, {std::to_string(size)}},
                         Wording{Sentence::kAtMostBytes, {std::to_string(max_bytes)}});
   }
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(Wording{Sentence::kOpenFailed, {path}});
+  if (!in) throw IoError(io_detail::read_failure_wording(path, errno));
   std::string content(size, '\0');
   in.read(content.data(), static_cast<std::streamsize>(size));
   if (static_cast<std::uint64_t>(in.gcount()) != size) {

@@ -5,6 +5,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -22,6 +23,7 @@
 #include "aggpack/core/text.h"
 #include "hdf5_util.h"
 #include "native_container.h"
+#include "read_failure.h"
 
 namespace aggpack {
 
@@ -553,14 +555,16 @@ Packing read_hdf5(const std::string& path) {
 }  // namespace
 
 Packing read_packing(const std::string& path) {
+  // stat fails with EACCES in an unreadable folder: only ENOENT is "no such file".
   std::error_code error;
-  if (!std::filesystem::exists(path, error))
-    throw IoError(Wording{Sentence::kReadNoSuchFile, {path}});
-  if (std::filesystem::is_directory(path, error)) {
+  const auto status = std::filesystem::status(path, error);
+  if (error) throw IoError(io_detail::read_failure_wording(path, error.value()));
+  if (std::filesystem::is_directory(status)) {
     throw IoError(Wording{Sentence::kReadFolder, {path}});
   }
+  errno = 0;
   if (!std::ifstream(path, std::ios::binary)) {
-    throw IoError(Wording{Sentence::kReadPermission, {path}});
+    throw IoError(io_detail::read_failure_wording(path, errno));
   }
   const SilenceHdf5Errors silence;
   return read_hdf5(path);

@@ -3,6 +3,7 @@
 #include "aggpack/io/shape_library_files.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <filesystem>
 #include <optional>
 #include <set>
@@ -13,6 +14,7 @@
 #include "aggpack/core/parallel.h"
 #include "aggpack/core/text.h"
 #include "aggpack/io/mesh_read.h"
+#include "read_failure.h"
 
 namespace aggpack {
 
@@ -27,6 +29,10 @@ FileList list_files(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code error;
   const auto status = fs::status(path, error);
+  // Behind a folder the user may not enter: say so, not "no such file or folder".
+  if (error && error.value() == EACCES) {
+    throw IoError(io_detail::read_failure_wording(path, EACCES));
+  }
   std::vector<std::pair<std::string, std::string>> files;
   MeshFileFormat format{};
   if (!error && fs::is_directory(status)) {

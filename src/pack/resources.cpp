@@ -72,8 +72,9 @@ constexpr double kTetGenBytesPerElement = 40.0;  // 4 node numbers, face flags, 
 constexpr double kRenderSetupSeconds = 1.5;
 constexpr double kRenderSecondsPerParticle = 8e-5;
 constexpr double kRenderBytesPerParticle = 200.0;  // pose, colour, draw lists, per-instance data
-// shapes -n: a chunk of 65,536 descriptor rows in memory; a CSV row of ~13 numbers of 17 digits.
-constexpr double kShapesChunk = 65536.0;
+// shapes -n: a chunk of 8,192 descriptor rows in memory (app/cli/shape_commands.cpp); a CSV row of
+// ~13 numbers of 17 digits.
+constexpr double kShapesChunk = 8192.0;
 constexpr double kShapesBytesPerRow = 300.0;
 // A shape library may hold this many times the particles a target needs (and at least
 // kLibraryFloor shapes): beyond that most shapes are grown and never used.
@@ -366,14 +367,21 @@ void check_resources(const RandomPackOptions& options) {
   }
   // Every library shape is grown before placement: a library far larger than the particles the
   // target needs costs memory and time for shapes never used (the packing stores only used ones).
+  // Refused only when growing it is heavy (above kHeavyBytes or kHeavySeconds, the heads-up's
+  // thresholds): a few thousand spare shapes cost megabytes and a second or two.
   const double library = options.shape.library_size;
   const double most = std::max(kLibraryFloor, std::ceil(kLibraryHeadroom * estimate.particles));
-  if (library > most) {
+  const double library_bytes = estimate.bytes - estimate.particles * estimate.bytes_per_particle;
+  const double library_seconds =
+      estimate.seconds - estimate.particles * kPlacementSecondsPerParticle;
+  if (library > most && (library_bytes > kHeavyBytes || library_seconds > kHeavySeconds)) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.2g", library_seconds);
     throw LimitExceeded(
         "shape.library_size", std::to_string(options.shape.library_size),
         Wording{Sentence::kLibraryHeadroom,
                 {count_text(most), format_value(kLibraryHeadroom), count_text(estimate.particles),
-                 count_text(kLibraryFloor), format_bytes(estimate.bytes)}});
+                 count_text(kLibraryFloor), format_bytes(estimate.bytes), seconds}});
   }
 }
 

@@ -66,6 +66,12 @@ TEST_F(FlagNamesCliTest, Pack) {
                  "--set packer.threads=-1: invalid packer.threads = -1 (allowed: [0, 4096])");
   expect_refused("pack --compression 11 -o out.h5", 2,
                  "invalid --compression = 11 (allowed: [0, 9])");
+  // --seed is typed as a flag: named as the flag, not as the --set packer.seed it stands for
+  // (-1 used to be wrapped to 2^64 - 1 on the way).
+  expect_refused("pack --seed -1 -o out.h5", 2,
+                 "invalid --seed = -1 (allowed: an integer in [0, 2^63 - 1])");
+  expect_refused("pack --seed 9223372036854775808 -o out.h5", 2,
+                 "invalid --seed = 9223372036854775808 (allowed: an integer in [0, 2^63 - 1])");
 }
 
 TEST_F(FlagNamesCliTest, ParticleAndShapes) {
@@ -109,6 +115,16 @@ TEST_F(FlagNamesCliTest, Mesomodel) {
                  "invalid --material mortar E = -1 (allowed: (0, 1e13] Pa)");
   expect_refused(meso + " --material itz=15e9,0.7,2000", 2,
                  "invalid --material itz NU = 0.7 (allowed: (-1, 0.5))");
+  // --voxels given is a voxel run whatever its value: 0 is refused, not ignored.
+  expect_refused(meso + " --voxels 0", 2, "invalid --voxels = 0 (allowed: [2, 4096])");
+  expect_refused(meso + " --voxels 5000", 2, "invalid --voxels = 5000 (allowed: [2, 4096])");
+  // A wrong extension names the flag typed.
+  expect_refused("mesomodel " + kBase + " -o m.vti", 2,
+                 "invalid -o/--output = \"m.vti\" (allowed: a name ending in .inp, .msh or "
+                 ".vtu; .vti or .raw with --voxels)");
+  expect_refused(meso + " --voxels 32", 2,
+                 "invalid -o/--output = \"out.inp\" (allowed: a name ending in .vti or .raw "
+                 "with --voxels)");
 }
 
 TEST_F(FlagNamesCliTest, Render) {
@@ -125,6 +141,8 @@ TEST_F(FlagNamesCliTest, ReposeAndSweep) {
   for (const std::string command : {"repose", "sweep"}) {
     expect_refused(command + config + " --mu 20", 2, "invalid --mu = 20 (allowed: [0, 10])");
     expect_refused(command + config + " --alpha 3", 2, "invalid --alpha = 3 (allowed: [0, 1])");
+    expect_refused(command + config + " --seed -1", 2,
+                   "invalid --seed = -1 (allowed: an integer in [0, 2^63 - 1])");
     expect_refused(command + config + " --set physics.friction=20", 2,
                    "--set physics.friction=20: invalid physics.friction = 20 (allowed: [0, 10])");
   }
@@ -143,6 +161,8 @@ TEST_F(FlagNamesCliTest, EmptyOutputIsOneErrorEverywhere) {
   expect_refused("mesomodel " + kBase + " -o ''", 2, file);
   expect_refused("calibrate --alpha 0.5 --table ''", 2,
                  "invalid --table = \"\" (allowed: a file path)");
+  expect_refused("config-keys --update-doc ''", 2,
+                 "invalid --update-doc = \"\" (allowed: a file path)");
   if (has("render")) expect_refused("render " + kBase + " -o ''", 2, file);
   if (has("settle")) {
     expect_refused("settle " + kBase + " -o ''", 2, file);
@@ -173,6 +193,13 @@ TEST_F(FlagNamesCliTest, OutputThatIsAFolderIsOneErrorEverywhere) {
   expect_folder_refused("export " + kBase);
   expect_folder_refused("densify " + kBase);
   expect_folder_refused("mesomodel " + kBase);
+  {
+    SCOPED_TRACE("config-keys --update-doc");
+    const CliRun result = run("config-keys --update-doc '" + sub + "'");
+    EXPECT_EQ(result.exit_code, 3) << result.err;
+    EXPECT_EQ(result.err,
+              "aggpack: error: refusing to replace " + sub + ": not a regular file (directory)\n");
+  }
   if (has("render")) expect_folder_refused("render " + kBase);
   if (has("settle")) expect_folder_refused("settle " + kBase);
   if (has("repose")) {

@@ -3,7 +3,10 @@
 // native file, and one-line errors with exit 2.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -161,6 +164,46 @@ TEST_F(LibraryCli, ListsOfFilesAndFolders) {
   EXPECT_NE(bad.err.find("particle.library[1] must be a non-empty string (a file path)"),
             std::string::npos)
       << bad.err;
+}
+
+// A file in a folder the user may not enter is "permission denied", not "no such file" (stat fails
+// with EACCES there). Root ignores permission bits, so as root the commands run as nobody
+// (setpriv); the test fails, not skips, when that is impossible.
+TEST_F(LibraryCli, FileInAnUnreadableFolderIsPermissionDeniedNotMissing) {
+  write_library();
+  std::filesystem::create_directories(path("locked"));
+  std::filesystem::copy_file(path("rocks/cube.stl"), path("locked/cube.stl"));
+  ASSERT_EQ(run("pack --progress none --set packer.kind=random --set container.length=0.3 "
+                "--set container.width=0.3 --set container.depth=0.3 "
+                "--set particle.radius_min=0.03 --set particle.radius_max=0.05 "
+                "--set packer.target_fraction=0.1 -o locked/p.h5")
+                .exit_code,
+            0);
+  std::filesystem::permissions(path("locked"), std::filesystem::perms::none);
+  const std::string as_user =
+      ::geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups" : "";
+  // The other user can run aggpack but cannot enter the folder.
+  ASSERT_EQ(run("--version", as_user).exit_code, 0) << "cannot run aggpack as another user";
+  const std::string probe = "cd '" + folder_.string() + "' && " + as_user + " test -e locked/p.h5";
+  ASSERT_NE(std::system(probe.c_str()), 0) << "the locked folder is readable";
+
+  const CliRun info = run("info locked/p.h5", as_user);
+  EXPECT_EQ(info.exit_code, 3);
+  EXPECT_EQ(info.err, "aggpack: error: cannot read locked/p.h5: permission denied\n");
+  const CliRun shapes = run("shapes --library locked/cube.stl", as_user);
+  EXPECT_NE(shapes.exit_code, 0);
+  EXPECT_NE(shapes.err.find("locked/cube.stl: permission denied"), std::string::npos) << shapes.err;
+  EXPECT_EQ(shapes.err.find("no such file"), std::string::npos) << shapes.err;
+  // A file of its own that may not be read, in a folder that may: the same words.
+  std::filesystem::copy_file(path("rocks/cube.stl"), path("closed.stl"));
+  std::filesystem::permissions(path("closed.stl"), std::filesystem::perms::none);
+  const CliRun closed = run("shapes --library closed.stl", as_user);
+  EXPECT_NE(closed.exit_code, 0);
+  EXPECT_NE(closed.err.find("closed.stl: permission denied"), std::string::npos) << closed.err;
+  // A file that is really missing is still "no such file".
+  const CliRun missing = run("info rocks/none.h5", as_user);
+  EXPECT_EQ(missing.err, "aggpack: error: cannot read rocks/none.h5: no such file\n");
+  std::filesystem::permissions(path("locked"), std::filesystem::perms::owner_all);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <regex>
 #include <string>
 
 #include "support/cli_test.h"
@@ -105,6 +106,56 @@ TEST_F(ProgressCliTest, ExportTetGenStageShowsEtaAndShapeLimitAndQualityVerdict)
       << fan.out;
   EXPECT_NE(fan.out.find("better-shaped: --tet-method tetgen --split-surface\n"), std::string::npos)
       << fan.out;
+}
+
+// The first capture of the last match of `pattern` in `text` ("" when it does not match).
+std::string captured(const std::string& text, const std::string& pattern) {
+  std::string last;
+  const std::regex expression(pattern);
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), expression);
+       it != std::sregex_iterator(); ++it) {
+    last = (*it)[1].str();
+  }
+  return last;
+}
+
+// A stage's time is measured once: its display's final line ("shapes: ... in T s") and the
+// summary ("T s shapes") print the same number; so do densify's display and its summary.
+TEST_F(ProgressCliTest, StageTimesAgreeBetweenDisplayAndSummary) {
+  const CliRun pack =
+      run("pack --progress lines -o small.h5 --set packer.kind=random --set container.length=0.3 "
+          "--set container.width=0.3 --set container.depth=0.3 --set particle.radius_min=0.02 "
+          "--set particle.radius_max=0.03 --set packer.target_fraction=0.25");
+  ASSERT_EQ(pack.exit_code, 0) << pack.err;
+  const std::string shapes = captured(pack.err, R"((?:^|\n)shapes: [^\n]* in ([0-9.e-]+) s)");
+  const std::string placing = captured(pack.err, R"((?:^|\n)placing: [^\n]* in ([0-9.e-]+) s)");
+  ASSERT_FALSE(shapes.empty()) << pack.err;
+  ASSERT_FALSE(placing.empty()) << pack.err;
+  EXPECT_NE(pack.out.find("time            " + shapes + " s shapes + " + placing + " s placement"),
+            std::string::npos)
+      << pack.out << pack.err;
+
+  const CliRun densify =
+      run("densify small.h5 -o dense.h5 --sweeps 30 --target-fraction 0.3 --progress lines");
+  ASSERT_EQ(densify.exit_code, 0) << densify.err;
+  const std::string shown = captured(densify.err, R"(densify: [^\n]* in ([0-9.e-]+) s)");
+  ASSERT_FALSE(shown.empty()) << densify.err;
+  EXPECT_NE(densify.out.find(" sweeps (" + shown + " s)"), std::string::npos)
+      << densify.out << densify.err;
+}
+
+// `shapes -n` shows its particles grown over its chunks (a run of 2 s or more), with the rate;
+// a short run prints nothing, and --progress none nothing at all.
+TEST_F(ProgressCliTest, ShapesShowsTheParticlesGrown) {
+  const CliRun heavy = run("shapes -n 150000 --progress lines");
+  ASSERT_EQ(heavy.exit_code, 0) << heavy.err;
+  EXPECT_NE(heavy.err.find("growing: 100.0%  150000/150000 particles in "), std::string::npos)
+      << heavy.err;
+  EXPECT_NE(heavy.out.find("sphericity"), std::string::npos) << heavy.out;
+  const CliRun light = run("shapes -n 100 --progress lines");
+  ASSERT_EQ(light.exit_code, 0) << light.err;
+  EXPECT_EQ(light.err, "");
+  EXPECT_EQ(run("shapes -n 10 --progress sometimes").exit_code, 2);
 }
 
 }  // namespace

@@ -80,23 +80,86 @@ TEST(QualityVerdict, DegenerateTetrahedraAreAWarning) {
                   .is_warning);
 }
 
+// The golden case's spaced lattice: exact volumes, the angles its phases had (deg).
 MesoReport exact_mesomodel() {
   MesoReport report;
   for (MesoPhaseReport& phase : report.phases) {
     phase.expected_volume = 2.0e-6;
     phase.meshed_volume = 2.0e-6 * (1.0 + 1e-13);
   }
+  report.phases[static_cast<int>(MesoPhase::kAggregate)].quality = quality_with_min_angle(0.628);
+  report.phases[static_cast<int>(MesoPhase::kItz)].quality = quality_with_min_angle(2.389);
+  report.phases[static_cast<int>(MesoPhase::kMortar)].quality = quality_with_min_angle(0.101);
   return report;
+}
+
+TetQuality& quality_of(MesoReport& report, MesoPhase phase) {
+  return report.phases[static_cast<int>(phase)].quality;
 }
 
 TEST(QualityVerdict, MesomodelWithExactVolumesIsAsExpected) {
   const Verdict verdict = mesomodel_verdict(exact_mesomodel());
   EXPECT_FALSE(verdict.is_warning);
-  EXPECT_EQ(verdict.text.rfind("as expected: ITZ tetrahedra are flat by design", 0), 0U);
-  // A phase with no expected volume (none meshed, e.g. no ITZ) is not checked.
+  EXPECT_EQ(verdict.text,
+            "as expected: ITZ tetrahedra are flat by design (the layer is thin over the "
+            "aggregate's triangles); the mortar's smallest angles sit in the thin gaps between "
+            "layers and walls; aggregate tetrahedra follow the particles' surface triangles "
+            "(docs/mesomodel.md, \"Quality, honestly\")");
+  // A phase with no expected volume (none meshed, e.g. no ITZ) is not checked, and the ITZ
+  // sentence is left out: the mortar meets the aggregates.
   MesoReport no_itz = exact_mesomodel();
   no_itz.phases[static_cast<int>(MesoPhase::kItz)] = {};
-  EXPECT_FALSE(mesomodel_verdict(no_itz).is_warning);
+  const Verdict without = mesomodel_verdict(no_itz);
+  EXPECT_FALSE(without.is_warning);
+  EXPECT_FALSE(contains(without.text, "ITZ")) << without.text;
+  EXPECT_TRUE(contains(without.text, "thin gaps between aggregates and walls")) << without.text;
+  // A cohesive ITZ: no ITZ tetrahedra (its report has the wedges' nodes only).
+  MesoReport cohesive = exact_mesomodel();
+  cohesive.phases[static_cast<int>(MesoPhase::kItz)].expected_volume = 0.0;
+  cohesive.phases[static_cast<int>(MesoPhase::kItz)].quality = {};
+  EXPECT_FALSE(contains(mesomodel_verdict(cohesive).text, "ITZ tetrahedra")) << "no ITZ sentence";
+}
+
+TEST(QualityVerdict, MesomodelNamesOnlyThePhasesWithSlivers) {
+  // Aggregate at 10 deg (kPoorDihedralDegrees) or above: its sentence is left out.
+  MesoReport report = exact_mesomodel();
+  quality_of(report, MesoPhase::kAggregate) = quality_with_min_angle(kPoorDihedralDegrees);
+  const Verdict coarse = mesomodel_verdict(report);
+  EXPECT_FALSE(coarse.is_warning);
+  EXPECT_FALSE(contains(coarse.text, "aggregate tetrahedra")) << coarse.text;
+  EXPECT_TRUE(contains(coarse.text, "ITZ tetrahedra are flat")) << coarse.text;
+  // Every phase at 10 deg or above: fine, no excuse needed.
+  for (const MesoPhase phase : {MesoPhase::kItz, MesoPhase::kMortar}) {
+    quality_of(report, phase) = quality_with_min_angle(12.0);
+  }
+  const Verdict fine = mesomodel_verdict(report);
+  EXPECT_FALSE(fine.is_warning);
+  EXPECT_EQ(fine.text, "fine for solvers: no tetrahedron below 10 deg");
+}
+
+TEST(QualityVerdict, MesomodelAngleBelowWhatSolversTakeIsAWarningNamingThePhase) {
+  MesoReport report = exact_mesomodel();
+  // At the threshold: still expected.
+  quality_of(report, MesoPhase::kMortar) = quality_with_min_angle(kSolvedDihedralDegrees);
+  EXPECT_FALSE(mesomodel_verdict(report).is_warning);
+  quality_of(report, MesoPhase::kMortar) = quality_with_min_angle(0.0123);
+  const Verdict verdict = mesomodel_verdict(report);
+  EXPECT_TRUE(verdict.is_warning);
+  EXPECT_EQ(verdict.text.rfind("mesomodel: smallest MORTAR angle 0.0123 deg, below the 0.017 deg "
+                               "CalculiX is known to solve",
+                               0),
+            0U)
+      << verdict.text;
+  EXPECT_TRUE(contains(verdict.text, "Quality, honestly")) << verdict.text;
+  // Degenerate (no volume) or NaN: a warning too, naming the phase.
+  quality_of(report, MesoPhase::kMortar) = quality_with_min_angle(1.0);
+  quality_of(report, MesoPhase::kItz) =
+      quality_with_min_angle(std::numeric_limits<double>::quiet_NaN());
+  const Verdict nan = mesomodel_verdict(report);
+  EXPECT_TRUE(nan.is_warning);
+  EXPECT_TRUE(contains(nan.text, "degenerate ITZ tetrahedra")) << nan.text;
+  quality_of(report, MesoPhase::kItz) = quality_with_min_angle(0.0);
+  EXPECT_TRUE(mesomodel_verdict(report).is_warning);
 }
 
 TEST(QualityVerdict, MesomodelVolumeOffOrRelabelledTetrahedraAreWarnings) {

@@ -102,6 +102,18 @@ TEST_F(SimCliErrors, MessagesNameTheUsersKeys) {
   EXPECT_EQ(mu.output, "aggpack: error: invalid --mu = 20 (allowed: [0, 10])\n");
   const auto quiet = aggpack("settle in.h5 -o " + path("out.h5") + " --quiet-time -1");
   EXPECT_EQ(quiet.output, "aggpack: error: invalid --quiet-time = -1 (allowed: [0, 1000000])\n");
+  // --seed is typed as a flag: -1 is refused (not wrapped to 2^64 - 1), naming the flag.
+  for (const std::string command : {"repose", "sweep"}) {
+    const auto seed = aggpack(command + " --seed -1 --print-config");
+    EXPECT_EQ(seed.exit_code, 2);
+    EXPECT_EQ(seed.output,
+              "aggpack: error: invalid --seed = -1 (allowed: an integer in [0, 2^63 - 1])\n");
+  }
+  const auto key = aggpack("repose --set particles.seed=-1 --print-config");
+  EXPECT_EQ(key.exit_code, 2);
+  EXPECT_EQ(key.output.rfind("aggpack: error: --set particles.seed=-1: invalid particles.seed", 0),
+            0U)
+      << key.output;
 }
 
 }  // namespace

@@ -348,7 +348,7 @@ AGGPACK_TEXT(kSentenceRadiusPositiveVolume, "a radius whose grown particles have
 AGGPACK_TEXT(kSentenceContainerCapacity, "at most ~{} particles of this grading and shape: the container ({} m^3) holds at most a solid fraction of {}, and {} particles of ~{} m^3 each would need {} times its volume")
 AGGPACK_TEXT(kSentenceMemoryRunSet, "a run that fits in memory: ~{} particles at ~{} each need ~{}, more than the memory limit of {} ({}={}); {}")
 AGGPACK_TEXT(kSentenceMemoryRunShare, "a run that fits in memory: ~{} particles at ~{} each need ~{}, more than the memory limit of {} (80% of {} {}; {} overrides it); {}")
-AGGPACK_TEXT(kSentenceLibraryHeadroom, "at most {} ({} x the ~{} particles this target needs, at least {}): every library shape is grown before placement, so the run would need ~{}, mostly for shapes it never uses")
+AGGPACK_TEXT(kSentenceLibraryHeadroom, "at most {} ({} x the ~{} particles this target needs, at least {}): every library shape is grown before placement, so the run would need ~{} and ~{} s, mostly for shapes it never uses")
 AGGPACK_TEXT(kSentenceMemorySize, "a size in bytes, optionally with K, M, G or T (e.g. 8G)")
 AGGPACK_TEXT(kSentenceGrewBadShape, "random packer: draw {} (size {} m) grew a shape of volume {} m^3; stopped (sizes out of range?)")
 AGGPACK_TEXT(kSentenceLibraryTooManyFiles, "at most 10^6 mesh files")

@@ -346,7 +346,7 @@ AGGPACK_TEXT(kSentenceRadiusPositiveVolume, "生长出的颗粒体积为有限�
 AGGPACK_TEXT(kSentenceContainerCapacity, "此级配和形状下最多约 {} 个颗粒：容器（{} m^3）的固体体积分数最多为 {}，而 {} 个每个约 {} m^3 的颗粒需要其体积的 {} 倍")
 AGGPACK_TEXT(kSentenceMemoryRunSet, "内存容得下的运行：约 {} 个颗粒、每个约 {}，共需约 {}，超过内存上限 {}（{}={}）；{}")
 AGGPACK_TEXT(kSentenceMemoryRunShare, "内存容得下的运行：约 {} 个颗粒、每个约 {}，共需约 {}，超过内存上限 {}（{} {} 的 80%；可用 {} 另行设定）；{}")
-AGGPACK_TEXT(kSentenceLibraryHeadroom, "不超过 {}（{} 倍于此目标所需的约 {} 个颗粒，至少 {}）：形状库的每个形状都在投放前生长，运行将需要约 {}，大部分用于从未使用的形状")
+AGGPACK_TEXT(kSentenceLibraryHeadroom, "不超过 {}（{} 倍于此目标所需的约 {} 个颗粒，至少 {}）：形状库的每个形状都在投放前生长，运行将需要约 {} 和约 {} 秒，大部分用于从未使用的形状")
 AGGPACK_TEXT(kSentenceMemorySize, "以字节为单位的大小，可带 K、M、G 或 T 后缀（例如 8G）")
 AGGPACK_TEXT(kSentenceGrewBadShape, "随机堆积：第 {} 次抽取（粒径 {} m）生长出体积为 {} m^3 的形状；已停止（粒径超出范围？）")
 AGGPACK_TEXT(kSentenceLibraryTooManyFiles, "最多 10^6 个网格文件")

@@ -149,7 +149,8 @@
     "limit of {} (80% of {} {}; {} overrides it); {}")                                          \
   X(LibraryHeadroom,                                                                            \
     "at most {} ({} x the ~{} particles this target needs, at least {}): every library shape "  \
-    "is grown before placement, so the run would need ~{}, mostly for shapes it never uses")    \
+    "is grown before placement, so the run would need ~{} and ~{} s, mostly for shapes it "     \
+    "never uses")                                                                               \
   X(MemorySize, "a size in bytes, optionally with K, M, G or T (e.g. 8G)")                      \
   X(GrewBadShape,                                                                               \
     "random packer: draw {} (size {} m) grew a shape of volume {} m^3; stopped (sizes out of "  \

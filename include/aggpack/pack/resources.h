@@ -69,7 +69,8 @@ RunEstimate estimate_run(const LatticeOptions& options, double sites);
 /// Throws LimitExceeded (field random.count or random.volume_fraction) when a count target's
 /// solid volume exceeds kMaxSolidFraction of the container, or when estimate_run().bytes exceeds
 /// memory_limit(); (field shape.library_size) when a shape library holds more than 10 x the
-/// estimated particles (and more than 1000 shapes). Called by validate(RandomPackOptions).
+/// estimated particles (and more than 1000 shapes) and growing it would take more than
+/// kHeavyBytes or kHeavySeconds. Called by validate(RandomPackOptions).
 void check_resources(const RandomPackOptions& options);
 /// Throws LimitExceeded (field lattice.radius) when the shapes of `sites` lattice sites exceed
 /// memory_limit(). Called by validate(LatticeOptions).
