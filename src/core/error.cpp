@@ -33,6 +33,8 @@ namespace aggpack {
 const char* english_words(Sentence sentence) {
   static constexpr const char* kWords[] = {
 #define AGGPACK_SENTENCE_WORDS(name, english) english,
+      // One entry per sentence; a long one is several literals joined on purpose (error_words.h).
+      // NOLINTNEXTLINE(bugprone-suspicious-missing-comma)
       AGGPACK_ERROR_SENTENCES(AGGPACK_SENTENCE_WORDS)
 #undef AGGPACK_SENTENCE_WORDS
   };
