@@ -313,7 +313,7 @@ void register_shapes(CLI::App& app) {
     resolve_radius(*flags, *self);
     if (self->count("--output") > 0) check_output_file_flag("-o/--output", *output);
     if (*count < 1 || *count > 100000000ULL) {
-      throw InvalidInput("--count", std::to_string(*count), "[1, 100000000]");
+      throw InvalidInput("-n/--count", std::to_string(*count), "[1, 100000000]");
     }
     const ProgressStyle style = parse_progress_style("--progress", *progress);
     set_thread_count(flags->threads);
