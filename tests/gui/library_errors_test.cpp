@@ -25,6 +25,7 @@
 #include "aggpack/io/export.h"
 #include "aggpack/io/shape_library_files.h"
 #include "aggpack/mesh/mesomodel.h"
+#include "gui/words.h"
 #include "i18n.h"
 #include "library_words.h"
 #include "support/packings.h"
@@ -34,32 +35,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Words of three or more characters ("cannot", "folder", "library_size").
-std::set<std::string> words_of_text(const std::string& text) {
-  static const std::regex word("[A-Za-z_][A-Za-z0-9_]{2,}");
-  std::set<std::string> words;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), word); it != std::sregex_iterator();
-       ++it) {
-    words.insert(it->str());
-  }
-  return words;
-}
-
-// Names that stay as they are in every language (programs, formats, a mesh file's keywords;
-// library_words_test.cpp has the same list).
-bool is_kept_name(const std::string& word) {
-  static const std::set<std::string> names = {
-      "HDF5",   "aggpack", "TetGen",   "ITZ", "PNG",   "FIFO",   "cgroup", "ulimit",
-      "STL",    "ASCII",   "OpenGL",   "OBJ", "facet", "normal", "outer",  "loop",
-      "vertex", "solid",   "endsolid", "stl", "obj",   "ply"};
-  return names.count(word) > 0 || word.find('_') != std::string::npos;
-}
-
-bool has_chinese_words(const std::string& text) {
-  for (const char c : text) {
-    if ((static_cast<unsigned char>(c) & 0xF0U) == 0xE0U) return true;
-  }
-  return false;
+// A word kept in every language, or a name with an underscore (a key's part, "library_size").
+bool is_name(const std::string& word) {
+  return test_words::is_kept_name(word) || word.find('_') != std::string::npos;
 }
 
 // The error in the Chinese window (then back to English).
@@ -85,11 +63,11 @@ std::string problems_in_chinese(const Error& error, std::string& chinese) {
     for (const std::string& value : part->values) {
       // Words in a value (a path, a number with its unit) are names; English words in a value
       // with spaces are prose, unless the window words it (a Phrase* sentence).
-      const std::set<std::string> words = words_of_text(value);
+      const std::set<std::string> words = test_words::english_words_of(value);
       value_words.insert(words.begin(), words.end());
       if (part == &error.field_wording() || value.find(' ') == std::string::npos) continue;
       std::size_t english = 0;
-      for (const std::string& word : words) english += is_kept_name(word) ? 0 : 1;
+      for (const std::string& word : words) english += is_name(word) ? 0 : 1;
       const std::string worded =
           chinese_words(LimitExceeded("x", "1", Wording{Sentence::kAtMost, {value}}));
       if (english >= 2 && worded.find(value) != std::string::npos) {
@@ -98,15 +76,15 @@ std::string problems_in_chinese(const Error& error, std::string& chinese) {
     }
   }
   if (error.wording().sentence == Sentence::kText) {
-    for (const std::string& word : words_of_text(english(error.wording()))) {
-      if (!is_kept_name(word)) problems += " free-form English word '" + word + "';";
+    for (const std::string& word : test_words::english_words_of(english(error.wording()))) {
+      if (!is_name(word)) problems += " free-form English word '" + word + "';";
     }
   }
   chinese = chinese_words(error);
-  if (!has_chinese_words(chinese)) problems += " no Chinese;";
-  const std::set<std::string> left = words_of_text(chinese);
-  for (const std::string& word : words_of_text(error.what())) {
-    if (value_words.count(word) > 0 || is_kept_name(word)) continue;
+  if (!test_words::has_chinese_text(chinese)) problems += " no Chinese;";
+  const std::set<std::string> left = test_words::english_words_of(chinese);
+  for (const std::string& word : test_words::english_words_of(error.what())) {
+    if (value_words.count(word) > 0 || is_name(word)) continue;
     if (left.count(word) > 0) problems += " '" + word + "' left;";
   }
   return problems;

@@ -17,6 +17,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/io/native.h"
 #include "aggpack/pack/grading.h"
+#include "gui/words.h"
 #include "i18n.h"
 #include "library_words.h"
 
@@ -25,23 +26,9 @@ namespace {
 
 constexpr auto kSentenceCount = static_cast<int>(Sentence::kCount);
 
-// Words of three or more characters ("allowed", "finite", "format_name", "HDF5").
-std::set<std::string> english_words_of(const std::string& text) {
-  static const std::regex word("[A-Za-z_][A-Za-z0-9_]{2,}");
-  std::set<std::string> words;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), word); it != std::sregex_iterator();
-       ++it) {
-    words.insert(it->str());
-  }
-  return words;
-}
-
-bool has_chinese_text(const std::string& text) {
-  for (const char c : text) {
-    if ((static_cast<unsigned char>(c) & 0xF0U) == 0xE0U) return true;
-  }
-  return false;
-}
+using test_words::english_words_of;
+using test_words::has_chinese_text;
+using test_words::is_kept_name;
 
 // Runs `words` with the window in Chinese, then back in English.
 template <typename F>
@@ -64,15 +51,6 @@ TEST(LibraryWords, EverySentenceHasAnEntryInEachCatalogue) {
 }
 
 TEST(LibraryWords, ChineseSentencesHaveNoEnglishWordOfTheLibrary) {
-  // Names that stay as they are in every language: the format, the program, HDF5 attributes,
-  // a configuration value as typed ("particle.library_use_once = true"), other programs and
-  // formats and file extensions, the keywords of a mesh file ("facet normal", "outer loop").
-  const std::set<std::string> names = {
-      "HDF5",  "aggpack", "format_name", "format_version", "true",   "TetGen",
-      "ITZ",   "PNG",     "FIFO",        "cgroup",         "ulimit", "STL",
-      "ASCII", "OpenGL",  "OBJ",         "facet",          "normal", "outer",
-      "loop",  "vertex",  "solid",       "endsolid",       "stl",    "obj",
-      "ply"};
   // A configuration key ("shape.library_size") is a name too.
   static const std::regex key("[a-z_]+\\.[a-z_]+");
   for (int k = 0; k < kSentenceCount; ++k) {
@@ -82,7 +60,7 @@ TEST(LibraryWords, ChineseSentencesHaveNoEnglishWordOfTheLibrary) {
     const std::set<std::string> left = english_words_of(chinese);
     const std::string english = std::regex_replace(english_words(sentence), key, "");
     for (const std::string& word : english_words_of(english)) {
-      if (names.count(word) > 0) continue;
+      if (is_kept_name(word)) continue;
       EXPECT_EQ(left.count(word), 0U)
           << text_name(sentence_text(sentence)) << " keeps the English word '" << word << "'";
     }
