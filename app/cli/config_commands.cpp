@@ -3,11 +3,13 @@
 
 #include <fmt/core.h>
 
+#include <map>
 #include <memory>
 #include <string>
 
 #include "aggpack/config/config.h"
 #include "aggpack/config/docs.h"
+#include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
 #include "commands.h"
 #include "output_flags.h"
@@ -18,6 +20,7 @@ namespace {
 
 struct ConfigKeysFlags {
   std::string markdown_table;
+  bool has_markdown = false;
   std::string update_doc;
   bool has_update_doc = false;  // given, even as "" (refused, not ignored)
 };
@@ -36,8 +39,14 @@ void run_config_keys(const ConfigKeysFlags& flags) {
     fmt::print("updated the key tables of {}\n", flags.update_doc);
     return;
   }
-  if (!flags.markdown_table.empty()) {
-    fmt::print("{}", config_keys_markdown(flags.markdown_table));
+  if (flags.has_markdown) {
+    // The table as typed: --markdown names it ('' is a table name too, and none).
+    static const std::map<std::string, std::string> kFlagNames = {{"table", "--markdown"}};
+    // An empty name is refused as "" (as every empty value is shown).
+    const std::string table = flags.markdown_table.empty() ? "\"\"" : flags.markdown_table;
+    std::string text;
+    with_key_names({}, kFlagNames, [&] { text = config_keys_markdown(table); });
+    fmt::print("{}", text);
     return;
   }
   for (const auto& key : config_keys()) {
@@ -62,6 +71,7 @@ void register_config_keys(CLI::App& app) {
                       "rewrite the generated tables of this file (docs/config.md)");
   command->callback([flags, command]() {
     flags->has_update_doc = command->count("--update-doc") > 0;
+    flags->has_markdown = command->count("--markdown") > 0;
     if (flags->has_update_doc) check_output_file_flag("--update-doc", flags->update_doc);
     run_config_keys(*flags);
   });
