@@ -41,11 +41,11 @@ void run_config_keys(const ConfigKeysFlags& flags) {
   }
   if (flags.has_markdown) {
     // The table as typed: --markdown names it ('' is a table name too, and none).
-    static const std::map<std::string, std::string> kFlagNames = {{"table", "--markdown"}};
+    static const std::map<std::string, std::string> flag_names = {{"table", "--markdown"}};
     // An empty name is refused as "" (as every empty value is shown).
     const std::string table = flags.markdown_table.empty() ? "\"\"" : flags.markdown_table;
     std::string text;
-    with_key_names({}, kFlagNames, [&] { text = config_keys_markdown(table); });
+    with_key_names({}, flag_names, [&] { text = config_keys_markdown(table); });
     fmt::print("{}", text);
     return;
   }
