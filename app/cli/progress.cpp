@@ -70,7 +70,7 @@ ProgressBar::ProgressBar(std::string label, std::string unit, ProgressStyle styl
     style_ = ::isatty(::fileno(stream_)) != 0 ? ProgressStyle::kBar : ProgressStyle::kLines;
   }
   if (style_ == ProgressStyle::kNone || clock_) return;
-  ticker_ = std::thread([this] {
+  ticker_ = start_thread_before_forks([this] {
     std::unique_lock lock(mutex_);
     while (!is_stopping_) {
       wake_.wait_for(lock, std::chrono::milliseconds(250));
@@ -264,7 +264,7 @@ StageTimer::StageTimer(std::string label, ProgressStyle style, StageTiming timin
   // A stage the estimate expects to be long is shown at once, with its ETA.
   const bool is_shown_at_once = timing_.expected_seconds >= kProgressHeartbeat;
   if (is_shown_at_once) draw(0.0, false);
-  ticker_ = std::thread([this] {
+  ticker_ = start_thread_before_forks([this] {
     const double interval = style_ == ProgressStyle::kBar ? 1.0 : kProgressHeartbeat;
     std::unique_lock lock(mutex_);
     for (int tick = 1; !is_stopping_; ++tick) {

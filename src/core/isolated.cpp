@@ -11,11 +11,15 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstdint>
 #include <cstring>
 #include <deque>
 #include <exception>
+#include <memory>
+#include <mutex>
+#include <utility>
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
@@ -304,6 +308,27 @@ class Pool {
 
 std::shared_lock<std::shared_mutex> section_without_fork() {
   return std::shared_lock(fork_mutex());
+}
+
+std::thread start_thread_before_forks(std::function<void()> body) {
+  // Shared with the thread: it signals through it after this function may have returned.
+  struct Start {
+    std::mutex mutex;
+    std::condition_variable is_running_changed;
+    bool is_running = false;
+  };
+  const auto start = std::make_shared<Start>();
+  std::thread thread([start, body = std::move(body)] {
+    {
+      const std::lock_guard lock(start->mutex);
+      start->is_running = true;
+    }
+    start->is_running_changed.notify_one();
+    body();
+  });
+  std::unique_lock lock(start->mutex);
+  start->is_running_changed.wait(lock, [&start] { return start->is_running; });
+  return thread;
 }
 
 std::vector<IsolatedOutcome> run_isolated(std::size_t count,

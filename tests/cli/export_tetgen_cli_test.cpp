@@ -28,11 +28,14 @@ using ExportTetGenCliTest = test::CliTest;
 // is known to abort on (tests/mesh/fixtures/tetgen-abort) are among its particles.
 TEST_F(ExportTetGenCliTest, PaperPackingExportsAndReportsTheFallbacks) {
   ASSERT_EQ(run("pack -o paper.h5 --progress none --set particle.growth=midpoint").exit_code, 0);
-  // A time limit far above any shape's meshing time: at the default 20 s, a loaded machine running
-  // the sanitized build let one run time out on shape 0 (centroid fan) and not the other, so the
-  // two files differed for a reason other than the thread count.
+  // A time limit far above any shape's meshing time (milliseconds). Shape 0 once "timed out" at
+  // the default 20 s in a loaded sanitized run, and at 600 s the test later hung to ctest's
+  // timeout. Shape 0 is in the first worker, forked just after the progress ticker thread was
+  // made, most likely while that thread was still starting (allocating outside
+  // section_without_fork); tickers now start with start_thread_before_forks. Below ctest's
+  // 600 s, a worker that hangs again fails here by shape, not as a timeout of the whole test.
   const std::string common =
-      "export paper.h5 --format inp --tet-method tetgen --tet-time-limit 600";
+      "export paper.h5 --format inp --tet-method tetgen --tet-time-limit 240";
   const CliRun one = run(common + " -o one.inp -j 1");
   ASSERT_EQ(one.exit_code, 0) << one.err;
   // The four shapes of tests/mesh/fixtures/tetgen-abort; shape s is particle P<s+1>'s.
@@ -58,7 +61,7 @@ TEST_F(ExportTetGenCliTest, ConcreteFullerExampleExports) {
   // A time limit far above any shape's meshing time, so only TetGen's aborts fall back (at the
   // default 20 s a slow machine or the sanitized build adds time-outs and the count moves).
   const CliRun result =
-      run("export fuller.h5 --tet-method tetgen --tet-time-limit 600 -o fuller.dat");
+      run("export fuller.h5 --tet-method tetgen --tet-time-limit 240 -o fuller.dat");
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.out.find("tetgen: 14 of 3439 shapes fell back to the centroid fan"),
             std::string::npos)

@@ -7,6 +7,7 @@
 #include <functional>
 #include <shared_mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace aggpack {
@@ -53,5 +54,11 @@ std::vector<IsolatedOutcome> run_isolated(std::size_t count,
 /// against that at fork, but the sanitizers' allocator of GCC 12 does not, and a worker of a
 /// sanitized CI run hung for ever that way. Hold it briefly: forking waits for it.
 [[nodiscard]] std::shared_lock<std::shared_mutex> section_without_fork();
+
+/// Starts a thread running `body` and returns once `body` has begun, for a thread of ours that
+/// runs beside run_isolated. A new thread allocates while it starts (glibc's
+/// pthread_getattr_np, the sanitizer runtime's own set-up) outside any section_without_fork; a
+/// child forked at that moment would inherit the allocator's lock taken, as above.
+[[nodiscard]] std::thread start_thread_before_forks(std::function<void()> body);
 
 }  // namespace aggpack
