@@ -23,12 +23,19 @@ if(AGGPACK_BUILD_SIM)
   find_package(nlohmann_json REQUIRED)
   message(STATUS "Bullet ${BULLET_VERSION} (double precision): building aggpack_sim")
 
+  # The option words and seed lists (no Bullet): what the configuration module (the repose and
+  # sweep keys) needs, so that it, and the fuzz targets built on it, do not compile the physics.
+  set(_aggpack_sim_words ${PROJECT_SOURCE_DIR}/src/sim/option_words.cpp)
+  add_library(aggpack_sim_words ${_aggpack_sim_words})
+  target_link_libraries(aggpack_sim_words PUBLIC aggpack_core)
+  target_compile_definitions(aggpack_sim_words PUBLIC AGGPACK_HAS_SIM=1)
+
   file(GLOB AGGPACK_SIM_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/sim/*.cpp)
+  list(REMOVE_ITEM AGGPACK_SIM_SOURCES ${_aggpack_sim_words})
   add_library(aggpack_sim ${AGGPACK_SIM_SOURCES})
   add_library(aggpack::sim ALIAS aggpack_sim)
-  target_link_libraries(aggpack_sim PUBLIC aggpack_core
+  target_link_libraries(aggpack_sim PUBLIC aggpack_sim_words aggpack_core
                         PRIVATE PkgConfig::BULLET nlohmann_json::nlohmann_json)
-  target_compile_definitions(aggpack_sim PUBLIC AGGPACK_HAS_SIM=1)
 
   target_link_libraries(aggpack PRIVATE aggpack_sim)
   # `aggpack repose CONFIG.toml` and `aggpack sweep CONFIG.toml` parse their own tables.

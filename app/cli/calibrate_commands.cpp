@@ -11,6 +11,7 @@
 #include <memory>
 #include <numbers>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aggpack/core/atomic_file.h"
@@ -41,6 +42,7 @@ struct CalibrateFlags {
   std::string plot;
   int threads = 0;
   bool is_forced = false;
+  std::string above_sphere_flag;        // a target typed above its (0, 1] range: searched as 1
   std::vector<std::string> goal_flags;  // the flag each goal came from, in goal order
 };
 
@@ -65,7 +67,21 @@ void resolve_goals(CalibrateFlags& flags, const CLI::App& command) {
   const auto add = [&](const char* flag, CalibrationTarget target, double typed, double value,
                        double hi) {
     if (command.count(flag) == 0) return;
-    require_in_range(flag, typed, hi * 1e-9, hi);
+    const bool is_volume = std::string_view(flag) == "--volume";
+    if (typed > hi && std::isfinite(typed)) {
+      // More than the whole sphere (or a ratio above 1): no particle has it. The search is asked
+      // for 1 and the refusal names the closest reachable value of this flag, whether the search
+      // ends within its tolerance of 1 (above_range_in_user_words) or not
+      // (unreached_in_user_words).
+      value = 1.0;
+      flags.above_sphere_flag = flag;
+    } else if (!(typed >= hi * 1e-9 && typed <= hi)) {
+      if (!is_volume) require_in_range(flag, typed, hi * 1e-9, hi);
+      throw InvalidInput(
+          flag, format_value(typed) + " m^3",
+          fmt::format("{} to {} m^3 (up to the volume of the sphere of --diameter {} m)",
+                      format_value(hi * 1e-9), format_value(hi), format_value(o.diameter)));
+    }
     o.goals.push_back({.target = target, .value = value});
     flags.goal_flags.emplace_back(flag);
   };
@@ -145,6 +161,32 @@ InvalidInput unreached_in_user_words(const CalibrateFlags& flags,
       is_inside ? std::string() : fmt::format("; closest reachable: {} {}", flag, shown(nearest)),
       error.closest_inputs(), shown(error.closest()), unit);
   return InvalidInput(flag, format_value(typed) + unit, allowed);
+}
+
+// A target typed above what any particle has (a volume above its sphere's, a ratio above 1),
+// searched as 1: the flag's upper limit and the closest reachable value, which the search found
+// within its tolerance of 1, with the inputs that give it.
+InvalidInput above_range_in_user_words(const CalibrateFlags& flags,
+                                       const CalibrationResult& result) {
+  const std::string& flag = flags.above_sphere_flag;
+  const auto goal = std::find(flags.goal_flags.begin(), flags.goal_flags.end(), flag);
+  const auto i = static_cast<std::size_t>(goal - flags.goal_flags.begin());
+  const bool is_volume = flag == "--volume";
+  const double scale =
+      is_volume ? std::numbers::pi / 6.0 * std::pow(flags.options.diameter, 3) : 1.0;
+  const std::string unit = is_volume ? " m^3" : "";
+  const CalibrationInputs& in = result.inputs;
+  return InvalidInput(
+      flag, format_value(typed_value(flags, flag)) + unit,
+      fmt::format(
+          "at most {}{}{}; closest reachable: {} {:.4g}, given by alpha {:.4g}, L/R {:.4g}, "
+          "elongation {:.4g}, flatness {:.4g}",
+          format_value(scale), unit,
+          is_volume ? fmt::format(" (the sphere of --diameter {} m)",
+                                  format_value(flags.options.diameter))
+                    : "",
+          flag, result.achieved.at(i).mean * scale, in.alpha, in.edge_ratio, in.elongation,
+          in.flatness));
 }
 
 void write_table(const std::string& path, const CalibrationOptions& options,
@@ -288,6 +330,7 @@ void register_calibrate(CLI::App& app) {
     } catch (const CalibrationUnreached& error) {
       throw unreached_in_user_words(*flags, error);
     }
+    if (!flags->above_sphere_flag.empty()) throw above_range_in_user_words(*flags, result);
     print_result(*flags, result);
     if (!flags->table.empty()) {
       write_table(flags->table, flags->options, result, overwrite);

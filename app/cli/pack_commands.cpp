@@ -13,6 +13,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aggpack/config/config.h"
@@ -173,6 +174,22 @@ std::string library_json(const ShapeLibrary& library) {
       length_unit_name(library.units), mesh, hull);
 }
 
+// The last --set of `key` ("key=value", blanks around the key allowed), or nullptr.
+const std::string* last_override_of(const std::vector<std::string>& overrides,
+                                    const std::string& key) {
+  for (auto text = overrides.rbegin(); text != overrides.rend(); ++text) {
+    const std::size_t equals = text->find('=');
+    if (equals == std::string::npos) continue;
+    const std::string_view name = std::string_view(*text).substr(0, equals);
+    const std::size_t first = name.find_first_not_of(" \t");
+    const std::size_t last = name.find_last_not_of(" \t");
+    if (first != std::string_view::npos && name.substr(first, last - first + 1) == key) {
+      return &*text;
+    }
+  }
+  return nullptr;
+}
+
 void run_pack(const PackFlags& flags) {
   std::vector<std::string> overrides = flags.overrides;
   // --seed and --threads are shortcuts for --set and win over it.
@@ -307,7 +324,19 @@ void run_pack(const PackFlags& flags) {
                       : std::string());
     }
   };
-  PipelineResult result = pack(config, control);
+  PipelineResult result = [&] {
+    try {
+      return pack(config, control);
+    } catch (const Error& error) {
+      // A value the run itself refuses (a library path that is not there, ...) given with
+      // --set: named as the --set typed, as the configuration's own checks name it.
+      const std::string* typed =
+          error.has_value() ? last_override_of(overrides, error.field()) : nullptr;
+      if (typed == nullptr || error.kind() != ErrorKind::kInvalidInput) throw;
+      throw ConfigError(error.field(), "--set " + clipped(*typed, 100) + ": ", error.field(),
+                        error.value(), error.wording());
+    }
+  }();
   // The last stage's display ends with the run's own measurement of it.
   if (stage) {
     const PackReport& measured = result.report;

@@ -71,18 +71,18 @@ class SearchSpace {
     return in;
   }
 
-  // "alpha [0, 1], L/r [0.25, 1.4], elongation [0.15, 1]": the searched ranges, for messages.
+  // "alpha [0, 1], L/R [0.25, 1.4], elongation [0.15, 1]": the searched ranges, for messages.
   [[nodiscard]] std::string ranges() const {
     std::string text;
     for (const Dim d : dims_) {
       if (!text.empty()) text += ", ";
       text += d == kAlpha  ? "alpha [0, 1]"
-              : d == kEdge ? "L/r [" + short_number(kMinSearchedEdgeRatio) + ", " +
+              : d == kEdge ? "L/R [" + short_number(kMinSearchedEdgeRatio) + ", " +
                                  short_number(kMaxSearchedEdgeRatio) + "]"
               : d == kElongation ? "elongation [" + short_number(kMinSearchedAxisRatio) + ", 1]"
                                  : "flatness [" + short_number(kMinSearchedAxisRatio) + ", 1]";
     }
-    if (options_.edge_ratio) text += " at L/r " + short_number(*options_.edge_ratio);
+    if (options_.edge_ratio) text += " at L/R " + short_number(*options_.edge_ratio);
     return text;
   }
 
@@ -93,7 +93,7 @@ class SearchSpace {
 };
 
 std::string describe_inputs(const CalibrationInputs& in) {
-  return "alpha " + short_number(in.alpha) + ", L/r " + short_number(in.edge_ratio) +
+  return "alpha " + short_number(in.alpha) + ", L/R " + short_number(in.edge_ratio) +
          ", elongation " + short_number(in.elongation) + ", flatness " + short_number(in.flatness);
 }
 

@@ -48,19 +48,6 @@ RunShare parse_run_share(const std::optional<std::string>& worker,
   return share;
 }
 
-std::string format_seed_list(const std::vector<std::uint64_t>& seeds) {
-  std::string text;
-  for (std::size_t i = 0; i < seeds.size();) {
-    std::size_t j = i;
-    while (j + 1 < seeds.size() && seeds[j + 1] == seeds[j] + 1) ++j;
-    if (!text.empty()) text += ',';
-    text += std::to_string(seeds[i]);
-    if (j > i) text += '-' + std::to_string(seeds[j]);
-    i = j + 1;
-  }
-  return text;
-}
-
 std::string config_hash(const std::string& text) {
   std::uint64_t hash = 14695981039346656037ULL;
   const auto add = [&](char c) {

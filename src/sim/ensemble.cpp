@@ -3,11 +3,9 @@
 
 #include "aggpack/sim/ensemble.h"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -21,18 +19,6 @@
 namespace aggpack {
 
 namespace {
-
-std::uint64_t parse_seed(const std::string& token, const std::string& field,
-                         const std::string& text) {
-  std::uint64_t value = 0;
-  const char* end = token.data() + token.size();
-  const auto [ptr, error] = std::from_chars(token.data(), end, value);
-  if (token.empty() || error != std::errc() || ptr != end) {
-    throw InvalidInput(field, "\"" + text + "\"",
-                       "seeds as non-negative integers: a range 1-16, a list 1,4,9 or both");
-  }
-  return value;
-}
 
 // Continued fraction of the regularized incomplete beta function (Numerical Recipes, betacf).
 double beta_continued_fraction(double a, double b, double x) {
@@ -83,52 +69,6 @@ double student_t_cdf(double t, double dof) {
 }
 
 }  // namespace
-
-std::vector<std::uint64_t> parse_seed_list(const std::string& text, const std::string& field) {
-  std::vector<std::uint64_t> seeds;
-  std::set<std::uint64_t> seen;
-  const auto add = [&](std::uint64_t seed) {
-    if (!seen.insert(seed).second) {
-      throw InvalidInput(field, "\"" + text + "\"",
-                         "each seed once (" + std::to_string(seed) + " repeats)");
-    }
-    seeds.push_back(seed);
-  };
-  if (text.empty()) {
-    throw InvalidInput(field, "\"\"", "a range 1-16, a list 1,4,9 or both (1-4,9)");
-  }
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string token = text.substr(start, comma - start);
-    const std::size_t dash = token.find('-');
-    if (dash == std::string::npos) {
-      add(parse_seed(token, field, text));
-    } else {
-      const std::uint64_t first = parse_seed(token.substr(0, dash), field, text);
-      const std::uint64_t last = parse_seed(token.substr(dash + 1), field, text);
-      if (last < first) {
-        throw InvalidInput(field, "\"" + text + "\"",
-                           "ranges first-last with first <= last (" + token + " is reversed)");
-      }
-      if (last - first >= kMaxEnsembleSeeds) {
-        throw InvalidInput(field, "\"" + text + "\"",
-                           "at most " + std::to_string(kMaxEnsembleSeeds) + " seeds");
-      }
-      for (std::uint64_t seed = first;; ++seed) {
-        add(seed);
-        if (seeds.size() > kMaxEnsembleSeeds) break;
-        if (seed == last) break;
-      }
-    }
-    if (seeds.size() > kMaxEnsembleSeeds) {
-      throw InvalidInput(field, "\"" + text + "\"",
-                         "at most " + std::to_string(kMaxEnsembleSeeds) + " seeds");
-    }
-    start = comma + 1;
-  }
-  return seeds;
-}
 
 double student_t_quantile(double p, double dof) {
   if (!(p > 0.0 && p < 1.0)) throw InvalidInput("t quantile p", format_value(p), "(0, 1)");

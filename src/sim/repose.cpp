@@ -210,16 +210,6 @@ LatticeOptions repose_fill_options(const ReposeOptions& options) {
   return lattice;
 }
 
-std::string_view to_string(ReposeEngine engine) {
-  return engine == ReposeEngine::kYade ? "yade" : "bullet";
-}
-
-ReposeEngine repose_engine_from_string(std::string_view word) {
-  if (word == "bullet") return ReposeEngine::kBullet;
-  if (word == "yade") return ReposeEngine::kYade;
-  throw InvalidInput("repose.engine", clipped(std::string(word), 40), "bullet or yade");
-}
-
 void validate(const ReposeOptions& options) {
   require_positive("repose.trough_length", options.trough_length);
   require_positive("repose.trough_width", options.trough_width);

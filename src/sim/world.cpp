@@ -89,16 +89,6 @@ void validate(const PhysicsOptions& options) {
   }
 }
 
-const char* to_string(SolverKind kind) {
-  return kind == SolverKind::kBlocked ? "blocked" : "gauss-seidel";
-}
-
-SolverKind solver_kind_from_string(const std::string& word, const std::string& key) {
-  if (word == "gauss-seidel") return SolverKind::kGaussSeidel;
-  if (word == "blocked") return SolverKind::kBlocked;
-  throw InvalidInput(key, word, "gauss-seidel or blocked");
-}
-
 World::Impl::~Impl() {
   if (!world) return;
   // Empty the pair cache first, newest pair first (O(1) each). Removing a body scans every

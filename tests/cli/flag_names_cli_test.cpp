@@ -72,6 +72,48 @@ TEST_F(FlagNamesCliTest, Pack) {
                  "invalid --seed = -1 (allowed: an integer in [0, 2^63 - 1])");
   expect_refused("pack --seed 9223372036854775808 -o out.h5", 2,
                  "invalid --seed = 9223372036854775808 (allowed: an integer in [0, 2^63 - 1])");
+  // A value the run refuses (not the configuration's checks) is named as the --set typed too;
+  // the last --set of a key is the one used and named.
+  expect_refused(
+      "pack --set particle.library=elsewhere/ --set 'particle.library = nope/' -o out.h5", 2,
+      "--set particle.library = nope/: invalid particle.library = \"nope/\" (allowed: "
+      "an existing folder, or a .stl, .obj or .ply file)");
+}
+
+TEST_F(FlagNamesCliTest, Calibrate) {
+  const std::string calibrate = "calibrate --diameter 0.01";
+  // Below the range: the flag, its unit and the range at this diameter.
+  expect_refused(calibrate + " --volume 1e-20", 2,
+                 "invalid --volume = 1e-20 m^3 (allowed: 5.235987756e-16 to 5.235987756e-07 m^3 "
+                 "(up to the volume of the sphere of --diameter 0.01 m))");
+  // More than the sphere: its volume, and the closest reachable value with the inputs giving it.
+  const CliRun above = run(calibrate + " --volume 6e-7");
+  EXPECT_EQ(above.exit_code, 2) << above.err;
+  EXPECT_EQ(above.err.rfind("aggpack: error: invalid --volume = 6e-07 m^3 (allowed: at most "
+                            "5.235987756e-07 m^3 (the sphere of --diameter 0.01 m); closest "
+                            "reachable: --volume ",
+                            0),
+            0U)
+      << above.err;
+  EXPECT_NE(above.err.find(", given by alpha "), std::string::npos) << above.err;
+  EXPECT_EQ(above.err.find("enclosed_volume_ratio"), std::string::npos) << above.err;
+  const CliRun ratio = run("calibrate --volume-ratio 1.5");
+  EXPECT_EQ(ratio.exit_code, 2) << ratio.err;
+  EXPECT_NE(ratio.err.find("invalid --volume-ratio = 1.5 (allowed: "), std::string::npos)
+      << ratio.err;
+  EXPECT_NE(ratio.err.find("closest reachable: --volume-ratio 0.9"), std::string::npos)
+      << ratio.err;
+  // Unreached inside the range: the reachable span, in the flag's words (one name for L / R).
+  const CliRun below = run(calibrate + " --volume 1e-9");
+  EXPECT_EQ(below.exit_code, 2) << below.err;
+  EXPECT_NE(below.err.find("closest reachable: --volume "), std::string::npos) << below.err;
+  EXPECT_NE(below.err.find(", L/R "), std::string::npos) << below.err;
+  EXPECT_EQ(below.err.find("L/r"), std::string::npos) << below.err;
+  expect_refused("calibrate --sphericity 0", 2, "invalid --sphericity = 0 (allowed: [1e-09, 1])");
+  expect_refused("calibrate --alpha 0.5 --edge-ratio 2", 2,
+                 "invalid --edge-ratio = 2 (allowed: [0.05, 1.5])");
+  expect_refused("calibrate --alpha 0.5 --samples 1", 2,
+                 "invalid --samples = 1 (allowed: [2, 100000])");
 }
 
 TEST_F(FlagNamesCliTest, ParticleAndShapes) {

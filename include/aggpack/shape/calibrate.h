@@ -112,7 +112,7 @@ class CalibrationUnreached : public InvalidInput {
   /// Smallest and largest mean of the target over the evaluated inputs.
   [[nodiscard]] double lowest() const { return lowest_; }
   [[nodiscard]] double highest() const { return highest_; }
-  /// The mean the closest inputs give, and those inputs ("alpha 0, L/r 1.4, ...").
+  /// The mean the closest inputs give, and those inputs ("alpha 0, L/R 1.4, ...").
   [[nodiscard]] double closest() const { return closest_; }
   [[nodiscard]] const std::string& closest_inputs() const { return closest_inputs_; }
 
