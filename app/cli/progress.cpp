@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <string>
 #include <utility>
 
 #include <fmt/core.h>
@@ -56,6 +58,19 @@ std::string format_duration(double seconds) {
   const long long secs = total % 60;
   if (hours > 0) return fmt::format("{}:{:02}:{:02}", hours, minutes, secs);
   return fmt::format("{}:{:02}", minutes, secs);
+}
+
+double progress_delay() {
+  const char* text = std::getenv("AGGPACK_PROGRESS_DELAY");
+  if (text == nullptr) return kProgressHeartbeat;
+  const std::string typed = text;
+  char* end = nullptr;
+  const double seconds = std::strtod(typed.c_str(), &end);
+  if (typed.empty() || end != typed.c_str() + typed.size() || !(seconds >= 0 && seconds <= 3600)) {
+    throw InvalidInput("AGGPACK_PROGRESS_DELAY", "\"" + clipped(typed, 40) + "\"",
+                       "seconds in [0, 3600] (unset: 2)");
+  }
+  return seconds;
 }
 
 ProgressBar::ProgressBar(std::string label, std::string unit, ProgressStyle style,
@@ -262,7 +277,7 @@ StageTimer::StageTimer(std::string label, ProgressStyle style, StageTiming timin
   }
   if (style_ == ProgressStyle::kNone) return;
   // A stage the estimate expects to be long is shown at once, with its ETA.
-  const bool is_shown_at_once = timing_.expected_seconds >= kProgressHeartbeat;
+  const bool is_shown_at_once = timing_.expected_seconds >= progress_delay();
   if (is_shown_at_once) draw(0.0, false);
   ticker_ = start_thread_before_forks([this] {
     const double interval = style_ == ProgressStyle::kBar ? 1.0 : kProgressHeartbeat;

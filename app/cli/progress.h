@@ -34,6 +34,12 @@ std::string format_duration(double seconds);
 /// ETA when it did not (a stage whose callbacks are slower than this still shows it is alive).
 inline constexpr double kProgressHeartbeat = 2.0;
 
+/// Seconds a step whose length is estimated (shapes -n, a timed stage) may run before its display
+/// appears, so that a short step prints nothing: kProgressHeartbeat, or the environment variable
+/// AGGPACK_PROGRESS_DELAY (seconds in [0, 3600]; 0 = every display from the start, e.g. for a
+/// log that must show each step). \throw InvalidInput naming the variable.
+double progress_delay();
+
 /// One progress display. update() and finish() may be called from one thread at a time; a
 /// heartbeat thread of its own redraws between updates (kProgressHeartbeat).
 class ProgressBar {

@@ -328,14 +328,15 @@ void register_shapes(CLI::App& app) {
     // progress display to move every fraction of a second.
     const auto n = static_cast<std::size_t>(*count);
     constexpr std::size_t kChunk = 8192;
-    // The display: from the start for a run estimated at kProgressHeartbeat or more, else from
-    // when it has taken that long (a short run prints nothing).
+    // The display: from the start for a run estimated at progress_delay() (2 s) or more, else
+    // from when it has taken that long (a short run prints nothing).
+    const double delay = progress_delay();
     const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<ProgressBar> bar;
     const auto show_progress = [&](std::size_t done) {
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      if (!bar && (estimate.seconds >= kProgressHeartbeat || elapsed >= kProgressHeartbeat)) {
+      if (!bar && (estimate.seconds >= delay || elapsed >= delay)) {
         bar = std::make_unique<ProgressBar>("growing", "particles", style);
         bar->set_start(start);
       }

@@ -190,6 +190,19 @@ TEST_F(FlagNamesCliTest, ReposeAndSweep) {
   }
 }
 
+TEST_F(FlagNamesCliTest, Settle) {
+  if (!has("settle")) GTEST_SKIP() << "aggpack built without the simulation module";
+  // Each flag sets a field of the settling options: refused under the flag's name.
+  const std::string settle = "settle " + kBase + " -o out.h5";
+  expect_refused(settle + " --mu 11", 2, "invalid --mu = 11 (allowed: [0, 10])");
+  expect_refused(settle + " --mu-wall 11", 2, "invalid --mu-wall = 11 (allowed: [0, 10])");
+  expect_refused(settle + " --restitution 2", 2, "invalid --restitution = 2 (allowed: [0, 1])");
+  expect_refused(settle + " --density -1", 2, "invalid --density = -1 (allowed: finite and > 0)");
+  expect_refused(settle + " --dt-factor 0", 2, "invalid --dt-factor = 0 (allowed: [1e-06, 1])");
+  expect_refused(settle + " --iterations 0", 2, "invalid --iterations = 0 (allowed: [1, 1000])");
+  expect_refused(settle + " --max-time 0", 2, "invalid --max-time = 0 (allowed: finite and > 0)");
+}
+
 // -o "" is one error in every command: not "the default name", not "write nothing".
 TEST_F(FlagNamesCliTest, EmptyOutputIsOneErrorEverywhere) {
   const std::string file = "invalid -o/--output = \"\" (allowed: a file path)";
