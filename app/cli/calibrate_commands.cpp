@@ -132,6 +132,12 @@ double typed_value(const CalibrateFlags& flags, const std::string& flag) {
                                     : flags.flatness;
 }
 
+// The factor from a volume ratio to the value of `flag`: --volume V at --diameter D is the ratio
+// V / (pi/6 D^3); every other target is the ratio itself (1).
+double ratio_to_flag(const CalibrateFlags& flags, const std::string& flag) {
+  return flag == "--volume" ? std::numbers::pi / 6.0 * std::pow(flags.options.diameter, 3) : 1.0;
+}
+
 // calibrate()'s refusal in the user's words: the flag typed, what that flag can reach (for
 // --volume in m^3 at the --diameter given), and the closest reachable input with what the
 // closest generator inputs achieve.
@@ -141,9 +147,7 @@ InvalidInput unreached_in_user_words(const CalibrateFlags& flags,
   if (flag == error.field()) return error;
   const double typed = typed_value(flags, flag);
   const bool is_volume = flag == "--volume";
-  // --volume V at --diameter D is the ratio V / (pi/6 D^3): its span is the ratio's times that.
-  const double scale =
-      is_volume ? std::numbers::pi / 6.0 * std::pow(flags.options.diameter, 3) : 1.0;
+  const double scale = ratio_to_flag(flags, flag);  // the span is the ratio's times this
   const auto shown = [&](double ratio) { return fmt::format("{:.4g}", ratio * scale); };
   const double nearest =
       std::clamp(typed / scale, error.lowest(), error.highest());  // the closest reachable
@@ -172,8 +176,7 @@ InvalidInput above_range_in_user_words(const CalibrateFlags& flags,
   const auto goal = std::find(flags.goal_flags.begin(), flags.goal_flags.end(), flag);
   const auto i = static_cast<std::size_t>(goal - flags.goal_flags.begin());
   const bool is_volume = flag == "--volume";
-  const double scale =
-      is_volume ? std::numbers::pi / 6.0 * std::pow(flags.options.diameter, 3) : 1.0;
+  const double scale = ratio_to_flag(flags, flag);
   const std::string unit = is_volume ? " m^3" : "";
   const CalibrationInputs& in = result.inputs;
   return InvalidInput(
