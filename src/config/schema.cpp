@@ -238,7 +238,13 @@ void with_key_names(const std::vector<KeyView>& keys,
     if (error.kind() != ErrorKind::kInvalidInput && error.kind() != ErrorKind::kLimitExceeded) {
       throw;
     }
-    throw Error(error.kind(), to_key_names(keys, aliases, error.what()));
+    // A message in one sentence keeps it, its values renamed, when that words the same message.
+    const std::string message = to_key_names(keys, aliases, error.what());
+    if (!error.has_value() && error.wording().sentence != Sentence::kText) {
+      Error renamed_error(error.kind(), renamed_wording(error.wording()));
+      if (renamed_error.what() == message) throw renamed_error;
+    }
+    throw Error(error.kind(), message);
   }
 }
 

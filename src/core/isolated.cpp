@@ -165,8 +165,7 @@ class Pool {
   void start(std::vector<std::size_t> items) {
     int fds[2];
     if (::pipe(fds) != 0) {
-      throw IoError(std::string("cannot create a pipe for a worker process: ") +
-                    std::strerror(errno));
+      throw IoError(Wording{Sentence::kWorkerPipe, {std::strerror(errno)}});
     }
     const pid_t parent = ::getpid();
     // No ticker thread is formatting or printing while the child is made (section_without_fork).
@@ -176,7 +175,7 @@ class Pool {
       const int error = errno;
       ::close(fds[0]);
       ::close(fds[1]);
-      throw IoError(std::string("cannot start a worker process: ") + std::strerror(error));
+      throw IoError(Wording{Sentence::kWorkerStart, {std::strerror(error)}});
     }
     if (pid == 0) {
       ::close(fds[0]);
@@ -208,7 +207,7 @@ class Pool {
     const int ready =
         ::poll(polled.data(), polled.size(), static_cast<int>(std::min<long long>(wait_ms, 60000)));
     if (ready < 0 && errno != EINTR) {
-      throw IoError(std::string("cannot wait for worker processes: ") + std::strerror(errno));
+      throw IoError(Wording{Sentence::kWorkerWait, {std::strerror(errno)}});
     }
     // Backwards, so that removing a finished worker keeps the indices of those not yet visited.
     for (std::size_t w = workers_.size(); w-- > 0;) {

@@ -90,8 +90,8 @@ ConvexPolyhedron convex_hull(std::span<const Vec3> points) {
   if (code != 0) {
     const std::string reason = run.messages().first_line();
     throw InvalidInput(
-        "hull", "Qhull error " + std::to_string(code),
-        "points spanning a volume (" + (reason.empty() ? "degenerate" : reason) + ")");
+        Wording{Sentence::kText, {"hull"}}, Wording{Sentence::kQhullError, {std::to_string(code)}},
+        Wording{Sentence::kPointsSpanVolume, {reason.empty() ? "degenerate" : reason}});
   }
   // Hull vertices in input order (deterministic), renumbered from 0.
   std::vector<std::int64_t> index(points.size(), -1);

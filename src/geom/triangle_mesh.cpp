@@ -9,15 +9,23 @@
 #include <tuple>
 #include <vector>
 
+#include "aggpack/core/error_words.h"
+
 namespace aggpack {
 
 namespace {
 
-CheckResult fail(std::string message) { return {.is_ok = false, .message = std::move(message)}; }
-
-std::string edge_text(std::uint32_t a, std::uint32_t b) {
-  return "edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ")";
+// A fault in one sentence, which names the file first ("{}: mesh is open: ..."): the message is
+// the rest after "mesh " ("is open: ...").
+MeshCheck fail(Sentence sentence, std::vector<std::string> values) {
+  std::vector<std::string> with_file = values;
+  with_file.insert(with_file.begin(), "");
+  std::string message = fill_words(english_words(sentence), with_file);
+  message.erase(0, 7);  // ": mesh "
+  return {.is_ok = false, .message = message, .wording = {sentence, std::move(values)}};
 }
+
+std::string mesh_number(std::size_t number) { return std::to_string(number); }
 
 // Union-find over vertices (path halving), for the vertex fans and the pieces.
 class Pieces {
@@ -40,16 +48,15 @@ class Pieces {
 
 }  // namespace
 
-CheckResult check_particle_mesh(const TriangleMesh& mesh) {
+MeshCheck check_particle_mesh(const TriangleMesh& mesh) {
   const auto& vertices = mesh.vertices;
   const auto& triangles = mesh.triangles;
   if (triangles.size() < 4) {
-    return fail("has " + std::to_string(triangles.size()) +
-                " triangles (a closed particle needs at least 4)");
+    return fail(Sentence::kMeshTriangleCount, {mesh_number(triangles.size())});
   }
   Aabb bounds;
   for (const Vec3& v : vertices) {
-    if (!v.allFinite()) return fail("has a non-finite vertex coordinate");
+    if (!v.allFinite()) return fail(Sentence::kMeshNonFinite, {});
     bounds.expand(v);
   }
   const double diagonal_squared = bounds.extent().squaredNorm();
@@ -57,16 +64,16 @@ CheckResult check_particle_mesh(const TriangleMesh& mesh) {
     const Triangle& t = triangles[f];
     for (const std::uint32_t v : t) {
       if (v >= vertices.size()) {
-        return fail("triangle " + std::to_string(f) + " names vertex " + std::to_string(v) +
-                    " of " + std::to_string(vertices.size()));
+        return fail(Sentence::kMeshTriangleVertex,
+                    {mesh_number(f), mesh_number(v), mesh_number(vertices.size())});
       }
     }
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
-      return fail("triangle " + std::to_string(f) + " repeats a vertex (zero-area triangle)");
+      return fail(Sentence::kMeshRepeatedVertex, {mesh_number(f)});
     }
     const Vec3 n = (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
     if (!(n.norm() > 1e-12 * diagonal_squared)) {
-      return fail("triangle " + std::to_string(f) + " has zero area (degenerate)");
+      return fail(Sentence::kMeshZeroArea, {mesh_number(f)});
     }
   }
   // Directed half-edges (from, to, face), sorted by their undirected key.
@@ -92,18 +99,13 @@ CheckResult check_particle_mesh(const TriangleMesh& mesh) {
       ++j;
     }
     const std::size_t uses = j - i;
-    const std::string edge = edge_text(halves[i].low, halves[i].high);
-    if (uses == 1) {
-      return fail("is open: " + edge + " belongs to triangle " + std::to_string(halves[i].face) +
-                  " only (a hole)");
-    }
-    if (uses > 2) {
-      return fail("is non-manifold: " + edge + " is shared by " + std::to_string(uses) +
-                  " triangles");
-    }
+    const std::string low = mesh_number(halves[i].low);
+    const std::string high = mesh_number(halves[i].high);
+    if (uses == 1) return fail(Sentence::kMeshOpen, {low, high, mesh_number(halves[i].face)});
+    if (uses > 2) return fail(Sentence::kMeshEdgeShared, {low, high, mesh_number(uses)});
     if (halves[i].from == halves[i + 1].from) {
-      return fail("is inconsistently oriented: triangles " + std::to_string(halves[i].face) +
-                  " and " + std::to_string(halves[i + 1].face) + " run " + edge + " the same way");
+      return fail(Sentence::kMeshOrientation,
+                  {mesh_number(halves[i].face), mesh_number(halves[i + 1].face), low, high});
     }
     i = j;
   }
@@ -134,8 +136,7 @@ CheckResult check_particle_mesh(const TriangleMesh& mesh) {
       if (fan_of[v] < 0) {
         fan_of[v] = root;
       } else if (fan_of[v] != root) {
-        return fail("is non-manifold: vertex " + std::to_string(v) +
-                    " joins two surfaces that touch only there");
+        return fail(Sentence::kMeshVertexSurfaces, {mesh_number(v)});
       }
     }
   }
@@ -149,7 +150,7 @@ CheckResult check_particle_mesh(const TriangleMesh& mesh) {
     if (corner_count[v] > 0 && pieces.find(v) == v) ++piece_count;
   }
   if (piece_count > 1) {
-    return fail("has " + std::to_string(piece_count) + " separate pieces (one particle per file)");
+    return fail(Sentence::kMeshPieces, {mesh_number(piece_count)});
   }
   return {};
 }

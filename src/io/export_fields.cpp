@@ -27,7 +27,9 @@ void require_ids_fit(const ExportModel& model, std::uint64_t max_id, const std::
       std::max({model.node_count(), model.element_count(),
                 static_cast<std::uint64_t>(model.particle_index(model.size()))});
   if (largest > max_id) {
-    throw LimitExceeded(format + " ids", std::to_string(largest), "<= " + std::to_string(max_id));
+    throw LimitExceeded(Wording{Sentence::kFormatIds, {format}},
+                        Wording{Sentence::kText, {std::to_string(largest)}},
+                        Wording{Sentence::kAtMost, {std::to_string(max_id)}});
   }
 }
 

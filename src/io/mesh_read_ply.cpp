@@ -84,7 +84,7 @@ class Reader {
     return static_cast<double>(raw);
   }
 
-  FormatError truncated() const { return FormatError(path_ + ": PLY data ends early (truncated)"); }
+  FormatError truncated() const { return FormatError(Wording{Sentence::kPlyTruncated, {path_}}); }
 
  private:
   double ascii_value() {
@@ -99,9 +99,9 @@ class Reader {
     const auto [end, error] =
         std::from_chars(content_.data() + start, content_.data() + cursor_, value);
     if (error != std::errc() || end != content_.data() + cursor_) {
-      throw FormatError(path_ + ": PLY value '" +
-                        shortened(std::string_view(content_.data() + start, cursor_ - start), 40) +
-                        "' is not a number");
+      throw FormatError(Wording{
+          Sentence::kPlyValue,
+          {path_, shortened(std::string_view(content_.data() + start, cursor_ - start), 40)}});
     }
     return value;
   }
@@ -117,7 +117,7 @@ class Reader {
 TriangleMesh parse_ply(const std::string& content, const std::string& path) {
   const auto header_end = content.find("end_header");
   if (content.rfind("ply", 0) != 0 || header_end == std::string::npos) {
-    throw FormatError(path + ": not a PLY file (no 'ply' ... 'end_header' header)");
+    throw FormatError(Wording{Sentence::kPlyNotPly, {path}});
   }
   std::size_t data_start = content.find('\n', header_end);
   data_start = data_start == std::string::npos ? content.size() : data_start + 1;
@@ -140,13 +140,15 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
       while (k < line.size() && !std::isspace(static_cast<unsigned char>(line[k]))) ++k;
       if (k > w) words.push_back(line.substr(w, k - w));
     }
-    auto fault = [&](const std::string& what) {
-      return FormatError(path + ": PLY header line " + std::to_string(line_number) + ": " + what);
+    // "PATH: PLY header line N: what", the sentence's first two values.
+    auto fault = [&](Sentence sentence, std::vector<std::string> values = {}) {
+      values.insert(values.begin(), {path, std::to_string(line_number)});
+      return FormatError(Wording{sentence, std::move(values)});
     };
     if (words.empty() || words[0] == "ply" || words[0] == "comment" || words[0] == "obj_info")
       continue;
     if (words[0] == "format") {
-      if (words.size() < 2) throw fault("format without a name");
+      if (words.size() < 2) throw fault(Sentence::kPlyFormatWithoutName);
       if (words[1] == "ascii") {
         encoding = Encoding::kAscii;
       } else if (words[1] == "binary_little_endian") {
@@ -154,7 +156,7 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
       } else if (words[1] == "binary_big_endian") {
         encoding = Encoding::kBig;
       } else {
-        throw fault("unknown format '" + shortened(words[1], 40) + "'");
+        throw fault(Sentence::kPlyUnknownFormat, {shortened(words[1], 40)});
       }
       has_format = true;
     } else if (words[0] == "element") {
@@ -162,11 +164,11 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
       if (words.size() != 3 ||
           std::from_chars(words[2].data(), words[2].data() + words[2].size(), count).ec !=
               std::errc()) {
-        throw fault("expected 'element NAME COUNT'");
+        throw fault(Sentence::kPlyElementLine);
       }
       elements.push_back({.name = words[1], .count = count, .properties = {}});
     } else if (words[0] == "property") {
-      if (elements.empty()) throw fault("property before any element");
+      if (elements.empty()) throw fault(Sentence::kPlyPropertyFirst);
       Property property;
       bool is_float = false;
       bool is_signed = false;
@@ -177,24 +179,24 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
         property.count_size = type_size(words[2], count_float, count_signed);
         property.size = type_size(words[3], is_float, is_signed);
         if (property.count_size == 0 || count_float || property.size == 0) {
-          throw fault("bad list types '" + shortened(words[2] + " " + words[3], 40) + "'");
+          throw fault(Sentence::kPlyListTypes, {shortened(words[2] + " " + words[3], 40)});
         }
         property.name = words[4];
       } else if (words.size() == 3) {
         property.size = type_size(words[1], is_float, is_signed);
-        if (property.size == 0) throw fault("unknown type '" + shortened(words[1], 40) + "'");
+        if (property.size == 0) throw fault(Sentence::kPlyUnknownType, {shortened(words[1], 40)});
         property.name = words[2];
       } else {
-        throw fault("expected 'property TYPE NAME' or 'property list COUNT ITEM NAME'");
+        throw fault(Sentence::kPlyPropertyLine);
       }
       property.is_float = is_float;
       property.is_signed = is_signed;
       elements.back().properties.push_back(property);
     } else {
-      throw fault("unknown keyword '" + shortened(words[0], 40) + "'");
+      throw fault(Sentence::kPlyUnknownKeyword, {shortened(words[0], 40)});
     }
   }
-  if (!has_format) throw FormatError(path + ": PLY header has no format line");
+  if (!has_format) throw FormatError(Wording{Sentence::kPlyNoFormat, {path}});
 
   // Every count is bounded by the bytes left: an ASCII value takes at least 2 bytes, a binary
   // one its size; nothing is reserved beyond that.
@@ -210,8 +212,9 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
                         : static_cast<std::uint64_t>(p.is_list ? p.count_size : p.size);
     }
     if (element.count > 0 && min_record > 0 && element.count > reader.left() / min_record) {
-      throw FormatError(path + ": PLY element '" + shortened(element.name, 40) + "' declares " +
-                        std::to_string(element.count) + " entries, more than the file holds");
+      throw FormatError(
+          Wording{Sentence::kPlyElementCount,
+                  {path, shortened(element.name, 40), std::to_string(element.count)}});
     }
     const bool is_vertex = element.name == "vertex";
     const bool is_face = element.name == "face";
@@ -230,14 +233,14 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
     }
     if (is_vertex) {
       if (axis_of[0] < 0 || axis_of[1] < 0 || axis_of[2] < 0) {
-        throw FormatError(path + ": PLY vertex element lacks an x, y or z property");
+        throw FormatError(Wording{Sentence::kPlyVertexAxes, {path}});
       }
       has_vertices = true;
       mesh.vertices.reserve(element.count);
     }
     if (is_face) {
       if (index_list < 0) {
-        throw FormatError(path + ": PLY face element has no vertex_indices list");
+        throw FormatError(Wording{Sentence::kPlyFaceList, {path}});
       }
       has_faces = true;
       mesh.triangles.reserve(element.count);
@@ -259,8 +262,9 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
         const double count = reader.value(p.count_size, false, false);
         if (!(count >= 0) || count != std::floor(count) ||
             count > static_cast<double>(reader.left())) {
-          throw FormatError(path + ": PLY list of " + format_value(count) + " items in '" +
-                            shortened(element.name, 40) + "' entry " + std::to_string(entry));
+          throw FormatError(Wording{
+              Sentence::kPlyListCount,
+              {path, format_value(count), shortened(element.name, 40), std::to_string(entry)}});
         }
         const bool is_indices = static_cast<int>(k) == index_list;
         if (is_indices) polygon.clear();
@@ -268,16 +272,15 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
           const double value = reader.value(p.size, p.is_float, p.is_signed);
           if (is_indices) {
             if (!(value >= 0) || value != std::floor(value) || value > 4294967295.0) {
-              throw FormatError(path + ": PLY face " + std::to_string(entry) + " has index " +
-                                format_value(value));
+              throw FormatError(Wording{Sentence::kPlyFaceIndex,
+                                        {path, std::to_string(entry), format_value(value)}});
             }
             polygon.push_back(static_cast<std::int64_t>(value));
           }
         }
         if (is_indices) {
           if (polygon.size() < 3) {
-            throw FormatError(path + ": PLY face " + std::to_string(entry) +
-                              " has fewer than 3 vertices");
+            throw FormatError(Wording{Sentence::kPlyFaceSmall, {path, std::to_string(entry)}});
           }
           for (std::size_t v = 1; v + 1 < polygon.size(); ++v) {
             mesh.triangles.push_back({static_cast<std::uint32_t>(polygon[0]),
@@ -288,21 +291,20 @@ TriangleMesh parse_ply(const std::string& content, const std::string& path) {
       }
       if (is_vertex) {
         if (!point.allFinite()) {
-          throw FormatError(path + ": PLY vertex " + std::to_string(entry) +
-                            " has a non-finite coordinate");
+          throw FormatError(Wording{Sentence::kPlyVertexFinite, {path, std::to_string(entry)}});
         }
         mesh.vertices.push_back(point);
       }
     }
   }
   if (!has_vertices || !has_faces) {
-    throw FormatError(path + ": PLY file needs a vertex and a face element");
+    throw FormatError(Wording{Sentence::kPlyNeedsElements, {path}});
   }
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     for (const std::uint32_t v : mesh.triangles[f]) {
       if (v >= mesh.vertices.size()) {
-        throw FormatError(path + ": PLY face names vertex " + std::to_string(v) + " of " +
-                          std::to_string(mesh.vertices.size()));
+        throw FormatError(Wording{Sentence::kPlyFaceVertex,
+                                  {path, std::to_string(v), std::to_string(mesh.vertices.size())}});
       }
     }
   }

@@ -113,7 +113,7 @@ Outcome import_file(const std::string& path, const std::string& name,
     mesh_file_format(name, format);
     std::string hash = content_hash(content);
     const TriangleMesh mesh = parse_mesh(content, format, path);
-    outcome.shape = import_shape(mesh, options, name, std::move(hash));
+    outcome.shape = import_shape(mesh, options, name, std::move(hash), path);
   } catch (const Error& error) {
     outcome.kind = error.kind();
     std::string message = error.what();
@@ -124,12 +124,22 @@ Outcome import_file(const std::string& path, const std::string& name,
     }
     outcome.message = message;
     // A reader's sentence names the file first (its message starts with it); any other message
-    // follows the file name.
-    outcome.wording = error.wording().sentence != Sentence::kText && !error.has_value() &&
-                              !error.wording().values.empty() &&
-                              error.wording().values.front() == path
-                          ? error.wording()
-                          : Wording{Sentence::kMeshProblem, {path, message}};
+    // follows the file name. A file over the size cap names its size and the cap.
+    const Wording& field = error.field_wording();
+    const Wording& size = error.value_wording();
+    if (error.has_value() && field.sentence == Sentence::kFileSize &&
+        size.sentence == Sentence::kBytes && error.wording().sentence == Sentence::kAtMostBytes &&
+        !field.values.empty() && !size.values.empty() && !error.wording().values.empty()) {
+      outcome.wording = {
+          Sentence::kMeshFileSize,
+          {path, field.values.front(), size.values.front(), error.wording().values.front()}};
+    } else {
+      outcome.wording = error.wording().sentence != Sentence::kText && !error.has_value() &&
+                                !error.wording().values.empty() &&
+                                error.wording().values.front() == path
+                            ? error.wording()
+                            : Wording{Sentence::kMeshProblem, {path, message}};
+    }
   } catch (const std::bad_alloc&) {
     outcome.kind = ErrorKind::kLimitExceeded;
     outcome.message = "out of memory while reading it";

@@ -440,8 +440,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   if (is_bed) measure_bulk(packing, report);
   const VerifyResult check = verify(packing, {.gap = options.gap});
   if (!check.is_ok) {
-    throw Error(ErrorKind::kInvalidInput,
-                "densify: the final exact verification failed (a bug): " + check.message);
+    throw Error(ErrorKind::kInvalidInput, Wording{Sentence::kDensifyVerifyFailed, {check.message}});
   }
   report.verified_pairs = check.pairs_tested;
   report.min_distance = check.min_distance;

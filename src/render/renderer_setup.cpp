@@ -110,7 +110,10 @@ out vec4 fragment;
 void main() { fragment = vec4(u_color, 1.0); }
 )";
 
-[[noreturn]] void throw_gl(const std::string& message) { throw IoError("OpenGL: " + message); }
+// "OpenGL: what": the sentence and its one value (a driver's log or version).
+[[noreturn]] void throw_gl(Sentence sentence, const std::string& value) {
+  throw IoError(Wording{sentence, {value}});
+}
 
 GLuint compile_shader(GLenum type, const char* source) {
   const GLuint shader = glCreateShader(type);
@@ -122,7 +125,7 @@ GLuint compile_shader(GLenum type, const char* source) {
     std::array<char, 2048> log{};
     glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
     glDeleteShader(shader);
-    throw_gl(std::string("shader compilation failed: ") + log.data());
+    throw_gl(Sentence::kOpenGlCompile, log.data());
   }
   return shader;
 }
@@ -142,7 +145,7 @@ GLuint link_program(const char* vertex_source, const char* fragment_source) {
     std::array<char, 2048> log{};
     glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
     glDeleteProgram(program);
-    throw_gl(std::string("shader link failed: ") + log.data());
+    throw_gl(Sentence::kOpenGlLink, log.data());
   }
   return program;
 }
@@ -155,7 +158,7 @@ PackingRenderer::PackingRenderer() : state_(std::make_unique<State>()) {
   glGetIntegerv(GL_MINOR_VERSION, &minor);
   if (major < 3 || (major == 3 && minor < 3)) {
     const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
-    throw_gl(std::string("need a 3.3 core context, have ") + (version ? version : "none"));
+    throw_gl(Sentence::kOpenGlVersion, version ? version : "none");
   }
   State& s = *state_;
   s.particle_program = link_program(kParticleVertexShader, kParticleFragmentShader);

@@ -26,7 +26,9 @@ ShapeDescriptors describe(const ConvexPolyhedron& body) {
   ShapeDescriptors result;
   const MassProperties mass = mass_properties(body);
   if (!(mass.volume > 0.0)) {
-    throw InvalidInput("particle volume", format_value(mass.volume), "> 0");
+    throw InvalidInput(Wording{Sentence::kParticleVolume, {}},
+                       Wording{Sentence::kText, {format_value(mass.volume)}},
+                       Wording{Sentence::kText, {"> 0"}});
   }
   result.volume = mass.volume;
   result.surface_area = mass.surface_area;

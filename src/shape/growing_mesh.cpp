@@ -447,7 +447,7 @@ ConvexPolyhedron GrowingMesh::release() {
 }
 
 void GrowingMesh::broken() {
-  throw Error(ErrorKind::kInvalidInput, "internal: broken adjacency in aggregate growth");
+  throw Error(ErrorKind::kInvalidInput, Wording{Sentence::kBrokenAdjacency, {}});
 }
 
 inline void GrowingMesh::set_twin(std::uint32_t half, std::uint32_t twin) {

@@ -66,9 +66,15 @@ std::string ShapeLibrary::provenance(std::span<const std::uint32_t> stored) cons
 }
 
 LibraryShape import_shape(const TriangleMesh& mesh, const ShapeImportOptions& options,
-                          std::string name, std::string hash) {
-  const CheckResult check = check_particle_mesh(mesh);
-  if (!check.is_ok) throw FormatError("mesh " + check.message);
+                          std::string name, std::string hash, const std::string& file) {
+  // The errors' sentences name the file first.
+  const std::string named = file.empty() ? name : file;
+  const MeshCheck check = check_particle_mesh(mesh);
+  if (!check.is_ok) {
+    Wording wording = check.wording;
+    wording.values.insert(wording.values.begin(), named);
+    throw FormatError(wording);
+  }
   const double unit = metres_per_unit(options.units);
   LibraryShape shape;
   shape.name = std::move(name);
@@ -83,17 +89,23 @@ LibraryShape import_shape(const TriangleMesh& mesh, const ShapeImportOptions& op
   try {
     hull = convex_hull(points);
   } catch (const InvalidInput& error) {
+    const Wording& code = error.value_wording();
+    if (code.sentence == Sentence::kQhullError && !error.wording().values.empty()) {
+      throw FormatError(Wording{Sentence::kMeshNoHull,
+                                {named, code.values.at(0), error.wording().values.front()}});
+    }
     throw FormatError(std::string("mesh has no convex hull: ") + error.what());
   }
   shape.hull_vertices = hull.vertex_count();
   shape.hull_volume = mass_properties(hull).volume;
   if (options.max_hull_excess > 0.0 && shape.hull_excess() > options.max_hull_excess) {
-    char text[160];
-    std::snprintf(text, sizeof text,
-                  "its convex hull adds %.3g %% to its volume, above "
-                  "particle.library_max_hull_excess = %.6g",
-                  100.0 * shape.hull_excess(), options.max_hull_excess);
-    throw Error(ErrorKind::kLimitExceeded, text);
+    char excess[48];
+    std::snprintf(excess, sizeof excess, "%.3g", 100.0 * shape.hull_excess());
+    char limit[48];
+    std::snprintf(limit, sizeof limit, "%.6g", options.max_hull_excess);
+    throw Error(ErrorKind::kLimitExceeded,
+                Wording{Sentence::kMeshHullExcess,
+                        {named, excess, "particle.library_max_hull_excess", limit}});
   }
   ConvexPolyhedron body = simplify_hull(hull, options.max_vertices);
   const MassProperties mass = mass_properties(body);

@@ -1,8 +1,8 @@
 // Every library error the window can meet, driven through the library as the window drives it
-// (Pack's configuration and run, particle.library, Open, Export, the solver decks, the
-// mesomodel), worded in Chinese from its parts: each part is a sentence of core/error_words.h or a
-// name or number, and no English word of the library's message is left but names and values.
-// A message that reaches the window as free-form English text fails here.
+// (Pack's configuration and run, particle.library and its mesh files, Open, Export, the solver
+// decks, the mesomodel), worded in Chinese from its parts: each part is a sentence of
+// core/error_words.h or a name or number, and no English word of the library's message is left but
+// names and values. A message that reaches the window as free-form English text fails here.
 
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -25,9 +25,11 @@
 #include "aggpack/io/export.h"
 #include "aggpack/io/shape_library_files.h"
 #include "aggpack/mesh/mesomodel.h"
+#include "aggpack/shape/descriptors.h"
 #include "gui/words.h"
 #include "i18n.h"
 #include "library_words.h"
+#include "support/mesh_files.h"
 #include "support/packings.h"
 
 namespace aggpack::gui {
@@ -195,6 +197,156 @@ TEST(LibraryErrors, ShapeLibraryFiles) {
   expect_chinese_error(load(scratch.path("bad.obj")));
   std::ofstream(scratch.path("junk.stl")) << "junk\n";
   expect_chinese_error(load(scratch.path("junk.stl")));
+}
+
+// A library of one file (particle.library), loaded as Pack loads it.
+std::function<void()> load_library(const std::string& path, double max_hull_excess = 0.0) {
+  return [path, max_hull_excess] {
+    ShapeLibraryOptions options;
+    options.paths = {path};
+    options.import.max_hull_excess = max_hull_excess;
+    (void)load_shape_library(options);
+  };
+}
+
+TEST(LibraryErrors, DamagedPlyFiles) {
+  const ErrorsScratch scratch;
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  const std::string ascii = "ply\nformat ascii 1.0\n";
+  const std::vector<std::string> damaged = {
+      "junk\n",                                                           // no ply ... end_header
+      "ply\nelement vertex 0\nend_header\n",                              // no format line
+      ascii + "bogus 1\nend_header\n",                                    // unknown keyword
+      ascii + "format\nend_header\n",                                     // format without a name
+      "ply\nformat sideways 1.0\nend_header\n",                           // unknown format
+      ascii + "element vertex\nend_header\n",                             // element NAME COUNT
+      ascii + "property float x\nend_header\n",                           // property first
+      ascii + "element vertex 1\nproperty list uchar int\nend_header\n",  // property line
+      ascii + "element vertex 1\nproperty list xy int i\nend_header\n",   // list types
+      ascii + "element vertex 1\nproperty quad x\nend_header\n",          // unknown type
+      ascii + "element vertex 9\n" + xyz + "end_header\n0 0 0\n",         // more than it holds
+      ascii + "element vertex 1\nproperty float x\nend_header\n0\n",      // no y, z
+      ascii + "element vertex 0\n" + xyz + "element face 0\nproperty int i\nend_header\n",
+      ascii + "element vertex 1\n" + xyz + "end_header\n0 0 zero\n",  // not a number
+      ascii + "element vertex 1\n" + xyz + "end_header\n0 0 nan\n",   // not finite
+      ascii + "element vertex 1\n" + xyz + "end_header\n0 0 0\n",     // no face element
+      ascii + "element vertex 3\n" + xyz +
+          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 "
+          "1 0\n3 0 1 7\n",  // a face naming vertex 7 of 3
+      ascii + "element vertex 3\n" + xyz +
+          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 "
+          "1 0\n2 0 1\n",  // a face of 2 vertices
+      ascii + "element vertex 3\n" + xyz +
+          "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 "
+          "1 0\n3 0 1 -2\n",  // a negative index
+      ascii + "element vertex 3\n" + xyz +
+          "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 "
+          "1 0\n3.5 0 1 2\n1 0\n",  // a list of 3.5 items
+  };
+  std::set<Sentence> sentences;
+  for (std::size_t k = 0; k < damaged.size(); ++k) {
+    const std::string file = scratch.path("bad" + std::to_string(k) + ".ply");
+    std::ofstream(file, std::ios::binary) << damaged[k];
+    try {
+      load_library(file)();
+      ADD_FAILURE() << "no error for " << damaged[k];
+    } catch (const Error& error) {
+      sentences.insert(error.wording().sentence);
+      expect_worded(error);
+    }
+  }
+  // A binary file cut short: its data ends early.
+  std::string binary = test::ply_bytes(test::dented_cube(10, 3), test::PlyEncoding::kLittle);
+  binary.resize(binary.size() - 5);
+  std::ofstream(scratch.path("short.ply"), std::ios::binary) << binary;
+  expect_chinese_error(load_library(scratch.path("short.ply")));
+  EXPECT_EQ(sentences.size(), damaged.size()) << "each damage its own sentence";
+}
+
+TEST(LibraryErrors, MeshesThatAreNoParticle) {
+  const ErrorsScratch scratch;
+  TriangleMesh open = test::dented_cube(10, 3);
+  open.triangles.pop_back();
+  TriangleMesh flipped = test::dented_cube(10, 3);
+  std::swap(flipped.triangles[0][1], flipped.triangles[0][2]);
+  TriangleMesh two = test::dented_cube(10, 3);
+  const TriangleMesh other = test::dented_cube(10, 3);
+  for (Triangle t : other.triangles) {
+    for (auto& v : t) v += static_cast<std::uint32_t>(other.vertices.size());
+    two.triangles.push_back(t);
+  }
+  for (const Vec3& v : other.vertices) two.vertices.push_back(v + Vec3(20, 0, 0));
+  TriangleMesh small = test::dented_cube(10, 3);
+  small.triangles.resize(3);
+  TriangleMesh repeated = test::dented_cube(10, 3);
+  repeated.triangles[0][1] = repeated.triangles[0][0];
+  TriangleMesh sliver = test::dented_cube(10, 3);
+  sliver.vertices[sliver.triangles[0][1]] = sliver.vertices[sliver.triangles[0][0]];  // no area
+  // Four points in a plane, joined as a tetrahedron: closed, but spanning no volume.
+  const TriangleMesh flat{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)},
+                          {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}};
+  const std::vector<std::pair<std::string, TriangleMesh>> meshes = {{"open", open},
+                                                                    {"flipped", flipped},
+                                                                    {"two", two},
+                                                                    {"small", small},
+                                                                    {"repeated", repeated},
+                                                                    {"sliver", sliver},
+                                                                    {"fin", test::finned_cube()},
+                                                                    {"bowtie", test::bowtie()}};
+  std::set<Sentence> sentences;
+  for (const auto& [name, mesh] : meshes) {
+    const std::string file = scratch.path(name + ".obj");
+    std::ofstream(file) << test::obj_text(mesh);
+    try {
+      load_library(file)();
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const Error& error) {
+      sentences.insert(error.wording().sentence);
+      EXPECT_EQ(error.wording().values.front(), file) << error.what();  // the file first
+      expect_worded(error);
+    }
+  }
+  EXPECT_EQ(sentences.size(), meshes.size()) << "each fault its own sentence";
+  // Over particle.library_max_hull_excess: this dented cube's hull adds 15.4 %.
+  std::ofstream(scratch.path("dented.obj")) << test::obj_text(test::dented_cube(10, 4));
+  const std::string excess = expect_chinese_error(load_library(scratch.path("dented.obj"), 0.05));
+  EXPECT_NE(excess.find("particle.library_max_hull_excess"), std::string::npos) << excess;
+  // No convex hull: Qhull's own reason stays as it is (a technical detail), the rest is worded.
+  std::ofstream(scratch.path("flat.obj")) << test::obj_text(flat);
+  try {
+    load_library(scratch.path("flat.obj"))();
+    ADD_FAILURE() << "a flat mesh has a hull";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.wording().sentence, Sentence::kMeshNoHull) << error.what();
+    EXPECT_NE(chinese_words(error).find("网格没有凸包"), std::string::npos) << chinese_words(error);
+  }
+  // A file over the reader's size cap (a sparse file: nothing is read).
+  const std::string big = scratch.path("big.stl");
+  std::ofstream(big).put('x');
+  std::error_code error;
+  fs::resize_file(big, kMaxMeshFileBytes + 1, error);
+  if (!error) expect_chinese_error(load_library(big));
+}
+
+// Errors no test can provoke (a worker process or OpenGL that fails, a format's id limit, checks
+// that only a bug reaches), as the library words them: each is a sentence worded in Chinese.
+TEST(LibraryErrors, ErrorsNoTestProvokes) {
+  expect_worded(IoError(Wording{Sentence::kWorkerPipe, {"EMFILE"}}));
+  expect_worded(IoError(Wording{Sentence::kWorkerStart, {"EAGAIN"}}));
+  expect_worded(IoError(Wording{Sentence::kWorkerWait, {"EINVAL"}}));
+  expect_worded(IoError(Wording{Sentence::kOpenGlCompile, {"0:1(10):"}}));
+  expect_worded(IoError(Wording{Sentence::kOpenGlLink, {"0:2(3):"}}));
+  expect_worded(IoError(Wording{Sentence::kOpenGlVersion, {"2.1"}}));
+  expect_worded(LimitExceeded(Wording{Sentence::kFormatIds, {"LS-DYNA"}},
+                              Wording{Sentence::kText, {"100000000"}},
+                              Wording{Sentence::kAtMost, {"99999999"}}));
+  expect_worded(Error(ErrorKind::kInvalidInput, Wording{Sentence::kDensifyVerifyFailed, {"3"}}));
+  expect_worded(Error(ErrorKind::kInvalidInput, Wording{Sentence::kBrokenAdjacency, {}}));
+  // A shape of no volume, driven through the library: an inside-out cube.
+  const ConvexPolyhedron cube = make_box(Vec3::Zero(), Vec3::Ones());
+  std::vector<Triangle> flipped = cube.triangles();
+  for (Triangle& t : flipped) std::swap(t[1], t[2]);
+  expect_chinese_error([&] { (void)describe(ConvexPolyhedron(cube.vertices(), flipped)); });
 }
 
 TEST(LibraryErrors, Mesomodel) {

@@ -28,17 +28,20 @@ inline bool has_chinese_text(const std::string& text) {
   return false;
 }
 
-/// Names that stay as they are in every language: the program and other programs, formats and
-/// file extensions, HDF5 attributes, a configuration value as typed ("true"), the keywords of a
-/// mesh file ("facet normal", "outer loop").
+/// Names that stay as they are in every language: the program and other programs (TetGen, Qhull),
+/// formats and file extensions, HDF5 attributes, a configuration value as typed ("true"), the
+/// keywords of a mesh file ("facet normal", "outer loop") and of a PLY header ("element",
+/// "property list").
 inline bool is_kept_name(const std::string& word) {
   static const std::set<std::string> names = {
       "HDF5",  "aggpack", "format_name", "format_version", "true",   "TetGen",
       "ITZ",   "PNG",     "FIFO",        "cgroup",         "ulimit", "STL",
       "ASCII", "OpenGL",  "OBJ",         "facet",          "normal", "outer",
       "loop",  "vertex",  "solid",       "endsolid",       "stl",    "obj",
-      "ply"};
-  return names.count(word) > 0;
+      "ply",   "Qhull"};
+  static const std::set<std::string> ply_header = {
+      "PLY", "format", "element", "property", "list", "face", "end_header", "vertex_indices"};
+  return names.count(word) > 0 || ply_header.count(word) > 0;
 }
 
 }  // namespace aggpack::gui::test_words

@@ -225,7 +225,64 @@
   X(ObjFaceSmall, "{}:{}: face with fewer than 3 vertices")                                     \
   X(ObjStatement,                                                                               \
     "{}:{}: unsupported OBJ statement '{}' (a particle is read from v and f lines)")            \
-  X(ObjNoFaces, "{}: OBJ file has no faces ('f' lines)")
+  X(ObjNoFaces, "{}: OBJ file has no faces ('f' lines)")                                        \
+  /* mesh files (PLY) */                                                                        \
+  X(PlyTruncated, "{}: PLY data ends early (truncated)")                                        \
+  X(PlyValue, "{}: PLY value '{}' is not a number")                                             \
+  X(PlyNotPly, "{}: not a PLY file (no 'ply' ... 'end_header' header)")                         \
+  X(PlyFormatWithoutName, "{}: PLY header line {}: format without a name")                      \
+  X(PlyUnknownFormat, "{}: PLY header line {}: unknown format '{}'")                            \
+  X(PlyElementLine, "{}: PLY header line {}: expected 'element NAME COUNT'")                    \
+  X(PlyPropertyFirst, "{}: PLY header line {}: property before any element")                    \
+  X(PlyListTypes, "{}: PLY header line {}: bad list types '{}'")                                \
+  X(PlyUnknownType, "{}: PLY header line {}: unknown type '{}'")                                \
+  X(PlyPropertyLine,                                                                            \
+    "{}: PLY header line {}: expected 'property TYPE NAME' or 'property list COUNT ITEM "       \
+    "NAME'")                                                                                    \
+  X(PlyUnknownKeyword, "{}: PLY header line {}: unknown keyword '{}'")                          \
+  X(PlyNoFormat, "{}: PLY header has no format line")                                           \
+  X(PlyElementCount, "{}: PLY element '{}' declares {} entries, more than the file holds")      \
+  X(PlyVertexAxes, "{}: PLY vertex element lacks an x, y or z property")                        \
+  X(PlyFaceList, "{}: PLY face element has no vertex_indices list")                             \
+  X(PlyListCount, "{}: PLY list of {} items in '{}' entry {}")                                  \
+  X(PlyFaceIndex, "{}: PLY face {} has index {}")                                               \
+  X(PlyFaceSmall, "{}: PLY face {} has fewer than 3 vertices")                                  \
+  X(PlyVertexFinite, "{}: PLY vertex {} has a non-finite coordinate")                           \
+  X(PlyNeedsElements, "{}: PLY file needs a vertex and a face element")                         \
+  X(PlyFaceVertex, "{}: PLY face names vertex {} of {}")                                        \
+  /* a mesh that cannot be a particle (geom/triangle_mesh.cpp, shape/shape_library.cpp) */      \
+  X(MeshFileSize, "{}: limit exceeded for {} size = {} bytes (allowed: at most {} bytes)")      \
+  X(MeshTriangleCount, "{}: mesh has {} triangles (a closed particle needs at least 4)")        \
+  X(MeshNonFinite, "{}: mesh has a non-finite vertex coordinate")                               \
+  X(MeshTriangleVertex, "{}: mesh triangle {} names vertex {} of {}")                           \
+  X(MeshRepeatedVertex, "{}: mesh triangle {} repeats a vertex (zero-area triangle)")           \
+  X(MeshZeroArea, "{}: mesh triangle {} has zero area (degenerate)")                            \
+  X(MeshOpen, "{}: mesh is open: edge ({}, {}) belongs to triangle {} only (a hole)")           \
+  X(MeshEdgeShared, "{}: mesh is non-manifold: edge ({}, {}) is shared by {} triangles")        \
+  X(MeshOrientation,                                                                            \
+    "{}: mesh is inconsistently oriented: triangles {} and {} run edge ({}, {}) the same "      \
+    "way")                                                                                      \
+  X(MeshVertexSurfaces,                                                                         \
+    "{}: mesh is non-manifold: vertex {} joins two surfaces that touch only there")             \
+  X(MeshPieces, "{}: mesh has {} separate pieces (one particle per file)")                      \
+  X(MeshNoHull,                                                                                 \
+    "{}: mesh has no convex hull: invalid hull = Qhull error {} (allowed: points spanning a "   \
+    "volume ({}))")                                                                             \
+  X(MeshHullExcess, "{}: its convex hull adds {} % to its volume, above {} = {}")               \
+  /* a worker process (core/isolated.cpp), OpenGL (render/renderer_setup.cpp), export ids */    \
+  X(WorkerPipe, "cannot create a pipe for a worker process: {}")                                \
+  X(WorkerStart, "cannot start a worker process: {}")                                           \
+  X(WorkerWait, "cannot wait for worker processes: {}")                                         \
+  X(OpenGlCompile, "OpenGL: shader compilation failed: {}")                                     \
+  X(OpenGlLink, "OpenGL: shader link failed: {}")                                               \
+  X(OpenGlVersion, "OpenGL: need a 3.3 core context, have {}")                                  \
+  X(FormatIds, "{} ids")                                                                        \
+  /* internal checks that only a bug reaches */                                                 \
+  X(DensifyVerifyFailed, "densify: the final exact verification failed (a bug): {}")            \
+  X(BrokenAdjacency, "internal: broken adjacency in aggregate growth")                          \
+  X(ParticleVolume, "particle volume")                                                          \
+  X(QhullError, "Qhull error {}")                                                               \
+  X(PointsSpanVolume, "points spanning a volume ({})")
 // clang-format on
 
 namespace aggpack {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/core/error_words.h"
 #include "aggpack/geom/convex_polyhedron.h"
 
 namespace aggpack {
@@ -21,7 +22,12 @@ struct TriangleMesh {
 /// one, "non-manifold" when more) that run it in opposite directions ("inconsistently
 /// oriented"); every vertex's triangles form one fan ("non-manifold vertex"); one connected piece.
 /// The message names the first fault found, with a triangle / vertex index (0-based).
-CheckResult check_particle_mesh(const TriangleMesh& mesh);
+struct MeshCheck {
+  bool is_ok = true;
+  std::string message;  ///< "is open: edge (3, 7) belongs to triangle 5 only (a hole)"
+  Wording wording;      ///< its sentence, whose first value (the file) the caller puts first
+};
+MeshCheck check_particle_mesh(const TriangleMesh& mesh);
 
 /// Enclosed volume of a closed, consistently oriented mesh (divergence theorem): positive when
 /// the triangles face outward, negative when all face inward.

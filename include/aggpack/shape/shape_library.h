@@ -88,10 +88,10 @@ struct ShapeLibrary {
 /// Makes one library shape from a mesh in file units: check_particle_mesh, then the hull, the
 /// excess limit, the vertex budget, the centroid and the unit size. `name` and `hash` are copied.
 /// \throw FormatError when the mesh fails a check or spans no volume, Error of kind
-///        kLimitExceeded above max_hull_excess; one line without the file name (the caller
-///        puts it first).
+///        kLimitExceeded above max_hull_excess; one line naming `file` first ("rocks/a.stl: mesh
+///        is open: ..."; `name` when `file` is empty), its sentence's first value.
 LibraryShape import_shape(const TriangleMesh& mesh, const ShapeImportOptions& options,
-                          std::string name, std::string hash);
+                          std::string name, std::string hash, const std::string& file = {});
 
 /// \throw InvalidInput naming particle.library_max_hull_excess / particle.library_max_vertices.
 void validate(const ShapeImportOptions& options);
