@@ -34,7 +34,7 @@ if(AGGPACK_BUILD_GUI)
     add_test(NAME gui_smoke
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/smoke_test.sh $<TARGET_FILE:aggpack-gui>
                      ${CMAKE_CURRENT_BINARY_DIR}/gui_smoke $<TARGET_FILE:aggpack>)
-    set_tests_properties(gui_smoke PROPERTIES TIMEOUT 300)
+    set_tests_properties(gui_smoke PROPERTIES TIMEOUT 300 COST 55)
     # Open refuses every bad native file of tests/io/fixtures/bad-inputs.
     add_test(NAME gui_bad_open
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/bad_open_test.sh $<TARGET_FILE:aggpack-gui>
@@ -44,7 +44,7 @@ if(AGGPACK_BUILD_GUI)
     add_test(NAME gui_ui
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/ui_test.sh $<TARGET_FILE:aggpack-gui>
                      ${CMAKE_CURRENT_BINARY_DIR}/gui_ui)
-    set_tests_properties(gui_ui PROPERTIES TIMEOUT 300)
+    set_tests_properties(gui_ui PROPERTIES TIMEOUT 300 COST 60)
     # The shape library dialog (particle.library): folder, picked files, Cancel, Chinese.
     add_test(NAME gui_library
              COMMAND ${PROJECT_SOURCE_DIR}/tests/gui/library_test.sh $<TARGET_FILE:aggpack-gui>

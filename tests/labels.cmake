@@ -46,3 +46,26 @@ set_tests_properties(
   Repose.AngleRisesWithFrictionAndAsAlphaFalls
   Repose.PileAtRestStaysAtRestWhenFollowedLonger
   PROPERTIES LABELS physics-trend)
+
+# COST: seconds a test took on the 2-core VM (ctest's CTestCostData.txt of the Release phase,
+# 2026-12-06; the sanitized phase's where it is the larger). ctest -j starts the most costly tests
+# first; a fresh clone has no cost data of its own, and without these hints a 170-s test could be
+# started last and leave the other core idle to the end. Rough figures are enough: they only order.
+set_tests_properties(CalculixDeck.CcxRunsTheTroughTestOnASmallPile PROPERTIES COST 170)
+set_tests_properties(Repose.AngleRisesWithFrictionAndAsAlphaFalls PROPERTIES COST 85)
+set_tests_properties(Repose.PileAtRestStaysAtRestWhenFollowedLonger PROPERTIES COST 55)
+set_tests_properties(ReposeYadeCli.RunsTheSmallTroughEndToEnd PROPERTIES COST 45)
+set_tests_properties(DistributedCli.MpirunWithTwoRanksGivesTheSingleProcessSweep
+                     DensePacker.OverlapTolerantCompressionEndsOverlapFreeAndThreadIndependent
+                     DistributedCli.TwoWorkersAndMergeGiveTheSingleProcessEnsemble
+                     DistributedCli.ThreeWorkersAndMergeGiveTheSingleProcessSweep
+                     PROPERTIES COST 40)
+set_tests_properties(Settle.LatticeFallsToADenserPackingInsideItsContainer
+                     PaperPackingInCalculix.TetGenC3D10Seed4
+                     PaperPackingInCalculix.FanC3D10
+                     DistributedCli.EnsembleSeedsKeyRunsTheEnsembleAndTheFlagOverridesIt
+                     EnsembleCli.PerSeedResultsStatisticsAndThreadIndependence
+                     DistributedCli.MergeRefusesMissingRunsOtherConfigurationsAndEditedRecords
+                     Overlap.SupportShapeKeepsEverySupportValue
+                     Voxelize.RandomParticlesMatchExactVolumesToTheResolution
+                     PROPERTIES COST 20)
