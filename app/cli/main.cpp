@@ -9,6 +9,7 @@
 #include "aggpack/core/temp_paths.h"
 #include "aggpack/core/text.h"
 #include "commands.h"
+#include "progress.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"aggpack " AGGPACK_VERSION
@@ -16,6 +17,9 @@ int main(int argc, char** argv) {
                "Lengths are in metres unless an option says otherwise."};
   app.set_version_flag("--version", "aggpack " AGGPACK_VERSION);
   app.require_subcommand(1);
+  // A bad AGGPACK_PROGRESS_DELAY is refused once the command line is read (help and --version
+  // still work), before the command runs: not minutes later, when a first timed stage starts.
+  app.parse_complete_callback([] { (void)aggpack::cli::progress_delay(); });
   aggpack::cli::register_particle(app);
   aggpack::cli::register_shapes(app);
   aggpack::cli::register_calibrate(app);

@@ -174,22 +174,6 @@ std::string library_json(const ShapeLibrary& library) {
       length_unit_name(library.units), mesh, hull);
 }
 
-// The last --set of `key` ("key=value", blanks around the key allowed), or nullptr.
-const std::string* last_override_of(const std::vector<std::string>& overrides,
-                                    const std::string& key) {
-  for (auto text = overrides.rbegin(); text != overrides.rend(); ++text) {
-    const std::size_t equals = text->find('=');
-    if (equals == std::string::npos) continue;
-    const std::string_view name = std::string_view(*text).substr(0, equals);
-    const std::size_t first = name.find_first_not_of(" \t");
-    const std::size_t last = name.find_last_not_of(" \t");
-    if (first != std::string_view::npos && name.substr(first, last - first + 1) == key) {
-      return &*text;
-    }
-  }
-  return nullptr;
-}
-
 void run_pack(const PackFlags& flags) {
   std::vector<std::string> overrides = flags.overrides;
   // --seed and --threads are shortcuts for --set and win over it.

@@ -18,6 +18,14 @@ namespace aggpack {
 
 namespace {
 
+// `text` without the blanks (spaces, tabs) at its two ends.
+std::string trimmed(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t");
+  const auto last = text.find_last_not_of(" \t");
+  return first == std::string_view::npos ? std::string()
+                                         : std::string(text.substr(first, last - first + 1));
+}
+
 std::string last_component(std::string_view name) {
   const auto dot = name.rfind('.');
   return std::string(dot == std::string_view::npos ? name : name.substr(dot + 1));
@@ -160,13 +168,8 @@ void apply_override(toml::table& root, const std::string& text,
   if (equals == std::string::npos || equals == 0) {
     throw ConfigError("", origin + ": expected key=value (e.g. --set packer.gap=0.001)");
   }
-  auto trim = [](std::string s) {
-    const auto first = s.find_first_not_of(" \t");
-    const auto last = s.find_last_not_of(" \t");
-    return first == std::string::npos ? std::string() : s.substr(first, last - first + 1);
-  };
-  const std::string key = trim(text.substr(0, equals));
-  const std::string value_text = trim(text.substr(equals + 1));
+  const std::string key = override_key(text);
+  const std::string value_text = trimmed(std::string_view(text).substr(equals + 1));
   if (value_text.empty()) throw ConfigError(key, origin + ": missing value for " + clipped(key));
 
   toml::table parsed;
@@ -351,6 +354,19 @@ class Converter {
 };
 
 }  // namespace
+
+std::string override_key(std::string_view text) {
+  const auto equals = text.find('=');
+  return equals == std::string_view::npos ? std::string() : trimmed(text.substr(0, equals));
+}
+
+const std::string* last_override_of(const std::vector<std::string>& overrides,
+                                    std::string_view key) {
+  for (auto text = overrides.rbegin(); text != overrides.rend(); ++text) {
+    if (text->find('=') != std::string::npos && override_key(*text) == key) return &*text;
+  }
+  return nullptr;
+}
 
 GivenValues read_values(const std::vector<TableInfo>& tables, const std::vector<KeyView>& keys,
                         std::string_view text, std::string_view source_name,

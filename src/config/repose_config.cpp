@@ -16,6 +16,11 @@ namespace {
 using config_detail::members;
 using SweepKey = Key<SweepOptions>;
 
+// The particles.library_* keys apply only with a library.
+const Scope<SweepOptions> kLibrary{
+    .text = "particles.library given",
+    .applies = [](const SweepOptions& o) { return !o.base.library.paths.empty(); }};
+
 // A float key of the repose options.
 template <typename Access>
 SweepKey number(const char* name, const char* unit, Range range, const char* doc, Access access,
@@ -98,6 +103,60 @@ std::vector<SweepKey> keys() {
        .doc = "turn each particle randomly about its lattice site",
        .binding =
            members<SweepOptions>([](auto& o) -> auto& { return o.base.is_orientation_random; })},
+      // particles.library and its options, as particle.library's (src/config/library_schema.cpp);
+      // the lattice fill's checks name particle.library_*, renamed here by `fields`.
+      {.name = "particles.library",
+       .type = ValueType::kPathList,
+       .written = kLibrary,
+       .doc = "a folder of particle meshes (.stl, .obj, .ply), one such file, or an array of "
+              "folders and files: every lattice site holds one of them (its convex hull, "
+              "enclosing radius particles.radius, randomly turned) instead of a grown particle; "
+              "unset = grown particles",
+       .binding = members<SweepOptions>([](auto& o) -> auto& { return o.base.library.paths; }),
+       .presence = Presence::kOptional,
+       .default_text = "(none)",
+       .fields = {"particle.library"}},
+      {.name = "particles.library_units",
+       .type = ValueType::kWord,
+       .words = {"mm", "m"},
+       .scope = kLibrary,
+       .doc = "the length unit of the mesh files' coordinates",
+       .binding =
+           members<SweepOptions>([](auto& o) -> auto& { return o.base.library.import.units; })},
+      {.name = "particles.library_skip_bad",
+       .type = ValueType::kBool,
+       .unit = "-",
+       .scope = kLibrary,
+       .doc = "skip (and count) mesh files that are open, non-manifold, degenerate or over the "
+              "hull limit, instead of stopping at the first",
+       .binding =
+           members<SweepOptions>([](auto& o) -> auto& { return o.base.library.is_skipping_bad; })},
+      {.name = "particles.library_max_hull_excess",
+       .unit = "-",
+       .range = closed(0, 100),
+       .scope = kLibrary,
+       .doc = "refuse a shape whose convex hull adds more than this fraction of its volume "
+              "((V_hull - V) / V); 0 = no limit",
+       .binding = members<SweepOptions>(
+           [](auto& o) -> auto& { return o.base.library.import.max_hull_excess; }),
+       .fields = {"particle.library_max_hull_excess"}},
+      {.name = "particles.library_max_vertices",
+       .type = ValueType::kInteger,
+       .range = closed(4, 1e6),
+       .scope = kLibrary,
+       .doc = "hulls with more vertices are simplified to at most this many (inscribed; the "
+              "volume change is reported)",
+       .binding = members<SweepOptions>(
+           [](auto& o) -> auto& { return o.base.library.import.max_vertices; }),
+       .fields = {"particle.library_max_vertices"}},
+      {.name = "particles.library_use_once",
+       .type = ValueType::kBool,
+       .unit = "-",
+       .scope = kLibrary,
+       .doc = "place each library shape at most once (in a seeded random order); the fill needs "
+              "at least as many shapes as lattice sites",
+       .binding =
+           members<SweepOptions>([](auto& o) -> auto& { return o.base.library.is_use_once; })},
       number("physics.density", "kg/m^3", open_closed(0, kMaxMagnitude), "particle density",
              [](auto& o) -> auto& { return o.base.physics.density; }, {"density"}),
       number("physics.friction", "-", closed(0, 10), "sliding friction mu_s particle-particle",

@@ -206,6 +206,7 @@ LatticeOptions repose_fill_options(const ReposeOptions& options) {
   lattice.radius = options.radius;
   lattice.edge_length = options.edge_length;
   lattice.form = options.form;
+  lattice.files.options = options.library;
   lattice.seed = options.seed;
   return lattice;
 }

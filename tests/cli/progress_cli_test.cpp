@@ -164,6 +164,12 @@ TEST_F(ProgressCliTest, ShapesShowsTheParticlesGrown) {
   EXPECT_EQ(bad.err,
             "aggpack: error: invalid AGGPACK_PROGRESS_DELAY = \"soon\" (allowed: seconds in "
             "[0, 3600] (unset: 2))\n");
+  // Refused before the command runs (a missing file would be the error otherwise), any command.
+  const CliRun before = run("info no-such-file.h5", "AGGPACK_PROGRESS_DELAY=-1");
+  EXPECT_EQ(before.exit_code, 2);
+  EXPECT_EQ(before.err.rfind("aggpack: error: invalid AGGPACK_PROGRESS_DELAY = \"-1\"", 0), 0U)
+      << before.err;
+  EXPECT_EQ(run("info --help", "AGGPACK_PROGRESS_DELAY=-1").exit_code, 0);
   EXPECT_NE(heavy.out.find("sphericity"), std::string::npos) << heavy.out;
   const CliRun light = run("shapes -n 100 --progress lines");
   ASSERT_EQ(light.exit_code, 0) << light.err;

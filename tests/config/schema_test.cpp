@@ -13,6 +13,7 @@
 
 #include "aggpack/config/config.h"
 #include "aggpack/config/docs.h"
+#include "aggpack/config/schema.h"
 #include "aggpack/io/export.h"
 #include "aggpack/pack/container.h"
 #ifdef AGGPACK_HAS_SIM
@@ -269,6 +270,22 @@ TEST(ConfigSchema, SweepConfigRoundTrips) {
   EXPECT_EQ(resolved_sweep_config(parse_sweep_config(text, "again")), text);
 }
 #endif
+
+TEST(ConfigOverrides, KeyIsTrimmedAndTheLastOverrideOfAKeyIsFound) {
+  EXPECT_EQ(override_key("packer.gap=0.001"), "packer.gap");
+  EXPECT_EQ(override_key(" \tpacker.gap \t= 0.001"), "packer.gap");
+  EXPECT_EQ(override_key("particle.library=a=b.stl"), "particle.library");
+  EXPECT_EQ(override_key("no equals sign"), "");
+  EXPECT_EQ(override_key("   =1"), "");
+  const std::vector<std::string> overrides = {"packer.gap=1", "packer.seed=2", " packer.gap =3",
+                                              "packer.gap"};
+  const std::string* last = last_override_of(overrides, "packer.gap");
+  ASSERT_NE(last, nullptr);
+  EXPECT_EQ(last, &overrides[2]);
+  EXPECT_EQ(last_override_of(overrides, "packer.seed"), &overrides[1]);
+  EXPECT_EQ(last_override_of(overrides, "packer"), nullptr);
+  EXPECT_EQ(last_override_of({}, "packer.gap"), nullptr);
+}
 
 }  // namespace
 }  // namespace aggpack

@@ -215,6 +215,13 @@ GivenValues read_values(const std::vector<TableInfo>& tables, const std::vector<
                         std::string_view text, std::string_view source_name,
                         const std::vector<std::string>& overrides);
 
+/// The key of a `--set` text: "dotted.key=value" -> "dotted.key", blanks around it trimmed; empty
+/// without '='. read_values applies an override to this key.
+std::string override_key(std::string_view text);
+/// The last of `overrides` that sets `key` (it is the one that counts), or nullptr.
+const std::string* last_override_of(const std::vector<std::string>& overrides,
+                                    std::string_view key);
+
 /// Reads a whole file as text. \throw IoError.
 std::string read_config_file(const std::string& path);
 

@@ -74,6 +74,11 @@ struct ReposeOptions {
   double radius = 0.1;       ///< control radius R (m), > 0; lattice spacing 2R
   double edge_length = 0.1;  ///< L (m), > 0
   GrowthForm form{};         ///< growth rule and control-surface axis ratios
+  /// Shapes from mesh files (particles.library; no paths = grown particles): every lattice site
+  /// holds a library shape (its convex hull, enclosing radius `radius`) instead of a grown
+  /// particle; alpha, edge_length and form are then unused. The pipeline's repose_fill() reads
+  /// the files (LatticeOptions::files).
+  ShapeLibraryOptions library{};
   double fill_height = 2.8;  ///< m, height of the lattice region (14 layers of 2R = 0.2 m)
   std::uint64_t seed = 1;    ///< master seed; particle i draws from Rng(seed, i)
   /// Turn each particle by a uniformly random rotation about its lattice site (stream
