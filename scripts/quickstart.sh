@@ -4,7 +4,7 @@
 # export it and render a picture. Outputs go to out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-echo "quickstart: installing Debian packages (about 1-2 minutes), then building (about 11 minutes"
+echo "quickstart: installing Debian packages (about 1-2 minutes), then building (about 9 minutes"
 echo "on 2 cores; scripts/test.sh reuses this build)"
 scripts/install-deps.sh
 scripts/build.sh

@@ -30,8 +30,8 @@ if [ "${1:-}" = "--sanitize" ]; then
   export AGGPACK_SANITIZED=1
   ctest --test-dir build-asan --output-on-failure -j "$(nproc)" -LE 'external-solver|physics-trend'
 else
-  echo "test: building (nothing to compile after scripts/quickstart.sh; about 11 minutes from scratch"
-  echo "on 2 cores), then the test suite (about 7 minutes on 2 cores)"
+  echo "test: building (nothing to compile after scripts/quickstart.sh; about 9 minutes from scratch"
+  echo "on 2 cores), then the test suite (about 6 minutes on 2 cores)"
   scripts/build.sh "$@"
   ctest --test-dir build --output-on-failure -j "$(nproc)"
 fi
