@@ -70,7 +70,7 @@ if(AGGPACK_BUILD_GUI)
     target_include_directories(test_gui_i18n PRIVATE ${PROJECT_SOURCE_DIR}/app/gui
                                                      ${PROJECT_SOURCE_DIR}/tests)
     target_link_libraries(test_gui_i18n PRIVATE aggpack_pipeline aggpack_config aggpack_core fmt::fmt
-                          GTest::gtest_main)
+                          aggpack_test_paths GTest::gtest_main)
     gtest_discover_tests(test_gui_i18n DISCOVERY_TIMEOUT 60)
   endif()
   if(AGGPACK_BUILD_TESTS AND Python3_Interpreter_FOUND)

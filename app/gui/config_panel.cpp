@@ -56,8 +56,8 @@ void key_tooltip(const Key<PackConfig>& key, const KeyView& view) {
   // Said of input alpha beside its doc line: why the measured alpha of the result differs.
   const std::string unit = key.unit.empty() || key.unit == "-" ? "" : " " + key.unit;
   ImGui::SetTooltip("%s",
-                    trf(Text::kKeyTooltip, key_doc(key), key.name, allowed_text(view), unit,
-                        default_text(view, *key.default_value, key.default_from, key.default_text),
+                    trf(Text::kKeyTooltip, key_doc(key), key.name, allowed_words(view), unit,
+                        default_words(view, *key.default_value, key.default_from, key.default_text),
                         key.name == "particle.alpha" ? tr(Text::kAlphaNote) : "")
                         .c_str());
 }

@@ -66,7 +66,7 @@ void GuiApp::update_field_errors() {
     if (key.range.contains(number)) continue;
     const std::string unit = key.unit.empty() || key.unit == "-" ? "" : " " + key.unit;
     field_errors_[key.name] =
-        trs(Text::kOutsideRange, format_value(number), allowed_text(views[i]), unit);
+        trs(Text::kOutsideRange, format_value(number), allowed_words(views[i]), unit);
   }
   if (!field_errors_.empty()) return;
   // Then the rules between fields, with the configuration's own message for the field it names.

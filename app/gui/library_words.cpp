@@ -1,8 +1,11 @@
 #include "library_words.h"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <new>
 #include <string_view>
+#include <system_error>
 
 #include "aggpack/config/config.h"
 #include "aggpack/config/schema.h"
@@ -130,24 +133,62 @@ Text sentence_text(Sentence sentence) {
   return index < kSentenceTexts.size() ? kSentenceTexts[index] : Text::kSentenceText;
 }
 
-std::string wording_words(const Wording& wording) {
+std::string wording_words(const Wording& wording) { return wording_words(wording, {}); }
+
+std::string wording_words(const Wording& wording, const std::vector<WordedValue>& worded) {
   std::vector<std::string> values;
   values.reserve(wording.values.size());
-  for (const std::string& value : wording.values) values.push_back(value_words(value));
+  for (const std::string& value : wording.values) {
+    const auto sentence = std::find_if(worded.begin(), worded.end(),
+                                       [&](const WordedValue& each) { return each.text == value; });
+    if (sentence == worded.end()) {
+      values.push_back(value_words(value));
+      continue;
+    }
+    // Its own values may be sentences too (the others: each is worded once, so no loop).
+    std::vector<WordedValue> others;
+    for (const WordedValue& each : worded) {
+      if (&each != &*sentence) others.push_back(each);
+    }
+    values.push_back(wording_words(sentence->wording, others));
+  }
   return fill_words(tr(sentence_text(wording.sentence)), values);
 }
 
 std::string error_words(const std::exception& error) {
   const auto* library = dynamic_cast<const Error*>(&error);
-  if (library == nullptr) return trs(Text::kErrorOther, error.what());
+  if (library == nullptr) {
+    // Not the library's: out of memory, an operating-system failure (its reason as it is), or a
+    // bug (the library checks its input and throws its own errors).
+    if (dynamic_cast<const std::bad_alloc*>(&error) != nullptr) return tr(Text::kErrorOutOfMemory);
+    if (dynamic_cast<const std::system_error*>(&error) != nullptr) {
+      return trs(Text::kErrorOther, error.what());
+    }
+    return trs(Text::kErrorInternal, error.what());
+  }
   if (library->has_value()) {
     return trs(
         library->kind() == ErrorKind::kLimitExceeded ? Text::kLimitNotAllowed : Text::kNotAllowed,
-        field_words(library->field_wording()), wording_words(library->value_wording()),
-        wording_words(library->wording()));
+        field_words(library->field_wording()),
+        wording_words(library->value_wording(), library->worded_values()),
+        wording_words(library->wording(), library->worded_values()));
   }
   if (library->wording().sentence == Sentence::kText) return without_origin(error.what());
-  return wording_words(library->wording());
+  return wording_words(library->wording(), library->worded_values());
+}
+
+std::string allowed_words(const KeyView& key) {
+  const bool has_note = has_words(*key.note);
+  if (key.type == ValueType::kPath && has_note) return wording_words(*key.note);
+  std::string text = wording_words(allowed_rule(key));
+  if (has_note) text += tr(Text::kListSeparator) + wording_words(*key.note);
+  return text;
+}
+
+std::string default_words(const KeyView& key, const Value& default_value,
+                          const std::string& default_from, const Wording& shown) {
+  if (has_words(shown)) return wording_words(shown);
+  return default_text(key, default_value, default_from, shown);
 }
 
 std::string report_words(const PackReport& report) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/config/schema.h"
+#include "aggpack/core/error.h"
 #include "aggpack/core/error_words.h"
 #include "aggpack/pack/dense_packer.h"
 #include "aggpack/pack/progress.h"
@@ -25,13 +27,25 @@ Text sentence_text(Sentence sentence);
 /// The wording in the current language; a value that is a Sentence::kPhrase* word ("directory")
 /// in it too, any other value as it is.
 std::string wording_words(const Wording& wording);
+/// As above; a value that is one of `worded`'s texts is worded as its sentence.
+std::string wording_words(const Wording& wording, const std::vector<WordedValue>& worded);
 
 /// An error in the current language: a refused value as "FIELD: VALUE is not allowed; allowed:
 /// ..." (a limit: "... is over a limit ..."; FIELD and VALUE worded when they are sentences, a
 /// solver deck field by its label in the deck panel), another aggpack error as its sentence,
-/// anything else as "Error: what()". A ConfigError's origin ("gui: ", "--set K=V: ") is left
+/// std::bad_alloc as "out of memory", a std::system_error as "Error: what()", anything else as
+/// an internal error with its what(). A ConfigError's origin ("gui: ", "--set K=V: ") is left
 /// out: the panel is it.
 std::string error_words(const std::exception& error);
+
+/// A configuration key's allowed values in the current language: allowed_text()'s parts (its
+/// rule and note, config/schema.h) worded; a range, a list of words or a key name as it is.
+std::string allowed_words(const KeyView& key);
+
+/// A key's default in the current language: default_text()'s, its words (Key::default_text,
+/// "(none)") worded.
+std::string default_words(const KeyView& key, const Value& default_value,
+                          const std::string& default_from, const Wording& shown);
 
 /// The packer's report line (in English, PackReport::summary()'s words).
 std::string report_words(const PackReport& report);

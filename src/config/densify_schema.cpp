@@ -80,7 +80,7 @@ std::vector<PackKey> densify_keys() {
   PackKey gap = key(
       "densify.gap", kFloat, "m", closed(0, kMaxMagnitude), kDense,
       "minimum particle distance kept while densifying", [](auto& o) -> auto& { return o.gap; });
-  gap.note = "<= packer.gap";
+  gap.note = {Sentence::kAtMost, {"packer.gap"}};
   gap.default_from = "packer.gap";
   keys.push_back(std::move(gap));
   keys.push_back(key(

@@ -39,7 +39,7 @@ std::vector<Key<PackConfig>> library_keys() {
            on<LatticeOptions>([](auto& o) -> auto& { return o.files.options.paths; }),
            on<RandomPackOptions>([](auto& o) -> auto& { return o.shape.files.options.paths; })),
        .presence = Presence::kOptional,
-       .default_text = "(none)"},
+       .default_text = {Sentence::kDefaultNone, {}}},
       {.name = "particle.library_units",
        .type = ValueType::kWord,
        .words = {"mm", "m"},

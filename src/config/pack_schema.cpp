@@ -125,7 +125,7 @@ std::vector<PackKey> container_keys() {
       {.name = "container.wall_gap",
        .unit = "m",
        .range = closed(0, kMaxMagnitude),
-       .note = "< half the smallest extent",
+       .note = {Sentence::kBelowHalfSmallestExtent, {}},
        .doc = "minimum distance from every particle to every wall",
        .binding = {.get = [](const PackConfig& c) -> Value { return c.container().wall_gap; },
                    .set =
@@ -161,7 +161,7 @@ std::vector<PackKey> particle_keys() {
       {.name = "particle.radius_min",
        .unit = "m",
        .range = open_closed(0, kMaxMagnitude),
-       .note = "<= radius_max",
+       .note = {Sentence::kAtMost, {"radius_max"}},
        .scope = kUniform,
        .doc = "smallest control radius of the uniform grading (uniform by number)",
        .binding =
@@ -171,7 +171,7 @@ std::vector<PackKey> particle_keys() {
       {.name = "particle.radius_max",
        .unit = "m",
        .range = open_closed(0, kMaxMagnitude),
-       .note = ">= radius_min",
+       .note = {Sentence::kAtLeast, {"radius_min"}},
        .scope = kUniform,
        .doc = "largest control radius of the uniform grading",
        .binding =
@@ -181,7 +181,7 @@ std::vector<PackKey> particle_keys() {
       {.name = "particle.edge_length",
        .unit = "m",
        .range = closed(0, kMaxMagnitude),
-       .note = "0 only with packer.kind = random",
+       .note = {Sentence::kZeroOnlyWith, {"packer.kind", "random"}},
        .doc = "growth edge-length control L: a particle grows on its longest edge until every "
               "edge is <= L. 0 = relative: L = `edge_length_ratio` x r for each particle (the "
               "same shape statistics at every size)",
@@ -274,14 +274,14 @@ std::vector<PackKey> grading_keys() {
       {.name = "grading.size_min",
        .unit = "m",
        .range = open_closed(0, kMaxMagnitude),
-       .note = "< size_max",
+       .note = {Sentence::kBelow, {"size_max"}},
        .scope = kFuller,
        .doc = "Fuller curve: smallest control diameter d_min",
        .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.size_min; }))},
       {.name = "grading.size_max",
        .unit = "m",
        .range = open_closed(0, kMaxMagnitude),
-       .note = "> size_min",
+       .note = {Sentence::kAbove, {"size_min"}},
        .scope = kFuller,
        .doc = "Fuller curve: largest control diameter d_max",
        .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.size_max; }))},
@@ -296,14 +296,13 @@ std::vector<PackKey> grading_keys() {
        .type = ValueType::kSieve,
        .unit = "m, %",
        .range = open_closed(0, kMaxMagnitude),
-       .note = ">= 2 rows [size, percent passing]; sizes increasing, percents [0, 100] "
-               "non-decreasing, last 100",
+       .note = {Sentence::kSieveTableRule, {}},
        .scope = kSieve,
        .doc = "sieve table by volume, e.g. `[[0.005, 0], [0.01, 40], [0.02, 100]]`; the volume "
               "below the smallest sieve is not generated (fines)",
        .binding = bind(on<RandomPackOptions>([](auto& o) -> auto& { return o.grading.sieve; })),
        .presence = Presence::kOptional,
-       .default_text = "(none)"},
+       .default_text = {Sentence::kDefaultNone, {}}},
   };
 }
 
@@ -415,7 +414,7 @@ std::vector<PackKey> packer_keys() {
       {.name = "packer.spacing",
        .unit = "m",
        .range = closed(0, kMaxMagnitude),
-       .note = "0 or >= particle.radius",
+       .note = {Sentence::kZeroOrAtLeast, {"particle.radius"}},
        .scope = kLattice,
        .doc = "centre-to-centre lattice spacing. 0 = 2 R + gap (particles cannot touch and grow "
               "independently); smaller values pack sites closer and turn on the paper's contact "
@@ -445,7 +444,7 @@ std::vector<PackKey> packer_keys() {
                  random->target = PackTarget::kCount;
                }},
        .presence = Presence::kOptional,
-       .default_text = "(unset)",
+       .default_text = {Sentence::kDefaultUnset, {}},
        .excludes = "packer.target_fraction",
        .fields = {"random.count"}},
       {.name = "packer.target_fraction",
@@ -504,7 +503,7 @@ std::vector<PackKey> output_keys() {
                            c.outputs[format] = std::get<std::string>(value);
                          }},
          .presence = Presence::kOptional,
-         .default_text = "(none)"});
+         .default_text = {Sentence::kDefaultNone, {}}});
   }
   return keys;
 }

@@ -315,7 +315,8 @@ class Converter {
   void check_range(const std::string& name, double value, const std::string& text) const {
     if (!key_.range->contains(value)) {
       fail("invalid " + name + " = " + text + " (allowed: " + key_.range->text() +
-           unit_suffix(*key_.unit) + (key_.note->empty() ? "" : ", " + *key_.note) + ")");
+           unit_suffix(*key_.unit) + (has_words(*key_.note) ? ", " + english(*key_.note) : "") +
+           ")");
     }
   }
 

@@ -28,7 +28,7 @@ SweepKey number(const char* name, const char* unit, Range range, const char* doc
   return {.name = name,
           .unit = unit,
           .range = range,
-          .note = std::move(note),
+          .note = {Sentence::kText, {std::move(note)}},
           .doc = doc,
           .binding = members<SweepOptions>(access),
           .fields = std::move(fields)};
@@ -164,7 +164,7 @@ std::vector<SweepKey> keys() {
       {.name = "physics.wall_friction",
        .unit = "-",
        .range = closed(-1, 10),
-       .note = "< 0 = same as physics.friction",
+       .note = {Sentence::kText, {"< 0 = same as physics.friction"}},
        .doc = "sliding friction particle-wall; -1 = same as physics.friction",
        .binding = {.get = [](const SweepOptions& o) -> Value {
                      return o.base.physics.wall_friction.value_or(-1.0);
@@ -298,14 +298,14 @@ std::vector<SweepKey> keys() {
        .type = ValueType::kNumberList,
        .unit = "-",
        .range = closed(0, 1),
-       .note = "at least one value",
+       .note = {Sentence::kText, {"at least one value"}},
        .doc = "alpha values of the sweep",
        .binding = members<SweepOptions>([](auto& o) -> auto& { return o.alphas; })},
       {.name = "sweep.frictions",
        .type = ValueType::kNumberList,
        .unit = "-",
        .range = closed(0, 10),
-       .note = "at least one value",
+       .note = {Sentence::kText, {"at least one value"}},
        .doc = "mu_s values of the sweep",
        .binding = members<SweepOptions>([](auto& o) -> auto& { return o.frictions; })},
       {.name = "sweep.wall_friction_coupled",
@@ -328,7 +328,8 @@ std::vector<SweepKey> ensemble_keys() {
       {.name = "ensemble.seeds",
        .type = ValueType::kPath,
        .unit = "-",
-       .note = "a non-empty seed list: 1-16, 1,4,9 or 1-4,9 (at most 10000 seeds)",
+       .note = {Sentence::kText,
+                {"a non-empty seed list: 1-16, 1,4,9 or 1-4,9 (at most 10000 seeds)"}},
        .written = {.text = "given",
                    .applies = [](const SweepOptions& o) { return !o.seeds.empty(); }},
        .doc = "seed ensemble: `repose` runs once per seed (ensemble.json), `sweep` once per "
@@ -341,7 +342,7 @@ std::vector<SweepKey> ensemble_keys() {
                          o.seeds = text.empty() ? std::vector<std::uint64_t>{}
                                                 : parse_seed_list(text, "ensemble.seeds");
                        }},
-       .default_text = "(unset)"}};
+       .default_text = {Sentence::kDefaultUnset, {}}}};
 }
 
 }  // namespace

@@ -54,7 +54,7 @@ std::string Range::text() const {
          bound_text(hi, hi_text) + (hi_end == End::kOpen ? ")" : "]");
 }
 
-std::string allowed_text(const KeyView& key) {
+Wording allowed_rule(const KeyView& key) {
   std::string text;
   switch (key.type) {
     case ValueType::kWord:
@@ -64,16 +64,20 @@ std::string allowed_text(const KeyView& key) {
       text = "true | false";
       break;
     case ValueType::kPath:
-      if (!key.note->empty()) return *key.note;  // a string that is not a path says what it is
-      text = "a non-empty path";
-      break;
+      return {Sentence::kNonEmptyPath, {}};
     case ValueType::kPathList:
-      text = "a non-empty path or an array of them";
-      break;
+      return {Sentence::kNonEmptyPathList, {}};
     default:
       text = key.range->text();
   }
-  if (!key.note->empty()) text += ", " + *key.note;
+  return {Sentence::kText, {text}};
+}
+
+std::string allowed_text(const KeyView& key) {
+  // A string that is not a path says what it is.
+  if (key.type == ValueType::kPath && has_words(*key.note)) return english(*key.note);
+  std::string text = english(allowed_rule(key));
+  if (has_words(*key.note)) text += ", " + english(*key.note);
   return text;
 }
 
@@ -142,8 +146,8 @@ std::string value_text(const Value& value, ValueType type, WriteStyle style) {
 }
 
 std::string default_text(const KeyView& key, const Value& default_value,
-                         const std::string& default_from, const std::string& shown) {
-  if (!shown.empty()) return shown;
+                         const std::string& default_from, const Wording& shown) {
+  if (has_words(shown)) return english(shown);
   if (!default_from.empty()) return "= `" + default_from + "`";
   return "`" + value_text(default_value, key.type, WriteStyle::kCanonical) + "`";
 }

@@ -103,14 +103,14 @@ bool write_all(int fd, const void* data, std::size_t size) {
   ::_exit(0);
 }
 
-std::string describe_status(int status) {
+Wording describe_status(int status) {
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     const char* name = ::strsignal(signal);
-    return "died of signal " + std::to_string(signal) + " (" + (name ? name : "?") + ")";
+    return {Sentence::kWorkerSignal, {std::to_string(signal), name ? name : "?"}};
   }
-  if (WIFEXITED(status)) return "exited with code " + std::to_string(WEXITSTATUS(status));
-  return "ended with status " + std::to_string(status);
+  if (WIFEXITED(status)) return {Sentence::kWorkerExited, {std::to_string(WEXITSTATUS(status))}};
+  return {Sentence::kWorkerStatus, {std::to_string(status)}};
 }
 
 struct Worker {
@@ -217,7 +217,7 @@ class Pool {
       if (!is_finished && Clock::now() - worker.item_start > limit) {
         ::kill(worker.pid, SIGKILL);
         reap(worker);
-        fail_current(worker, "timed out after " + format_seconds(options_.time_limit) + " s");
+        fail_current(worker, {Sentence::kWorkerTimedOut, {format_seconds(options_.time_limit)}});
         is_finished = true;
       } else if (is_finished) {
         const int status = reap(worker);
@@ -247,7 +247,8 @@ class Pool {
       if (outcome.is_done) {
         outcome.bytes.assign(bytes, header.length);
       } else {
-        outcome.failure = "threw: " + std::string(bytes, header.length);
+        outcome.failure_wording = {Sentence::kWorkerThrew, {std::string(bytes, header.length)}};
+        outcome.failure = english(outcome.failure_wording);
       }
       used += sizeof header + header.length;
       ++worker.next;
@@ -259,9 +260,11 @@ class Pool {
   }
 
   // The item in progress failed: record why and queue the rest of the batch for a new worker.
-  void fail_current(Worker& worker, const std::string& failure) {
+  void fail_current(Worker& worker, const Wording& failure) {
     if (worker.next >= worker.items.size()) return;
-    outcomes_[worker.items[worker.next]].failure = failure;
+    IsolatedOutcome& outcome = outcomes_[worker.items[worker.next]];
+    outcome.failure = english(failure);
+    outcome.failure_wording = failure;
     count_settled();
     std::vector<std::size_t> rest(
         worker.items.begin() + static_cast<std::ptrdiff_t>(worker.next) + 1, worker.items.end());

@@ -36,8 +36,9 @@ ExportModel::ExportModel(const Packing& packing, const ExportOptions& options, E
       return;
     }
     if (!is_tetgen && !(properties.volume > 0)) {
-      throw InvalidInput("shape " + std::to_string(s) + " volume", format_value(properties.volume),
-                         "> 0 (a closed outward convex body)");
+      throw InvalidInput(Wording{Sentence::kShapeVolume, {std::to_string(s)}},
+                         Wording{Sentence::kText, {format_value(properties.volume)}},
+                         Wording{Sentence::kClosedConvexBody, {}});
     }
     const std::size_t linear_nodes =
         is_tetgen ? shape_meshes_[s].nodes.size() : body.vertex_count() + 1;

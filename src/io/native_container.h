@@ -7,9 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/core/error.h"
 #include "aggpack/pack/container.h"
 
 namespace aggpack::native_detail {
+
+/// Throws FormatError "SOURCE: FIELD: REASON" (Sentence::kFieldInvalid), the field (unless
+/// kText) and the reason marked as sentences of their own (Error::worded_values), with `words`:
+/// values of theirs that are sentences too ("a compound type").
+[[noreturn]] void fail_field(const std::string& source, const Wording& field, const Wording& reason,
+                             const std::vector<WordedValue>& words = {});
 
 /// The values of the container's numeric attributes, in file order (see above).
 std::vector<double> container_values(const Container& container);

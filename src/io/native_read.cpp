@@ -49,26 +49,39 @@ constexpr ElementType kFloat64{H5T_FLOAT, 8, H5T_SGN_ERROR, "float64"};
 constexpr ElementType kUint32{H5T_INTEGER, 4, H5T_SGN_NONE, "uint32"};
 constexpr ElementType kUint64{H5T_INTEGER, 8, H5T_SGN_NONE, "uint64"};
 
-// "int64", "float32", "string", ... for messages about a stored type.
-std::string describe_type(hid_t type) {
+// "int64", "float32", "a string", ... for messages about a stored type: a type's name, or words.
+Wording describe_type(hid_t type) {
   const H5T_class_t type_class = H5Tget_class(type);
   const std::string bits = std::to_string(8 * H5Tget_size(type));
   switch (type_class) {
     case H5T_INTEGER:
-      return (H5Tget_sign(type) == H5T_SGN_NONE ? "uint" : "int") + bits;
+      return {Sentence::kText, {(H5Tget_sign(type) == H5T_SGN_NONE ? "uint" : "int") + bits}};
     case H5T_FLOAT:
-      return "float" + bits;
+      return {Sentence::kText, {"float" + bits}};
     case H5T_STRING:
-      return "a string";
+      return {Sentence::kNativeTypeString, {}};
     case H5T_COMPOUND:
-      return "a compound type";
+      return {Sentence::kNativeTypeCompound, {}};
     case H5T_ARRAY:
-      return "an array type";
+      return {Sentence::kNativeTypeArray, {}};
     case H5T_ENUM:
-      return "an enum";
+      return {Sentence::kNativeTypeEnum, {}};
     default:
-      return "a non-numeric type";
+      return {Sentence::kNativeTypeNonNumeric, {}};
   }
+}
+
+// "stored as TYPE, expected ..." (`sentence`, then `expected`), the type in words when it is.
+struct StoredType {
+  Wording reason;
+  std::vector<WordedValue> words;
+};
+StoredType stored_as(Sentence sentence, const Wording& type, const std::string& shown,
+                     std::vector<std::string> expected = {}) {
+  expected.insert(expected.begin(), shown);
+  StoredType stored{{sentence, std::move(expected)}, {}};
+  if (type.sentence != Sentence::kText) stored.words.push_back({shown, type});
+  return stored;
 }
 
 // Echoed text is cut (with an ellipsis) and its control characters escaped, so that a message
@@ -90,32 +103,44 @@ class Reader {
     values.insert(values.begin(), path_);
     throw FormatError(Wording{sentence, std::move(values)});
   }
-  [[noreturn]] void fail(const std::string& field, const std::string& reason) const {
-    fail(Sentence::kFieldInvalid, {field, reason});
+  [[noreturn]] void fail(const std::string& field, const Wording& reason,
+                         const std::vector<WordedValue>& words = {}) const {
+    native_detail::fail_field(path_, {Sentence::kText, {field}}, reason, words);
   }
-  [[noreturn]] void fail_hdf5(const std::string& field, const std::string& what) const {
-    fail(Sentence::kFieldCorrupt, {field, what, hdf5_reason()});
+  [[noreturn]] void fail_stored(const std::string& field, const StoredType& stored) const {
+    fail(field, stored.reason, stored.words);
+  }
+  [[noreturn]] void fail_hdf5(const std::string& field, Sentence what) const {
+    const Wording words{what, {}};
+    FormatError error(
+        Wording{Sentence::kFieldCorrupt, {path_, field, english(words), hdf5_reason()}});
+    error.word_value(english(words), words);
+    throw error;
   }
 
   // H5Lexists / H5Aexists: < 0 means the lookup itself failed (corrupt metadata), 0 absent.
   bool exists(htri_t status, const std::string& field) const {
-    if (status < 0) fail_hdf5(field, "cannot look it up");
+    if (status < 0) fail_hdf5(field, Sentence::kHdf5LookUp);
     return status > 0;
   }
 
   Handle open_group(hid_t parent, const char* name) const {
     const std::string field = std::string("/") + name;
-    if (!exists(H5Lexists(parent, name, H5P_DEFAULT), field)) fail(field, "missing group");
+    if (!exists(H5Lexists(parent, name, H5P_DEFAULT), field)) {
+      fail(field, {Sentence::kNativeMissingGroup, {}});
+    }
     const hid_t id = H5Gopen2(parent, name, H5P_DEFAULT);
-    if (id < 0) fail_hdf5(field, "cannot open the group");
+    if (id < 0) fail_hdf5(field, Sentence::kHdf5OpenGroup);
     return {id, H5Gclose};
   }
 
   // `object_path` is "" for the root group, else e.g. "/container".
   Handle open_attribute(hid_t object, const std::string& field, const char* name) const {
-    if (!exists(H5Aexists(object, name), field)) fail(field, "missing attribute");
+    if (!exists(H5Aexists(object, name), field)) {
+      fail(field, {Sentence::kNativeMissingAttribute, {}});
+    }
     const hid_t id = H5Aopen(object, name, H5P_DEFAULT);
-    if (id < 0) fail_hdf5(field, "cannot open the attribute");
+    if (id < 0) fail_hdf5(field, Sentence::kHdf5OpenAttribute);
     return {id, H5Aclose};
   }
 
@@ -125,12 +150,13 @@ class Reader {
     Handle attribute = open_attribute(object, field, name);
     Handle type(H5Aget_type(attribute.get()), H5Tclose);
     if (!type.is_valid() || H5Tget_class(type.get()) != H5T_STRING) {
-      fail(field, "stored as " + (type.is_valid() ? describe_type(type.get()) : "an unknown type") +
-                      ", expected a string");
+      const Wording stored =
+          type.is_valid() ? describe_type(type.get()) : Wording{Sentence::kNativeTypeUnknown, {}};
+      fail_stored(field, stored_as(Sentence::kNativeStoredAsNotString, stored, english(stored)));
     }
     Handle space(H5Aget_space(attribute.get()), H5Sclose);
     if (!space.is_valid() || H5Sget_simple_extent_type(space.get()) != H5S_SCALAR) {
-      fail(field, "not a single string (the dataspace is not scalar)");
+      fail(field, {Sentence::kNativeNotScalarString, {}});
     }
     if (H5Tis_variable_str(type.get()) > 0) {
       // Written e.g. by h5py (its default str type: variable-length UTF-8); accepted although
@@ -158,27 +184,26 @@ class Reader {
                                         },
                                         {.workers = 1, .time_limit = kStringReadSeconds});
       if (!outcome[0].is_done) {
-        fail(field, "cannot read the variable-length string (corrupted global heap?): HDF5 " +
-                        outcome[0].failure);
+        fail(field, {Sentence::kNativeVariableString, {outcome[0].failure}},
+             {{outcome[0].failure, outcome[0].failure_wording}});
       }
       return outcome[0].bytes;
     }
     const std::size_t size = H5Tget_size(type.get());
     if (size == 0 || size > file_size_) {
-      fail(field, "declares a " + std::to_string(size) + "-byte string in a " +
-                      std::to_string(file_size_) + "-byte file");
+      fail(field,
+           {Sentence::kNativeStringBytes, {std::to_string(size), std::to_string(file_size_)}});
     }
     std::vector<char> buffer(size + 1, '\0');
     if (H5Aread(attribute.get(), type.get(), buffer.data()) < 0) {
-      fail_hdf5(field, "cannot read the attribute");
+      fail_hdf5(field, Sentence::kHdf5ReadAttribute);
     }
     const std::size_t length = ::strnlen(buffer.data(), size);
     // A fixed-length string ends at its first NUL; anything but padding after it would be
     // silently dropped ("aggpack-packing\0x" read as "aggpack-packing"), so it is refused.
     if (std::any_of(buffer.begin() + static_cast<std::ptrdiff_t>(length), buffer.end(),
                     [](char c) { return c != '\0'; })) {
-      fail(field, "contains a NUL byte at position " + std::to_string(length) +
-                      " followed by more text; allowed: text without NUL bytes");
+      fail(field, {Sentence::kNativeNulByte, {std::to_string(length)}});
     }
     return {buffer.data(), length};
   }
@@ -189,10 +214,10 @@ class Reader {
     Handle attribute = open_attribute(object, field, name);
     Handle space(H5Aget_space(attribute.get()), H5Sclose);
     if (!space.is_valid() || H5Sget_simple_extent_npoints(space.get()) != 1) {
-      fail(field, "not a single number");
+      fail(field, {Sentence::kNativeNotSingleNumber, {}});
     }
     Handle type(H5Aget_type(attribute.get()), H5Tclose);
-    if (!type.is_valid()) fail_hdf5(field, "cannot read the attribute's type");
+    if (!type.is_valid()) fail_hdf5(field, Sentence::kHdf5AttributeType);
     return {std::move(attribute), std::move(type)};
   }
 
@@ -202,13 +227,17 @@ class Reader {
     const std::string field = object_path + "/" + name;
     const auto [attribute, type] = open_number(object, field, name);
     if (H5Tget_class(type.get()) != H5T_FLOAT || H5Tget_size(type.get()) > 8) {
-      fail(field, "stored as " + describe_type(type.get()) + ", expected float64");
+      const Wording stored = describe_type(type.get());
+      fail_stored(field,
+                  stored_as(Sentence::kNativeStoredAs, stored, english(stored), {"float64"}));
     }
     double value = 0.0;
     if (H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value) < 0) {
-      fail_hdf5(field, "cannot read the attribute");
+      fail_hdf5(field, Sentence::kHdf5ReadAttribute);
     }
-    if (!std::isfinite(value)) fail(field + " = " + format_value(value), "not finite");
+    if (!std::isfinite(value)) {
+      fail(field + " = " + format_value(value), {Sentence::kNativeNotFinite, {}});
+    }
     return value;
   }
 
@@ -219,27 +248,30 @@ class Reader {
     const std::string field = object_path + "/" + name;
     const auto [attribute, type] = open_number(object, field, name);
     if (H5Tget_class(type.get()) != H5T_INTEGER || H5Tget_size(type.get()) > 8) {
-      std::string stored = describe_type(type.get());
+      const Wording type_words = describe_type(type.get());
+      std::string stored = english(type_words);
       if (H5Tget_class(type.get()) == H5T_FLOAT) {
         double value = 0.0;
         if (H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value) >= 0) {
           stored += " (" + format_value(value) + ")";
         }
       }
-      fail(field, "stored as " + stored + ", expected an integer");
+      fail_stored(field, stored_as(Sentence::kNativeStoredAsNotInteger, type_words, stored));
     }
     if (H5Tget_sign(type.get()) == H5T_SGN_NONE) {
       std::uint64_t value = 0;
       if (H5Aread(attribute.get(), H5T_NATIVE_UINT64, &value) < 0) {
-        fail_hdf5(field, "cannot read the attribute");
+        fail_hdf5(field, Sentence::kHdf5ReadAttribute);
       }
       return value;
     }
     std::int64_t value = 0;
     if (H5Aread(attribute.get(), H5T_NATIVE_INT64, &value) < 0) {
-      fail_hdf5(field, "cannot read the attribute");
+      fail_hdf5(field, Sentence::kHdf5ReadAttribute);
     }
-    if (value < 0) fail(field + " = " + std::to_string(value), "negative, expected >= 0");
+    if (value < 0) {
+      fail(field + " = " + std::to_string(value), {Sentence::kNativeNegative, {}});
+    }
     return static_cast<std::uint64_t>(value);
   }
 
@@ -253,27 +285,31 @@ class Reader {
                     std::size_t& rows) const {
     static_assert(sizeof(T) <= 8);
     const std::string field = std::string("/") + group_name + "/" + name;
-    if (!exists(H5Lexists(parent, name, H5P_DEFAULT), field)) fail(field, "missing dataset");
+    if (!exists(H5Lexists(parent, name, H5P_DEFAULT), field)) {
+      fail(field, {Sentence::kNativeMissingDataset, {}});
+    }
     Handle dataset(H5Dopen2(parent, name, H5P_DEFAULT), H5Dclose);
-    if (!dataset.is_valid()) fail_hdf5(field, "cannot open the dataset");
+    if (!dataset.is_valid()) fail_hdf5(field, Sentence::kHdf5OpenDataset);
     Handle type(H5Dget_type(dataset.get()), H5Tclose);
-    if (!type.is_valid()) fail_hdf5(field, "cannot read the dataset's type");
+    if (!type.is_valid()) fail_hdf5(field, Sentence::kHdf5DatasetType);
     if (H5Tget_class(type.get()) != element.type_class || H5Tget_size(type.get()) != element.size ||
         (element.type_class == H5T_INTEGER && H5Tget_sign(type.get()) != element.sign)) {
-      fail(field, "stored as " + describe_type(type.get()) + ", expected " + element.name);
+      const Wording stored = describe_type(type.get());
+      fail_stored(field,
+                  stored_as(Sentence::kNativeStoredAs, stored, english(stored), {element.name}));
     }
     Handle space(H5Dget_space(dataset.get()), H5Sclose);
     const int rank = space.is_valid() ? H5Sget_simple_extent_ndims(space.get()) : -1;
     const int expected_rank = columns == 0 ? 1 : 2;
     if (rank != expected_rank) {
-      fail(field, "rank " + std::to_string(rank) + ", expected " + std::to_string(expected_rank));
+      fail(field, {Sentence::kNativeRank, {std::to_string(rank), std::to_string(expected_rank)}});
     }
     hsize_t dims[2] = {0, 0};
     if (H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0) {
-      fail_hdf5(field, "cannot read the dataset's size");
+      fail_hdf5(field, Sentence::kHdf5DatasetSize);
     }
     if (columns != 0 && dims[1] != columns) {
-      fail(field, std::to_string(dims[1]) + " columns, expected " + std::to_string(columns));
+      fail(field, {Sentence::kNativeColumns, {std::to_string(dims[1]), std::to_string(columns)}});
     }
     const std::string shape_text =
         std::to_string(dims[0]) + (columns == 0 ? "" : " x " + std::to_string(columns));
@@ -281,8 +317,8 @@ class Reader {
     // overflowing; compression cannot beat kMaxCompressionRatio either.
     const auto ratio = static_cast<std::uint64_t>(NativeLimits::kMaxCompressionRatio);
     if (dims[0] > ratio * file_size_) {
-      fail(field, "declares " + shape_text + " " + element.name + " values in a " +
-                      std::to_string(file_size_) + "-byte file");
+      fail(field, {Sentence::kNativeDeclaresValues,
+                   {shape_text, element.name, std::to_string(file_size_)}});
     }
     const hsize_t elements = dims[0] * std::max<hsize_t>(columns, 1);
     const hsize_t declared_bytes = elements * element.size;
@@ -292,22 +328,21 @@ class Reader {
       const hsize_t allowed =
           is_compressed ? ratio * stored_bytes : stored_bytes;  // stored <= file size, below
       if (stored_bytes > file_size_ || declared_bytes > allowed) {
-        fail(field, "declares " + shape_text + " " + element.name + " values (" +
-                        std::to_string(declared_bytes) + " bytes) but " +
-                        std::to_string(stored_bytes) + " bytes are stored" +
-                        (is_compressed ? " compressed" : "") + " in a " +
-                        std::to_string(file_size_) + "-byte file");
+        fail(field, {is_compressed ? Sentence::kNativeDeclaresStoredCompressed
+                                   : Sentence::kNativeDeclaresStored,
+                     {shape_text, element.name, std::to_string(declared_bytes),
+                      std::to_string(stored_bytes), std::to_string(file_size_)}});
       }
     }
     rows = dims[0];
     try {
       out.assign(elements, T{});
     } catch (const std::bad_alloc&) {
-      fail(field, "too large to load (" + shape_text + " values)");
+      fail(field, {Sentence::kNativeTooLarge, {shape_text}});
     }
     if (elements > 0 &&
         H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
-      fail_hdf5(field, "cannot read the dataset");
+      fail_hdf5(field, Sentence::kHdf5ReadDataset);
     }
   }
 
@@ -317,11 +352,11 @@ class Reader {
   // be compressed.
   bool has_compression(hid_t dataset, const std::string& field) const {
     Handle properties(H5Dget_create_plist(dataset), H5Pclose);
-    if (!properties.is_valid()) fail_hdf5(field, "cannot read the dataset's properties");
+    if (!properties.is_valid()) fail_hdf5(field, Sentence::kHdf5DatasetProperties);
     // Data in other files (external raw files, virtual datasets) is not part of a packing file.
     if (H5Pget_layout(properties.get()) == H5D_VIRTUAL ||
         H5Pget_external_count(properties.get()) != 0) {
-      fail(field, "stored outside the file (external or virtual dataset)");
+      fail(field, {Sentence::kNativeStoredOutside, {}});
     }
     const int filters = H5Pget_nfilters(properties.get());
     for (int k = 0; k < filters; ++k) {
@@ -398,7 +433,7 @@ Packing read_hdf5(const std::string& path) {
     const ContainerKindInfo* info = find_container_kind(kind);
     if (info == nullptr) {
       reader.fail("/container/kind = " + echo(kind),
-                  "unknown kind (expected " + container_kind_names() + ")");
+                  {Sentence::kNativeUnknownKind, {container_kind_names()}});
     }
     c = info->defaults;
     // Every kind's parameters are stored; only this kind's are kept (checked before the rest of
@@ -429,31 +464,36 @@ Packing read_hdf5(const std::string& path) {
                         vertex_offsets, shape_rows);
     reader.read_dataset(group.get(), "shapes", "triangle_offsets", H5T_NATIVE_UINT64, kUint64, 0,
                         triangle_offsets, triangle_shape_rows);
-    if (shape_rows == 0) reader.fail("/shapes/vertex_offsets", "empty (it holds S + 1 values)");
+    if (shape_rows == 0) {
+      reader.fail("/shapes/vertex_offsets", {Sentence::kNativeOffsetsEmpty, {}});
+    }
     if (triangle_shape_rows != shape_rows) {
-      reader.fail("/shapes/triangle_offsets", std::to_string(triangle_shape_rows) +
-                                                  " values, but /shapes/vertex_offsets has " +
-                                                  std::to_string(shape_rows));
+      reader.fail("/shapes/triangle_offsets",
+                  {Sentence::kNativeValuesButHas,
+                   {std::to_string(triangle_shape_rows), "/shapes/vertex_offsets",
+                    std::to_string(shape_rows)}});
     }
     reader.read_dataset(group.get(), "shapes", "vertices", H5T_NATIVE_DOUBLE, kFloat64, 3, vertices,
                         vertex_rows);
     reader.read_dataset(group.get(), "shapes", "triangles", H5T_NATIVE_UINT32, kUint32, 3,
                         triangles, triangle_rows);
     if (vertex_offsets.front() != 0 || vertex_offsets.back() != vertex_rows) {
-      reader.fail("/shapes/vertex_offsets", "runs from " + std::to_string(vertex_offsets.front()) +
-                                                " to " + std::to_string(vertex_offsets.back()) +
-                                                ", expected 0 to " + std::to_string(vertex_rows) +
-                                                " (the rows of /shapes/vertices)");
+      reader.fail("/shapes/vertex_offsets",
+                  {Sentence::kNativeOffsetsRun,
+                   {std::to_string(vertex_offsets.front()), std::to_string(vertex_offsets.back()),
+                    std::to_string(vertex_rows), "/shapes/vertices"}});
     }
     if (triangle_offsets.front() != 0 || triangle_offsets.back() != triangle_rows) {
-      reader.fail("/shapes/triangle_offsets",
-                  "runs from " + std::to_string(triangle_offsets.front()) + " to " +
-                      std::to_string(triangle_offsets.back()) + ", expected 0 to " +
-                      std::to_string(triangle_rows) + " (the rows of /shapes/triangles)");
+      reader.fail(
+          "/shapes/triangle_offsets",
+          {Sentence::kNativeOffsetsRun,
+           {std::to_string(triangle_offsets.front()), std::to_string(triangle_offsets.back()),
+            std::to_string(triangle_rows), "/shapes/triangles"}});
     }
     for (std::size_t k = 0; k < vertices.size(); ++k) {
       if (!std::isfinite(vertices[k])) {
-        reader.fail("/shapes/vertices[" + std::to_string(k / 3) + "]", "not finite");
+        reader.fail("/shapes/vertices[" + std::to_string(k / 3) + "]",
+                    {Sentence::kNativeNotFinite, {}});
       }
     }
     const std::size_t shape_count = shape_rows - 1;
@@ -465,12 +505,12 @@ Packing read_hdf5(const std::string& path) {
       const std::uint64_t t1 = triangle_offsets[s + 1];
       if (v1 < v0 || v1 > vertex_rows) {
         reader.fail("/shapes/vertex_offsets[" + std::to_string(s + 1) + "] = " + std::to_string(v1),
-                    "offsets must not decrease");
+                    {Sentence::kNativeOffsetsDecrease, {}});
       }
       if (t1 < t0 || t1 > triangle_rows) {
         reader.fail(
             "/shapes/triangle_offsets[" + std::to_string(s + 1) + "] = " + std::to_string(t1),
-            "offsets must not decrease");
+            {Sentence::kNativeOffsetsDecrease, {}});
       }
       std::vector<Vec3> shape_vertices;
       shape_vertices.reserve(v1 - v0);
@@ -485,9 +525,11 @@ Packing read_hdf5(const std::string& path) {
       try {
         packing.shapes.emplace_back(std::move(shape_vertices), std::move(shape_triangles));
       } catch (const InvalidInput& error) {
-        reader.fail("/shapes/triangles (shape " + std::to_string(s) + ", rows " +
-                        std::to_string(t0) + "-" + std::to_string(t1 == t0 ? t0 : t1 - 1) + ")",
-                    std::string("not a polyhedron: ") + error.what());
+        native_detail::fail_field(path,
+                                  {Sentence::kNativeShapeRows,
+                                   {"/shapes/triangles", std::to_string(s), std::to_string(t0),
+                                    std::to_string(t1 == t0 ? t0 : t1 - 1)}},
+                                  {Sentence::kNativeNotPolyhedron, {error.what()}});
       }
     }
   }
@@ -518,9 +560,9 @@ Packing read_hdf5(const std::string& path) {
     const std::size_t n = rows[0];
     for (int k = 1; k < 6; ++k) {
       if (rows[k] != n) {
-        reader.fail(
-            std::string("/particles/") + names[k],
-            std::to_string(rows[k]) + " rows, but /particles/shape has " + std::to_string(n));
+        reader.fail(std::string("/particles/") + names[k],
+                    {Sentence::kNativeRowsButHas,
+                     {std::to_string(rows[k]), "/particles/shape", std::to_string(n)}});
       }
     }
     packing.particles.resize(n);

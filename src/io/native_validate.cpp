@@ -19,9 +19,11 @@ namespace {
 
 using Limits = NativeLimits;
 
-[[noreturn]] void fail(const std::string& source, const std::string& field,
-                       const std::string& reason) {
-  throw FormatError(Wording{Sentence::kFieldInvalid, {source, field, reason}});
+[[noreturn]] void fail(const std::string& source, const std::string& field, const Wording& reason) {
+  native_detail::fail_field(source, {Sentence::kText, {field}}, reason);
+}
+[[noreturn]] void fail(const std::string& source, const Wording& field, const Wording& reason) {
+  native_detail::fail_field(source, field, reason);
 }
 
 std::string range_text(double lo, double hi) {
@@ -38,9 +40,8 @@ void check_container(const Container& c, const std::string& source) {
   // Named here as the file's attribute, so every command refuses it the same way.
   const double half = c.visit([](const auto& kind) { return kind.smallest_extent(); }) / 2.0;
   if (!(c.wall_gap < half)) {
-    fail(
-        source, "/container/wall_gap = " + format_value(c.wall_gap),
-        "not below half the smallest container extent; allowed: [0, " + format_value(half) + ") m");
+    fail(source, "/container/wall_gap = " + format_value(c.wall_gap),
+         {Sentence::kNativeWallGapHalf, {format_value(half)}});
   }
 }
 
@@ -52,18 +53,17 @@ void check_shape(const ConvexPolyhedron& shape, std::size_t s, std::uint64_t ver
                  double& diagonal) {
   const auto& vertices = shape.vertices();
   const auto& triangles = shape.triangles();
-  const auto rows = [s](std::uint64_t first, std::size_t count) {
-    return " (shape " + std::to_string(s) + ", rows " + std::to_string(first) + "-" +
-           std::to_string(first + count - (count > 0 ? 1 : 0)) + ")";
+  const auto rows = [s](const char* dataset, std::uint64_t first, std::size_t count) {
+    return Wording{Sentence::kNativeShapeRows,
+                   {dataset, std::to_string(s), std::to_string(first),
+                    std::to_string(first + count - (count > 0 ? 1 : 0))}};
   };
-  const std::string where = rows(vertex_row, vertices.size());
-  const std::string triangle_where = rows(triangle_row, triangles.size());
-  const std::string vertex_field = "/shapes/vertices" + where;
-  const std::string triangle_field = "/shapes/triangles" + triangle_where;
+  const Wording vertex_field = rows("/shapes/vertices", vertex_row, vertices.size());
+  const Wording triangle_field = rows("/shapes/triangles", triangle_row, triangles.size());
   if (vertices.size() < 4 || triangles.size() < 4) {
     fail(source, triangle_field,
-         std::to_string(vertices.size()) + " vertices and " + std::to_string(triangles.size()) +
-             " triangles, a closed polyhedron needs at least 4 of each");
+         {Sentence::kNativeTooFewParts,
+          {std::to_string(vertices.size()), std::to_string(triangles.size())}});
   }
 
   largest = 0.0;
@@ -71,8 +71,9 @@ void check_shape(const ConvexPolyhedron& shape, std::size_t s, std::uint64_t ver
     const double size = vertices[v].cwiseAbs().maxCoeff();
     if (!vertices[v].allFinite() || !(size <= Limits::kMaxLength)) {
       fail(source, vertex_field,
-           "vertex " + std::to_string(v) + " has a coordinate of magnitude " + format_value(size) +
-               ", outside " + range_text(-Limits::kMaxLength, Limits::kMaxLength) + " m");
+           {Sentence::kNativeVertexMagnitude,
+            {std::to_string(v), format_value(size),
+             range_text(-Limits::kMaxLength, Limits::kMaxLength)}});
     }
     largest = std::max(largest, size);
   }
@@ -89,8 +90,8 @@ void check_shape(const ConvexPolyhedron& shape, std::size_t s, std::uint64_t ver
     const auto& t = triangles[f];
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
       fail(source, triangle_field,
-           "triangle " + std::to_string(f) + " repeats a vertex (" + std::to_string(t[0]) + ", " +
-               std::to_string(t[1]) + ", " + std::to_string(t[2]) + "): degenerate");
+           {Sentence::kNativeRepeatsVertex,
+            {std::to_string(f), std::to_string(t[0]), std::to_string(t[1]), std::to_string(t[2])}});
     }
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = t[k];
@@ -109,61 +110,53 @@ void check_shape(const ConvexPolyhedron& shape, std::size_t s, std::uint64_t ver
            half_edges[j].high == half_edges[i].high) {
       ++j;
     }
-    const std::string edge =
-        "edge " + std::to_string(half_edges[i].low) + "-" + std::to_string(half_edges[i].high);
+    const std::string low = std::to_string(half_edges[i].low);
+    const std::string high = std::to_string(half_edges[i].high);
     if (j - i == 1) {
       fail(source, triangle_field,
-           edge + " belongs to only triangle " + std::to_string(half_edges[i].face) +
-               ": the surface is not closed");
+           {Sentence::kNativeEdgeOpen, {low, high, std::to_string(half_edges[i].face)}});
     }
     if (j - i > 2) {
       fail(source, triangle_field,
-           edge + " is shared by " + std::to_string(j - i) +
-               " triangles: not a 2-manifold (each edge needs exactly 2)");
+           {Sentence::kNativeEdgeShared, {low, high, std::to_string(j - i)}});
     }
     if (half_edges[i].is_forward == half_edges[i + 1].is_forward) {
       fail(source, triangle_field,
-           edge + " runs the same way in triangles " + std::to_string(half_edges[i].face) +
-               " and " + std::to_string(half_edges[i + 1].face) +
-               ": not consistently oriented (a flipped triangle)");
+           {Sentence::kNativeEdgeSameWay,
+            {low, high, std::to_string(half_edges[i].face),
+             std::to_string(half_edges[i + 1].face)}});
     }
     ++edge_count;
     i = j;
   }
   for (std::size_t v = 0; v < is_used.size(); ++v) {
     if (!is_used[v]) {
-      fail(source, triangle_field, "vertex " + std::to_string(v) + " is in no triangle");
+      fail(source, triangle_field, {Sentence::kNativeUnusedVertex, {std::to_string(v)}});
     }
   }
   const long long euler = static_cast<long long>(vertices.size()) -
                           static_cast<long long>(edge_count) +
                           static_cast<long long>(triangles.size());
   if (euler != 2) {
-    fail(source, triangle_field,
-         "V - E + F = " + std::to_string(euler) +
-             ", expected 2: not one closed surface without holes");
+    fail(source, triangle_field, {Sentence::kNativeEuler, {std::to_string(euler)}});
   }
 
   // Geometry: a real extent, no zero-area triangle, positive volume, convex.
   diagonal = shape.bounds().extent().norm();
   if (!(diagonal >= Limits::kMinLength)) {
     fail(source, vertex_field,
-         "the shape's extent is " + format_value(diagonal) + " m, below " +
-             format_value(Limits::kMinLength) + " m (collapsed)");
+         {Sentence::kNativeCollapsed, {format_value(diagonal), format_value(Limits::kMinLength)}});
   }
   for (std::size_t f = 0; f < triangles.size(); ++f) {
     // Relative to the extent: 1e-14 is far below what a convex hull of distinct points gives
     // and far above rounding of exactly collinear points.
     if (!(shape.face_normal_scaled(f).norm() > 1e-14 * diagonal * diagonal)) {
-      fail(source, triangle_field, "triangle " + std::to_string(f) + " has zero area (degenerate)");
+      fail(source, triangle_field, {Sentence::kNativeZeroArea, {std::to_string(f)}});
     }
   }
   const double volume = mass_properties(shape).volume;
   if (!(volume > 0.0)) {
-    fail(source, triangle_field,
-         "volume " + format_value(volume) +
-             " m^3 is not positive: the triangles turn clockwise seen from outside (inside out, "
-             "e.g. mirrored)");
+    fail(source, triangle_field, {Sentence::kNativeInsideOut, {format_value(volume)}});
   }
   const double tolerance = Limits::kConvexTolerance * diagonal;
   for (std::size_t f = 0; f < triangles.size(); ++f) {
@@ -173,9 +166,9 @@ void check_shape(const ConvexPolyhedron& shape, std::size_t s, std::uint64_t ver
       const double height = normal.dot(vertices[v]) - offset;
       if (height > tolerance) {
         fail(source, vertex_field,
-             "vertex " + std::to_string(v) + " lies " + format_value(height) +
-                 " m outside the plane of triangle " + std::to_string(f) +
-                 ": not convex (tolerance " + format_value(tolerance) + " m)");
+             {Sentence::kNativeNotConvex,
+              {std::to_string(v), format_value(height), std::to_string(f),
+               format_value(tolerance)}});
       }
     }
   }
@@ -189,38 +182,37 @@ void check_particles(const Packing& packing, const std::vector<double>& largest,
     const std::string index = "[" + std::to_string(i) + "]";
     if (p.shape >= shape_count) {
       fail(source, "/particles/shape" + index + " = " + std::to_string(p.shape),
-           "no such shape (the file has " + std::to_string(shape_count) + ")");
+           {Sentence::kNativeNoSuchShape, {std::to_string(shape_count)}});
     }
     const Vec3& x = p.pose.position;
     if (!x.allFinite() || !(x.cwiseAbs().maxCoeff() <= Limits::kMaxLength)) {
       fail(source,
            "/particles/position" + index + " = (" + format_value(x.x()) + ", " +
                format_value(x.y()) + ", " + format_value(x.z()) + ")",
-           "outside " + range_text(-Limits::kMaxLength, Limits::kMaxLength) + " m");
+           {Sentence::kNativeOutsideMetres, {range_text(-Limits::kMaxLength, Limits::kMaxLength)}});
     }
     const double norm_error = std::abs(p.pose.rotation.squaredNorm() - 1.0);
     if (!(norm_error <= Limits::kRotationTolerance)) {
       fail(source, "/particles/rotation" + index,
-           "|q|^2 = " + format_value(p.pose.rotation.squaredNorm()) +
-               ", not a unit quaternion (tolerance " + format_value(Limits::kRotationTolerance) +
-               ")");
+           {Sentence::kNativeNotUnitQuaternion,
+            {format_value(p.pose.rotation.squaredNorm()),
+             format_value(Limits::kRotationTolerance)}});
     }
     if (!is_within(p.scale, Limits::kMinScale, Limits::kMaxScale)) {
       fail(source, "/particles/scale" + index + " = " + format_value(p.scale),
-           "outside " + range_text(Limits::kMinScale, Limits::kMaxScale));
+           {Sentence::kNativeOutside, {range_text(Limits::kMinScale, Limits::kMaxScale)}});
     }
     const double world_largest = p.scale * largest[p.shape];
     const double world_diagonal = p.scale * diagonal[p.shape];
     if (!(world_largest <= Limits::kMaxLength) || !(world_diagonal >= Limits::kMinLength)) {
       fail(source, "/particles/scale" + index + " = " + format_value(p.scale),
-           "makes shape " + std::to_string(p.shape) + " " + format_value(world_diagonal) +
-               " m across with coordinates up to " + format_value(world_largest) +
-               " m; allowed: at least " + format_value(Limits::kMinLength) + " m across, " +
-               "coordinates up to " + format_value(Limits::kMaxLength) + " m");
+           {Sentence::kNativeScaleSize,
+            {std::to_string(p.shape), format_value(world_diagonal), format_value(world_largest),
+             format_value(Limits::kMinLength), format_value(Limits::kMaxLength)}});
     }
     if (!is_within(p.control_radius, 0.0, Limits::kMaxLength)) {
       fail(source, "/particles/control_radius" + index + " = " + format_value(p.control_radius),
-           "outside " + range_text(0.0, Limits::kMaxLength) + " m");
+           {Sentence::kNativeOutsideMetres, {range_text(0.0, Limits::kMaxLength)}});
     }
   }
 }
@@ -228,6 +220,17 @@ void check_particles(const Packing& packing, const std::vector<double>& largest,
 }  // namespace
 
 namespace native_detail {
+
+void fail_field(const std::string& source, const Wording& field, const Wording& reason,
+                const std::vector<WordedValue>& words) {
+  const std::string field_text = english(field);
+  const std::string reason_text = english(reason);
+  FormatError error(Wording{Sentence::kFieldInvalid, {source, field_text, reason_text}});
+  if (field.sentence != Sentence::kText) error.word_value(field_text, field);
+  error.word_value(reason_text, reason);
+  for (const WordedValue& each : words) error.word_value(each.text, each.wording);
+  throw error;
+}
 
 std::vector<double> container_values(const Container& container) {
   std::vector<double> values;
@@ -246,9 +249,10 @@ void check_container_values(const ContainerKindInfo& kind, const std::vector<dou
     const double value = values.at(field++);
     const double lo = is_used ? Limits::kMinLength : 0.0;
     if (!is_within(value, lo, Limits::kMaxLength)) {
+      const std::string range = range_text(lo, Limits::kMaxLength);
       fail(source, std::string("/container/") + name + " = " + format_value(value),
-           "outside " + range_text(lo, Limits::kMaxLength) + " m" +
-               (is_used ? std::string(" (a ") + kind.name + " needs it > 0)" : std::string()));
+           is_used ? Wording{Sentence::kNativeContainerNeeds, {range, kind.name}}
+                   : Wording{Sentence::kNativeOutsideMetres, {range}});
     }
   };
   for (const ContainerKindInfo& each : container_kinds()) {

@@ -100,8 +100,9 @@ FileList list_all_files(const std::vector<std::string>& paths) {
 struct Outcome {
   std::optional<LibraryShape> shape;
   ErrorKind kind = ErrorKind::kFormatError;
-  std::string message;  // without the file name
-  Wording wording;      // the whole message (the file name first)
+  std::string message;              // without the file name
+  Wording wording;                  // the whole message (the file name first)
+  std::vector<WordedValue> worded;  // its values that are sentences of their own
 };
 
 Outcome import_file(const std::string& path, const std::string& name,
@@ -134,11 +135,17 @@ Outcome import_file(const std::string& path, const std::string& name,
           Sentence::kMeshFileSize,
           {path, field.values.front(), size.values.front(), error.wording().values.front()}};
     } else {
-      outcome.wording = error.wording().sentence != Sentence::kText && !error.has_value() &&
-                                !error.wording().values.empty() &&
-                                error.wording().values.front() == path
-                            ? error.wording()
-                            : Wording{Sentence::kMeshProblem, {path, message}};
+      const bool is_sentence = error.wording().sentence != Sentence::kText && !error.has_value();
+      if (is_sentence && !error.wording().values.empty() &&
+          error.wording().values.front() == path) {
+        outcome.wording = error.wording();
+      } else {
+        outcome.wording = {Sentence::kMeshProblem, {path, message}};
+        // A sentence that does not name the file ("mesh has no convex hull: ...") follows it.
+        if (is_sentence && message == error.what()) outcome.worded = {{message, error.wording()}};
+      }
+      outcome.worded.insert(outcome.worded.end(), error.worded_values().begin(),
+                            error.worded_values().end());
     }
   } catch (const std::bad_alloc&) {
     outcome.kind = ErrorKind::kLimitExceeded;
@@ -164,6 +171,7 @@ ShapeLibrary load_shape_library(const ShapeLibraryOptions& options) {
   library.source = options.paths_text();
   library.units = options.import.units;
   library.shapes.reserve(files.size());
+  const Outcome* first_skipped = nullptr;
   for (std::size_t i = 0; i < files.size(); ++i) {
     Outcome& outcome = outcomes[i];
     if (outcome.shape) {
@@ -171,15 +179,28 @@ ShapeLibrary load_shape_library(const ShapeLibraryOptions& options) {
       continue;
     }
     if (!options.is_skipping_bad) {
-      throw Error(outcome.kind, outcome.wording);
+      Error error(outcome.kind, outcome.wording);
+      for (WordedValue& worded : outcome.worded) {
+        error.word_value(std::move(worded.text), std::move(worded.wording));
+      }
+      throw error;
     }
     library.skipped.push_back(files[i].second + ": " + outcome.message);
+    if (first_skipped == nullptr) first_skipped = &outcome;
   }
   if (library.shapes.empty()) {
-    throw InvalidInput(
+    const std::string first = clipped(library.skipped.front(), 160);
+    InvalidInput error(
         "particle.library", aggpack::quoted(library.source),
-        Wording{Sentence::kLibraryAllSkipped,
-                {std::to_string(files.size()), clipped(library.skipped.front(), 160)}});
+        Wording{Sentence::kLibraryAllSkipped, {std::to_string(files.size()), first}});
+    // The first file's reason in its own sentence (it names the file by its path).
+    if (first_skipped != nullptr) {
+      error.word_value(first, first_skipped->wording);
+      for (const WordedValue& worded : first_skipped->worded) {
+        error.word_value(worded.text, worded.wording);
+      }
+    }
+    throw error;
   }
   return library;
 }

@@ -85,14 +85,14 @@ std::string mesh_here(const Plc& plc, const std::string& switches) {
   try {
     tetrahedralize(letters.data(), &in, &out);
   } catch (int code) {
-    throw Failure{"TetGen error code " + std::to_string(code) +
-                  (code == 3   ? " (facets intersect)"
-                   : code == 1 ? " (out of memory)"
-                               : "")};
+    throw tetgen_failure({code == 3   ? Sentence::kTetGenFacetsIntersect
+                          : code == 1 ? Sentence::kTetGenOutOfMemory
+                                      : Sentence::kTetGenErrorCode,
+                          {std::to_string(code)}});
   }
   if (out.numberofcorners != 4 || out.numberoftetrahedra <= 0 ||
       out.numberofpoints < in.numberofpoints || out.numberoftetrahedronattributes < 1) {
-    throw Failure{"TetGen made no tetrahedra"};
+    throw tetgen_failure({Sentence::kTetGenNoTetrahedra, {}});
   }
   const std::uint64_t counts[2] = {static_cast<std::uint64_t>(out.numberofpoints),
                                    static_cast<std::uint64_t>(out.numberoftetrahedra)};
@@ -136,11 +136,12 @@ std::string intersecting_markers_here(const Plc& plc) {
 
 PlcMesh deserialize(const std::string& bytes) {
   std::uint64_t counts[2] = {0, 0};
-  if (bytes.size() < sizeof counts) throw Failure{"malformed result from the worker process"};
+  const Wording malformed{Sentence::kWorkerMalformed, {}};
+  if (bytes.size() < sizeof counts) throw tetgen_failure(malformed);
   std::memcpy(counts, bytes.data(), sizeof counts);
   const std::uint64_t expected =
       sizeof counts + counts[0] * 3 * sizeof(double) + counts[1] * (4 * 4 + sizeof(int));
-  if (bytes.size() != expected) throw Failure{"malformed result from the worker process"};
+  if (bytes.size() != expected) throw tetgen_failure(malformed);
   const char* at = bytes.data() + sizeof counts;
   PlcMesh mesh;
   mesh.nodes.resize(counts[0]);
@@ -155,7 +156,7 @@ PlcMesh deserialize(const std::string& bytes) {
   std::memcpy(mesh.attributes.data(), at, counts[1] * sizeof(int));
   for (Tetrahedron& tet : mesh.tetrahedra) {
     for (const std::uint32_t node : tet) {
-      if (node >= mesh.nodes.size()) throw Failure{"malformed result from the worker process"};
+      if (node >= mesh.nodes.size()) throw tetgen_failure(malformed);
     }
     // TetGen's orientation convention is the opposite of ours; fix by sign, not by belief.
     if (tetra_volume(mesh.nodes[tet[0]], mesh.nodes[tet[1]], mesh.nodes[tet[2]],
@@ -175,12 +176,13 @@ PlcMesh tetrahedralize_plc(const Plc& plc, const std::string& switches, double t
   const IsolatedOutcome outcome =
       run_isolated(1, work, {.workers = 1, .time_limit = time_limit}).front();
   std::string bytes;
-  std::string failure;
-  if (worker_result(outcome, bytes, failure)) {
+  Wording failure;
+  std::vector<WordedValue> words;  // values of the failure that are sentences of their own
+  if (worker_result(outcome, bytes, failure, words)) {
     try {
       return deserialize(bytes);
     } catch (const Failure& malformed) {
-      failure = malformed.what;
+      failure = malformed.wording;
     }
   }
   // Ask TetGen which facets meet, so the message can name the particles.
@@ -188,20 +190,33 @@ PlcMesh tetrahedralize_plc(const Plc& plc, const std::string& switches, double t
       run_isolated(1, [&](std::size_t) { return intersecting_markers_here(plc); },
                    {.workers = 1, .time_limit = time_limit})
           .front();
+  std::vector<Wording> surfaces;
   if (detected.is_done && !detected.bytes.empty()) {
-    failure += "; TetGen finds these surfaces intersecting:";
     std::istringstream markers(detected.bytes);
     int marker = 0;
     while (markers >> marker) {
-      failure += marker < 0        ? " wall " + std::to_string(-marker)
-                 : marker % 2 == 0 ? " aggregate " + std::to_string(marker / 2)
-                                   : " ITZ layer of particle " + std::to_string(marker / 2);
-      failure += ',';
+      surfaces.push_back(marker < 0 ? Wording{Sentence::kSurfaceWall, {std::to_string(-marker)}}
+                         : marker % 2 == 0
+                             ? Wording{Sentence::kSurfaceAggregate, {std::to_string(marker / 2)}}
+                             : Wording{Sentence::kSurfaceItzLayer, {std::to_string(marker / 2)}});
     }
-    failure.pop_back();
   }
-  throw LimitExceeded(Wording{Sentence::kMesomodelMesh, {}}, Wording{Sentence::kText, {failure}},
+  if (!surfaces.empty()) {
+    // "wall 1, aggregate 2, ...": each surface and each tail of the list a sentence of its own.
+    Wording list = surfaces.back();
+    for (auto surface = surfaces.rbegin() + 1; surface != surfaces.rend(); ++surface) {
+      words.push_back({english(list), list});
+      words.push_back({english(*surface), *surface});
+      list = {Sentence::kSurfaceList, {english(*surface), english(list)}};
+    }
+    words.push_back({english(list), list});
+    if (failure.sentence != Sentence::kText) words.push_back({english(failure), failure});
+    failure = {Sentence::kTetGenIntersecting, {english(failure), english(list)}};
+  }
+  LimitExceeded error(Wording{Sentence::kMesomodelMesh, {}}, failure,
                       Wording{Sentence::kTetGenCanMesh, {"packer.gap", "container.wall_gap"}});
+  for (WordedValue& each : words) error.word_value(std::move(each.text), std::move(each.wording));
+  throw error;
 }
 
 #else

@@ -88,11 +88,11 @@ TetMesh mesh_here(const ConvexPolyhedron& body, const TetOptions& options) {
   try {
     tetrahedralize(switches.data(), &in, &out);
   } catch (int code) {
-    throw Failure{"TetGen error code " + std::to_string(code)};
+    throw detail::tetgen_failure({Sentence::kTetGenErrorCode, {std::to_string(code)}});
   }
   if (out.numberofcorners != 4 || out.numberoftetrahedra <= 0 ||
       out.numberofpoints < in.numberofpoints) {
-    throw Failure{"TetGen made no tetrahedra"};
+    throw detail::tetgen_failure({Sentence::kTetGenNoTetrahedra, {}});
   }
 
   TetMesh mesh;
@@ -104,7 +104,7 @@ TetMesh mesh_here(const ConvexPolyhedron& body, const TetOptions& options) {
   // vertex i), so check rather than assume.
   for (std::size_t i = 0; i < body.vertex_count(); ++i) {
     if (mesh.nodes[i] != body.vertices()[i]) {
-      throw Failure{"TetGen moved input vertex " + std::to_string(i)};
+      throw Failure{"TetGen moved input vertex " + std::to_string(i), {}};
     }
   }
   mesh.tetrahedra.resize(static_cast<std::size_t>(out.numberoftetrahedra));

@@ -202,9 +202,8 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   {
     const VerifyResult check = verify(start, {.gap = options.gap});
     if (!check.is_ok) {
-      throw InvalidInput(
-          "start packing", check.message,
-          "an overlap-free packing inside its container (gap " + number(options.gap) + " m)");
+      throw InvalidInput(Wording{Sentence::kStartPacking, {}}, check.wording,
+                         Wording{Sentence::kOverlapFreeStart, {number(options.gap)}});
     }
   }
   detail::Hpmc engine(start, options.gap, options.seed, options.max_compression);
@@ -440,7 +439,9 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   if (is_bed) measure_bulk(packing, report);
   const VerifyResult check = verify(packing, {.gap = options.gap});
   if (!check.is_ok) {
-    throw Error(ErrorKind::kInvalidInput, Wording{Sentence::kDensifyVerifyFailed, {check.message}});
+    Error error(ErrorKind::kInvalidInput, Wording{Sentence::kDensifyVerifyFailed, {check.message}});
+    error.word_value(check.message, check.wording);
+    throw error;
   }
   report.verified_pairs = check.pairs_tested;
   report.min_distance = check.min_distance;

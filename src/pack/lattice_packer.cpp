@@ -251,7 +251,7 @@ PackResult pack_lattice(const LatticeOptions& options, const PackControl& contro
   if (options.files.is_used()) {
     if (!options.files.loaded) {
       throw InvalidInput("particle.library", options.files.options.paths_text(),
-                         "a library loaded by the pipeline (pack()) before the packer runs");
+                         Wording{Sentence::kLibraryLoadedFirst, {}});
     }
     return pack_lattice_files(options, lattice, control);
   }

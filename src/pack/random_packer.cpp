@@ -105,7 +105,7 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   validate(options);
   if (options.shape.files.is_used() && !options.shape.files.loaded) {
     throw InvalidInput("particle.library", options.shape.files.options.paths_text(),
-                       "a library loaded by the pipeline (pack()) before the packer runs");
+                       Wording{Sentence::kLibraryLoadedFirst, {}});
   }
   ProgressReporter progress(control);
   PackResult result;

@@ -111,9 +111,10 @@ void validate(const RandomPackOptions& options) {
                                (options.shape.alpha + 0.2 * (1.0 - options.shape.alpha)) /
                                std::sqrt(3.0);
   if (2.0 * smallest_ball > interior) {
-    throw InvalidInput("grading",
-                       "smallest size " + format_value(smallest_size(options.grading)) + " m",
-                       Wording{Sentence::kGradingFitsInterior, {format_value(interior)}});
+    throw InvalidInput(
+        Wording{Sentence::kText, {"grading"}},
+        Wording{Sentence::kSmallestSize, {format_value(smallest_size(options.grading))}},
+        Wording{Sentence::kGradingFitsInterior, {format_value(interior)}});
   }
   if (options.target == PackTarget::kVolumeFraction) {
     // Lower bound on the list length: particles no larger than their control spheres.

@@ -57,8 +57,10 @@ VerifyResult verify(const Packing& packing, const VerifyOptions& options) {
     result.min_wall_clearance = std::min(result.min_wall_clearance, clearance);
     if (clearance < container.wall_gap - slack) {
       if (result.outside_particles == 0) {
-        result.message = "particle " + std::to_string(i) + " is " + format_value(clearance) +
-                         " m from the walls (wall_gap " + format_value(container.wall_gap) + " m)";
+        result.wording = {
+            Sentence::kVerifyFromWalls,
+            {std::to_string(i), format_value(clearance), format_value(container.wall_gap)}};
+        result.message = english(result.wording);
       }
       ++result.outside_particles;
     }
@@ -96,9 +98,10 @@ VerifyResult verify(const Packing& packing, const VerifyOptions& options) {
     result.min_distance = std::min(result.min_distance, distance[k]);
     if (distance[k] < options.gap - slack || (options.gap == 0.0 && distance[k] <= 0.0)) {
       if (result.overlapping_pairs == 0 && result.outside_particles == 0) {
-        result.message = "particles " + std::to_string(pairs[k].first) + " and " +
-                         std::to_string(pairs[k].second) + " are " + format_value(distance[k]) +
-                         " m apart (gap " + format_value(options.gap) + " m)";
+        result.wording = {Sentence::kVerifyApart,
+                          {std::to_string(pairs[k].first), std::to_string(pairs[k].second),
+                           format_value(distance[k]), format_value(options.gap)}};
+        result.message = english(result.wording);
       }
       ++result.overlapping_pairs;
     }

@@ -94,7 +94,7 @@ LibraryShape import_shape(const TriangleMesh& mesh, const ShapeImportOptions& op
       throw FormatError(Wording{Sentence::kMeshNoHull,
                                 {named, code.values.at(0), error.wording().values.front()}});
     }
-    throw FormatError(std::string("mesh has no convex hull: ") + error.what());
+    throw FormatError(Wording{Sentence::kMeshNoHullReason, {error.what()}});
   }
   shape.hull_vertices = hull.vertex_count();
   shape.hull_volume = mass_properties(hull).volume;

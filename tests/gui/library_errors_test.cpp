@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -23,14 +24,19 @@
 #include "aggpack/core/error.h"
 #include "aggpack/geom/convex_polyhedron.h"
 #include "aggpack/io/export.h"
+#include "aggpack/io/native.h"
 #include "aggpack/io/shape_library_files.h"
 #include "aggpack/mesh/mesomodel.h"
+#include "aggpack/pack/dense_packer.h"
+#include "aggpack/pack/lattice_packer.h"
+#include "aggpack/pack/random_packer.h"
 #include "aggpack/shape/descriptors.h"
 #include "gui/words.h"
 #include "i18n.h"
 #include "library_words.h"
 #include "support/mesh_files.h"
 #include "support/packings.h"
+#include "support/paths.h"
 
 namespace aggpack::gui {
 namespace {
@@ -60,14 +66,31 @@ std::string problems_in_chinese(const Error& error, std::string& chinese) {
     parts.push_back(&error.value_wording());
     parts.push_back(&error.field_wording());  // last: a field's name is a name
   }
+  // A value that is a sentence of its own (Error::worded_values) is worded as one: it must be a
+  // sentence, and its own values are checked as the error's.
+  for (const WordedValue& worded : error.worded_values()) {
+    if (worded.wording.sentence == Sentence::kText) {
+      problems += " worded value '" + worded.text + "' is no sentence;";
+    }
+    parts.push_back(&worded.wording);
+  }
+  const auto is_worded = [&](const std::string& value) {
+    return std::any_of(error.worded_values().begin(), error.worded_values().end(),
+                       [&](const WordedValue& worded) { return worded.text == value; });
+  };
   std::set<std::string> value_words;
   for (const Wording* part : parts) {
     for (const std::string& value : part->values) {
+      if (is_worded(value)) continue;
       // Words in a value (a path, a number with its unit) are names; English words in a value
-      // with spaces are prose, unless the window words it (a Phrase* sentence).
+      // with spaces are prose, unless the window words it (a Phrase* sentence) or it is a path
+      // ("/container/width = 0", a file's data by name).
       const std::set<std::string> words = test_words::english_words_of(value);
       value_words.insert(words.begin(), words.end());
-      if (part == &error.field_wording() || value.find(' ') == std::string::npos) continue;
+      if (part == &error.field_wording() || value.find(' ') == std::string::npos ||
+          value.front() == '/') {
+        continue;
+      }
       std::size_t english = 0;
       for (const std::string& word : words) english += is_name(word) ? 0 : 1;
       const std::string worded =
@@ -168,6 +191,15 @@ TEST(LibraryErrors, LimitsCheckedBeforeAPack) {
   };
   expect_chinese_error(config_with({"packer.target_count=100000000"}));
   expect_chinese_error(config_with({"packer.target_count=10", "packer.shape_library=1000000"}));
+  // Particles too large for the container's interior: the value is a phrase ("smallest size").
+  try {
+    config_with({"container.length=0.01", "container.width=0.01", "container.depth=0.01",
+                 "particle.radius=0.1"})();
+    ADD_FAILURE() << "particles larger than the container were accepted";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.value_wording().sentence, Sentence::kSmallestSize) << error.what();
+    EXPECT_NE(expect_worded(error).find("最小粒径"), std::string::npos);
+  }
   ::setenv("AGGPACK_MEMORY_LIMIT", "1K", 1);
   expect_chinese_error(config_with({"packer.target_count=1000"}));
   ::setenv("AGGPACK_MEMORY_LIMIT", "lots", 1);
@@ -197,6 +229,33 @@ TEST(LibraryErrors, ShapeLibraryFiles) {
   expect_chinese_error(load(scratch.path("bad.obj")));
   std::ofstream(scratch.path("junk.stl")) << "junk\n";
   expect_chinese_error(load(scratch.path("junk.stl")));
+}
+
+TEST(LibraryErrors, EveryFileSkipped) {
+  // particle.library_skip_bad with no usable file: the first file's reason in its own sentence.
+  const ErrorsScratch scratch;
+  TriangleMesh open = test::dented_cube(10, 3);
+  open.triangles.pop_back();
+  fs::create_directories(scratch.path("rocks"));
+  std::ofstream(scratch.path("rocks/a.obj")) << test::obj_text(open);
+  std::ofstream(scratch.path("rocks/b.stl")) << "junk\n";
+  ShapeLibraryOptions options;
+  options.paths = {scratch.path("rocks")};
+  options.is_skipping_bad = true;
+  try {
+    (void)load_shape_library(options);
+    ADD_FAILURE() << "a library of no usable file was loaded";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.wording().sentence, Sentence::kLibraryAllSkipped) << error.what();
+    ASSERT_EQ(error.worded_values().size(), 1U) << error.what();
+    EXPECT_EQ(error.worded_values().front().wording.sentence, Sentence::kMeshOpen);
+    const std::string chinese = expect_worded(error);
+    EXPECT_NE(chinese.find("全部 2 个都被跳过"), std::string::npos) << chinese;
+    EXPECT_NE(chinese.find("网格不封闭"), std::string::npos) << chinese;
+    // English: the message as the command line prints it, the file by its name.
+    EXPECT_NE(std::string(error.what()).find("first: a.obj: mesh is open"), std::string::npos)
+        << error.what();
+  }
 }
 
 // A library of one file (particle.library), loaded as Pack loads it.
@@ -330,6 +389,7 @@ TEST(LibraryErrors, MeshesThatAreNoParticle) {
 
 // Errors no test can provoke (a worker process or OpenGL that fails, a format's id limit, checks
 // that only a bug reaches), as the library words them: each is a sentence worded in Chinese.
+// (The checks a misused library meets are provoked in MisusedLibrary.)
 TEST(LibraryErrors, ErrorsNoTestProvokes) {
   expect_worded(IoError(Wording{Sentence::kWorkerPipe, {"EMFILE"}}));
   expect_worded(IoError(Wording{Sentence::kWorkerStart, {"EAGAIN"}}));
@@ -340,13 +400,76 @@ TEST(LibraryErrors, ErrorsNoTestProvokes) {
   expect_worded(LimitExceeded(Wording{Sentence::kFormatIds, {"LS-DYNA"}},
                               Wording{Sentence::kText, {"100000000"}},
                               Wording{Sentence::kAtMost, {"99999999"}}));
-  expect_worded(Error(ErrorKind::kInvalidInput, Wording{Sentence::kDensifyVerifyFailed, {"3"}}));
+  // The densifier's final check, worded with verify()'s finding.
+  const Wording apart{Sentence::kVerifyApart, {"3", "5", "-0.001", "0"}};
+  Error verify_failed(ErrorKind::kInvalidInput,
+                      Wording{Sentence::kDensifyVerifyFailed, {english(apart)}});
+  verify_failed.word_value(english(apart), apart);
+  EXPECT_EQ(expect_worded(verify_failed).find("are"), std::string::npos);
   expect_worded(Error(ErrorKind::kInvalidInput, Wording{Sentence::kBrokenAdjacency, {}}));
+  // TetGen's own failure on a mesomodel: facets that intersect, and the surfaces it names.
+  const Wording code{Sentence::kTetGenFacetsIntersect, {"3"}};
+  const Wording wall{Sentence::kSurfaceWall, {"1"}};
+  const Wording layer{Sentence::kSurfaceItzLayer, {"4"}};
+  const Wording surfaces{Sentence::kSurfaceList, {english(wall), english(layer)}};
+  LimitExceeded tetgen(Wording{Sentence::kMesomodelMesh, {}},
+                       Wording{Sentence::kTetGenIntersecting, {english(code), english(surfaces)}},
+                       Wording{Sentence::kTetGenCanMesh, {"packer.gap", "container.wall_gap"}});
+  for (const Wording* part : {&code, &wall, &layer, &surfaces}) {
+    tetgen.word_value(english(*part), *part);
+  }
+  const std::string intersecting = expect_worded(tetgen);
+  EXPECT_NE(intersecting.find("壁面 1、颗粒 4 的界面过渡区层"), std::string::npos) << intersecting;
+  expect_worded(InvalidInput(Wording{Sentence::kShapeVolume, {"3"}},
+                             Wording{Sentence::kText, {"-1"}},
+                             Wording{Sentence::kClosedConvexBody, {}}));
   // A shape of no volume, driven through the library: an inside-out cube.
   const ConvexPolyhedron cube = make_box(Vec3::Zero(), Vec3::Ones());
   std::vector<Triangle> flipped = cube.triangles();
   for (Triangle& t : flipped) std::swap(t[1], t[2]);
   expect_chinese_error([&] { (void)describe(ConvexPolyhedron(cube.vertices(), flipped)); });
+}
+
+TEST(LibraryErrors, DamagedPackingFiles) {
+  // The damaged native files of tests/io/fixtures/bad-inputs (README.md there), read as Open
+  // reads them: the field (a name) and the reason in words, the reason a sentence of its own.
+  std::set<Sentence> reasons;
+  std::size_t damaged = 0;
+  for (const auto& entry : fs::directory_iterator(test::bad_inputs_dir())) {
+    if (entry.path().extension() != ".h5") continue;
+    try {
+      (void)read_packing(entry.path().string());
+    } catch (const Error& error) {
+      ++damaged;
+      for (const WordedValue& worded : error.worded_values()) {
+        reasons.insert(worded.wording.sentence);
+      }
+      expect_worded(error);
+    }
+  }
+  EXPECT_GE(damaged, 15U);
+  EXPECT_GE(reasons.size(), 12U) << "the fixtures' reasons, each its own sentence";
+  // A text file named .h5 and a missing one: the file's own sentences.
+  const ErrorsScratch scratch;
+  std::ofstream(scratch.path("notes.h5")) << "not a packing\n";
+  expect_chinese_error([&] { (void)read_packing(scratch.path("notes.h5")); });
+  expect_chinese_error([&] { (void)read_packing(scratch.path("missing.h5")); });
+}
+
+// Checks a caller of the library meets only by misusing it (the window never does), driven
+// through the library.
+TEST(LibraryErrors, MisusedLibrary) {
+  // densify() of a start packing whose particles overlap.
+  const std::string start =
+      expect_chinese_error([] { (void)densify(two_cubes(0.3, 0.35), DensifyOptions{}); });
+  EXPECT_NE(start.find("颗粒 0 与 1 相距"), std::string::npos) << start;
+  // A packer given a shape library the pipeline has not loaded.
+  RandomPackOptions random;
+  random.shape.files.options.paths = {"rocks/"};
+  expect_chinese_error([&] { (void)pack_random(random); });
+  LatticeOptions lattice;
+  lattice.files.options.paths = {"rocks/"};
+  expect_chinese_error([&] { (void)pack_lattice(lattice); });
 }
 
 TEST(LibraryErrors, Mesomodel) {
@@ -356,6 +479,25 @@ TEST(LibraryErrors, Mesomodel) {
   options.itz_thickness = 0.0;  // touching cubes
   expect_chinese_error([&] { (void)build_mesomodel(two_cubes(0.3, 0.5), options); });
   expect_chinese_error([&] { (void)build_mesomodel(two_cubes(0.1, 0.5), options); });  // a wall
+}
+
+TEST(LibraryErrors, MesomodelTetGenStopped) {
+  // TetGen stopped by the time limit (a fine mortar mesh takes far longer than 1 ms): the worker's
+  // failure in words, inside the mesomodel's refusal.
+  MesoOptions options;
+  options.mortar_size = 0.05;
+  options.time_limit = 0.001;
+  try {
+    (void)build_mesomodel(two_cubes(0.3, 0.7), options);
+    ADD_FAILURE() << "TetGen finished within 1 ms";
+  } catch (const InvalidInput& error) {
+    if (error.field() != "mesomodel") ADD_FAILURE() << error.what();
+    GTEST_SKIP() << error.what();  // a build without TetGen
+  } catch (const Error& error) {
+    EXPECT_EQ(error.value_wording().sentence, Sentence::kTetGenWorker) << error.what();
+    const std::string chinese = expect_worded(error);
+    EXPECT_NE(chinese.find("超时"), std::string::npos) << chinese;
+  }
 }
 
 TEST(LibraryErrors, SolverDeckFields) {

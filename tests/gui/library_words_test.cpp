@@ -5,12 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <filesystem>
 #include <fstream>
+#include <new>
 #include <regex>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "aggpack/config/config.h"
@@ -130,8 +134,101 @@ TEST(LibraryWords, ReadErrorsInChinese) {
 }
 
 TEST(LibraryWords, OtherErrorsAreNamedAsErrors) {
-  const std::runtime_error other("std::bad_alloc");
-  EXPECT_EQ(in_chinese([&] { return error_words(other); }), "错误：std::bad_alloc");
+  // Not the library's: a bug (its what() a detail), out of memory, an operating-system failure.
+  const std::runtime_error other("basic_string::_M_create");
+  EXPECT_EQ(in_chinese([&] { return error_words(other); }),
+            "内部错误（程序缺陷，请报告）：basic_string::_M_create");
+  EXPECT_EQ(error_words(other),
+            "Internal error (a bug, please report it): basic_string::_M_create");
+  EXPECT_EQ(in_chinese([&] { return error_words(std::bad_alloc()); }), "错误：内存不足。");
+  const std::system_error system(std::make_error_code(std::errc::no_space_on_device), "write");
+  EXPECT_EQ(in_chinese([&] { return error_words(system); }), "错误：" + std::string(system.what()));
+}
+
+// The panel's keys (config_panel.cpp draws these tables; particle.library's list included).
+std::vector<std::size_t> panel_keys() {
+  std::vector<std::size_t> indices;
+  const auto& keys = pack_schema().keys;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::string table = keys[i].name.substr(0, keys[i].name.find('.'));
+    if ((table == "container" || table == "particle" || table == "packer" || table == "grading" ||
+         table == "densify") &&
+        keys[i].type != ValueType::kPath) {
+      indices.push_back(i);
+    }
+  }
+  return indices;
+}
+
+// What a text of a key says in English that is no name: a key ("packer.kind"), a number, a name
+// with an underscore ("radius_max"), a configuration word ("random") or true | false stay.
+std::set<std::string> english_prose(const std::string& text) {
+  // Keys and numbers in exponent form ("1e12") are no words.
+  static const std::regex names("[a-z_]+\\.[a-z_]+|[0-9.]+e[-+]?[0-9]+");
+  std::set<std::string> prose;
+  for (const std::string& word : english_words_of(std::regex_replace(text, names, ""))) {
+    bool is_name = word == "true" || word == "false" || word.find('_') != std::string::npos;
+    for (const auto& key : pack_schema().keys) {
+      is_name = is_name || std::find(key.words.begin(), key.words.end(), word) != key.words.end();
+    }
+    if (!is_name) prose.insert(word);
+  }
+  return prose;
+}
+
+TEST(LibraryWords, EveryPanelKeyNoteAndDefaultHasChinese) {
+  // The tooltip's allowed values and default, and a field's error, are worded from the key's
+  // parts: a note or default words must be a sentence with Chinese words (error_words.h), and
+  // the Chinese window shows no English prose of them.
+  const auto& schema = pack_schema();
+  const auto views = key_views(schema);
+  std::size_t notes = 0;
+  std::size_t defaults = 0;
+  for (const std::size_t i : panel_keys()) {
+    const Key<PackConfig>& key = schema.keys[i];
+    for (const Wording* words : {&key.note, &key.default_text}) {
+      if (!has_words(*words)) continue;
+      ++(words == &key.note ? notes : defaults);
+      EXPECT_NE(words->sentence, Sentence::kText) << key.name << ": free-form English words";
+      const char* chinese = catalogue_text(Language::kChinese, sentence_text(words->sentence));
+      ASSERT_NE(chinese, nullptr) << key.name << " has no Chinese words (zh_CN.h)";
+    }
+    const std::string default_english =
+        default_text(views[i], *key.default_value, key.default_from, key.default_text);
+    // English: the library's own words (docs/config.md, `aggpack config keys`).
+    EXPECT_EQ(allowed_words(views[i]), allowed_text(views[i])) << key.name;
+    EXPECT_EQ(default_words(views[i], *key.default_value, key.default_from, key.default_text),
+              default_english)
+        << key.name;
+    const std::string allowed = in_chinese([&] { return allowed_words(views[i]); });
+    const std::string shown = in_chinese([&] {
+      return default_words(views[i], *key.default_value, key.default_from, key.default_text);
+    });
+    EXPECT_EQ(english_prose(allowed), std::set<std::string>()) << key.name << ": " << allowed;
+    EXPECT_EQ(english_prose(shown), std::set<std::string>()) << key.name << ": " << shown;
+    if (!english_prose(allowed_text(views[i])).empty()) {
+      EXPECT_TRUE(has_chinese_text(allowed)) << key.name << ": " << allowed;
+    }
+    if (!english_prose(default_english).empty()) {
+      EXPECT_TRUE(has_chinese_text(shown)) << key.name << ": " << shown;
+    }
+  }
+  EXPECT_GE(notes, 9U);     // the panel's rules beside a range
+  EXPECT_GE(defaults, 3U);  // grading.sieve, packer.target_count, particle.library
+}
+
+TEST(LibraryWords, KeyNotesInChinese) {
+  const auto& schema = pack_schema();
+  const auto views = key_views(schema);
+  auto chinese_allowed = [&](const std::string& name) {
+    const auto* key = schema.find(name);
+    return in_chinese(
+        [&] { return allowed_words(views[static_cast<std::size_t>(key - schema.keys.data())]); });
+  };
+  EXPECT_EQ(chinese_allowed("container.wall_gap"), "[0, 1e6]，小于容器最小尺寸的一半");
+  EXPECT_EQ(chinese_allowed("particle.edge_length"),
+            "[0, 1e6]，仅当 packer.kind = random 时可为 0");
+  EXPECT_EQ(chinese_allowed("particle.library"), "非空路径，或由路径组成的数组");
 }
 
 TEST(LibraryWords, DensifySummaryFromTheReport) {

@@ -31,14 +31,14 @@ inline bool has_chinese_text(const std::string& text) {
 /// Names that stay as they are in every language: the program and other programs (TetGen, Qhull),
 /// formats and file extensions, HDF5 attributes, a configuration value as typed ("true"), the
 /// keywords of a mesh file ("facet normal", "outer loop") and of a PLY header ("element",
-/// "property list").
+/// "property list"), the NUL character.
 inline bool is_kept_name(const std::string& word) {
   static const std::set<std::string> names = {
       "HDF5",  "aggpack", "format_name", "format_version", "true",   "TetGen",
       "ITZ",   "PNG",     "FIFO",        "cgroup",         "ulimit", "STL",
       "ASCII", "OpenGL",  "OBJ",         "facet",          "normal", "outer",
       "loop",  "vertex",  "solid",       "endsolid",       "stl",    "obj",
-      "ply",   "Qhull"};
+      "ply",   "Qhull",   "NUL"};
   static const std::set<std::string> ply_header = {
       "PLY", "format", "element", "property", "list", "face", "end_header", "vertex_indices"};
   return names.count(word) > 0 || ply_header.count(word) > 0;

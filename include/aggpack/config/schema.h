@@ -127,8 +127,10 @@ struct Key {
   std::string unit;                ///< "m", "-", "" (none)
   Range range{};                   ///< numbers and lists
   std::vector<std::string> words;  ///< kWord: the allowed words
-  std::string note;                ///< a rule the range cannot say ("< half the smallest extent")
-  Scope<Target> scope{};           ///< when it has an effect (else: a warning when given)
+  /// A rule the range cannot say ("< half the smallest extent"), in words (error_words.h), or
+  /// none (kText of "").
+  Wording note{};
+  Scope<Target> scope{};  ///< when it has an effect (else: a warning when given)
   /// When the resolved-config writer writes it; empty text (the default) = as `scope`.
   Scope<Target> written{.text = ""};
   std::string doc;          ///< one line
@@ -138,7 +140,8 @@ struct Key {
   std::optional<Value> default_value;
   Presence presence = Presence::kDefaulted;
   std::string default_from;  ///< another key whose value is the default ("particle.radius")
-  std::string default_text;  ///< shown instead of default_value ("(unset)"), or empty
+  /// Words shown instead of default_value ("(unset)"), or none (kText of "").
+  Wording default_text{};
   /// A key that must not be given together with this one while this one applies
   /// ("packer.target_fraction" for packer.target_count), or empty.
   std::string excludes;
@@ -185,7 +188,7 @@ struct KeyView {
   const std::string* unit;
   const Range* range;
   const std::vector<std::string>* words;
-  const std::string* note;
+  const Wording* note;
   const std::vector<std::string>* fields;
 };
 
@@ -233,7 +236,11 @@ std::string read_config_file(const std::string& path);
                            const std::string& field, const std::string& value,
                            const Wording& allowed);
 
-/// "allowed" text of a key: its range (numbers) or words, unit and note.
+/// The allowed part of a key without its note: its range (numbers), its words, or what a path is.
+Wording allowed_rule(const KeyView& key);
+
+/// "allowed" text of a key: allowed_rule, then ", " and its note (a path key with a note: the
+/// note alone, it says what the string is).
 std::string allowed_text(const KeyView& key);
 
 /// One "key = value" line's value text.
@@ -344,9 +351,9 @@ std::string write_values(const Schema<Target>& schema, const Target& target, Wri
 template <typename Target>
 std::string markdown_table(const Schema<Target>& schema, const std::string& table);
 
-/// Text of a key's default for docs and config_keys().
+/// Text of a key's default for docs and config_keys(): `shown` in English when it has words.
 std::string default_text(const KeyView& key, const Value& default_value,
-                         const std::string& default_from, const std::string& shown);
+                         const std::string& default_from, const Wording& shown);
 
 /// Type name for docs ("float", "integer", "string", "boolean", "array").
 const char* type_name(ValueType type);

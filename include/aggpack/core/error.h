@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "aggpack/core/error_words.h"
 
@@ -16,6 +17,13 @@ enum class ErrorKind {
   kIoError,       ///< a file could not be read or written
   kFormatError,   ///< a file was read but its content is wrong (truncated, corrupt, wrong version)
   kLimitExceeded  ///< a computation would exceed a set cap (vertex cap, attempt budget)
+};
+
+/// A value of an error's parts that is a sentence of its own (the first skipped mesh file's
+/// reason inside "all 3 were skipped; first: ..."): its text in the message, and its wording.
+struct WordedValue {
+  std::string text;
+  Wording wording;
 };
 
 /// Base of all aggpack exceptions. Besides its English message, an error carries its parts
@@ -44,6 +52,13 @@ class Error : public std::runtime_error {
   [[nodiscard]] const Wording& value_wording() const { return value_wording_; }
   /// has_value(): what is allowed; else the whole message.
   [[nodiscard]] const Wording& wording() const { return wording_; }
+  /// Values of the parts above that are sentences of their own: a front end words a value
+  /// equal to one's text as its wording. Empty for most errors.
+  [[nodiscard]] const std::vector<WordedValue>& worded_values() const { return worded_values_; }
+  /// Marks `text`, a value of this error's parts, as the sentence `wording` (before throwing).
+  void word_value(std::string text, Wording wording) {
+    worded_values_.push_back({std::move(text), std::move(wording)});
+  }
 
  protected:
   /// A refused value: `message` is the English sentence around field, value and allowed.
@@ -72,6 +87,7 @@ class Error : public std::runtime_error {
   Wording wording_;
   Wording field_wording_;
   Wording value_wording_;
+  std::vector<WordedValue> worded_values_;
 };
 
 /// A parameter outside its allowed range. The message names the field, the value and the range:

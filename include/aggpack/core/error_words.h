@@ -4,11 +4,15 @@
 // text (aggpack-gui's catalogues have one entry per sentence; a missing one fails its test). An
 // error's Wording is a sentence and the values ("{}" in order) that fill it.
 //
-// Two uses: the allowed part of InvalidInput, LimitExceeded and ConfigError ("finite and >= 0",
-// ">= {} = {}"), and the whole message of IoError and FormatError ("cannot read {}: no such
-// file"). kText is a free-form English text (its one value): errors not yet given a sentence.
+// Three uses: the allowed part of InvalidInput, LimitExceeded and ConfigError ("finite and >= 0",
+// ">= {} = {}"), the whole message of IoError and FormatError ("cannot read {}: no such
+// file"), and a configuration key's rule beside its range and default words (config/schema.h
+// Key::note and Key::default_text: the panel's tooltips and field errors). kText is a free-form
+// English text (its one value): errors not yet given a sentence.
 // Values that name an options field ("shape.edge_length_ratio") are renamed to configuration
 // keys by with_key_names (config/schema.h); so a field name is a value, never a sentence's word.
+// A value may be a sentence of its own (a damaged file's reason, the first skipped mesh file's):
+// the error marks it (Error::worded_values, core/error.h), and its English is the value's text.
 //
 // No include guard on the list: AGGPACK_ERROR_SENTENCES(X) calls X(Name, "english") per sentence.
 
@@ -74,6 +78,21 @@
   X(FractionReachable, "a target reachable with 10^8 particles")                                \
   X(FractionParticles, "a target needing at most 10^8 particles (needs more than {})")         \
   X(GradingFitsInterior, "particles that fit in the container's interior ({} m across)")       \
+  X(SmallestSize, "smallest size {} m")                                                         \
+  /* configuration keys: the rule beside a range (Key::note), a default's words */              \
+  X(AtLeast, ">= {}")                                                                           \
+  X(Below, "< {}")                                                                              \
+  X(Above, "> {}")                                                                              \
+  X(ZeroOrAtLeast, "0 or >= {}")                                                                \
+  X(ZeroOnlyWith, "0 only with {} = {}")                                                        \
+  X(BelowHalfSmallestExtent, "< half the smallest extent")                                      \
+  X(SieveTableRule,                                                                             \
+    ">= 2 rows [size, percent passing]; sizes increasing, percents [0, 100] non-decreasing, "   \
+    "last 100")                                                                                 \
+  X(NonEmptyPath, "a non-empty path")                                                           \
+  X(NonEmptyPathList, "a non-empty path or an array of them")                                   \
+  X(DefaultNone, "(none)")                                                                      \
+  X(DefaultUnset, "(unset)")                                                                    \
   /* whole messages: reading a file */                                                          \
   X(ReadNoSuchFile, "cannot read {}: no such file")                                             \
   X(ReadFolder, "cannot read {}: it is a folder")                                               \
@@ -88,6 +107,84 @@
     "version {})")                                                                              \
   X(FieldCorrupt, "{}: {}: {} ({}; the file is truncated or corrupted)")                        \
   X(FieldInvalid, "{}: {}: {}")                                                                 \
+  /* a damaged native packing file: the field and reason of FieldInvalid and FieldCorrupt */    \
+  X(NativeShapeRows, "{} (shape {}, rows {}-{})")                                               \
+  X(NativeMissingGroup, "missing group")                                                        \
+  X(NativeMissingAttribute, "missing attribute")                                                \
+  X(NativeMissingDataset, "missing dataset")                                                    \
+  X(NativeStoredAsNotString, "stored as {}, expected a string")                                 \
+  X(NativeStoredAsNotInteger, "stored as {}, expected an integer")                              \
+  X(NativeStoredAs, "stored as {}, expected {}")                                                \
+  X(NativeTypeString, "a string")                                                               \
+  X(NativeTypeCompound, "a compound type")                                                      \
+  X(NativeTypeArray, "an array type")                                                           \
+  X(NativeTypeEnum, "an enum")                                                                  \
+  X(NativeTypeNonNumeric, "a non-numeric type")                                                 \
+  X(NativeTypeUnknown, "an unknown type")                                                       \
+  X(NativeNotScalarString, "not a single string (the dataspace is not scalar)")                 \
+  X(NativeVariableString,                                                                       \
+    "cannot read the variable-length string (corrupted global heap?): HDF5 {}")                 \
+  X(NativeStringBytes, "declares a {}-byte string in a {}-byte file")                           \
+  X(NativeNulByte,                                                                              \
+    "contains a NUL byte at position {} followed by more text; allowed: text without NUL "      \
+    "bytes")                                                                                    \
+  X(NativeNotSingleNumber, "not a single number")                                               \
+  X(NativeNotFinite, "not finite")                                                              \
+  X(NativeNegative, "negative, expected >= 0")                                                  \
+  X(NativeRank, "rank {}, expected {}")                                                         \
+  X(NativeColumns, "{} columns, expected {}")                                                   \
+  X(NativeDeclaresValues, "declares {} {} values in a {}-byte file")                            \
+  X(NativeDeclaresStored,                                                                       \
+    "declares {} {} values ({} bytes) but {} bytes are stored in a {}-byte file")               \
+  X(NativeDeclaresStoredCompressed,                                                             \
+    "declares {} {} values ({} bytes) but {} bytes are stored compressed in a {}-byte file")    \
+  X(NativeTooLarge, "too large to load ({} values)")                                            \
+  X(NativeStoredOutside, "stored outside the file (external or virtual dataset)")               \
+  X(NativeUnknownKind, "unknown kind (expected {})")                                            \
+  X(NativeOffsetsEmpty, "empty (it holds S + 1 values)")                                        \
+  X(NativeValuesButHas, "{} values, but {} has {}")                                             \
+  X(NativeRowsButHas, "{} rows, but {} has {}")                                                 \
+  X(NativeOffsetsRun, "runs from {} to {}, expected 0 to {} (the rows of {})")                  \
+  X(NativeOffsetsDecrease, "offsets must not decrease")                                         \
+  X(NativeNotPolyhedron, "not a polyhedron: {}")                                                \
+  X(Hdf5LookUp, "cannot look it up")                                                            \
+  X(Hdf5OpenGroup, "cannot open the group")                                                     \
+  X(Hdf5OpenAttribute, "cannot open the attribute")                                             \
+  X(Hdf5ReadAttribute, "cannot read the attribute")                                             \
+  X(Hdf5AttributeType, "cannot read the attribute's type")                                      \
+  X(Hdf5OpenDataset, "cannot open the dataset")                                                 \
+  X(Hdf5DatasetType, "cannot read the dataset's type")                                          \
+  X(Hdf5DatasetSize, "cannot read the dataset's size")                                          \
+  X(Hdf5ReadDataset, "cannot read the dataset")                                                 \
+  X(Hdf5DatasetProperties, "cannot read the dataset's properties")                              \
+  X(NativeWallGapHalf, "not below half the smallest container extent; allowed: [0, {}) m")      \
+  X(NativeTooFewParts,                                                                          \
+    "{} vertices and {} triangles, a closed polyhedron needs at least 4 of each")               \
+  X(NativeVertexMagnitude, "vertex {} has a coordinate of magnitude {}, outside {} m")          \
+  X(NativeRepeatsVertex, "triangle {} repeats a vertex ({}, {}, {}): degenerate")               \
+  X(NativeEdgeOpen, "edge {}-{} belongs to only triangle {}: the surface is not closed")        \
+  X(NativeEdgeShared,                                                                           \
+    "edge {}-{} is shared by {} triangles: not a 2-manifold (each edge needs exactly 2)")       \
+  X(NativeEdgeSameWay,                                                                          \
+    "edge {}-{} runs the same way in triangles {} and {}: not consistently oriented (a "        \
+    "flipped triangle)")                                                                        \
+  X(NativeUnusedVertex, "vertex {} is in no triangle")                                          \
+  X(NativeEuler, "V - E + F = {}, expected 2: not one closed surface without holes")            \
+  X(NativeCollapsed, "the shape's extent is {} m, below {} m (collapsed)")                      \
+  X(NativeZeroArea, "triangle {} has zero area (degenerate)")                                   \
+  X(NativeInsideOut,                                                                            \
+    "volume {} m^3 is not positive: the triangles turn clockwise seen from outside (inside "    \
+    "out, e.g. mirrored)")                                                                      \
+  X(NativeNotConvex,                                                                            \
+    "vertex {} lies {} m outside the plane of triangle {}: not convex (tolerance {} m)")        \
+  X(NativeNoSuchShape, "no such shape (the file has {})")                                       \
+  X(NativeOutsideMetres, "outside {} m")                                                        \
+  X(NativeOutside, "outside {}")                                                                \
+  X(NativeNotUnitQuaternion, "|q|^2 = {}, not a unit quaternion (tolerance {})")                \
+  X(NativeScaleSize,                                                                            \
+    "makes shape {} {} m across with coordinates up to {} m; allowed: at least {} m "           \
+    "across, coordinates up to {} m")                                                           \
+  X(NativeContainerNeeds, "outside {} m (a {} needs it > 0)")                                   \
   /* phrases: a value that is one of these words is worded too (library_words.cpp) */           \
   X(PhraseDirectory, "directory")                                                               \
   X(PhraseCharacterDevice, "character device")                                                  \
@@ -199,6 +296,17 @@
   X(AtMost, "<= {}")                                                                            \
   X(TetGenCanMesh,                                                                              \
     "a packing TetGen can mesh (a larger {} or {} helps with nearly touching surfaces)")        \
+  X(TetGenWorker, "TetGen {}")                                                                  \
+  X(TetGenErrorCode, "TetGen error code {}")                                                    \
+  X(TetGenFacetsIntersect, "TetGen error code {} (facets intersect)")                           \
+  X(TetGenOutOfMemory, "TetGen error code {} (out of memory)")                                  \
+  X(TetGenNoTetrahedra, "TetGen made no tetrahedra")                                            \
+  X(WorkerMalformed, "malformed result from the worker process")                                \
+  X(TetGenIntersecting, "{}; TetGen finds these surfaces intersecting: {}")                     \
+  X(SurfaceWall, "wall {}")                                                                     \
+  X(SurfaceAggregate, "aggregate {}")                                                           \
+  X(SurfaceItzLayer, "ITZ layer of particle {}")                                                \
+  X(SurfaceList, "{}, {}")                                                                      \
   /* solver decks and export limits */                                                          \
   X(PoissonRange, "(-1, 0.5)")                                                                  \
   X(MaterialName, "a letter, then letters, digits or _, at most 32 characters")                 \
@@ -273,12 +381,25 @@
   X(WorkerPipe, "cannot create a pipe for a worker process: {}")                                \
   X(WorkerStart, "cannot start a worker process: {}")                                           \
   X(WorkerWait, "cannot wait for worker processes: {}")                                         \
+  X(WorkerSignal, "died of signal {} ({})")                                                     \
+  X(WorkerExited, "exited with code {}")                                                        \
+  X(WorkerStatus, "ended with status {}")                                                       \
+  X(WorkerTimedOut, "timed out after {} s")                                                     \
+  X(WorkerThrew, "threw: {}")                                                                   \
   X(OpenGlCompile, "OpenGL: shader compilation failed: {}")                                     \
   X(OpenGlLink, "OpenGL: shader link failed: {}")                                               \
   X(OpenGlVersion, "OpenGL: need a 3.3 core context, have {}")                                  \
   X(FormatIds, "{} ids")                                                                        \
   /* internal checks that only a bug reaches */                                                 \
   X(DensifyVerifyFailed, "densify: the final exact verification failed (a bug): {}")            \
+  X(VerifyFromWalls, "particle {} is {} m from the walls (wall_gap {} m)")                      \
+  X(VerifyApart, "particles {} and {} are {} m apart (gap {} m)")                               \
+  X(StartPacking, "start packing")                                                              \
+  X(OverlapFreeStart, "an overlap-free packing inside its container (gap {} m)")                \
+  X(LibraryLoadedFirst, "a library loaded by the pipeline (pack()) before the packer runs")     \
+  X(ShapeVolume, "shape {} volume")                                                             \
+  X(ClosedConvexBody, "> 0 (a closed outward convex body)")                                     \
+  X(MeshNoHullReason, "mesh has no convex hull: {}")                                            \
   X(BrokenAdjacency, "internal: broken adjacency in aggregate growth")                          \
   X(ParticleVolume, "particle volume")                                                          \
   X(QhullError, "Qhull error {}")                                                               \
@@ -306,6 +427,13 @@ const char* english_words(Sentence sentence);
 
 /// `words` with each "{}" replaced by the next of `values` (a missing value leaves "{}").
 std::string fill_words(const char* words, const std::vector<std::string>& values);
+
+/// Whether the wording says anything: false for kText of no value or of "" (a key without a
+/// note or default words).
+inline bool has_words(const Wording& wording) {
+  return wording.sentence != Sentence::kText ||
+         (!wording.values.empty() && !wording.values.front().empty());
+}
 
 /// The wording in English (the library's messages).
 inline std::string english(const Wording& wording) {

@@ -10,6 +10,8 @@
 #include <thread>
 #include <vector>
 
+#include "aggpack/core/error_words.h"
+
 namespace aggpack {
 
 /// What happened to one item of run_isolated.
@@ -19,6 +21,7 @@ struct IsolatedOutcome {
   /// Why not (when !is_done), e.g. "died of signal 6 (Aborted)", "timed out after 60 s",
   /// "threw: <message>", "exited with code 1".
   std::string failure;
+  Wording failure_wording{};  ///< `failure` in words (core/error_words.h)
 };
 
 struct IsolatedOptions {

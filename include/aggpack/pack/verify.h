@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <string>
 
+#include "aggpack/core/error_words.h"
 #include "aggpack/pack/packing.h"
 
 namespace aggpack {
@@ -24,6 +25,7 @@ struct VerifyResult {
   double min_distance = 0.0;          ///< smallest pair distance found (m); +inf if < 2 particles
   double min_wall_clearance = 0.0;    ///< smallest vertex-to-wall distance (m)
   std::string message{};              ///< first problem found, or empty
+  Wording wording{};                  ///< the message in words (error_words.h), or none
 };
 
 /// Checks every particle against the container (vertex test, exact for convex bodies) and every
