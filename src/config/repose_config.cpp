@@ -114,7 +114,7 @@ std::vector<SweepKey> keys() {
               "unset = grown particles",
        .binding = members<SweepOptions>([](auto& o) -> auto& { return o.base.library.paths; }),
        .presence = Presence::kOptional,
-       .default_text = "(none)",
+       .default_text = {Sentence::kDefaultNone, {}},
        .fields = {"particle.library"}},
       {.name = "particles.library_units",
        .type = ValueType::kWord,
