@@ -23,6 +23,7 @@
 #include "aggpack/core/text.h"
 #include "hdf5_util.h"
 #include "native_container.h"
+#include "native_types.h"
 #include "read_failure.h"
 
 namespace aggpack {
@@ -32,6 +33,9 @@ namespace {
 using hdf5::Handle;
 using hdf5::hdf5_reason;
 using hdf5::SilenceHdf5Errors;
+using native_detail::describe_type;
+using native_detail::stored_as;
+using native_detail::StoredType;
 
 // ---- reading ----------------------------------------------------------------------------------
 
@@ -48,41 +52,6 @@ constexpr double kStringReadSeconds = 5.0;
 constexpr ElementType kFloat64{H5T_FLOAT, 8, H5T_SGN_ERROR, "float64"};
 constexpr ElementType kUint32{H5T_INTEGER, 4, H5T_SGN_NONE, "uint32"};
 constexpr ElementType kUint64{H5T_INTEGER, 8, H5T_SGN_NONE, "uint64"};
-
-// "int64", "float32", "a string", ... for messages about a stored type: a type's name, or words.
-Wording describe_type(hid_t type) {
-  const H5T_class_t type_class = H5Tget_class(type);
-  const std::string bits = std::to_string(8 * H5Tget_size(type));
-  switch (type_class) {
-    case H5T_INTEGER:
-      return {Sentence::kText, {(H5Tget_sign(type) == H5T_SGN_NONE ? "uint" : "int") + bits}};
-    case H5T_FLOAT:
-      return {Sentence::kText, {"float" + bits}};
-    case H5T_STRING:
-      return {Sentence::kNativeTypeString, {}};
-    case H5T_COMPOUND:
-      return {Sentence::kNativeTypeCompound, {}};
-    case H5T_ARRAY:
-      return {Sentence::kNativeTypeArray, {}};
-    case H5T_ENUM:
-      return {Sentence::kNativeTypeEnum, {}};
-    default:
-      return {Sentence::kNativeTypeNonNumeric, {}};
-  }
-}
-
-// "stored as TYPE, expected ..." (`sentence`, then `expected`), the type in words when it is.
-struct StoredType {
-  Wording reason;
-  std::vector<WordedValue> words;
-};
-StoredType stored_as(Sentence sentence, const Wording& type, const std::string& shown,
-                     std::vector<std::string> expected = {}) {
-  expected.insert(expected.begin(), shown);
-  StoredType stored{{sentence, std::move(expected)}, {}};
-  if (type.sentence != Sentence::kText) stored.words.push_back({shown, type});
-  return stored;
-}
 
 // Echoed text is cut (with an ellipsis) and its control characters escaped, so that a message
 // stays one short line whatever the file holds.
