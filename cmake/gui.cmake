@@ -66,7 +66,8 @@ if(AGGPACK_BUILD_GUI)
                                  ${PROJECT_SOURCE_DIR}/tests/gui/library_words_test.cpp
                                  ${PROJECT_SOURCE_DIR}/tests/gui/library_errors_test.cpp
                                  ${PROJECT_SOURCE_DIR}/app/gui/i18n.cpp
-                                 ${PROJECT_SOURCE_DIR}/app/gui/library_words.cpp)
+                                 ${PROJECT_SOURCE_DIR}/app/gui/library_words.cpp
+                                 ${PROJECT_SOURCE_DIR}/app/gui/system_words.cpp)
     target_include_directories(test_gui_i18n PRIVATE ${PROJECT_SOURCE_DIR}/app/gui
                                                      ${PROJECT_SOURCE_DIR}/tests)
     target_link_libraries(test_gui_i18n PRIVATE aggpack_pipeline aggpack_config aggpack_core fmt::fmt

@@ -23,7 +23,7 @@ RunEstimate estimate_repose(const ReposeOptions& options, double runs, int paral
 
 /// The heads-up of `runs` repose runs (an ensemble's seeds, a sweep's cases x seeds), of which
 /// this process runs the ones `share` owns, as many at a time as threads are allowed (one run:
-/// runs = 1).
+/// runs = 1). A particle library path that is not there is refused first (one-line error).
 void announce_repose(const ReposeOptions& options, const RunShare& share, std::size_t runs);
 
 }  // namespace aggpack::cli

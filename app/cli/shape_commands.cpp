@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -355,28 +356,27 @@ void register_shapes(CLI::App& app) {
       file->stream() << '\n';
     }
     std::vector<ShapeDescriptors> descriptors;
-    std::vector<double> radii;
+    std::vector<std::string> rows;  // each particle's CSV line, formatted by its thread
     for (std::size_t begin = 0; begin < n; begin += kChunk) {
       const std::size_t size = std::min(kChunk, n - begin);
       descriptors.assign(size, ShapeDescriptors{});
-      radii.assign(size, 0.0);
+      rows.assign(size, std::string());
       auto make = [&](std::size_t k) {
         const auto particle = generate_particle(flags->generator, begin + k);
         descriptors[k] = describe(particle.body);
-        radii[k] = particle.control_radius;
+        if (!file) return;
+        auto row = std::back_inserter(rows[k]);
+        fmt::format_to(row, "{},{:.17g}", begin + k, particle.control_radius);
+        for (const auto& column : columns)
+          fmt::format_to(row, ",{:.17g}", column.get(descriptors[k]));
+        rows[k] += '\n';
       };
       parallel_for_index(0, size, make);
       for (std::size_t k = 0; k < size; ++k) {
         for (std::size_t c = 0; c < columns.size(); ++c) {
           summaries[c].add(columns[c].get(descriptors[k]));
         }
-        if (file) {
-          auto& out = file->stream();
-          out << begin + k << ',' << fmt::format("{:.17g}", radii[k]);
-          for (const auto& column : columns)
-            out << ',' << fmt::format("{:.17g}", column.get(descriptors[k]));
-          out << '\n';
-        }
+        if (file) file->stream() << rows[k];
       }
       show_progress(begin + size);
     }

@@ -17,6 +17,7 @@
 #include "aggpack/io/mesh_read.h"
 #include "gui_app.h"
 #include "i18n.h"
+#include "system_words.h"
 
 namespace aggpack::gui {
 
@@ -28,7 +29,7 @@ void FileDialog::list() {
   std::vector<std::string> new_folders, new_files;
   fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, code);
   if (code) {
-    error = trs(Text::kCannotReadFolder, dir.string(), code.message());
+    error = trs(Text::kCannotReadFolder, dir.string(), system_reason_words(code));
     return;
   }
   for (; it != fs::directory_iterator(); it.increment(code)) {

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "system_words.h"
+
 namespace aggpack::gui {
 
 namespace {
@@ -101,6 +103,7 @@ bool load_fonts(const std::optional<FontFace>& chinese) {
       ImFontGlyphRangesBuilder builder;
       builder.AddRanges(atlas.GetGlyphRangesDefault());
       for_each_chinese_text(add_text, &builder);
+      for (const char* words : system_reasons_chinese()) builder.AddText(words);
       builder.BuildRanges(&chinese_ranges);
       ImFontConfig config;
       config.FontNo = chinese->index;

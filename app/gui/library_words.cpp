@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <filesystem>
 #include <new>
 #include <string_view>
 #include <system_error>
@@ -12,6 +13,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
 #include "aggpack/pipeline/pipeline.h"
+#include "system_words.h"
 
 namespace aggpack::gui {
 
@@ -78,10 +80,12 @@ constexpr std::array<bool, static_cast<std::size_t>(Sentence::kCount)> kIsPhrase
 #undef AGGPACK_SENTENCE_IS_PHRASE
 }};
 
-// A value in the window's language: a phrase's words, anything else (a number, a file or key
-// name, an operating-system reason) as it is. A phrase naming an options field is matched, and
-// worded, with the configuration key's name (as with_key_names renames it in the error).
+// A value in the window's language: a phrase's words, an operating-system reason's words
+// (system_words.h), anything else (a number, a file or key name) as it is. A phrase naming an
+// options field is matched, and worded, with the configuration key's name (as with_key_names
+// renames it in the error).
 std::string value_words(const std::string& value) {
+  if (std::string system = system_reason_words(value); !system.empty()) return system;
   const auto& schema = pack_schema();
   static const std::vector<KeyView> keys = key_views(schema);
   for (std::size_t k = 0; k < kIsPhrase.size(); ++k) {
@@ -161,8 +165,16 @@ std::string error_words(const std::exception& error) {
     // Not the library's: out of memory, an operating-system failure (its reason as it is), or a
     // bug (the library checks its input and throws its own errors).
     if (dynamic_cast<const std::bad_alloc*>(&error) != nullptr) return tr(Text::kErrorOutOfMemory);
-    if (dynamic_cast<const std::system_error*>(&error) != nullptr) {
-      return trs(Text::kErrorOther, error.what());
+    if (const auto* system = dynamic_cast<const std::system_error*>(&error)) {
+      if (language() == Language::kEnglish) return trs(Text::kErrorOther, error.what());
+      // The reason in words, and the paths a file-system error names.
+      std::string reason = system_reason_words(system->code());
+      if (const auto* file = dynamic_cast<const std::filesystem::filesystem_error*>(&error)) {
+        for (const auto* path : {&file->path1(), &file->path2()}) {
+          if (!path->empty()) reason += trs(Text::kErrorPath, path->string());
+        }
+      }
+      return trs(Text::kErrorOther, reason);
     }
     return trs(Text::kErrorInternal, error.what());
   }

@@ -1,8 +1,9 @@
 #pragma once
 // The library's errors and reports in the window's language, built from their parts (the
 // sentence and values of core/error_words.h, the report structs), never from the library's
-// English text: a Chinese window shows no English sentence of the library's. Free-form parts
-// (an OS or HDF5 reason, a file name, a key name) appear as they are inside the translated words.
+// English text: a Chinese window shows no English sentence of the library's. An operating
+// system's reason is worded too (system_words.h); other free-form parts (an HDF5 reason, a file
+// name, a key name) appear as they are inside the translated words.
 
 #include <exception>
 #include <string>

@@ -6,20 +6,25 @@
 
 #include "aggpack/config/repose_config.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include "aggpack/sim/distributed.h"
 #include "binding.h"
+#include "library_keys.h"
 
 namespace aggpack {
 
 namespace {
 
+using config_detail::library_option_keys;
 using config_detail::members;
 using SweepKey = Key<SweepOptions>;
 
 // The particles.library_* keys apply only with a library.
 const Scope<SweepOptions> kLibrary{
     .text = "particles.library given",
-    .applies = [](const SweepOptions& o) { return !o.base.library.paths.empty(); }};
+    .applies = [](const SweepOptions& o) { return o.base.library.is_used(); }};
 
 // A float key of the repose options.
 template <typename Access>
@@ -35,7 +40,7 @@ SweepKey number(const char* name, const char* unit, Range range, const char* doc
 }
 
 std::vector<SweepKey> keys() {
-  return {
+  std::vector<SweepKey> all = {
       number("trough.length", "m", open_closed(0, kMaxMagnitude), "trough length (x)",
              [](auto& o) -> auto& { return o.base.trough_length; }, {"repose.trough_length"}),
       number("trough.width", "m", open_closed(0, kMaxMagnitude), "trough width (y)",
@@ -103,8 +108,8 @@ std::vector<SweepKey> keys() {
        .doc = "turn each particle randomly about its lattice site",
        .binding =
            members<SweepOptions>([](auto& o) -> auto& { return o.base.is_orientation_random; })},
-      // particles.library and its options, as particle.library's (src/config/library_schema.cpp);
-      // the lattice fill's checks name particle.library_*, renamed here by `fields`.
+      // particles.library (its options below, as particle.library's: library_keys.h); the
+      // lattice fill's checks name particle.library_*, renamed here by `fields`.
       {.name = "particles.library",
        .type = ValueType::kPathList,
        .written = kLibrary,
@@ -116,47 +121,6 @@ std::vector<SweepKey> keys() {
        .presence = Presence::kOptional,
        .default_text = {Sentence::kDefaultNone, {}},
        .fields = {"particle.library"}},
-      {.name = "particles.library_units",
-       .type = ValueType::kWord,
-       .words = {"mm", "m"},
-       .scope = kLibrary,
-       .doc = "the length unit of the mesh files' coordinates",
-       .binding =
-           members<SweepOptions>([](auto& o) -> auto& { return o.base.library.import.units; })},
-      {.name = "particles.library_skip_bad",
-       .type = ValueType::kBool,
-       .unit = "-",
-       .scope = kLibrary,
-       .doc = "skip (and count) mesh files that are open, non-manifold, degenerate or over the "
-              "hull limit, instead of stopping at the first",
-       .binding =
-           members<SweepOptions>([](auto& o) -> auto& { return o.base.library.is_skipping_bad; })},
-      {.name = "particles.library_max_hull_excess",
-       .unit = "-",
-       .range = closed(0, 100),
-       .scope = kLibrary,
-       .doc = "refuse a shape whose convex hull adds more than this fraction of its volume "
-              "((V_hull - V) / V); 0 = no limit",
-       .binding = members<SweepOptions>(
-           [](auto& o) -> auto& { return o.base.library.import.max_hull_excess; }),
-       .fields = {"particle.library_max_hull_excess"}},
-      {.name = "particles.library_max_vertices",
-       .type = ValueType::kInteger,
-       .range = closed(4, 1e6),
-       .scope = kLibrary,
-       .doc = "hulls with more vertices are simplified to at most this many (inscribed; the "
-              "volume change is reported)",
-       .binding = members<SweepOptions>(
-           [](auto& o) -> auto& { return o.base.library.import.max_vertices; }),
-       .fields = {"particle.library_max_vertices"}},
-      {.name = "particles.library_use_once",
-       .type = ValueType::kBool,
-       .unit = "-",
-       .scope = kLibrary,
-       .doc = "place each library shape at most once (in a seeded random order); the fill needs "
-              "at least as many shapes as lattice sites",
-       .binding =
-           members<SweepOptions>([](auto& o) -> auto& { return o.base.library.is_use_once; })},
       number("physics.density", "kg/m^3", open_closed(0, kMaxMagnitude), "particle density",
              [](auto& o) -> auto& { return o.base.physics.density; }, {"density"}),
       number("physics.friction", "-", closed(0, 10), "sliding friction mu_s particle-particle",
@@ -315,6 +279,17 @@ std::vector<SweepKey> keys() {
        .binding =
            members<SweepOptions>([](auto& o) -> auto& { return o.is_wall_friction_coupled; })},
   };
+  // particles.library's options, declared with particle.library's (library_keys.h), after it.
+  auto options = library_option_keys<SweepOptions>(
+      "particles.", kLibrary, "the fill needs at least as many shapes as lattice sites",
+      [](auto member) {
+        return members<SweepOptions>([member](auto& o) -> auto& { return member(o.base.library); });
+      });
+  const auto library = std::find_if(
+      all.begin(), all.end(), [](const SweepKey& key) { return key.name == "particles.library"; });
+  all.insert(library + 1, std::make_move_iterator(options.begin()),
+             std::make_move_iterator(options.end()));
+  return all;
 }
 
 }  // namespace

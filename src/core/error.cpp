@@ -26,6 +26,23 @@ void require_positive(const std::string& field, double value) {
   }
 }
 
+std::vector<WordedValue> worded_as_value(const Error& error) {
+  std::vector<WordedValue> words;
+  if (!error.has_value()) {
+    words.push_back({error.what(), error.wording()});
+  } else {
+    const Sentence sentence =
+        error.kind() == ErrorKind::kLimitExceeded ? Sentence::kLimitValue : Sentence::kInvalidValue;
+    words.push_back(
+        {error.what(), {sentence, {error.field(), error.value(), english(error.wording())}}});
+    for (const Wording* part : {&error.field_wording(), &error.value_wording(), &error.wording()}) {
+      if (part->sentence != Sentence::kText) words.push_back({english(*part), *part});
+    }
+  }
+  words.insert(words.end(), error.worded_values().begin(), error.worded_values().end());
+  return words;
+}
+
 }  // namespace aggpack
 
 namespace aggpack {

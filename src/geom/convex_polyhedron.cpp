@@ -42,12 +42,16 @@ std::vector<HalfEdge> sorted_half_edges(const std::vector<Triangle>& triangles) 
 ConvexPolyhedron::ConvexPolyhedron(std::vector<Vec3> vertices, std::vector<Triangle> triangles)
     : vertices_(std::move(vertices)), triangles_(std::move(triangles)) {
   if (vertices_.size() < 4) {
-    throw InvalidInput("polyhedron.vertices", std::to_string(vertices_.size()) + " vertices",
-                       ">= 4");
+    throw InvalidInput(
+        Wording{Sentence::kText, {"polyhedron.vertices"}},
+        Wording{Sentence::kPolyhedronVertexCount, {std::to_string(vertices_.size())}},
+        Wording{Sentence::kAtLeast, {"4"}});
   }
   if (triangles_.size() < 4) {
-    throw InvalidInput("polyhedron.triangles", std::to_string(triangles_.size()) + " triangles",
-                       ">= 4");
+    throw InvalidInput(
+        Wording{Sentence::kText, {"polyhedron.triangles"}},
+        Wording{Sentence::kPolyhedronTriangleCount, {std::to_string(triangles_.size())}},
+        Wording{Sentence::kAtLeast, {"4"}});
   }
   // Fast paths first (the generator builds a polyhedron per particle): the largest index and a
   // sum of x * 0, which is 0 exactly when every coordinate is finite (inf * 0 and NaN give NaN).
@@ -61,8 +65,9 @@ ConvexPolyhedron::ConvexPolyhedron(std::vector<Vec3> vertices, std::vector<Trian
     for (const auto& triangle : triangles_) {
       for (auto index : triangle) {
         if (index >= vertices_.size()) {
-          throw InvalidInput("polyhedron.triangles", "vertex index " + std::to_string(index),
-                             "< " + std::to_string(vertices_.size()));
+          throw InvalidInput(Wording{Sentence::kText, {"polyhedron.triangles"}},
+                             Wording{Sentence::kPolyhedronVertexIndex, {std::to_string(index)}},
+                             Wording{Sentence::kBelow, {std::to_string(vertices_.size())}});
         }
       }
     }
@@ -72,7 +77,9 @@ ConvexPolyhedron::ConvexPolyhedron(std::vector<Vec3> vertices, std::vector<Trian
     zero_if_finite += vertex.x() * 0.0 + vertex.y() * 0.0 + vertex.z() * 0.0;
   }
   if (zero_if_finite != 0.0) {
-    throw InvalidInput("polyhedron.vertices", "non-finite coordinate", "finite numbers");
+    throw InvalidInput(Wording{Sentence::kText, {"polyhedron.vertices"}},
+                       Wording{Sentence::kPhraseNonFiniteCoordinate, {}},
+                       Wording{Sentence::kPhraseFiniteNumbers, {}});
   }
 }
 
@@ -86,9 +93,10 @@ std::vector<Edge> ConvexPolyhedron::edges() const {
         half_edges[i + 1].high != a.high || half_edges[i + 1].is_forward == a.is_forward ||
         (i + 2 < half_edges.size() && half_edges[i + 2].low == a.low &&
          half_edges[i + 2].high == a.high)) {
-      throw InvalidInput("polyhedron.triangles",
-                         "edge " + std::to_string(a.low) + "-" + std::to_string(a.high),
-                         "each edge shared by exactly two oppositely oriented triangles");
+      throw InvalidInput(
+          Wording{Sentence::kText, {"polyhedron.triangles"}},
+          Wording{Sentence::kPolyhedronEdge, {std::to_string(a.low), std::to_string(a.high)}},
+          Wording{Sentence::kPolyhedronEdgeTwice, {}});
     }
     const auto& b = half_edges[i + 1];
     const auto& forward = a.is_forward ? a : b;

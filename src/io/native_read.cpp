@@ -498,7 +498,8 @@ Packing read_hdf5(const std::string& path) {
                                   {Sentence::kNativeShapeRows,
                                    {"/shapes/triangles", std::to_string(s), std::to_string(t0),
                                     std::to_string(t1 == t0 ? t0 : t1 - 1)}},
-                                  {Sentence::kNativeNotPolyhedron, {error.what()}});
+                                  {Sentence::kNativeNotPolyhedron, {error.what()}},
+                                  worded_as_value(error));
       }
     }
   }

@@ -157,6 +157,10 @@ Outcome import_file(const std::string& path, const std::string& name,
 
 }  // namespace
 
+void check_library_paths(const ShapeLibraryOptions& options) {
+  (void)list_all_files(options.paths);
+}
+
 ShapeLibrary load_shape_library(const ShapeLibraryOptions& options) {
   validate(options.import);
   if (options.paths.empty() || (options.paths.size() == 1 && options.paths.front().empty())) {

@@ -18,7 +18,7 @@ for file in "$fixtures"/*.h5; do
     *) bad_files+=("$file") ;;
   esac
 done
-[ "${#bad_files[@]}" -eq 17 ] || { echo "expected 17 bad fixtures, found ${#bad_files[@]}"; exit 1; }
+[ "${#bad_files[@]}" -eq 18 ] || { echo "expected 18 bad fixtures, found ${#bad_files[@]}"; exit 1; }
 rm -f "$out/bad-open.txt"
 xvfb-run -a -s "-screen 0 1280x800x24" bash -c '
   gui="$1"; out="$2"; shift 2

@@ -11,12 +11,15 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <regex>
 #include <set>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "aggpack/config/config.h"
@@ -37,6 +40,7 @@
 #include "support/mesh_files.h"
 #include "support/packings.h"
 #include "support/paths.h"
+#include "system_words.h"
 
 namespace aggpack::gui {
 namespace {
@@ -514,6 +518,67 @@ TEST(LibraryErrors, SolverDeckFields) {
   options.deck.baffle_position = 0.01;  // in front of the particles
   expect_chinese_error(
       [&] { (void)write(two_cubes(0.3, 0.7), scratch.path("trough.inp"), options); });
+}
+
+TEST(LibraryErrors, StoredShapeOwnRefusal) {
+  // A packing file whose shape the polyhedron itself refuses: its reason, quoted after "not a
+  // polyhedron", is worded as a sentence of its own (with its value and allowed part).
+  const std::string chinese = expect_chinese_error(
+      [] { (void)read_packing(test::bad_inputs_dir() + "triangle_index_outside_shape.h5"); });
+  EXPECT_NE(
+      chinese.find("不是多面体：polyhedron.triangles = 顶点索引 1000000 无效（允许：小于 24）"),
+      std::string::npos)
+      << chinese;
+  // Each refusal of the polyhedron, as a program using the library meets it.
+  const ConvexPolyhedron cube = make_box(Vec3::Zero(), Vec3::Ones());
+  const std::vector<Vec3> three(cube.vertices().begin(), cube.vertices().begin() + 3);
+  expect_chinese_error([&] { (void)ConvexPolyhedron(three, cube.triangles()); });
+  expect_chinese_error([&] {
+    (void)ConvexPolyhedron(cube.vertices(),
+                           {cube.triangles().begin(), cube.triangles().begin() + 3});
+  });
+  std::vector<Vec3> infinite = cube.vertices();
+  infinite[2].y() = std::numeric_limits<double>::infinity();
+  EXPECT_NE(expect_chinese_error([&] {
+              (void)ConvexPolyhedron(infinite, cube.triangles());
+            }).find("坐标不是有限数"),
+            std::string::npos);
+  std::vector<Triangle> open = cube.triangles();
+  open.pop_back();
+  expect_chinese_error([&] { (void)ConvexPolyhedron(cube.vertices(), open).edges(); });
+}
+
+TEST(LibraryErrors, OperatingSystemReasons) {
+  // Every errno and signal of the table, as the library quotes it (std::strerror, error_code,
+  // strsignal), in Chinese words; a reason outside the table stays as the system gives it.
+  for (const int number : worded_errnos()) {
+    const std::string chinese = expect_worded(
+        IoError(Wording{Sentence::kReadSystemError, {"run.h5", std::strerror(number)}}));
+    set_language(Language::kChinese);
+    const std::string reason = system_reason_words(std::strerror(number));
+    set_language(Language::kEnglish);
+    EXPECT_TRUE(test_words::has_chinese_text(reason)) << number;
+    EXPECT_NE(chinese.find(reason), std::string::npos) << chinese;
+  }
+  for (const int number : worded_signals()) {
+    const std::string chinese = expect_worded(
+        IoError(Wording{Sentence::kWorkerSignal, {std::to_string(number), ::strsignal(number)}}));
+    for (const std::string& word : test_words::english_words_of(chinese)) {
+      EXPECT_TRUE(is_name(word)) << chinese;  // "CPU"
+    }
+  }
+  EXPECT_NE(expect_worded(IoError(Wording{Sentence::kWorkerSignal, {"9", ::strsignal(9)}}))
+                .find("已杀死"),
+            std::string::npos);
+  EXPECT_EQ(system_reason_words("Killed by a cosmic ray"), "");
+  // An operating-system failure outside the library's errors: its reason and paths.
+  const std::filesystem::filesystem_error missing(
+      "cannot copy", "/nowhere/a.h5", std::make_error_code(std::errc::no_such_file_or_directory));
+  set_language(Language::kChinese);
+  const std::string chinese = error_words(missing);
+  set_language(Language::kEnglish);
+  EXPECT_EQ(chinese, "错误：没有那个文件或目录（/nowhere/a.h5）");
+  EXPECT_EQ(error_words(missing), std::string("Error: ") + missing.what());
 }
 
 }  // namespace

@@ -142,7 +142,9 @@ TEST(LibraryWords, OtherErrorsAreNamedAsErrors) {
             "Internal error (a bug, please report it): basic_string::_M_create");
   EXPECT_EQ(in_chinese([&] { return error_words(std::bad_alloc()); }), "错误：内存不足。");
   const std::system_error system(std::make_error_code(std::errc::no_space_on_device), "write");
-  EXPECT_EQ(in_chinese([&] { return error_words(system); }), "错误：" + std::string(system.what()));
+  // Its reason in words (the caller's English label of the call, "write", is left out).
+  EXPECT_EQ(in_chinese([&] { return error_words(system); }), "错误：设备上没有空间");
+  EXPECT_EQ(error_words(system), "Error: " + std::string(system.what()));
 }
 
 // The panel's keys (config_panel.cpp draws these tables; particle.library's list included).

@@ -33,12 +33,13 @@ inline bool has_chinese_text(const std::string& text) {
 /// keywords of a mesh file ("facet normal", "outer loop") and of a PLY header ("element",
 /// "property list"), the NUL character.
 inline bool is_kept_name(const std::string& word) {
-  static const std::set<std::string> names = {
-      "HDF5",  "aggpack", "format_name", "format_version", "true",   "TetGen",
-      "ITZ",   "PNG",     "FIFO",        "cgroup",         "ulimit", "STL",
-      "ASCII", "OpenGL",  "OBJ",         "facet",          "normal", "outer",
-      "loop",  "vertex",  "solid",       "endsolid",       "stl",    "obj",
-      "ply",   "Qhull",   "NUL"};
+  static const std::set<std::string> names = {"HDF5",   "aggpack",  "format_name", "format_version",
+                                              "true",   "TetGen",   "ITZ",         "PNG",
+                                              "FIFO",   "cgroup",   "ulimit",      "STL",
+                                              "ASCII",  "OpenGL",   "OBJ",         "facet",
+                                              "normal", "outer",    "loop",        "vertex",
+                                              "solid",  "endsolid", "stl",         "obj",
+                                              "ply",    "Qhull",    "NUL",         "CPU"};
   static const std::set<std::string> ply_header = {
       "PLY", "format", "element", "property", "list", "face", "end_header", "vertex_indices"};
   return names.count(word) > 0 || ply_header.count(word) > 0;

@@ -105,6 +105,9 @@ const BadFile kBadFiles[] = {
      "not below half the smallest container extent; allowed: [0, 0.2) m"},
     {"format_name_embedded_nul.h5", ": /format_name: ",
      "contains a NUL byte at position 15 followed by more text; allowed: text without NUL bytes"},
+    // A stored shape the polyhedron itself refuses (its own reason quoted, worded in the window).
+    {"triangle_index_outside_shape.h5", ": /shapes/triangles (shape 0, rows 0-43): ",
+     "not a polyhedron: invalid polyhedron.triangles = vertex index 1000000 (allowed: < 24)"},
 };
 
 // The fixtures that are valid packings (checked by the tests below).

@@ -12,6 +12,8 @@
 
 #include "support/cli_test.h"
 #include "support/mesh_files.h"
+#include "support/paths.h"
+#include "support/troughs.h"
 
 namespace aggpack {
 namespace {
@@ -19,28 +21,7 @@ namespace {
 using test::CliRun;
 
 // 2 x 2 x 2 = 8 lattice sites behind the baffle, R = 5 mm; short stages.
-constexpr const char* kLibraryTrough = R"([trough]
-length = 0.05
-width = 0.02
-height = 0.04
-baffle_position = 0.02
-baffle_thickness = 0.005
-baffle_speed = 0.2
-baffle_clear_time = 0.02
-[particles]
-library = "rocks"
-radius = 0.005
-fill_height = 0.02
-seed = 3
-[physics]
-density = 1200
-friction = 0.5
-[rest]
-quiet_time = 0.02
-check_interval = 0.005
-max_time = 0.3
-confirm_window = 2
-)";
+const std::string kLibraryTrough = test::small_trough("library = \"rocks\"\n");
 
 class ReposeLibraryCli : public test::CliTest {
  protected:
@@ -101,6 +82,19 @@ TEST_F(ReposeLibraryCli, LibraryKeysAreNamedAsTyped) {
       run("repose small.toml --set particles.library_max_hull_excess=1e-9 -o out");
   EXPECT_EQ(excess.exit_code, 2);
   EXPECT_NE(excess.err.find("particles.library_max_hull_excess"), std::string::npos) << excess.err;
+  // A heavy run (the paper's 10-layer acrylic fill) with a missing library: the one line is the
+  // refusal, before the heavy-run note; and so for a seed ensemble.
+  for (const std::string seeds : {"", " --seeds 1-2"}) {
+    const CliRun heavy = run("repose '" + test::source_dir() +
+                             "/examples/repose-acrylic-075.toml' --set particles.library=nope/ -o "
+                             "heavy" +
+                             seeds);
+    EXPECT_EQ(heavy.exit_code, 2);
+    EXPECT_EQ(heavy.err.rfind("aggpack: error: invalid particles.library = \"nope/\"", 0), 0U)
+        << heavy.err;
+    EXPECT_EQ(heavy.err.find('\n'), heavy.err.size() - 1) << heavy.err;
+    EXPECT_FALSE(std::filesystem::exists(path("heavy")));
+  }
   // Without a library the library's options are not in effect: the resolved config omits them.
   const CliRun config = run("repose --print-config");
   ASSERT_EQ(config.exit_code, 0) << config.err;

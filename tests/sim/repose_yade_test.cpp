@@ -18,6 +18,7 @@
 #include "aggpack/sim/repose_yade.h"
 #include "support/cli_test.h"
 #include "support/readers.h"
+#include "support/troughs.h"
 
 namespace aggpack {
 namespace {
@@ -26,29 +27,7 @@ namespace fs = std::filesystem;
 
 // 2 x 2 x 2 = 8 particles behind the baffle, few vertices (L = 2 R), short stages: a few
 // thousand YADE steps.
-constexpr const char* kSmallTrough = R"([trough]
-length = 0.05
-width = 0.02
-height = 0.04
-baffle_position = 0.02
-baffle_thickness = 0.005
-baffle_speed = 0.2
-baffle_clear_time = 0.02
-[particles]
-alpha = 0.9375
-radius = 0.005
-edge_length = 0.01
-fill_height = 0.02
-seed = 3
-[physics]
-density = 1200
-friction = 0.5
-[rest]
-quiet_time = 0.02
-check_interval = 0.005
-max_time = 0.3
-confirm_window = 2
-)";
+const std::string kSmallTrough = test::small_trough("alpha = 0.9375\nedge_length = 0.01\n");
 
 class ReposeYadeCli : public test::CliTest {
  protected:

@@ -143,6 +143,11 @@ class LimitExceeded : public Error {
               field, value, allowed) {}
 };
 
+/// `error` quoted as a value of another error's sentence ("not a polyhedron: invalid ..."): first
+/// its message with its whole wording, then the values its parts need worded (to pass to
+/// Error::word_value of the error that quotes it).
+std::vector<WordedValue> worded_as_value(const Error& error);
+
 /// Formats a double for error messages with enough digits to be unambiguous.
 std::string format_value(double value);
 

@@ -147,6 +147,14 @@
   X(NativeOffsetsRun, "runs from {} to {}, expected 0 to {} (the rows of {})")                  \
   X(NativeOffsetsDecrease, "offsets must not decrease")                                         \
   X(NativeNotPolyhedron, "not a polyhedron: {}")                                                \
+  /* a polyhedron's own refusal (geom/convex_polyhedron.cpp), and a refused value quoted */   \
+  X(PolyhedronVertexCount, "{} vertices")                                                       \
+  X(PolyhedronTriangleCount, "{} triangles")                                                    \
+  X(PolyhedronVertexIndex, "vertex index {}")                                                   \
+  X(PolyhedronEdge, "edge {}-{}")                                                               \
+  X(PolyhedronEdgeTwice, "each edge shared by exactly two oppositely oriented triangles")       \
+  X(InvalidValue, "invalid {} = {} (allowed: {})")                                              \
+  X(LimitValue, "limit exceeded for {} = {} (allowed: {})")                                     \
   X(Hdf5LookUp, "cannot look it up")                                                            \
   X(Hdf5OpenGroup, "cannot open the group")                                                     \
   X(Hdf5OpenAttribute, "cannot open the attribute")                                             \
@@ -199,6 +207,8 @@
   X(PhraseUseLargerParticles, "use larger particles or a smaller container")                    \
   X(PhraseUseLibrarySize, "use shape.library_size, larger particles or a smaller container")    \
   X(PhraseUseLargerRadius, "use a larger radius or edge length, or a smaller container")        \
+  X(PhraseNonFiniteCoordinate, "non-finite coordinate")                                         \
+  X(PhraseFiniteNumbers, "finite numbers")                                                      \
   /* whole messages: writing a file */                                                          \
   X(OutputPathEmpty, "output path is empty")                                                    \
   X(WriteNameTooLong, "cannot write {}: file name too long (a name of {} bytes, at most {})")   \

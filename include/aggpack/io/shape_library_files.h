@@ -19,4 +19,9 @@ inline constexpr std::uint64_t kMaxMeshFileBytes = 1ULL << 30;
 ///        skipped), IoError, FormatError, LimitExceeded.
 ShapeLibrary load_shape_library(const ShapeLibraryOptions& options);
 
+/// Lists the files `options.paths` name without reading them: the same refusals as
+/// load_shape_library's for paths (no such folder or file, no mesh files, too many, a file named
+/// twice), for a command to give before it starts heavy work.
+void check_library_paths(const ShapeLibraryOptions& options);
+
 }  // namespace aggpack

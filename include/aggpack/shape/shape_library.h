@@ -41,6 +41,8 @@ struct ShapeLibraryOptions {
   ShapeImportOptions import{};
   bool is_skipping_bad = false;  ///< skip (and count) files that fail, instead of stopping
   bool is_use_once = false;      ///< each shape placed at most once
+  /// Whether a library is asked for (a path given).
+  [[nodiscard]] bool is_used() const { return !paths.empty(); }
   /// The paths for messages and the provenance: "rocks/", "a.stl, b.stl".
   [[nodiscard]] std::string paths_text() const;
 };
@@ -101,7 +103,7 @@ void validate(const ShapeImportOptions& options);
 struct ShapeFiles {
   ShapeLibraryOptions options{};
   std::shared_ptr<const ShapeLibrary> loaded{};
-  [[nodiscard]] bool is_used() const { return !options.paths.empty(); }
+  [[nodiscard]] bool is_used() const { return options.is_used(); }
 };
 
 }  // namespace aggpack
