@@ -1,5 +1,6 @@
-// Seed ensembles (`repose --seeds`) and sweeps (`aggpack sweep`) of the repose test: the runs,
-// their folders and run records, split over `--case K --of N` workers or mpirun ranks, then the
+// Seed ensembles (`repose --seeds`) and sweeps (`aggpack sweep`) of the repose test: the runs
+// come from the study layer (aggpack/study/repose_study.h, as Python's); here are their folders,
+// run records and progress bars, split over `--case K --of N` workers or mpirun ranks, then the
 // summary (sim_summary.h). Built only with AGGPACK_HAS_SIM (cmake/sim.cmake).
 
 #ifdef AGGPACK_HAS_SIM

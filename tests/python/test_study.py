@@ -19,63 +19,61 @@ TROUGH = TROUGH_FILE.read_text()
 
 @pytest.fixture(scope="module")
 def ensemble():
-    return aggpack.repose(TROUGH, seeds=[3, 1, 2])
+    return aggpack.repose(TROUGH, seeds="2,1")
 
 
 def test_ensemble_summary_is_the_statistics_of_its_seeds(ensemble):
     seeds = ensemble["seeds"]
-    assert [s["seed"] for s in seeds] == [3, 1, 2]
+    assert [s["seed"] for s in seeds] == [2, 1]
     assert all(s["is_valid"] and s["error"] == "" for s in seeds)
     angles = [s["angle_degrees"] for s in seeds]
     assert np.array_equal(ensemble["angles"], angles)
-    assert len(set(angles)) > 1  # different seeds, different piles
+    assert angles[0] != angles[1]  # different seeds, different piles
     st = ensemble["statistics"]
-    assert st["seeds_used"] == 3 and st["seeds_failed"] == 0 and st["seeds_total"] == 3
+    assert st["seeds_used"] == 2 and st["seeds_failed"] == 0 and st["seeds_total"] == 2
     assert ensemble["angle_degrees"] == st["mean_angle_degrees"]
-    assert ensemble["angle_degrees"] == pytest.approx(sum(angles) / 3, rel=1e-14)
-    sd = math.sqrt(sum((a - st["mean_angle_degrees"]) ** 2 for a in angles) / 2)
+    assert ensemble["angle_degrees"] == pytest.approx(sum(angles) / 2, rel=1e-14)
+    sd = abs(angles[0] - angles[1]) / math.sqrt(2)
     assert st["std_dev_degrees"] == pytest.approx(sd, rel=1e-12)
-    assert st["t_quantile"] == pytest.approx(4.30265273, abs=1e-7)
-    half = st["t_quantile"] * sd / math.sqrt(3)
+    assert st["t_quantile"] == pytest.approx(12.7062047, abs=1e-6)
+    half = st["t_quantile"] * sd / math.sqrt(2)
     assert st["ci_lower_degrees"] == pytest.approx(st["mean_angle_degrees"] - half, rel=1e-12)
     assert st["ci_upper_degrees"] == pytest.approx(st["mean_angle_degrees"] + half, rel=1e-12)
     assert ensemble["is_cancelled"] is False
 
 
-def test_each_seed_is_its_own_single_run(ensemble):
-    for s in ensemble["seeds"][:2]:
-        alone = aggpack.repose(TROUGH, [f"particles.seed={s['seed']}"])
-        assert alone["angle_degrees"] == s["angle_degrees"]
-        assert alone["particle_count"] == s["particle_count"]
+def test_a_seed_is_its_own_single_run(ensemble):
+    first = ensemble["seeds"][0]
+    alone = aggpack.repose(TROUGH, [f"particles.seed={first['seed']}"])
+    assert alone["angle_degrees"] == first["angle_degrees"]
+    assert alone["particle_count"] == first["particle_count"]
 
 
 def test_ensemble_is_the_clis_ensemble_json(ensemble, cli, tmp_path):
     out = tmp_path / "out"
-    run = cli("repose", str(TROUGH_FILE), "--seeds", "3,1-2", "-o", str(out), "--width", "64",
+    run = cli("repose", str(TROUGH_FILE), "--seeds", "2,1", "-o", str(out), "--width", "64",
               "--progress", "none")
     assert run.returncode == 0, run.stderr
-    cli = json.loads((out / "ensemble.json").read_text())
-    assert [s["seed"] for s in cli["seeds"]] == [s["seed"] for s in ensemble["seeds"]]
-    assert [s["angle_degrees"] for s in cli["seeds"]] == list(ensemble["angles"])
-    for key, value in cli["statistics"].items():
+    cli_json = json.loads((out / "ensemble.json").read_text())
+    assert [s["seed"] for s in cli_json["seeds"]] == [2, 1]
+    assert [s["angle_degrees"] for s in cli_json["seeds"]] == list(ensemble["angles"])
+    for key, value in cli_json["statistics"].items():
         assert ensemble["statistics"][key] == value, key
     own = json.loads((out / "seed-1" / "repose.json").read_text())
     assert own["fit"]["angle_degrees"] == ensemble["seeds"][1]["angle_degrees"]
 
 
-def test_seeds_as_a_count_a_range_or_a_list_are_the_same():
-    by_count = aggpack.repose(TROUGH, seeds=2)
-    by_range = aggpack.repose(TROUGH, seeds="1-2")
-    assert [s["seed"] for s in by_count["seeds"]] == [1, 2]
-    assert np.array_equal(by_count["angles"], by_range["angles"])
-
-
-def test_progress_is_called_per_seed_and_false_cancels():
+def test_seeds_as_a_count_with_progress_per_seed(ensemble):
     seen = []
-    aggpack.repose(TROUGH, seeds=[1, 2], progress=seen.append)
+    by_count = aggpack.repose(TROUGH, seeds=2, progress=seen.append)
+    assert [s["seed"] for s in by_count["seeds"]] == [1, 2]
+    assert list(by_count["angles"]) == list(ensemble["angles"])[::-1]
     assert sorted(p["done"] for p in seen) == [1, 2] and {p["total"] for p in seen} == {2}
     assert sorted(p["seed"] for p in seen) == [1, 2]
+    assert {p["angle_degrees"] for p in seen} == set(ensemble["angles"])
 
+
+def test_progress_returning_false_cancels():
     calls = []
 
     def stop(progress):
@@ -120,20 +118,16 @@ def test_sweep_cases_are_single_runs_and_report_progress():
     rows = aggpack.sweep(TROUGH, SWEEP, progress=seen.append)
     assert [(r["alpha"], r["friction"]) for r in rows] == [(0.5, 0.2), (0.5, 0.4)]
     assert sorted(p["done"] for p in seen) == [1, 2]
-    for row in rows:
-        friction = row["friction"]
-        alone = aggpack.repose(TROUGH, ["particles.alpha=0.5", f"physics.friction={friction}"])
-        assert row["angle_degrees"] == alone["angle_degrees"]
-        assert row["particle_count"] == alone["particle_count"]
+    alone = aggpack.repose(TROUGH, ["physics.friction=0.4"])
+    assert rows[1]["angle_degrees"] == alone["angle_degrees"]
+    assert rows[1]["particle_count"] == alone["particle_count"]
 
 
-def test_sweep_with_seeds_gives_each_case_its_ensemble():
-    rows = aggpack.sweep(TROUGH, ["sweep.alphas=[0.5]", "sweep.frictions=[0.3]"], seeds=[1, 2])
+def test_sweep_with_seeds_gives_each_case_its_ensemble(ensemble):
+    # The trough's own case (alpha 0.5, mu_s 0.3) with the fixture's seeds.
+    rows = aggpack.sweep(TROUGH, ["sweep.alphas=[0.5]", "sweep.frictions=[0.3]"], seeds=[2, 1])
     assert len(rows) == 1
     row = rows[0]
     assert row["seed_count"] == 2 and row["seeds_used"] == 2
-    ensemble = aggpack.repose(TROUGH, ["particles.alpha=0.5", "physics.friction=0.3"],
-                              seeds=[1, 2])
-    assert row["angle_degrees"] == pytest.approx(ensemble["angle_degrees"], rel=1e-14)
-    assert row["ci_upper_degrees"] == pytest.approx(
-        ensemble["statistics"]["ci_upper_degrees"], rel=1e-12)
+    assert row["angle_degrees"] == ensemble["angle_degrees"]
+    assert row["ci_upper_degrees"] == ensemble["statistics"]["ci_upper_degrees"]
