@@ -2,7 +2,8 @@
 // What the binding files of the Python module share (issue 17): the Packing object Python holds,
 // the registration function of each file, and small conversions. One file per concept:
 // errors.cpp, particles.cpp, config.cpp, packing.cpp, pack.cpp, native.cpp, export.cpp,
-// statistics.cpp, sim.cpp, render.cpp; module.cpp calls the register_* functions in order.
+// statistics.cpp, sim.cpp, study.cpp, render.cpp; module.cpp calls the register_* functions in
+// order.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -85,6 +86,7 @@ void register_native(py::module_& m);
 void register_export(py::module_& m);
 void register_statistics(py::module_& m);
 void register_sim(py::module_& m);
+void register_study(py::module_& m);
 void register_render(py::module_& m);
 
 }  // namespace aggpack::python

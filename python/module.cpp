@@ -32,5 +32,6 @@ Reference: docs/python.md.)doc";
   python::register_export(m);
   python::register_statistics(m);
   python::register_sim(m);
+  python::register_study(m);
   python::register_render(m);
 }

@@ -1,10 +1,9 @@
-// Physics (aggpack/sim, Bullet), when the module is built with it (AGGPACK_BUILD_SIM): settle(),
-// repose() and sweep(), as `aggpack settle|repose|sweep` run them, results as dicts.
-// aggpack.has_sim says whether they exist.
+// Physics (aggpack/sim, Bullet), when the module is built with it (AGGPACK_BUILD_SIM):
+// Packing.settle(), as `aggpack settle` runs it, the report as a dict (repose() and sweep() are
+// in study.cpp). aggpack.has_sim says whether they exist.
 
 #include <pybind11/stl.h>
 
-#include <exception>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,13 +11,7 @@
 #include "bindings.h"
 
 #ifdef AGGPACK_HAS_SIM
-#include "aggpack/config/repose_config.h"
-#include "aggpack/core/error.h"
-#include "aggpack/pipeline/pipeline.h"
-#include "aggpack/sim/repose.h"
-#include "aggpack/sim/repose_yade.h"
 #include "aggpack/sim/settle.h"
-#include "aggpack/sim/sweep.h"
 #endif
 
 namespace aggpack::python {
@@ -47,43 +40,10 @@ py::dict settle_dict(const SettleReport& r) {
   return d;
 }
 
-py::dict fit_dict(const SlopeFit& fit) {
-  py::dict d;
-  d["is_valid"] = fit.is_valid;
-  d["message"] = fit.message;
-  d["angle_degrees"] = fit.angle_degrees;
-  d["slope"] = fit.slope;
-  d["intercept"] = fit.intercept;
-  d["r_squared"] = fit.r_squared;
-  d["pile_height"] = fit.pile_height;
-  d["first_bin"] = fit.first_bin;
-  d["last_bin"] = fit.last_bin;
-  return d;
-}
-
 std::shared_ptr<PyPacking> wrap(Packing packing) {
   auto result = std::make_shared<PyPacking>();
   result->packing = std::move(packing);
   return result;
-}
-
-// Sweep options from None / dict / TOML text, with the CLI's keys and messages.
-SweepOptions sweep_options(const py::object& config, const std::vector<std::string>& overrides) {
-  std::string text;
-  std::string source = "config";
-  if (py::isinstance<py::dict>(config)) {
-    // The same dict -> TOML conversion as PackConfig.from_dict.
-    text = py::module_::import("aggpack").attr("_dict_to_toml")(config).cast<std::string>();
-    source = "config dict";
-  } else if (py::isinstance<py::str>(config)) {
-    text = config.cast<std::string>();
-  } else if (!config.is_none()) {
-    throw InvalidInput("config", py::repr(config).cast<std::string>(),
-                       "None (the paper's case), a dict or a TOML string");
-  }
-  SweepOptions options = parse_sweep_config(text, source, overrides);
-  with_sweep_key_names([&] { validate(options); });
-  return options;
 }
 
 }  // namespace
@@ -138,87 +98,6 @@ Returns (settled Packing, report dict: is_at_rest, simulated_time s, steps, time
 wall_seconds, kinetic_energy J, solid_fraction_before/after (bulk), height_before/after m,
 overlapping_pairs, max_overlap m, escaped_particles, ...). Raises InvalidInput naming the keyword.)doc");
 
-  m.def(
-      "repose",
-      [](const py::object& config, const std::vector<std::string>& overrides) {
-        const SweepOptions options = sweep_options(config, overrides);
-        std::optional<ReposeResult> result;
-        {
-          const py::gil_scoped_release release;
-          with_sweep_key_names(
-              [&] {  // physics.engine = "yade" runs YADE (aggpack/sim/repose_yade.h)
-                result = run_repose_engine(options.base, repose_fill(options.base),
-                                           write_repose_yade_script);
-              });
-        }
-        py::dict d;
-        d["angle_degrees"] = result->fit.angle_degrees;
-        d["fit"] = fit_dict(result->fit);
-        d["particle_count"] = result->particle_count;
-        d["solid_volume"] = result->solid_volume;
-        d["mean_measured_alpha"] = result->mean_measured_alpha;
-        d["time_step"] = result->time_step;
-        d["is_stage1_at_rest"] = result->is_stage1_at_rest;
-        d["stage1_time"] = result->stage1_time;
-        d["is_stage2_at_rest"] = result->is_stage2_at_rest;
-        d["stage2_time"] = result->stage2_time;
-        d["baffle_travel"] = result->baffle_travel;
-        d["escaped_particles"] = result->escaped_particles;
-        py::dict profile;
-        std::vector<double> x(result->profile.height.size());
-        for (std::size_t i = 0; i < x.size(); ++i) x[i] = result->profile.centre(i);
-        profile["x"] = to_numpy(std::move(x));
-        profile["height"] = to_numpy(std::vector<double>(result->profile.height));
-        d["profile"] = profile;
-        d["initial"] = wrap(std::move(result->initial));
-        d["settled"] = wrap(std::move(result->settled));
-        d["final"] = wrap(std::move(result->final));
-        return d;
-      },
-      py::arg("config") = py::none(), py::arg("overrides") = std::vector<std::string>{},
-      R"doc(The angle-of-repose trough test, as `aggpack repose [CONFIG.toml] --set ...`: the
-paper's lattice fill behind the baffle, stage 1 settles it, stage 2 moves the baffle away, the
-pile's slope is fitted. config: None (the paper's case), a dict or TOML text with the tables of
-docs/config.md ([trough] [particles] [physics] [rest] [measure]); overrides: "key=value" strings.
-Releases the GIL; minutes for the paper's 1,050 particles.
-
-Returns a dict: angle_degrees, fit (is_valid, angle_degrees, slope, r_squared, pile_height, ...),
-particle_count, solid_volume m^3, mean_measured_alpha, stage times (s), profile {x, height} (m,
-float64 arrays), and the packings initial, settled, final. Raises ConfigError naming the key.)doc");
-
-  m.def(
-      "sweep",
-      [](const py::object& config, const std::vector<std::string>& overrides) {
-        const SweepOptions options = sweep_options(config, overrides);
-        std::vector<SweepCase> cases;
-        {
-          const py::gil_scoped_release release;
-          with_sweep_key_names(
-              [&] { cases = run_sweep(options, repose_fill, {}, write_repose_yade_script); });
-        }
-        py::list rows;
-        for (const SweepCase& c : cases) {
-          py::dict d;
-          d["index"] = c.index;
-          d["alpha"] = c.alpha;
-          d["friction"] = c.friction;
-          d["mean_measured_alpha"] = c.mean_measured_alpha;
-          d["particle_count"] = c.particle_count;
-          d["is_valid"] = c.is_valid;
-          d["angle_degrees"] = c.angle_degrees;
-          d["r_squared"] = c.r_squared;
-          d["is_at_rest"] = c.is_at_rest;
-          d["simulated_time"] = c.simulated_time;
-          d["seed"] = c.seed;
-          rows.append(d);
-        }
-        return rows;
-      },
-      py::arg("config") = py::none(), py::arg("overrides") = std::vector<std::string>{},
-      R"doc(The repose test over every (alpha, mu_s) case, as `aggpack sweep` (config and
-overrides as repose(), plus the [sweep] table: alphas, frictions). Returns one dict per case in
-index order: alpha, friction, angle_degrees, r_squared, is_valid, is_at_rest, particle_count,
-mean_measured_alpha, simulated_time, seed. Releases the GIL; long.)doc");
 #else
   m.attr("has_sim") = false;
 #endif

@@ -20,10 +20,10 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
-#include "aggpack/pipeline/pipeline.h"
 #include "aggpack/sim/distributed.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/repose_yade.h"
+#include "aggpack/study/repose_study.h"
 #include "commands.h"
 #include "heavy_runs.h"
 #include "output_flags.h"
@@ -157,33 +157,25 @@ void run_repose_command(const ReposeFlags& flags) {
   std::unique_ptr<ProgressBar> bar;
   int last_stage = 0;
   ReposeResult result;
-  with_sweep_key_names([&] {
-    if (options.base.engine == ReposeEngine::kYade) {
-      result = run_repose_yade(options.base, repose_fill(options.base), write_repose_yade_script,
-                               [&](const YadeProgress& p) {
-                                 if (style != ProgressStyle::kNone)
-                                   print_yade_progress(p, options.base);
-                               });
-      return;
+  study::ReposeControl control;
+  control.on_progress = [&](int stage, double time, double energy, double threshold) {
+    if (stage != last_stage) {
+      bar.reset();  // ends the previous stage's display
+      last_stage = stage;
+      bar = std::make_unique<ProgressBar>(stage == 1 ? "stage 1 (settle)" : "stage 2 (baffle)",
+                                          "ms simulated", style);
+      bar->set_eta_is_bound(true);
     }
-    result = run_repose(
-        options.base, repose_fill(options.base),
-        [&](int stage, double time, double energy, double threshold) {
-          if (stage != last_stage) {
-            bar.reset();  // ends the previous stage's display
-            last_stage = stage;
-            bar = std::make_unique<ProgressBar>(
-                stage == 1 ? "stage 1 (settle)" : "stage 2 (baffle)", "ms simulated", style);
-            bar->set_eta_is_bound(true);
-          }
-          bar->update(time / max_time, static_cast<std::uint64_t>(time * 1e3 + 0.5),
-                      static_cast<std::uint64_t>(max_time * 1e3 + 0.5),
-                      threshold > 0.0
-                          ? fmt::format("kinetic energy {:.2g} J (at rest below {:.2g} J)", energy,
-                                        threshold)
-                          : fmt::format("kinetic energy {:.2g} J, baffle moving", energy));
-        });
-  });
+    bar->update(time / max_time, static_cast<std::uint64_t>(time * 1e3 + 0.5),
+                static_cast<std::uint64_t>(max_time * 1e3 + 0.5),
+                threshold > 0.0 ? fmt::format("kinetic energy {:.2g} J (at rest below {:.2g} J)",
+                                              energy, threshold)
+                                : fmt::format("kinetic energy {:.2g} J, baffle moving", energy));
+  };
+  control.on_yade = [&](const YadeProgress& p) {
+    if (style != ProgressStyle::kNone) print_yade_progress(p, options.base);
+  };
+  with_sweep_key_names([&] { result = study::run_repose(options.base, control); });
   bar.reset();
   print_repose_result(result);
   // All or nothing, as `pack`: a failed write (disk full) removes the files of this run.

@@ -1,5 +1,6 @@
-// Seed ensembles (`repose --seeds`) and sweeps (`aggpack sweep`) of the repose test: the runs,
-// their folders and run records, split over `--case K --of N` workers or mpirun ranks, then the
+// Seed ensembles (`repose --seeds`) and sweeps (`aggpack sweep`) of the repose test: the runs
+// come from the study layer (aggpack/study/repose_study.h, as Python's); here are their folders,
+// run records and progress bars, split over `--case K --of N` workers or mpirun ranks, then the
 // summary (sim_summary.h). Built only with AGGPACK_HAS_SIM (cmake/sim.cmake).
 
 #ifdef AGGPACK_HAS_SIM
@@ -19,11 +20,11 @@
 #include "aggpack/config/repose_config.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
-#include "aggpack/pipeline/pipeline.h"
 #include "aggpack/sim/distributed.h"
 #include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/sweep.h"
+#include "aggpack/study/repose_study.h"
 #include "commands.h"
 #include "heavy_runs.h"
 #include "mpi_world.h"
@@ -111,38 +112,37 @@ EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& o
   std::size_t owned = 0;
   for (std::size_t i = 0; i < seeds.size(); ++i) owned += share.owns(i) ? 1 : 0;
   bar.update(0.0, 0, owned);
+  study::StudyControl control;
+  control.share = &share;
+  control.on_seed = [&](const EnsembleSeed& s, const ReposeResult* result, std::size_t done,
+                        std::size_t total) {
+    try {
+      if (result != nullptr) {
+        const std::string sub = in_folder(folder, fmt::format("seed-{}", s.seed));
+        std::filesystem::create_directories(sub);
+        ReposeOptions repose = options.base;
+        repose.seed = s.seed;
+        write_repose_json(in_folder(sub, "repose.json"), repose, *result);
+        write_profile_csv(in_folder(sub, "profile.csv"), *result);
+        write_side_view_png(in_folder(sub, "side.png"), result->final, result->profile, result->fit,
+                            std::min(flags.image_width, 1200));
+        write_packing(result->final, in_folder(sub, "final.h5"));
+      }
+      RunRecord record = plan;
+      record.run_index = run_index.at(s.seed);
+      record.ensemble = s;
+      write_run_record(in_folder(folder, "runs/" + run_record_name(record)), record);
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "aggpack: warning: seed %llu: %s\n",
+                   static_cast<unsigned long long>(s.seed), error.what());
+    }
+    bar.update(static_cast<double>(done) / static_cast<double>(total), done, total,
+               s.is_valid ? fmt::format("seed {}: {:.2f} deg", s.seed, s.angle_degrees)
+                          : fmt::format("seed {}: failed", s.seed));
+  };
   EnsembleResult ensemble;
-  with_sweep_key_names([&] {
-    ensemble = run_ensemble(
-        options.base, seeds, repose_fill,
-        [&](const EnsembleSeed& s, const ReposeResult* result, std::size_t done,
-            std::size_t total) {
-          try {
-            if (result != nullptr) {
-              const std::string sub = in_folder(folder, fmt::format("seed-{}", s.seed));
-              std::filesystem::create_directories(sub);
-              ReposeOptions repose = options.base;
-              repose.seed = s.seed;
-              write_repose_json(in_folder(sub, "repose.json"), repose, *result);
-              write_profile_csv(in_folder(sub, "profile.csv"), *result);
-              write_side_view_png(in_folder(sub, "side.png"), result->final, result->profile,
-                                  result->fit, std::min(flags.image_width, 1200));
-              write_packing(result->final, in_folder(sub, "final.h5"));
-            }
-            RunRecord record = plan;
-            record.run_index = run_index.at(s.seed);
-            record.ensemble = s;
-            write_run_record(in_folder(folder, "runs/" + run_record_name(record)), record);
-          } catch (const std::exception& error) {
-            std::fprintf(stderr, "aggpack: warning: seed %llu: %s\n",
-                         static_cast<unsigned long long>(s.seed), error.what());
-          }
-          bar.update(static_cast<double>(done) / static_cast<double>(total), done, total,
-                     s.is_valid ? fmt::format("seed {}: {:.2f} deg", s.seed, s.angle_degrees)
-                                : fmt::format("seed {}: failed", s.seed));
-        },
-        &share, write_repose_yade_script);
-  });
+  with_sweep_key_names(
+      [&] { ensemble = study::run_repose_ensemble(options.base, seeds, control); });
   bar.finish();
   created.keep();
   if (share.is_split()) print_share(share, ensemble.seeds.size(), seeds.size(), folder);
@@ -207,35 +207,34 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
   std::size_t owned = 0;
   for (std::size_t i = 0; i < total * seed_count; ++i) owned += share.owns(i) ? 1 : 0;
   bar.update(0.0, 0, owned);
+  study::StudyControl control;
+  control.share = &share;
+  control.on_run = [&](const SweepCase& c, const ReposeResult& result, std::size_t done,
+                       std::size_t count) {
+    const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction) +
+                             (is_ensemble ? fmt::format("_seed{}", c.seed) : std::string());
+    try {
+      ReposeOptions repose = options.base;
+      repose.seed = c.seed;
+      repose.alpha = c.alpha;
+      repose.physics.friction = c.friction;
+      if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
+      write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
+      write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final, result.profile,
+                          result.fit, std::min(flags.image_width, 1200));
+      RunRecord record = plan;
+      record.run_index = c.index * seed_count + (is_ensemble ? seed_index.at(c.seed) : 0);
+      record.sweep = c;
+      write_run_record(in_folder(folder, "runs/" + stem + ".json"), record);
+    } catch (const Error& error) {
+      std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
+    }
+    bar.update(
+        static_cast<double>(done) / static_cast<double>(count), done, count,
+        fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction, c.angle_degrees));
+  };
   std::vector<SweepCase> runs;
-  with_sweep_key_names([&] {
-    runs = run_sweep_runs(
-        options, repose_fill,
-        [&](const SweepCase& c, const ReposeResult& result, std::size_t done, std::size_t count) {
-          const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction) +
-                                   (is_ensemble ? fmt::format("_seed{}", c.seed) : std::string());
-          try {
-            ReposeOptions repose = options.base;
-            repose.seed = c.seed;
-            repose.alpha = c.alpha;
-            repose.physics.friction = c.friction;
-            if (options.is_wall_friction_coupled) repose.physics.wall_friction = c.friction;
-            write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
-            write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final,
-                                result.profile, result.fit, std::min(flags.image_width, 1200));
-            RunRecord record = plan;
-            record.run_index = c.index * seed_count + (is_ensemble ? seed_index.at(c.seed) : 0);
-            record.sweep = c;
-            write_run_record(in_folder(folder, "runs/" + stem + ".json"), record);
-          } catch (const Error& error) {
-            std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
-          }
-          bar.update(static_cast<double>(done) / static_cast<double>(count), done, count,
-                     fmt::format("alpha {:.2f} mu {:.2f}: {:.1f} deg", c.alpha, c.friction,
-                                 c.angle_degrees));
-        },
-        &share, write_repose_yade_script);
-  });
+  with_sweep_key_names([&] { runs = study::run_sweep_runs(options, control).runs; });
   bar.finish();
   created.keep();
   if (share.is_split()) print_share(share, runs.size(), total * seed_count, folder);

@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -13,7 +12,6 @@
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
-#include "aggpack/core/parallel.h"
 #include "aggpack/sim/distributed.h"
 
 namespace aggpack {
@@ -104,47 +102,6 @@ EnsembleStatistics ensemble_statistics(const std::vector<double>& values, double
   s.half_width = s.t_quantile * s.std_dev / std::sqrt(n);
   s.has_interval = true;
   return s;
-}
-
-EnsembleResult run_ensemble(const ReposeOptions& base, const std::vector<std::uint64_t>& seeds,
-                            const ReposeFill& fill, const EnsembleSeedCallback& on_seed,
-                            const RunShare* share, const YadeScriptWriter& yade_script) {
-  if (seeds.empty()) throw InvalidInput("--seeds", "[]", "at least one seed");
-  if (!fill) throw InvalidInput("ensemble fill", "none", "a function making each seed's fill");
-  validate(base);
-  std::vector<std::uint64_t> owned;
-  for (std::size_t i = 0; i < seeds.size(); ++i) {
-    if (share == nullptr || share->owns(i)) owned.push_back(seeds[i]);
-  }
-  std::vector<EnsembleSeed> runs(owned.size());
-  std::mutex mutex;
-  std::size_t done = 0;
-  // One seed per worker, each single-threaded inside (Bullet's world), as the sweep's cases:
-  // each slot depends only on its seed, so the ensemble is the same at any thread count.
-  parallel_for_index(0, owned.size(), [&](std::size_t index) {
-    EnsembleSeed& summary = runs[index];
-    summary.seed = owned[index];
-    ReposeOptions options = base;
-    options.seed = owned[index];
-    ReposeResult result;
-    bool has_result = false;
-    try {
-      result = run_repose_engine(options, fill(options), yade_script);
-      has_result = true;
-      summary.particle_count = result.particle_count;
-      summary.is_at_rest = result.is_stage1_at_rest && result.is_stage2_at_rest;
-      summary.angle_degrees = result.fit.angle_degrees;
-      summary.r_squared = result.fit.r_squared;
-      summary.is_valid = result.fit.is_valid;
-      if (!result.fit.is_valid) summary.error = "no slope fit: " + result.fit.message;
-    } catch (const Error& error) {
-      summary.error = error.what();
-    }
-    const std::lock_guard lock(mutex);
-    ++done;
-    if (on_seed) on_seed(summary, has_result ? &result : nullptr, done, owned.size());
-  });
-  return summarize_ensemble(std::move(runs));
 }
 
 EnsembleResult summarize_ensemble(std::vector<EnsembleSeed> seeds) {

@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <mutex>
 #include <string>
 
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
-#include "aggpack/core/parallel.h"
 #include "aggpack/sim/distributed.h"
 
 namespace aggpack {
@@ -20,69 +18,6 @@ void validate(const SweepOptions& options) {
   for (const double alpha : options.alphas) require_in_range("sweep.alphas", alpha, 0.0, 1.0);
   for (const double mu : options.frictions) require_in_range("sweep.frictions", mu, 0.0, 10.0);
   validate(options.base);
-}
-
-std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& fill,
-                                 const SweepCaseCallback& on_case,
-                                 const YadeScriptWriter& yade_script) {
-  return summarize_sweep(options, run_sweep_runs(options, fill, on_case, nullptr, yade_script));
-}
-
-std::vector<SweepCase> run_sweep_runs(const SweepOptions& options, const ReposeFill& fill,
-                                      const SweepCaseCallback& on_case, const RunShare* share,
-                                      const YadeScriptWriter& yade_script) {
-  validate(options);
-  if (!fill) throw InvalidInput("sweep fill", "none", "a function making each case's fill");
-  if (options.seeds.size() > kMaxEnsembleSeeds) {
-    throw InvalidInput("--seeds", std::to_string(options.seeds.size()) + " seeds",
-                       "at most " + std::to_string(kMaxEnsembleSeeds));
-  }
-  const std::size_t case_count = options.alphas.size() * options.frictions.size();
-  const bool is_ensemble = !options.seeds.empty();
-  const std::size_t seed_count = is_ensemble ? options.seeds.size() : 1;
-  std::vector<std::size_t> owned;
-  for (std::size_t i = 0; i < case_count * seed_count; ++i) {
-    if (share == nullptr || share->owns(i)) owned.push_back(i);
-  }
-  const std::size_t total = owned.size();
-  std::vector<SweepCase> runs(total);
-  std::mutex mutex;
-  std::size_t done = 0;
-  auto run_case = [&](std::size_t slot) {
-    const std::size_t index = owned[slot];
-    const std::size_t case_index = index / seed_count;
-    const double alpha = options.alphas[case_index / options.frictions.size()];
-    const double friction = options.frictions[case_index % options.frictions.size()];
-    ReposeOptions repose = options.base;
-    repose.alpha = alpha;
-    repose.physics.friction = friction;
-    if (options.is_wall_friction_coupled) repose.physics.wall_friction = friction;
-    if (is_ensemble) repose.seed = options.seeds[index % seed_count];
-    const ReposeResult result = run_repose_engine(repose, fill(repose), yade_script);
-    SweepCase& summary = runs[slot];
-    summary.index = case_index;
-    summary.alpha = alpha;
-    summary.friction = friction;
-    summary.seed = repose.seed;
-    summary.mean_measured_alpha = result.mean_measured_alpha;
-    summary.particle_count = result.particle_count;
-    summary.is_valid = result.fit.is_valid;
-    summary.angle_degrees = result.fit.angle_degrees;
-    summary.r_squared = result.fit.r_squared;
-    summary.fit_bins = result.fit.bin_count;
-    summary.is_at_rest = result.is_stage1_at_rest && result.is_stage2_at_rest;
-    summary.simulated_time = result.stage1_time + result.stage2_time;
-    summary.wall_seconds = result.stage1_seconds + result.stage2_seconds;
-    summary.seeds_used = summary.is_valid ? 1 : 0;
-    summary.seed_count = seed_count;  // per run: tells record names apart (cases/ stems)
-    const std::lock_guard lock(mutex);
-    ++done;
-    if (on_case) on_case(summary, result, done, total);
-  };
-  // Runs take about the same time, and each is single-threaded inside (Bullet's world), so the
-  // cores are used by running cases (and seeds) side by side.
-  parallel_for_index(0, total, run_case);
-  return runs;
 }
 
 std::vector<SweepCase> summarize_sweep(const SweepOptions& options, std::vector<SweepCase> runs) {

@@ -16,6 +16,7 @@
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/settle.h"
 #include "aggpack/sim/sweep.h"
+#include "aggpack/study/repose_study.h"
 
 namespace aggpack {
 namespace {
@@ -210,7 +211,9 @@ TEST(Repose, AngleRisesWithFrictionAndAsAlphaFalls) {
   sweep.base = small_trough();
   sweep.alphas = {0.9, 0.4};
   sweep.frictions = {0.1, 0.6};
-  const auto cases = run_sweep(sweep, lattice_fill);
+  study::StudyControl control;
+  control.fill = lattice_fill;
+  const auto cases = study::run_sweep(sweep, control).cases;
   ASSERT_EQ(cases.size(), 4u);
   for (const auto& c : cases) {
     EXPECT_TRUE(c.is_valid) << "alpha " << c.alpha << " mu " << c.friction;
@@ -420,9 +423,7 @@ TEST(Repose, RejectsBadOptions) {
   EXPECT_THROW(run_repose(options, fill), InvalidInput);
   SweepOptions sweep;
   sweep.alphas.clear();
-  EXPECT_THROW(run_sweep(sweep, lattice_fill), InvalidInput);
-  sweep = SweepOptions{};
-  EXPECT_THROW(run_sweep(sweep, ReposeFill{}), InvalidInput);
+  EXPECT_THROW(study::run_sweep(sweep), InvalidInput);
 }
 
 TEST(Repose, RejectsAFillOutsideTheBaffle) {

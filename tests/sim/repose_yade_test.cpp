@@ -13,9 +13,9 @@
 
 #include "aggpack/config/repose_config.h"
 #include "aggpack/io/native.h"
-#include "aggpack/pipeline/pipeline.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/repose_yade.h"
+#include "aggpack/study/repose_study.h"
 #include "support/cli_test.h"
 #include "support/readers.h"
 #include "support/troughs.h"
@@ -119,7 +119,7 @@ TEST(ReposeYade, TheScriptHoldsBulletsFill) {
   SweepOptions options = parse_sweep_config(kSmallTrough);
   options.base.rest.max_time = 0.05;  // the fill is all this test needs from Bullet
   options.base.confirm_window = 0.0;
-  const ReposeResult bullet = run_repose(options.base, repose_fill(options.base));
+  const ReposeResult bullet = run_repose(options.base, study::repose_fill(options.base));
   // The Bullet run's initial packing is what the YADE run prepares and gives its writer.
   options.base.engine = ReposeEngine::kYade;
   Packing given;
@@ -128,11 +128,11 @@ TEST(ReposeYade, TheScriptHoldsBulletsFill) {
                            std::ostream& out) {
     given = initial;
     std::ostringstream text;
-    write_repose_yade_script(initial, resolved, text);
+    study::write_repose_yade_script(initial, resolved, text);
     script = text.str();
     out << "raise SystemExit(3)\n";  // stop here: the test needs the script, not the run
   };
-  EXPECT_THROW(run_repose_yade(options.base, repose_fill(options.base), capture), Error);
+  EXPECT_THROW(run_repose_yade(options.base, study::repose_fill(options.base), capture), Error);
   ASSERT_EQ(given.particles.size(), bullet.initial.particles.size());
   for (std::size_t i = 0; i < given.particles.size(); ++i) {
     EXPECT_EQ(given.particles[i].pose.position, bullet.initial.particles[i].pose.position);

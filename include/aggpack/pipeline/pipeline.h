@@ -7,7 +7,6 @@
 // options structs with defaults and validate(), their words). Each kind's run function is one
 // PackerRun specialisation in src/pipeline/pipeline.cpp; a kind without one fails to compile.
 
-#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
@@ -21,7 +20,6 @@
 #include "aggpack/pack/progress.h"
 #include "aggpack/shape/shape_library.h"
 #ifdef AGGPACK_HAS_SIM
-#include "aggpack/sim/repose.h"
 #endif
 
 namespace aggpack {
@@ -98,18 +96,5 @@ PipelineResult pack(const PackConfig& config, const PackControl& control = {});
 /// \throw InvalidInput naming "densify.<option>" or "start packing".
 PipelineResult densify_packing(Packing start, const DensifyOptions& options, std::string_view note,
                                const PackControl& control = {});
-
-#ifdef AGGPACK_HAS_SIM
-/// The fill of a repose case: the paper's lattice placement of repose_fill_options(options)
-/// packed by pack(). What `aggpack repose|sweep` and the Python module's repose() and sweep()
-/// run the simulation on (a ReposeFill; called concurrently by a sweep).
-PackResult repose_fill(const ReposeOptions& options);
-
-/// The YADE script of a repose run on `initial` (engine yade): the io module's
-/// write_yade_repose_script (aggpack/io/yade_repose.h) with the options' trough, friction,
-/// gravity, YADE parameters and rest criteria. A YadeScriptWriter (aggpack/sim/repose_yade.h).
-void write_repose_yade_script(const Packing& initial, const ReposeOptions& options,
-                              std::ostream& out);
-#endif
 
 }  // namespace aggpack

@@ -2,8 +2,9 @@
 // Seed ensembles of the repose test (issue 15 item 2): the same case run once per master seed
 // (particles.seed: the fill's shapes and turns), each angle reported, and their mean, sample
 // standard deviation and the 95 % confidence interval of the mean (Student t, n - 1 degrees of
-// freedom). Seeds run side by side (one case per worker, each single-threaded), so the ensemble
-// does not depend on the thread count.
+// freedom): seed lists, statistics and the ensemble's files. The runs are the study layer's
+// (aggpack/study/repose_study.h: seeds side by side, one per worker, each single-threaded, so the
+// ensemble does not depend on the thread count).
 
 #include <cstddef>
 #include <cstdint>
@@ -12,7 +13,6 @@
 #include <vector>
 
 #include "aggpack/sim/repose.h"
-#include "aggpack/sim/repose_yade.h"
 
 namespace aggpack {
 
@@ -60,26 +60,15 @@ struct EnsembleSeed {
 struct EnsembleResult {
   std::vector<EnsembleSeed> seeds;
   EnsembleStatistics statistics;
+  bool is_cancelled = false;  ///< the run was cancelled: seeds that did not run are left out
   [[nodiscard]] std::size_t failed_count() const { return seeds.size() - statistics.count; }
 };
 
 /// Called once per finished seed with its full result (nullptr when the run threw), in
-/// completion order, from a worker thread but never two at a time. Must not throw.
+/// completion order, from a worker thread but never two at a time (aggpack/study/
+/// repose_study.h's run_repose_ensemble runs the seeds). Must not throw.
 using EnsembleSeedCallback = std::function<void(
     const EnsembleSeed& summary, const ReposeResult* result, std::size_t done, std::size_t total)>;
-
-struct RunShare;  // aggpack/sim/distributed.h
-
-/// Runs `base` once per seed (base.seed replaced) on the fill `fill` makes (called concurrently),
-/// in parallel over seeds. A seed whose run throws an aggpack Error is recorded as failed with
-/// the message; the others go on. With `share` (worker K of N, distributed.h) only the seeds
-/// that worker owns run, and the result holds only them. Engine yade (base.engine) needs
-/// `yade_script` (aggpack/sim/repose_yade.h). \throw InvalidInput for no seeds or
-/// invalid options.
-EnsembleResult run_ensemble(const ReposeOptions& base, const std::vector<std::uint64_t>& seeds,
-                            const ReposeFill& fill, const EnsembleSeedCallback& on_seed = {},
-                            const RunShare* share = nullptr,
-                            const YadeScriptWriter& yade_script = {});
 
 /// The ensemble of finished seeds (in plan order): the statistics over the valid ones.
 EnsembleResult summarize_ensemble(std::vector<EnsembleSeed> seeds);

@@ -67,17 +67,17 @@ struct ReposeOptions {
   /// largest particle size beyond the pile; if it reaches the far wall first it stops there.
   double baffle_clear_time = 0.2;
 
-  // Particles: the fill, made by the caller (the pipeline's pack() of repose_fill_options(), the
-  // paper's lattice placement in the box [0, baffle_position] x [0, width()] x
-  // [0, fill_height]) and passed to run_repose().
+  // Particles: the fill, made by the caller (the study layer's repose_fill(): the pipeline's
+  // pack() of repose_fill_options(), the paper's lattice placement in the box
+  // [0, baffle_position] x [0, width()] x [0, fill_height]) and passed to run_repose().
   double alpha = 0.5;        ///< Eq. 3 shape control, [0, 1]
   double radius = 0.1;       ///< control radius R (m), > 0; lattice spacing 2R
   double edge_length = 0.1;  ///< L (m), > 0
   GrowthForm form{};         ///< growth rule and control-surface axis ratios
   /// Shapes from mesh files (particles.library; no paths = grown particles): every lattice site
   /// holds a library shape (its convex hull, enclosing radius `radius`) instead of a grown
-  /// particle; alpha, edge_length and form are then unused. The pipeline's repose_fill() reads
-  /// the files (LatticeOptions::files).
+  /// particle; alpha, edge_length and form are then unused. The study layer's repose_fill()
+  /// reads the files (LatticeOptions::files).
   ShapeLibraryOptions library{};
   double fill_height = 2.8;  ///< m, height of the lattice region (14 layers of 2R = 0.2 m)
   std::uint64_t seed = 1;    ///< master seed; particle i draws from Rng(seed, i)

@@ -1,7 +1,7 @@
 #pragma once
 // The repose test in YADE (`aggpack repose --engine yade`): the same fill as the Bullet run
 // (prepare_repose: same seed, same particles, same turns), written as a YADE script by a writer
-// the caller passes (the pipeline's write_repose_yade_script: the io module's YADE deck code),
+// the caller passes (the study layer's write_repose_yade_script: the io module's YADE deck code),
 // run as a subprocess (`yade -n -x` in a temporary folder, removed on every exit and on
 // SIGINT/SIGTERM/SIGHUP), its progress lines passed on, then the poses YADE wrote read back into
 // the final packing, which is measured exactly as Bullet's (profile, slope fit, sensitivity).

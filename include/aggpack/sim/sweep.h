@@ -1,8 +1,9 @@
 #pragma once
 // The paper's sweep of the repose test over shape (alpha) and sliding friction (mu_s): by default
 // alpha in {1.0, 0.9, 0.8, 0.7, 0.6} x mu_s in {0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.6,
-// 0.7, 0.8, 0.9, 1.0} = 65 cases. Cases run in parallel (TBB); each case is deterministic, so the
-// table does not depend on the thread count.
+// 0.7, 0.8, 0.9, 1.0} = 65 cases: the options, the table and its CSV. The runs are the study
+// layer's (aggpack/study/repose_study.h: cases in parallel, each deterministic, so the table does
+// not depend on the thread count).
 
 #include <cstddef>
 #include <cstdint>
@@ -12,7 +13,6 @@
 
 #include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
-#include "aggpack/sim/repose_yade.h"
 
 namespace aggpack {
 
@@ -53,31 +53,14 @@ struct SweepCase {
   EnsembleStatistics statistics;
 };
 
-/// Called once per finished run (case, or case and seed for ensembles), in completion order, from a
-/// worker thread but never two at a time. `result` holds the full run (packings, profile) for
-/// per-case output. Must not throw.
+/// Called once per finished run (case, or case and seed for ensembles; the study layer's
+/// run_sweep runs them), in completion order, from a worker thread but never two at a time.
+/// `result` holds the full run (packings, profile) for per-case output. Must not throw.
 using SweepCaseCallback = std::function<void(const SweepCase& summary, const ReposeResult& result,
                                              std::size_t done, std::size_t total)>;
 
-/// Runs every case (in parallel where TBB is available) on the fill `fill` makes for the case's
-/// options (called concurrently). Returns the cases in index order.
-/// \throw InvalidInput (as validate and run_repose).
-/// Engine yade (options.base.engine) needs `yade_script` (aggpack/sim/repose_yade.h).
-std::vector<SweepCase> run_sweep(const SweepOptions& options, const ReposeFill& fill,
-                                 const SweepCaseCallback& on_case = {},
-                                 const YadeScriptWriter& yade_script = {});
-
-struct RunShare;  // aggpack/sim/distributed.h
-
-/// The runs of a sweep, in plan order (run i = case i / seeds, seed i % seeds; one run per case
-/// without seeds), or only those `share` owns: one summary per run, no aggregation.
-std::vector<SweepCase> run_sweep_runs(const SweepOptions& options, const ReposeFill& fill,
-                                      const SweepCaseCallback& on_case = {},
-                                      const RunShare* share = nullptr,
-                                      const YadeScriptWriter& yade_script = {});
-
-/// The sweep's table from all its runs in plan order (what run_sweep returns): without seeds the
-/// runs themselves, else one row per case with the seeds' means and statistics.
+/// The sweep's table from all its runs in plan order (what study::run_sweep returns): without
+/// seeds the runs themselves, else one row per case with the seeds' means and statistics.
 /// \throw InvalidInput when `runs` is not the plan's size.
 std::vector<SweepCase> summarize_sweep(const SweepOptions& options, std::vector<SweepCase> runs);
 

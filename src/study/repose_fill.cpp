@@ -1,16 +1,16 @@
-// The fill of the angle-of-repose test, made by the pipeline (when the simulation module is
-// built): the one place the CLI's repose/sweep and the Python module get it from; and the YADE
-// script of a repose run (engine yade), the io module's writer fed with the repose options.
+// The fill of the angle-of-repose test, made by the pipeline's pack(): the one place the CLI's
+// repose/sweep and the Python module get it from (through the study calls); and the YADE script
+// of a repose run (engine yade), the io module's writer fed with the repose options.
 
 #include <cmath>
 #include <ostream>
 
 #include "aggpack/io/yade_repose.h"
 #include "aggpack/pipeline/pipeline.h"
+#include "aggpack/study/repose_study.h"
 
-namespace aggpack {
+namespace aggpack::study {
 
-#ifdef AGGPACK_HAS_SIM
 PackResult repose_fill(const ReposeOptions& options) {
   return pack(PackerOptions{repose_fill_options(options)});
 }
@@ -45,6 +45,5 @@ void write_repose_yade_script(const Packing& initial, const ReposeOptions& optio
   };
   write_yade_repose_script(initial, script, out);
 }
-#endif
 
-}  // namespace aggpack
+}  // namespace aggpack::study
