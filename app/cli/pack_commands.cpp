@@ -109,7 +109,8 @@ std::string container_json(const Container& c) {
   for (const ContainerParam& param : kind.params) {
     json += fmt::format(", \"{}_m\": {}", param.name, param.get(c));
   }
-  if (is_periodic(c)) json += fmt::format(", \"periodic\": \"{}\"", periodic_word(periodic_axes(c)));
+  if (is_periodic(c))
+    json += fmt::format(", \"periodic\": \"{}\"", periodic_word(periodic_axes(c)));
   return json + fmt::format(", \"wall_gap_m\": {}}}", c.wall_gap);
 }
 

@@ -164,7 +164,7 @@ void require_periodic_room(const Container& container, double largest_radius, do
                                                           "container.depth"};
   for (std::size_t axis = 0; axis < 3; ++axis) {
     if (axes[axis] && !(extent[static_cast<int>(axis)] > needed)) {
-      throw InvalidInput("container.periodic", periodic_word(axes),
+      throw InvalidInput("container.periodic", "\"" + periodic_word(axes) + "\"",
                          {Sentence::kPeriodicRoom,
                           {format_value(needed), kExtentKeys[axis],
                            format_value(extent[static_cast<int>(axis)])}});
@@ -174,7 +174,7 @@ void require_periodic_room(const Container& container, double largest_radius, do
 
 void refuse_periodic(const Container& container, const std::string& what) {
   if (is_periodic(container)) {
-    throw InvalidInput("container.periodic", periodic_word(periodic_axes(container)),
+    throw InvalidInput("container.periodic", "\"" + periodic_word(periodic_axes(container)) + "\"",
                        {Sentence::kPeriodicUnsupported, {what}});
   }
 }

@@ -3,8 +3,8 @@
 #include <cstddef>
 #include <string>
 #include <type_traits>
-#include <variant>
 #include <utility>
+#include <variant>
 
 #include "aggpack/core/error.h"
 #include "aggpack/pack/container.h"

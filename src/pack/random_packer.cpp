@@ -256,8 +256,7 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
 
   // Attempts [first, limit) of one particle, one by one, against everything placed so far.
   auto search = [&](const Item& item, const ConvexPolyhedron& body, std::uint64_t first,
-                    std::uint64_t limit,
-                    CloseList& close) -> Found {
+                    std::uint64_t limit, CloseList& close) -> Found {
     Found outcome;
     const Aabb region = centre_region(options.container, item.inner_radius);
     if (region.is_empty()) return outcome;

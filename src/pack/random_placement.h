@@ -94,16 +94,14 @@ class Placement {
     const ImageShifts images = shifts_of(item, pose);
     for (int image = 0; image < images.count; ++image) {
       const Vec3 centre = pose.position + images.shifts[static_cast<std::size_t>(image)];
-      const bool is_clear =
-          grid_.for_each_near(centre, item.outer_radius + gap / 2.0,
-                              [&](const detail::GridEntry& other, double distance_squared) {
-                                const double inner = item.inner_radius + other.inner_radius + gap;
-                                if (distance_squared < inner * inner)
-                                  return false;  // inscribed balls too close
-                                close.push_back({distance_squared, other.id,
-                                                 static_cast<std::uint32_t>(image)});
-                                return true;
-                              });
+      const bool is_clear = grid_.for_each_near(
+          centre, item.outer_radius + gap / 2.0,
+          [&](const detail::GridEntry& other, double distance_squared) {
+            const double inner = item.inner_radius + other.inner_radius + gap;
+            if (distance_squared < inner * inner) return false;  // inscribed balls too close
+            close.push_back({distance_squared, other.id, static_cast<std::uint32_t>(image)});
+            return true;
+          });
       if (!is_clear) return false;
     }
     // Closest first: the likeliest to conflict, so a rejection costs the fewest GJK calls.

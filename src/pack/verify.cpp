@@ -117,8 +117,8 @@ VerifyResult verify(const Packing& packing, const VerifyOptions& options) {
     detail::HierarchicalGrid grid(container.bounds(), smallest + half_gap, largest + half_gap);
     for (std::size_t i = 0; i < n; ++i) {
       const Vec3 centre = packing.particles[i].pose.position + offset[i];
-      const ImageShifts images = image_shifts(
-          container, centre, radius[i] + largest + 2.0 * half_gap + grid.margin());
+      const ImageShifts images =
+          image_shifts(container, centre, radius[i] + largest + 2.0 * half_gap + grid.margin());
       add_self_images(i, images);
       for (int image = 0; image < images.count; ++image) {
         const Vec3& shift = images.shifts[static_cast<std::size_t>(image)];

@@ -53,8 +53,8 @@ TEST_F(PeriodicCliTest, PackInfoReadBackAndSameBytesAtOneAndTwoThreads) {
   EXPECT_NE(one.out.find("box 0.1 x 0.1 x 0.1 m, periodic in xyz"), std::string::npos) << one.out;
   const test::CliRun two = run("pack periodic.toml -o two.h5 -j 2 --progress none");
   ASSERT_EQ(two.exit_code, 0) << two.err;
-  EXPECT_TRUE(test::same_bytes(test::file_text(folder_ / "one.h5"),
-                               test::file_text(folder_ / "two.h5")));
+  EXPECT_TRUE(
+      test::same_bytes(test::file_text(folder_ / "one.h5"), test::file_text(folder_ / "two.h5")));
 
   const Packing packing = read_packing((folder_ / "one.h5").string());
   EXPECT_EQ(periodic_axes(packing.container), (std::array<bool, 3>{true, true, true}));
@@ -65,8 +65,8 @@ TEST_F(PeriodicCliTest, PackInfoReadBackAndSameBytesAtOneAndTwoThreads) {
       << packing.provenance.config_toml;
   std::ofstream(folder_ / "stored.toml") << packing.provenance.config_toml;
   ASSERT_EQ(run("pack stored.toml -o again.h5 --progress none").exit_code, 0);
-  EXPECT_TRUE(test::same_bytes(test::file_text(folder_ / "again.h5"),
-                               test::file_text(folder_ / "one.h5")));
+  EXPECT_TRUE(
+      test::same_bytes(test::file_text(folder_ / "again.h5"), test::file_text(folder_ / "one.h5")));
 
   const test::CliRun info = run("info one.h5");
   ASSERT_EQ(info.exit_code, 0) << info.err;
@@ -105,22 +105,23 @@ TEST_F(PeriodicCliTest, WalledBoxFilesHaveNoPeriodicAttributeAndReadAsBefore) {
   const test::CliRun info = run("info walled.h5");
   EXPECT_EQ(info.out.find("periodic"), std::string::npos) << info.out;
   // A file written by an earlier version (the golden export case's) reads as a walled box.
-  const Packing old =
-      read_packing(test::source_dir() + "/tests/cli/cases/export/expected/tiny.h5");
+  const Packing old = read_packing(test::source_dir() + "/tests/cli/cases/export/expected/tiny.h5");
   EXPECT_FALSE(is_periodic(old.container));
   EXPECT_GT(old.particles.size(), 0u);
 }
 
 TEST_F(PeriodicCliTest, RefusalsAreOneLineNamingTheKey) {
-  expect_one_line_refusal("pack periodic.toml --set container.periodic=xzy -o bad.h5",
-                          "invalid container.periodic = \"xzy\" (allowed: none | x | y | z | xy | "
-                          "xz | yz | xyz)");
-  expect_one_line_refusal("pack periodic.toml --set packer.kind=lattice -o bad.h5",
+  expect_one_line_refusal(
+      "pack periodic.toml --set container.periodic=xzy -o bad.h5 --progress none",
+      "invalid container.periodic = \"xzy\" (allowed: none | x | y | z | xy | "
+      "xz | yz | xyz)");
+  expect_one_line_refusal("pack periodic.toml --set packer.kind=lattice -o bad.h5 --progress none",
                           "packer.kind = lattice does not take periodic containers yet");
-  expect_one_line_refusal("pack periodic.toml --set packer.kind=dense -o bad.h5",
+  expect_one_line_refusal("pack periodic.toml --set packer.kind=dense -o bad.h5 --progress none",
                           "packer.kind = dense does not take periodic containers yet");
-  expect_one_line_refusal("pack periodic.toml --set container.length=0.02 -o bad.h5",
-                          "container.length = 0.02 m");
+  expect_one_line_refusal(
+      "pack periodic.toml --set container.length=0.02 -o bad.h5 --progress none",
+      "container.length = 0.02 m");
   EXPECT_FALSE(std::filesystem::exists(folder_ / "bad.h5"));
   ASSERT_EQ(run("pack periodic.toml -o one.h5 --progress none").exit_code, 0);
   expect_one_line_refusal("mesomodel one.h5 -o rve.inp",

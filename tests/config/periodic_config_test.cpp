@@ -47,14 +47,14 @@ TEST(PeriodicConfig, WordsSetTheAxesAndOnlyAPeriodicBoxWritesThem) {
 
 TEST(PeriodicConfig, BadValuesNameTheKeyValueAndAllowedWords) {
   std::string key;
-  std::string text =
-      periodic_config_error(kPeriodicRandomToml, {"container.periodic=xyzz"}, key);
+  std::string text = periodic_config_error(kPeriodicRandomToml, {"container.periodic=xyzz"}, key);
   EXPECT_EQ(key, "container.periodic");
   EXPECT_NE(text.find("invalid container.periodic = \"xyzz\" (allowed: none | x | y | z | xy | xz "
                       "| yz | xyz)"),
             std::string::npos)
       << text;
-  text = periodic_config_error("[container]\nperiodic = true\n[packer]\nkind = \"random\"\n", {}, key);
+  text =
+      periodic_config_error("[container]\nperiodic = true\n[packer]\nkind = \"random\"\n", {}, key);
   EXPECT_EQ(key, "container.periodic") << text;
   // The default packer (lattice) does not take a periodic box.
   text = periodic_config_error("[container]\nperiodic = \"z\"\n", {}, key);
@@ -71,8 +71,7 @@ TEST(PeriodicConfig, OnACylinderItIsAWarning) {
       "test.toml");
   EXPECT_FALSE(is_periodic(config.container()));
   ASSERT_EQ(config.warnings.size(), 1u);
-  EXPECT_NE(config.warnings[0].find("container.periodic"), std::string::npos)
-      << config.warnings[0];
+  EXPECT_NE(config.warnings[0].find("container.periodic"), std::string::npos) << config.warnings[0];
 }
 
 }  // namespace

@@ -104,8 +104,9 @@ bool contains(const Container& container, const ConvexPolyhedron& body, const Po
 
 /// Region where a centre may lie so that a sphere of radius `radius` (m) around it keeps
 /// `wall_gap` from the walls: the box shrunk by radius + wall_gap (not along a periodic axis,
-/// where it is the whole extent), or the cylinder shrunk the same way. Returned as an AABB (for a cylinder, the AABB of the shrunk cylinder); empty when nothing
-/// fits. Used by the packers to draw candidate positions.
+/// where it is the whole extent), or the cylinder shrunk the same way. Returned as an AABB (for a
+/// cylinder, the AABB of the shrunk cylinder); empty when nothing fits. Used by the packers to draw
+/// candidate positions.
 Aabb centre_region(const Container& container, double radius);
 
 /// Whether `centre` lies in the exact (box or cylinder) centre region for `radius` (m).
