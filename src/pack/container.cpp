@@ -175,7 +175,7 @@ void require_periodic_room(const Container& container, double largest_radius, do
 void refuse_periodic(const Container& container, const std::string& what) {
   if (is_periodic(container)) {
     throw InvalidInput("container.periodic", "\"" + periodic_word(periodic_axes(container)) + "\"",
-                       {Sentence::kPeriodicUnsupported, {what}});
+                       {Sentence::kPeriodicUnsupported, {"\"none\"", what}});
   }
 }
 

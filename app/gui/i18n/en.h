@@ -266,7 +266,7 @@ AGGPACK_TEXT(kSentenceEdgeLengthLattice, "> 0 with packer.kind = lattice; 0 = re
 AGGPACK_TEXT(kSentenceSieveNeeded, "grading.kind = \"sieve\" needs grading.sieve = [[size_m, percent_passing], ...] (at least 2 rows)")
 AGGPACK_TEXT(kSentenceBelowHalfExtent, "< half the smallest container extent ({} m)")
 AGGPACK_TEXT(kSentencePeriodicRoom, "periodic extents > 2 x the largest enclosing radius + gap = {} m ({} = {} m)")
-AGGPACK_TEXT(kSentencePeriodicUnsupported, "\"none\": {} does not take periodic containers yet")
+AGGPACK_TEXT(kSentencePeriodicUnsupported, "{} ({} does not take periodic containers yet)")
 AGGPACK_TEXT(kSentenceLatticeSpacing, "0 (= 2 radius + gap) or > radius + gap")
 AGGPACK_TEXT(kSentenceLatticeSpacingAbove, "0 (= 2 radius + gap) or > radius + gap = {}")
 AGGPACK_TEXT(kSentenceRadiusFitsContainer, "small enough that a particle of diameter 2 R fits in the container (minus wall gaps)")

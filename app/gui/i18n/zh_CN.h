@@ -264,7 +264,7 @@ AGGPACK_TEXT(kSentenceEdgeLengthLattice, "> 0（点阵堆积时）；0 = 相对�
 AGGPACK_TEXT(kSentenceSieveNeeded, "筛分级配需要筛分表（至少 2 行：筛孔尺寸、通过百分率）")
 AGGPACK_TEXT(kSentenceBelowHalfExtent, "小于容器最小尺寸的一半（{} m）")
 AGGPACK_TEXT(kSentencePeriodicRoom, "周期方向的尺寸须大于 2 × 最大外接球半径 + 间隙 = {} m（{} = {} m）")
-AGGPACK_TEXT(kSentencePeriodicUnsupported, "\"none\"：{} 暂不支持周期容器")
+AGGPACK_TEXT(kSentencePeriodicUnsupported, "{}（{} 暂不支持周期容器）")
 AGGPACK_TEXT(kSentenceLatticeSpacing, "0（= 2 × 半径 + 间隙）或大于 半径 + 间隙")
 AGGPACK_TEXT(kSentenceLatticeSpacingAbove, "0（= 2 × 半径 + 间隙）或大于 半径 + 间隙 = {}")
 AGGPACK_TEXT(kSentenceRadiusFitsContainer, "足够小，使直径 2R 的颗粒能放入容器（扣除离壁间隙）")

@@ -40,7 +40,7 @@
   X(BelowHalfExtent, "< half the smallest container extent ({} m)")                             \
   X(PeriodicRoom,                                                                               \
     "periodic extents > 2 x the largest enclosing radius + gap = {} m ({} = {} m)")            \
-  X(PeriodicUnsupported, "\"none\": {} does not take periodic containers yet")                  \
+  X(PeriodicUnsupported, "{} ({} does not take periodic containers yet)")                      \
   X(LatticeSpacing, "0 (= 2 radius + gap) or > radius + gap")                                   \
   X(LatticeSpacingAbove, "0 (= 2 radius + gap) or > radius + gap = {}")                         \
   X(RadiusFitsContainer,                                                                        \
