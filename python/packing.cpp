@@ -52,6 +52,10 @@ py::dict container_dict(const Container& container) {
   py::dict result;
   result["kind"] = kind.name;
   for (const ContainerParam& param : kind.params) result[param.name] = param.get(container);
+  // A box's periodic axes: "none", "x", ..., "xyz" (container.periodic).
+  if (container.get_if<BoxContainer>() != nullptr) {
+    result["periodic"] = periodic_word(periodic_axes(container));
+  }
   result["wall_gap"] = container.wall_gap;
   result["volume"] = container.volume();
   return result;
@@ -182,8 +186,8 @@ Particle i's world vertices: rotation_i @ (scale_i * shape_vertices(shape_index_
           "generate_particles). Computed on call (in parallel).")
       .def_property_readonly(
           "container", [](const PyPacking& p) { return container_dict(p.packing.container); },
-          "The container: dict with kind ('box' or 'cylinder'), its sizes (m), wall_gap (m), "
-          "volume (m^3).")
+          "The container: dict with kind ('box' or 'cylinder'), its sizes (m), a box's periodic "
+          "axes ('none', 'x', ..., 'xyz'), wall_gap (m), volume (m^3).")
       .def_property_readonly(
           "provenance",
           [](const PyPacking& p) {

@@ -96,7 +96,11 @@ std::string describe_container(const Container& c) {
   // not print as 0.16913516956955746.
   const auto rounded = [](double value) { return std::stod(fmt::format("{:.6g}", value)); };
   for (const ContainerParam& param : kind.params) values.push_back(rounded(param.get(c)));
-  return fmt::vformat(kind.summary, values) + fmt::format(", wall gap {} m", rounded(c.wall_gap));
+  // Only a periodic box says so: a walled container's summary reads as before.
+  const std::string periodic =
+      is_periodic(c) ? ", periodic in " + periodic_word(periodic_axes(c)) : "";
+  return fmt::vformat(kind.summary, values) + periodic +
+         fmt::format(", wall gap {} m", rounded(c.wall_gap));
 }
 
 std::string container_json(const Container& c) {
@@ -105,6 +109,8 @@ std::string container_json(const Container& c) {
   for (const ContainerParam& param : kind.params) {
     json += fmt::format(", \"{}_m\": {}", param.name, param.get(c));
   }
+  if (is_periodic(c))
+    json += fmt::format(", \"periodic\": \"{}\"", periodic_word(periodic_axes(c)));
   return json + fmt::format(", \"wall_gap_m\": {}}}", c.wall_gap);
 }
 

@@ -121,6 +121,30 @@ std::vector<PackKey> container_keys() {
            .default_value = get(info.defaults)});
     }
   }
+  const ContainerKindInfo* box = find_container_kind(BoxContainer::kName);
+  keys.push_back(
+      {.name = "container.periodic",
+       .type = ValueType::kWord,
+       .words = periodic_words(),
+       .scope = {.text = "container.kind = box",
+                 .applies = [box](const PackConfig& c) { return box->holds(c.container()); }},
+       // Written only when periodic, so that a resolved config of a walled box reads as before.
+       .written = {.text = "container.periodic is not \"none\"",
+                   .applies = [](const PackConfig& c) { return is_periodic(c.container()); }},
+       .doc = "the box's periodic axes: a particle may cross such a face and meets the ones near "
+              "the opposite face through its periodic image (random packer only)",
+       .binding = {.get = [](const PackConfig& c) -> Value {
+                     return periodic_word(periodic_axes(c.container()));
+                   },
+                   .set =
+                       [](PackConfig& c, const Value& value) {
+                         on_containers(c, [&](Container& k) {
+                           if (auto* kind = k.get_if<BoxContainer>()) {
+                             parse_periodic_word(std::get<std::string>(value), kind->periodic);
+                           }
+                         });
+                       }},
+       .default_value = std::string("none")});
   keys.push_back(
       {.name = "container.wall_gap",
        .unit = "m",

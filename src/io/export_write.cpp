@@ -13,6 +13,7 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/temp_paths.h"
+#include "aggpack/pack/container.h"
 #include "export_detail.h"
 
 namespace aggpack {
@@ -165,6 +166,8 @@ void write_per_particle(const Packing& packing, const std::string& path,
 ExportSummary write(const Packing& packing, const std::string& path, const ExportOptions& options) {
   const ExportFormat format = resolve_format(path, options);
   validate(options, format);
+  // A deck models the trough test with walls around the particles; a periodic box has none.
+  if (options.deck.kind != DeckKind::kNone) refuse_periodic(packing.container, "--deck");
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {
     if (packing.particles[i].shape >= packing.shapes.size()) {
       throw InvalidInput("particle " + std::to_string(i) + " shape",

@@ -160,6 +160,10 @@ void write_hdf5(const std::string& file_path, const std::string& display_path,
       for (const ContainerParam& param : kind.params) write(param.name);
     }
     write("wall_gap");
+    // Only a periodic box has it: a walled container's file reads as before this attribute.
+    if (is_periodic(c)) {
+      writer.write_attribute_string(group.get(), "periodic", periodic_word(periodic_axes(c)));
+    }
   }
 
   {

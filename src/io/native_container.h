@@ -2,7 +2,8 @@
 // The /container group of the native file, shared by its writer (native.cpp), reader
 // (native_read.cpp) and validate_packing (native_validate.cpp). The attributes come from
 // container_kinds(): `kind` (the kind's word), then every parameter of every kind in list order
-// (a kind's own values; the other kinds' defaults, stored but not used), then `wall_gap`.
+// (a kind's own values; the other kinds' defaults, stored but not used), then `wall_gap`; then,
+// in a periodic box's file only, the string `periodic` (its axes: "x" ... "xyz").
 
 #include <string>
 #include <vector>

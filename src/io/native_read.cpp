@@ -417,6 +417,14 @@ Packing read_hdf5(const std::string& path) {
     c.wall_gap = reader.read_attribute_float(group.get(), "/container", "wall_gap");
     container_values.push_back(c.wall_gap);
     container_kind = info;
+    if (reader.exists(H5Aexists(group.get(), "periodic"), "/container/periodic")) {
+      const std::string word = reader.read_attribute_string(group.get(), "/container", "periodic");
+      auto* box = c.get_if<BoxContainer>();
+      if (box == nullptr || !parse_periodic_word(word, box->periodic)) {
+        reader.fail("/container/periodic = " + echo(word),
+                    {Sentence::kNativePeriodicWord, {"x, y, z, xy, xz, yz or xyz"}});
+      }
+    }
   }
 
   {

@@ -406,6 +406,7 @@ void add_itz_layers(const std::vector<Inclusion>& inclusions,
 
 MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoReport* report) {
   validate(given);
+  refuse_periodic(packing.container, "aggpack mesomodel");
   // A cohesive ITZ has no geometric thickness: the aggregates and the mortar are meshed bonded,
   // then split along the interfaces (split_cohesive_interfaces).
   const bool is_cohesive = given.itz_kind == ItzKind::kCohesive;

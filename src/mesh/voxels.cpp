@@ -71,6 +71,7 @@ std::array<std::uint64_t, 4> VoxelImage::phase_counts() const {
 
 VoxelImage voxelize(const Packing& packing, const VoxelOptions& options) {
   validate(options);
+  refuse_periodic(packing.container, "the phase image (--voxels)");
   const Aabb box = packing.container.bounds();
   const Vec3 extent = box.extent();
   const double longest = extent.maxCoeff();

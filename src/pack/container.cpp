@@ -90,6 +90,95 @@ void validate(const Container& container) {
   }
 }
 
+std::array<bool, 3> periodic_axes(const Container& container) {
+  const BoxContainer* box = container.get_if<BoxContainer>();
+  return box != nullptr ? box->periodic : std::array<bool, 3>{};
+}
+
+bool is_periodic(const Container& container) {
+  const std::array<bool, 3> axes = periodic_axes(container);
+  return axes[0] || axes[1] || axes[2];
+}
+
+const std::vector<std::string>& periodic_words() {
+  static const std::vector<std::string> words{"none", "x", "y", "z", "xy", "xz", "yz", "xyz"};
+  return words;
+}
+
+std::string periodic_word(const std::array<bool, 3>& axes) {
+  std::string word;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    if (axes[axis]) word += "xyz"[axis];
+  }
+  return word.empty() ? "none" : word;
+}
+
+bool parse_periodic_word(std::string_view word, std::array<bool, 3>& axes) {
+  for (const std::string& each : periodic_words()) {
+    if (word != each) continue;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      axes[axis] = each.find("xyz"[axis]) != std::string::npos;
+    }
+    return true;
+  }
+  return false;
+}
+
+ImageShifts image_shifts(const Container& container, const Vec3& point, double reach) {
+  ImageShifts result;
+  result.shifts[0] = Vec3::Zero();
+  result.count = 1;
+  const std::array<bool, 3> axes = periodic_axes(container);
+  if (!(axes[0] || axes[1] || axes[2])) return result;
+  const Aabb box = container.bounds();
+  const Vec3 extent = box.extent();
+  // Per axis the shifts (in units of the extent) whose image can be within reach of the box.
+  std::array<std::array<int, 3>, 3> steps{};
+  std::array<int, 3> counts{};
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    const auto a = static_cast<int>(axis);
+    steps[axis][counts[axis]++] = 0;
+    if (!axes[axis]) continue;
+    if (point[a] + extent[a] - reach < box.upper[a]) steps[axis][counts[axis]++] = 1;
+    if (point[a] - extent[a] + reach > box.lower[a]) steps[axis][counts[axis]++] = -1;
+  }
+  for (int i = 0; i < counts[0]; ++i) {
+    for (int j = 0; j < counts[1]; ++j) {
+      for (int k = 0; k < counts[2]; ++k) {
+        if (i == 0 && j == 0 && k == 0) continue;
+        result.shifts[static_cast<std::size_t>(result.count++)] =
+            Vec3(steps[0][static_cast<std::size_t>(i)] * extent.x(),
+                 steps[1][static_cast<std::size_t>(j)] * extent.y(),
+                 steps[2][static_cast<std::size_t>(k)] * extent.z());
+      }
+    }
+  }
+  return result;
+}
+
+void require_periodic_room(const Container& container, double largest_radius, double gap) {
+  const std::array<bool, 3> axes = periodic_axes(container);
+  const Vec3 extent = container.bounds().extent();
+  const double needed = 2.0 * largest_radius + gap;
+  static constexpr std::array<const char*, 3> kExtentKeys{"container.length", "container.width",
+                                                          "container.depth"};
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    if (axes[axis] && !(extent[static_cast<int>(axis)] > needed)) {
+      throw InvalidInput("container.periodic", "\"" + periodic_word(axes) + "\"",
+                         {Sentence::kPeriodicRoom,
+                          {format_value(needed), kExtentKeys[axis],
+                           format_value(extent[static_cast<int>(axis)])}});
+    }
+  }
+}
+
+void refuse_periodic(const Container& container, const std::string& what) {
+  if (is_periodic(container)) {
+    throw InvalidInput("container.periodic", "\"" + periodic_word(periodic_axes(container)) + "\"",
+                       {Sentence::kPeriodicUnsupported, {"\"none\"", what}});
+  }
+}
+
 double wall_clearance(const Container& container, const Vec3& point) {
   return container.visit([&point](const auto& kind) { return kind.clearance(point); });
 }
@@ -111,9 +200,13 @@ bool contains(const Container& container, const ConvexPolyhedron& body, const Po
 
 Aabb centre_region(const Container& container, double radius) {
   const double margin = radius + container.wall_gap;
+  const std::array<bool, 3> axes = periodic_axes(container);
   Aabb region = container.bounds();
-  region.lower.array() += margin;
-  region.upper.array() -= margin;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    if (axes[axis]) continue;  // no walls: the whole extent
+    region.lower[static_cast<int>(axis)] += margin;
+    region.upper[static_cast<int>(axis)] -= margin;
+  }
   return region;
 }
 

@@ -3,6 +3,7 @@
 #include "aggpack/pack/container_box.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace aggpack {
 
@@ -29,18 +30,36 @@ double BoxContainer::smallest_extent() const { return std::min({length, width, d
 
 double BoxContainer::clearance(const Vec3& point) const {
   const Vec3 upper(length, width, depth);
-  const Vec3 below = (-point).cwiseMax(0.0);         // how far below the lower walls
-  const Vec3 above = (point - upper).cwiseMax(0.0);  // how far above the upper walls
+  Vec3 below = (-point).cwiseMax(0.0);         // how far below the lower walls
+  Vec3 above = (point - upper).cwiseMax(0.0);  // how far above the upper walls
+  // A periodic axis has no walls: it adds nothing outside and bounds nothing inside.
+  double inside = std::numeric_limits<double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    if (periodic[static_cast<std::size_t>(axis)]) {
+      below[axis] = 0.0;
+      above[axis] = 0.0;
+    } else {
+      inside = std::min({inside, point[axis], upper[axis] - point[axis]});
+    }
+  }
   const double outside = (below + above).norm();
   if (outside > 0.0) return -outside;
-  return std::min(point.minCoeff(), (upper - point).minCoeff());
+  return inside;
 }
 
 bool BoxContainer::contains(const ConvexPolyhedron& body, const Mat3& rotation,
                             const Vec3& position, double gap) const {
   // Per coordinate (not via clearance) to keep it branch-light in the packers' inner loop.
-  const Vec3 lower = Vec3::Constant(gap);
-  const Vec3 upper = Vec3(length, width, depth) - Vec3::Constant(gap);
+  // A periodic axis has no walls: its bounds are infinite.
+  constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+  Vec3 lower = Vec3::Constant(gap);
+  Vec3 upper = Vec3(length, width, depth) - Vec3::Constant(gap);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (periodic[static_cast<std::size_t>(axis)]) {
+      lower[axis] = -kUnbounded;
+      upper[axis] = kUnbounded;
+    }
+  }
   for (const Vec3& vertex : body.vertices()) {
     const Vec3 world = rotation * vertex + position;
     if ((world.array() < lower.array()).any() || (world.array() > upper.array()).any()) {
@@ -52,8 +71,12 @@ bool BoxContainer::contains(const ConvexPolyhedron& body, const Mat3& rotation,
 
 bool BoxContainer::is_in_centre_region(double margin, const Vec3& centre) const {
   Aabb region = bounds();
-  region.lower.array() += margin;
-  region.upper.array() -= margin;
+  for (int axis = 0; axis < 3; ++axis) {
+    // A periodic axis: any centre in [0, extent] (the packers keep centres there).
+    if (periodic[static_cast<std::size_t>(axis)]) continue;
+    region.lower[axis] += margin;
+    region.upper[axis] -= margin;
+  }
   return (centre.array() >= region.lower.array()).all() &&
          (centre.array() <= region.upper.array()).all();
 }
@@ -97,7 +120,10 @@ Vec3 BoxContainer::ratio(const BoxContainer& other) const {
 }
 
 BoxContainer BoxContainer::scaled(const Vec3& factor) const {
-  return {length * factor.x(), width * factor.y(), depth * factor.z()};
+  return {.length = length * factor.x(),
+          .width = width * factor.y(),
+          .depth = depth * factor.z(),
+          .periodic = periodic};
 }
 
 }  // namespace aggpack

@@ -199,6 +199,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   const auto began = Clock::now();
   validate(options);
   validate(start.container);
+  refuse_periodic(start.container, "aggpack densify");
   {
     const VerifyResult check = verify(start, {.gap = options.gap});
     if (!check.is_ok) {

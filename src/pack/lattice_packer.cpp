@@ -198,6 +198,7 @@ GrowthParams growth_params(const LatticeOptions& options) {
 
 void validate(const LatticeOptions& options) {
   validate(options.container);
+  refuse_periodic(options.container, "packer.kind = lattice");
 
   const GrowthParams params = growth_params(options);
   require_in_range("lattice.alpha", options.alpha, 0.0, 1.0);

@@ -4,8 +4,10 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <variant>
 
 #include "aggpack/core/error.h"
+#include "aggpack/pack/container.h"
 
 namespace aggpack {
 
@@ -45,6 +47,9 @@ constexpr auto kKinds = std::make_index_sequence<std::variant_size_v<PackerOptio
 }  // namespace
 
 void validate(const DensePackOptions& options) {
+  // The densifier's moves and container compression know walls only.
+  refuse_periodic(std::visit([](const auto& fill) { return fill.container; }, options.fill),
+                  "packer.kind = dense");
   std::visit([](const auto& fill) { validate(fill); }, options.fill);
   validate(options.densify);
   const double gap = std::visit([](const auto& fill) { return fill.gap; }, options.fill);

@@ -209,6 +209,11 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
                           Wording{Sentence::kFractionReachable, {}});
     }
   }
+  if (is_periodic(options.container) && !is_cancelled) {
+    double largest = 0.0;
+    for (const Item& item : items) largest = std::max(largest, item.outer_radius);
+    require_periodic_room(options.container, largest, options.gap);
+  }
   report.requested = items.size();
   report.shape_seconds = seconds_since(shape_start);
 
@@ -234,8 +239,8 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
   Placement placement(options, shapes, items);
   const int threads = concurrency();
   const std::size_t slots = static_cast<std::size_t>(std::max(1, threads)) + 1;
-  std::vector<std::vector<std::pair<double, std::uint32_t>>> scratch(slots);
-  std::vector<std::pair<double, std::uint32_t>> sequential_scratch;
+  std::vector<CloseList> scratch(slots);
+  CloseList sequential_scratch;
   std::vector<Pose> batch_poses(kMaxBatch);
   std::vector<char> batch_ok(kMaxBatch);
   const std::size_t group_size =
@@ -251,8 +256,7 @@ PackResult pack_random(const RandomPackOptions& options, const PackControl& cont
 
   // Attempts [first, limit) of one particle, one by one, against everything placed so far.
   auto search = [&](const Item& item, const ConvexPolyhedron& body, std::uint64_t first,
-                    std::uint64_t limit,
-                    std::vector<std::pair<double, std::uint32_t>>& close) -> Found {
+                    std::uint64_t limit, CloseList& close) -> Found {
     Found outcome;
     const Aabb region = centre_region(options.container, item.inner_radius);
     if (region.is_empty()) return outcome;

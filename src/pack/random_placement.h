@@ -43,7 +43,24 @@ struct StoredShape {
   double inner_radius = 0.0;
 };
 
-// The particles placed so far, and the broad phase over them.
+// A placed particle near a candidate: the squared centre distance (broad phase), its id, and
+// which of the candidate's periodic images met it (0 = the candidate itself; ImageShifts order).
+struct Close {
+  double distance_squared = 0.0;
+  std::uint32_t id = 0;
+  std::uint32_t image = 0;
+  bool operator<(const Close& other) const {
+    if (distance_squared != other.distance_squared) {
+      return distance_squared < other.distance_squared;
+    }
+    if (id != other.id) return id < other.id;
+    return image < other.image;
+  }
+};
+using CloseList = std::vector<Close>;
+
+// The particles placed so far, and the broad phase over them. In a periodic box the centres stay
+// in [0, extent) and a candidate is tested through each of its images that can reach the box.
 class Placement {
  public:
   Placement(const RandomPackOptions& options, const std::vector<StoredShape>& shapes,
@@ -52,7 +69,8 @@ class Placement {
         shapes_(shapes),
         items_(items),
         grid_(options.container.bounds(), min_outer(items) + options.gap / 2.0,
-              max_outer(items) + options.gap / 2.0) {}
+              max_outer(items) + options.gap / 2.0),
+        max_outer_(max_outer(items)) {}
 
   // The true-size body of an item (a copy only for library shapes).
   [[nodiscard]] ConvexPolyhedron body_of(const Item& item) const {
@@ -65,7 +83,7 @@ class Placement {
   // neighbour the bounding spheres (grid), the inscribed balls (certain overlap), and finally the
   // exact GJK test for the remaining close pairs.
   bool is_feasible(const Item& item, const ConvexPolyhedron& body, const Pose& pose,
-                   std::vector<std::pair<double, std::uint32_t>>& close) const {
+                   CloseList& close) const {
     const Container& container = options_.container;
     if (!is_in_centre_region(container, item.outer_radius, pose.position) &&
         !contains(container, body, pose)) {
@@ -73,20 +91,23 @@ class Placement {
     }
     const double gap = options_.gap;
     close.clear();
-    const bool is_clear =
-        grid_.for_each_near(pose.position, item.outer_radius + gap / 2.0,
-                            [&](const detail::GridEntry& other, double distance_squared) {
-                              const double inner = item.inner_radius + other.inner_radius + gap;
-                              if (distance_squared < inner * inner)
-                                return false;  // inscribed balls too close
-                              close.emplace_back(distance_squared, other.id);
-                              return true;
-                            });
-    if (!is_clear) return false;
+    const ImageShifts images = shifts_of(item, pose);
+    for (int image = 0; image < images.count; ++image) {
+      const Vec3 centre = pose.position + images.shifts[static_cast<std::size_t>(image)];
+      const bool is_clear = grid_.for_each_near(
+          centre, item.outer_radius + gap / 2.0,
+          [&](const detail::GridEntry& other, double distance_squared) {
+            const double inner = item.inner_radius + other.inner_radius + gap;
+            if (distance_squared < inner * inner) return false;  // inscribed balls too close
+            close.push_back({distance_squared, other.id, static_cast<std::uint32_t>(image)});
+            return true;
+          });
+      if (!is_clear) return false;
+    }
     // Closest first: the likeliest to conflict, so a rejection costs the fewest GJK calls.
     std::sort(close.begin(), close.end());
-    for (const auto& [distance_squared, id] : close) {
-      if (!is_separated_from(id, item, body, pose)) return false;
+    for (const Close& each : close) {
+      if (!is_separated_from(each.id, item, body, shifted(pose, images, each.image))) return false;
     }
     return true;
   }
@@ -97,8 +118,14 @@ class Placement {
                                        const Pose& pose, std::size_t first) const {
     // is_separated's own bounding-sphere test answers the far ones, with the same tolerance as
     // the grid path of is_feasible.
+    const ImageShifts images = shifts_of(item, pose);
     for (std::size_t id = first; id < placed_items_.size(); ++id) {
-      if (!is_separated_from(static_cast<std::uint32_t>(id), item, body, pose)) return false;
+      for (int image = 0; image < images.count; ++image) {
+        if (!is_separated_from(static_cast<std::uint32_t>(id), item, body,
+                               shifted(pose, images, static_cast<std::uint32_t>(image)))) {
+          return false;
+        }
+      }
     }
     return true;
   }
@@ -114,6 +141,18 @@ class Placement {
   [[nodiscard]] const std::vector<Pose>& poses() const { return poses_; }
 
  private:
+  // The candidate's images that may meet a placed particle (only itself unless periodic).
+  [[nodiscard]] ImageShifts shifts_of(const Item& item, const Pose& pose) const {
+    return image_shifts(options_.container, pose.position,
+                        item.outer_radius + max_outer_ + options_.gap + grid_.margin());
+  }
+  static Pose shifted(const Pose& pose, const ImageShifts& images, std::uint32_t image) {
+    if (image == 0) return pose;
+    Pose moved = pose;
+    moved.position += images.shifts[image];
+    return moved;
+  }
+
   // The exact test of a candidate against placed particle `id`.
   [[nodiscard]] bool is_separated_from(std::uint32_t id, const Item& item,
                                        const ConvexPolyhedron& body, const Pose& pose) const {
@@ -138,6 +177,7 @@ class Placement {
   const std::vector<StoredShape>& shapes_;
   const std::vector<Item>& items_;
   detail::HierarchicalGrid grid_;
+  double max_outer_ = 0.0;
   std::vector<std::size_t> placed_items_;
   std::vector<Pose> poses_;
 };

@@ -1,7 +1,9 @@
 #include "aggpack/pack/statistics.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -88,6 +90,7 @@ PackingStatistics compute_statistics(const Packing& packing, const StatisticsOpt
 
   // Per block: solid volume and the per-axis bin volumes; summed in block order afterwards.
   const Aabb bounds = packing.container.bounds();
+  const std::array<bool, 3> periodic = periodic_axes(packing.container);
   const auto bins = static_cast<std::size_t>(options.bins);
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<double> block_volume(blocks, 0.0);
@@ -104,23 +107,32 @@ PackingStatistics compute_statistics(const Packing& packing, const StatisticsOpt
       for (int axis = 0; axis < 3; ++axis) {
         const double width = bounds.extent()[axis] / static_cast<double>(bins);
         const double lower = bounds.lower[axis];
+        // Along a periodic axis a particle's part beyond a face counts in the bins of the
+        // opposite side (bin numbers taken modulo bins); elsewhere it stays in the edge bin.
+        const bool is_wrapped = periodic[static_cast<std::size_t>(axis)];
+        const auto count = static_cast<std::int64_t>(bins);
         auto bin_of = [&](double x) {
-          return static_cast<std::size_t>(
-              std::clamp(std::floor((x - lower) / width), 0.0, static_cast<double>(bins - 1)));
+          const double bin = std::floor((x - lower) / width);
+          if (is_wrapped) return static_cast<std::int64_t>(bin);
+          return static_cast<std::int64_t>(std::clamp(bin, 0.0, static_cast<double>(bins - 1)));
         };
-        const std::size_t first = bin_of(box.lower[axis]);
-        const std::size_t last = bin_of(box.upper[axis]);
+        auto slot = [&](std::int64_t k) {
+          return static_cast<std::size_t>(axis) * bins +
+                 static_cast<std::size_t>(((k % count) + count) % count);
+        };
+        const std::int64_t first = bin_of(box.lower[axis]);
+        const std::int64_t last = bin_of(box.upper[axis]);
         if (first == last) {
-          local[static_cast<std::size_t>(axis) * bins + first] += volume;
+          local[slot(first)] += volume;
           continue;
         }
         double below = 0.0;
-        for (std::size_t k = first; k < last; ++k) {
+        for (std::int64_t k = first; k < last; ++k) {
           const double cut = volume_below(body, axis, lower + width * static_cast<double>(k + 1));
-          local[static_cast<std::size_t>(axis) * bins + k] += cut - below;
+          local[slot(k)] += cut - below;
           below = cut;
         }
-        local[static_cast<std::size_t>(axis) * bins + last] += volume - below;
+        local[slot(last)] += volume - below;
       }
     }
   });

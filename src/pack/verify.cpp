@@ -1,6 +1,7 @@
 #include "aggpack/pack/verify.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -66,33 +67,79 @@ VerifyResult verify(const Packing& packing, const VerifyOptions& options) {
     }
   }
 
-  // Candidate pairs: all of them, or those whose gap-inflated bounding spheres meet.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  if (options.is_brute_force) {
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) {
-        pairs.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+  // In a periodic box the broad phase works on centres wrapped into the box (`offset` moves a
+  // particle there), and each pair is tested through every image of its second particle that can
+  // reach the first (`shift`); a particle near a periodic face is also tested against its own
+  // images. Without periodic axes every offset and shift is zero.
+  const std::array<bool, 3> periodic = periodic_axes(container);
+  const Aabb box = container.bounds();
+  std::vector<Vec3> offset(n, Vec3::Zero());
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& centre = packing.particles[i].pose.position;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!periodic[static_cast<std::size_t>(axis)]) continue;
+      const double extent = box.extent()[axis];
+      const double wrapped =
+          centre[axis] - extent * std::floor((centre[axis] - box.lower[axis]) / extent);
+      offset[i][axis] = wrapped - centre[axis];
+    }
+  }
+  struct Pair {
+    std::uint32_t first = 0;
+    std::uint32_t second = 0;
+    Vec3 shift = Vec3::Zero();  // added to the second particle's wrapped pose
+  };
+  std::vector<Pair> pairs;
+  const double half_gap = options.gap / 2.0 + slack;
+  auto add_self_images = [&](std::size_t i, const ImageShifts& images) {
+    for (int image = 1; image < images.count; ++image) {
+      const Vec3& shift = images.shifts[static_cast<std::size_t>(image)];
+      if (shift.norm() < 2.0 * (radius[i] + half_gap)) {
+        pairs.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i), shift});
       }
     }
-  } else if (n > 1) {
-    const double half_gap = options.gap / 2.0 + slack;
+  };
+  if (options.is_brute_force) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec3 centre = packing.particles[i].pose.position + offset[i];
+      // An unbounded reach: every image one period away on each periodic axis.
+      const ImageShifts images =
+          image_shifts(container, centre, std::numeric_limits<double>::infinity());
+      add_self_images(i, images);
+      for (std::size_t j = i + 1; j < n; ++j) {
+        for (int image = 0; image < images.count; ++image) {
+          pairs.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j),
+                           images.shifts[static_cast<std::size_t>(image)]});
+        }
+      }
+    }
+  } else if (n > 0) {
     detail::HierarchicalGrid grid(container.bounds(), smallest + half_gap, largest + half_gap);
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec3& centre = packing.particles[i].pose.position;
-      grid.for_each_near(centre, radius[i] + half_gap, [&](const detail::GridEntry& other, double) {
-        pairs.emplace_back(other.id, static_cast<std::uint32_t>(i));
-        return true;
-      });
+      const Vec3 centre = packing.particles[i].pose.position + offset[i];
+      const ImageShifts images =
+          image_shifts(container, centre, radius[i] + largest + 2.0 * half_gap + grid.margin());
+      add_self_images(i, images);
+      for (int image = 0; image < images.count; ++image) {
+        const Vec3& shift = images.shifts[static_cast<std::size_t>(image)];
+        grid.for_each_near(centre + shift, radius[i] + half_gap,
+                           [&](const detail::GridEntry& other, double) {
+                             pairs.push_back({other.id, static_cast<std::uint32_t>(i), shift});
+                             return true;
+                           });
+      }
       grid.insert(centre, radius[i] + half_gap);
     }
   }
   result.pairs_tested = pairs.size();
   std::vector<double> distance(pairs.size());
   parallel_for_index(0, pairs.size(), [&](std::size_t k) {
-    const auto [i, j] = pairs[k];
-    distance[k] =
-        gjk_distance(bodies[i], packing.particles[i].pose, bodies[j], packing.particles[j].pose)
-            .distance;
+    const Pair& pair = pairs[k];
+    Pose first = packing.particles[pair.first].pose;
+    Pose second = packing.particles[pair.second].pose;
+    first.position += offset[pair.first];
+    second.position += offset[pair.second] + pair.shift;
+    distance[k] = gjk_distance(bodies[pair.first], first, bodies[pair.second], second).distance;
   });
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     result.min_distance = std::min(result.min_distance, distance[k]);

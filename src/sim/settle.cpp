@@ -109,6 +109,7 @@ SettleResult settle(const Packing& packing, const SettleOptions& options,
   validate(options.rest);
   require_in_range("containment_tolerance", options.containment_tolerance, 0.0, 1.0);
   validate(packing.container);
+  refuse_periodic(packing.container, "aggpack settle");
   const auto start = std::chrono::steady_clock::now();
   World world(packing, options.physics);
 

@@ -38,6 +38,9 @@
     "grading.kind = \"sieve\" needs grading.sieve = [[size_m, percent_passing], ...] (at "     \
     "least 2 rows)")                                                                            \
   X(BelowHalfExtent, "< half the smallest container extent ({} m)")                             \
+  X(PeriodicRoom,                                                                               \
+    "periodic extents > 2 x the largest enclosing radius + gap = {} m ({} = {} m)")            \
+  X(PeriodicUnsupported, "{} ({} does not take periodic containers yet)")                      \
   X(LatticeSpacing, "0 (= 2 radius + gap) or > radius + gap")                                   \
   X(LatticeSpacingAbove, "0 (= 2 radius + gap) or > radius + gap = {}")                         \
   X(RadiusFitsContainer,                                                                        \
@@ -141,6 +144,7 @@
   X(NativeTooLarge, "too large to load ({} values)")                                            \
   X(NativeStoredOutside, "stored outside the file (external or virtual dataset)")               \
   X(NativeUnknownKind, "unknown kind (expected {})")                                            \
+  X(NativePeriodicWord, "not a box's periodic axes (expected {})")                              \
   X(NativeOffsetsEmpty, "empty (it holds S + 1 values)")                                        \
   X(NativeValuesButHas, "{} values, but {} has {}")                                             \
   X(NativeRowsButHas, "{} rows, but {} has {}")                                                 \

@@ -6,7 +6,8 @@
 // Layout (format_name "aggpack-packing", format_version 1; all datasets little-endian):
 //   /                     attributes format_name (string), format_version (int32)
 //   /container            attributes kind ("box" | "cylinder"), length, width, depth, radius,
-//                         height, wall_gap (float64, metres)
+//                         height, wall_gap (float64, metres); periodic (string "x" ... "xyz",
+//                         only in a periodic box's file; absent = no periodic axis)
 //   /shapes/vertices          float64 [V, 3]   local-frame vertices of all shapes, concatenated (m)
 //   /shapes/triangles         uint32  [T, 3]   vertex indices, 0-based, local to their shape,
 //                                              counter-clockwise seen from outside

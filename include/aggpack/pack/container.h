@@ -6,6 +6,7 @@
 #include "aggpack/geom/convex_polyhedron.h"
 #include "aggpack/pack/packing.h"
 
+#include <array>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -54,8 +55,43 @@ std::string container_kind_names();
 /// wall gap is >= 0 and leaves a non-empty interior (2 * wall_gap < every extent).
 void validate(const Container& container);
 
+/// The periodic axes (x, y, z) of a container: a box's `periodic`; none for other kinds.
+std::array<bool, 3> periodic_axes(const Container& container);
+
+/// Whether any axis of the container is periodic.
+bool is_periodic(const Container& container);
+
+/// The words of `container.periodic`, in documentation order: "none", "x", "y", "z", "xy", "xz",
+/// "yz", "xyz".
+const std::vector<std::string>& periodic_words();
+
+/// "none", or the letters of the periodic axes in x, y, z order ("xz").
+std::string periodic_word(const std::array<bool, 3>& axes);
+
+/// Sets `axes` from one of periodic_words(); false (axes unchanged) when `word` is not one.
+bool parse_periodic_word(std::string_view word, std::array<bool, 3>& axes);
+
+/// The translations (m) of a point's periodic images that may come within `reach` (m) of the
+/// container's bounds: the zero shift first, then every combination of -extent, 0, +extent on the
+/// periodic axes where the shifted point is within `reach` of the bounds. At most 27.
+struct ImageShifts {
+  std::array<Vec3, 27> shifts{};
+  int count = 0;
+};
+ImageShifts image_shifts(const Container& container, const Vec3& point, double reach);
+
+/// Throws InvalidInput naming `container.periodic` unless every periodic extent is larger than
+/// 2 * largest_radius + gap (m): then a particle cannot touch its own image and the images one
+/// period away are the only ones a neighbour can touch.
+void require_periodic_room(const Container& container, double largest_radius, double gap);
+
+/// Throws InvalidInput naming `container.periodic` when the container is periodic: `what` ("the
+/// lattice packer") does not support periodic containers yet.
+void refuse_periodic(const Container& container, const std::string& what);
+
 /// Signed clearance of a point from the container walls (m): the distance to the nearest wall when
-/// inside (>= 0), minus the distance to the container when outside (< 0). Ignores wall_gap.
+/// inside (>= 0), minus the distance to the container when outside (< 0). Ignores wall_gap. A
+/// periodic axis has no walls (+infinity when every axis is periodic).
 double wall_clearance(const Container& container, const Vec3& point);
 
 /// Smallest wall clearance over the vertices of `body` placed by `pose` (m). Because the container
@@ -67,9 +103,10 @@ double wall_clearance(const Container& container, const ConvexPolyhedron& body, 
 bool contains(const Container& container, const ConvexPolyhedron& body, const Pose& pose);
 
 /// Region where a centre may lie so that a sphere of radius `radius` (m) around it keeps
-/// `wall_gap` from the walls: the box shrunk by radius + wall_gap, or the cylinder shrunk the same
-/// way. Returned as an AABB (for a cylinder, the AABB of the shrunk cylinder); empty when nothing
-/// fits. Used by the packers to draw candidate positions.
+/// `wall_gap` from the walls: the box shrunk by radius + wall_gap (not along a periodic axis,
+/// where it is the whole extent), or the cylinder shrunk the same way. Returned as an AABB (for a
+/// cylinder, the AABB of the shrunk cylinder); empty when nothing fits. Used by the packers to draw
+/// candidate positions.
 Aabb centre_region(const Container& container, double radius);
 
 /// Whether `centre` lies in the exact (box or cylinder) centre region for `radius` (m).

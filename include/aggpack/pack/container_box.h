@@ -1,6 +1,7 @@
 #pragma once
 // The box container kind (its geometry: src/pack/container_box.cpp).
 
+#include <array>
 #include <vector>
 
 #include "aggpack/pack/container_kind.h"
@@ -17,6 +18,9 @@ struct BoxContainer {
   double length = 3.0;  ///< x extent (m)
   double width = 1.0;   ///< y extent (m)
   double depth = 2.8;   ///< z extent (m)
+  /// Which axes (x, y, z) are periodic: a particle may cross such a face and meets the particles
+  /// near the opposite face through its periodic image; no wall stands there. None by default.
+  std::array<bool, 3> periodic{};
 
   static const std::vector<KindParam<BoxContainer>>& params();
   [[nodiscard]] Aabb bounds() const;

@@ -1,0 +1,134 @@
+// The periodic box end to end: `aggpack pack` with container.periodic, the native file (written,
+// read back, an older file without the attribute), `aggpack info`, an export, the same bytes at
+// one and two threads, and the one-line refusals (bad word, other packers, mesomodel).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "aggpack/io/native.h"
+#include "aggpack/pack/container.h"
+#include "aggpack/pack/verify.h"
+#include "support/cli_test.h"
+#include "support/files.h"
+#include "support/paths.h"
+
+namespace aggpack {
+namespace {
+
+class PeriodicCliTest : public test::CliTest {
+ protected:
+  PeriodicCliTest() : CliTest("aggpack_periodic_") {}
+  void SetUp() override {
+    CliTest::SetUp();
+    std::ofstream(folder_ / "periodic.toml") << "[container]\n"
+                                                "kind = \"box\"\n"
+                                                "length = 0.1\n"
+                                                "width = 0.1\n"
+                                                "depth = 0.1\n"
+                                                "periodic = \"xyz\"\n"
+                                                "[packer]\n"
+                                                "kind = \"random\"\n"
+                                                "seed = 5\n"
+                                                "target_fraction = 0.25\n"
+                                                "[particle]\n"
+                                                "radius_min = 0.006\n"
+                                                "radius_max = 0.012\n";
+  }
+  // Expects a refusal: non-zero exit, one line on stderr containing `part`.
+  void expect_one_line_refusal(const std::string& arguments, const std::string& part) const {
+    const test::CliRun result = run(arguments);
+    EXPECT_NE(result.exit_code, 0) << arguments;
+    EXPECT_NE(result.err.find(part), std::string::npos) << result.err;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  }
+};
+
+TEST_F(PeriodicCliTest, PackInfoReadBackAndSameBytesAtOneAndTwoThreads) {
+  const test::CliRun one = run("pack periodic.toml -o one.h5 -j 1 --progress none");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_NE(one.out.find("box 0.1 x 0.1 x 0.1 m, periodic in xyz"), std::string::npos) << one.out;
+  const test::CliRun two = run("pack periodic.toml -o two.h5 -j 2 --progress none");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_TRUE(
+      test::same_bytes(test::file_text(folder_ / "one.h5"), test::file_text(folder_ / "two.h5")));
+
+  const Packing packing = read_packing((folder_ / "one.h5").string());
+  EXPECT_EQ(periodic_axes(packing.container), (std::array<bool, 3>{true, true, true}));
+  EXPECT_GT(packing.particles.size(), 20u);
+  EXPECT_TRUE(verify(packing, {.is_brute_force = true}).is_ok);
+  // The stored configuration says it too, and packs the same file again.
+  EXPECT_NE(packing.provenance.config_toml.find("periodic = \"xyz\""), std::string::npos)
+      << packing.provenance.config_toml;
+  std::ofstream(folder_ / "stored.toml") << packing.provenance.config_toml;
+  ASSERT_EQ(run("pack stored.toml -o again.h5 --progress none").exit_code, 0);
+  EXPECT_TRUE(
+      test::same_bytes(test::file_text(folder_ / "again.h5"), test::file_text(folder_ / "one.h5")));
+
+  const test::CliRun info = run("info one.h5");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("container       box 0.1 x 0.1 x 0.1 m, periodic in xyz, wall gap 0 m"),
+            std::string::npos)
+      << info.out;
+  const test::CliRun json = run("info one.h5 --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"periodic\": \"xyz\""), std::string::npos) << json.out;
+
+  // An export writes every particle once, whole: the STL reaches beyond the box.
+  const test::CliRun stl = run("export one.h5 -o one.stl --ascii");
+  ASSERT_EQ(stl.exit_code, 0) << stl.err;
+  const std::string text = test::file_text(folder_ / "one.stl");
+  std::size_t solids = 0;
+  for (std::size_t at = text.find("endsolid"); at != std::string::npos;
+       at = text.find("endsolid", at + 1)) {
+    ++solids;
+  }
+  EXPECT_GE(solids, 1u);
+  double lowest = 1e300;
+  for (std::size_t at = text.find("vertex "); at != std::string::npos;
+       at = text.find("vertex ", at + 1)) {
+    lowest = std::min(lowest, std::stod(text.substr(at + 7, 30)));
+  }
+  EXPECT_LT(lowest, 0.0);
+}
+
+TEST_F(PeriodicCliTest, WalledBoxFilesHaveNoPeriodicAttributeAndReadAsBefore) {
+  ASSERT_EQ(run("pack periodic.toml --set container.periodic=none -o walled.h5 --progress none")
+                .exit_code,
+            0);
+  const std::string bytes = test::file_text(folder_ / "walled.h5");
+  EXPECT_EQ(bytes.find("periodic"), std::string::npos);
+  EXPECT_FALSE(is_periodic(read_packing((folder_ / "walled.h5").string()).container));
+  const test::CliRun info = run("info walled.h5");
+  EXPECT_EQ(info.out.find("periodic"), std::string::npos) << info.out;
+  // A file written by an earlier version (the golden export case's) reads as a walled box.
+  const Packing old = read_packing(test::source_dir() + "/tests/cli/cases/export/expected/tiny.h5");
+  EXPECT_FALSE(is_periodic(old.container));
+  EXPECT_GT(old.particles.size(), 0u);
+}
+
+TEST_F(PeriodicCliTest, RefusalsAreOneLineNamingTheKey) {
+  expect_one_line_refusal(
+      "pack periodic.toml --set container.periodic=xzy -o bad.h5 --progress none",
+      "invalid container.periodic = \"xzy\" (allowed: none | x | y | z | xy | "
+      "xz | yz | xyz)");
+  expect_one_line_refusal("pack periodic.toml --set packer.kind=lattice -o bad.h5 --progress none",
+                          "packer.kind = lattice does not take periodic containers yet");
+  expect_one_line_refusal("pack periodic.toml --set packer.kind=dense -o bad.h5 --progress none",
+                          "packer.kind = dense does not take periodic containers yet");
+  expect_one_line_refusal(
+      "pack periodic.toml --set container.length=0.02 -o bad.h5 --progress none",
+      "container.length = 0.02 m");
+  EXPECT_FALSE(std::filesystem::exists(folder_ / "bad.h5"));
+  ASSERT_EQ(run("pack periodic.toml -o one.h5 --progress none").exit_code, 0);
+  expect_one_line_refusal("mesomodel one.h5 -o rve.inp",
+                          "aggpack mesomodel does not take periodic containers yet");
+  expect_one_line_refusal("densify one.h5 -o dense.h5 --target-fraction 0.3",
+                          "aggpack densify does not take periodic containers yet");
+}
+
+}  // namespace
+}  // namespace aggpack
