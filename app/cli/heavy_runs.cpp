@@ -11,8 +11,8 @@
 
 #include "aggpack/config/repose_config.h"
 #include "aggpack/core/parallel.h"
-#include "aggpack/io/shape_library_files.h"
 #include "aggpack/geom/mass_properties.h"
+#include "aggpack/io/shape_library_files.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "progress.h"
 

@@ -10,6 +10,7 @@
 #include "aggpack/pack/random_packer.h"
 #include "aggpack/pack/statistics.h"
 #include "pack/pack_test_util.h"
+#include "support/packings.h"
 
 namespace aggpack {
 namespace {
@@ -49,16 +50,8 @@ Packing loose_start(double gap = 0.0, double wall_gap = 0.0, std::uint64_t seed 
 // The same densify run at one and at two threads: the packings, the container and the accepted
 // moves must be identical. Returns the one-thread run.
 DensifyResult expect_thread_independent(const Packing& start, const DensifyOptions& options) {
-  DensifyResult one;
-  DensifyResult two;
-  {
-    const ThreadLimit limit(1);
-    one = densify(start, options);
-  }
-  {
-    const ThreadLimit limit(2);
-    two = densify(start, options);
-  }
+  DensifyResult one = test::with_threads(1, [&] { return densify(start, options); });
+  const DensifyResult two = test::with_threads(2, [&] { return densify(start, options); });
   expect_identical(one.packing, two.packing);
   EXPECT_EQ(one.packing.container.get_if<BoxContainer>()->length,
             two.packing.container.get_if<BoxContainer>()->length);

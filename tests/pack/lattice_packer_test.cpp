@@ -7,6 +7,7 @@
 #include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/verify.h"
 #include "pack/pack_test_util.h"
+#include "support/packings.h"
 
 namespace aggpack {
 namespace {
@@ -77,16 +78,8 @@ TEST(LatticePacker, SameSeedSamePackingWithOneAndTwoThreads) {
       .radius = 0.05,
       .edge_length = 0.03,
       .seed = 11};
-  PackResult one;
-  PackResult two;
-  {
-    const ThreadLimit limit(1);
-    one = pack_lattice(options);
-  }
-  {
-    const ThreadLimit limit(2);
-    two = pack_lattice(options);
-  }
+  const PackResult one = test::with_threads(1, [&] { return pack_lattice(options); });
+  const PackResult two = test::with_threads(2, [&] { return pack_lattice(options); });
   expect_identical(one.packing, two.packing);
   EXPECT_EQ(one.report.solid_volume, two.report.solid_volume);
   options.seed = 12;

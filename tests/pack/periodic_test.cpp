@@ -21,6 +21,7 @@
 #include "aggpack/pack/statistics.h"
 #include "aggpack/pack/verify.h"
 #include "pack/pack_test_util.h"
+#include "support/packings.h"
 
 namespace aggpack {
 namespace {
@@ -229,16 +230,8 @@ TEST(PeriodicRandom, PackingHasNoOverlapAmongAllImages) {
 
 TEST(PeriodicRandom, SameSeedSameResultAtOneAndTwoThreads) {
   const RandomPackOptions options = periodic_random_options({true, true, true}, 11);
-  PackResult one;
-  PackResult two;
-  {
-    const ThreadLimit limit(1);
-    one = pack_random(options);
-  }
-  {
-    const ThreadLimit limit(2);
-    two = pack_random(options);
-  }
+  const PackResult one = test::with_threads(1, [&] { return pack_random(options); });
+  const PackResult two = test::with_threads(2, [&] { return pack_random(options); });
   ASSERT_GT(one.packing.particles.size(), 50u);
   testing::expect_identical(one.packing, two.packing);
   EXPECT_EQ(one.report.attempts, two.report.attempts);

@@ -10,6 +10,7 @@
 #include "aggpack/pack/statistics.h"
 #include "aggpack/pack/verify.h"
 #include "pack/pack_test_util.h"
+#include "support/packings.h"
 
 namespace aggpack {
 namespace {
@@ -167,16 +168,8 @@ TEST(RandomPacker, UnreachableTargetStopsAndReports) {
 TEST(RandomPacker, SameSeedSamePackingWithOneAndTwoThreads) {
   RandomPackOptions options = small_fuller(21);
   options.volume_fraction = 0.3;  // dense enough that parallel attempt batches are used
-  PackResult one;
-  PackResult two;
-  {
-    const ThreadLimit limit(1);
-    one = pack_random(options);
-  }
-  {
-    const ThreadLimit limit(2);
-    two = pack_random(options);
-  }
+  const PackResult one = test::with_threads(1, [&] { return pack_random(options); });
+  const PackResult two = test::with_threads(2, [&] { return pack_random(options); });
   expect_identical(one.packing, two.packing);
   EXPECT_EQ(one.report.attempts, two.report.attempts);
   EXPECT_GT(one.report.attempts, 2 * one.report.placed);  // batches were really exercised

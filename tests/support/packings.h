@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "aggpack/core/parallel.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/packing.h"
 
@@ -28,6 +29,14 @@ inline Packing box_with(double side, std::vector<ConvexPolyhedron> shapes, std::
     packing.particles.push_back(particle);
   }
   return packing;
+}
+
+/// What `run()` returns with the worker threads limited to `threads` (a determinism test runs the
+/// same work at 1 and 2 threads and compares).
+template <class Run>
+auto with_threads(int threads, Run run) {
+  const ThreadLimit limit(threads);
+  return run();
 }
 
 }  // namespace aggpack::test
