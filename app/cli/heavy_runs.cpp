@@ -9,10 +9,9 @@
 #include <numbers>
 #include <vector>
 
-#include "aggpack/config/repose_config.h"
 #include "aggpack/core/parallel.h"
 #include "aggpack/geom/mass_properties.h"
-#include "aggpack/io/shape_library_files.h"
+#include "aggpack/study/repose_study.h"
 #include "aggpack/pack/lattice_packer.h"
 #include "progress.h"
 
@@ -42,7 +41,7 @@ RunEstimate estimate_settle(const Packing& packing, const SettleOptions& options
 }
 
 RunEstimate estimate_repose(const ReposeOptions& options, double runs, int parallel) {
-  const LatticeOptions fill = repose_fill_options(options);
+  const LatticeOptions fill = study::repose_fill_options(options);
   const auto counts = lattice_counts(fill);
   const double sites = static_cast<double>(counts[0]) * counts[1] * counts[2];
   const double time_step =
@@ -65,10 +64,6 @@ RunEstimate estimate_repose(const ReposeOptions& options, double runs, int paral
 }
 
 void announce_repose(const ReposeOptions& options, const RunShare& share, std::size_t runs) {
-  // A library path that is not there is refused before the note (the fill loads it later).
-  if (options.library.is_used()) {
-    with_sweep_key_names([&] { check_library_paths(options.library); });
-  }
   std::size_t owned = 0;
   for (std::size_t i = 0; i < runs; ++i) owned += share.owns(i) ? 1 : 0;
   announce_heavy_run(

@@ -57,7 +57,9 @@ SweepOptions resolve_repose_flags(const ReposeFlags& flags) {
     std::map<std::string, std::string> flag_names;
     if (flags.friction) flag_names.emplace("physics.friction", "--mu");
     if (flags.alpha) flag_names.emplace("particles.alpha", "--alpha");
-    with_key_names({}, flag_names, [&] { with_sweep_key_names([&] { validate(options.base); }); });
+    with_key_names({}, flag_names, [&] {
+      with_sweep_key_names([&] { study::check_repose_inputs(options.base); });
+    });
   }
   if (flags.seed) {
     options.base.seed = parse_seed_flag("--seed", *flags.seed);
@@ -128,7 +130,7 @@ namespace {
 void run_repose_command(const ReposeFlags& flags) {
   const SweepOptions options = resolve_repose_flags(flags);
   // Everything the run checks, --print-config included, before any folder is created.
-  with_sweep_key_names([&] { validate(options.base); });
+  with_sweep_key_names([&] { study::check_repose_inputs(options.base); });
   if (flags.is_print_config) {
     fmt::print("{}", resolved_sweep_config(options));
     return;

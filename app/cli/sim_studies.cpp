@@ -245,7 +245,10 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
 
 void run_sweep_command(const ReposeFlags& flags) {
   const SweepOptions options = resolve_repose_flags(flags);
-  with_sweep_key_names([&] { validate(options); });
+  with_sweep_key_names([&] {
+    validate(options);
+    study::check_repose_inputs(options.base);
+  });
   const RunShare given = parse_run_share(flags.worker, flags.of);
   if (flags.is_print_config) {
     fmt::print("{}", resolved_sweep_config(options));

@@ -7,11 +7,9 @@
 
 #include "aggpack/core/clock.h"
 #include "aggpack/core/error.h"
-#include "aggpack/core/rng.h"
 #include "aggpack/core/text.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/pack/container.h"
-#include "aggpack/pack/lattice_packer.h"
 #include "aggpack/shape/descriptors.h"
 #include "aggpack/sim/ensemble.h"
 #include "repose_detail.h"
@@ -35,34 +33,6 @@ double largest_size(const Packing& packing) {
     largest = std::max(largest, particle.scale * box.extent().norm());
   }
   return largest;
-}
-
-// Sites of the lattice packer: x fastest, then y, then z; along each axis
-// n = floor((extent - 2 R) / 2R) + 1 sites centred in the box (lattice_packer.h).
-void randomise_orientations(Packing& packing, const LatticeOptions& lattice) {
-  const auto counts = lattice_counts(lattice);
-  const double spacing = 2.0 * lattice.radius;
-  const Vec3 extent = lattice.container.bounds().extent();
-  Vec3 start;
-  for (int axis = 0; axis < 3; ++axis) {
-    start[axis] = 0.5 * (extent[axis] - (counts[static_cast<std::size_t>(axis)] - 1.0) * spacing);
-  }
-  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
-    const std::size_t ix = i % counts[0];
-    const std::size_t iy = (i / counts[0]) % counts[1];
-    const std::size_t iz = i / (static_cast<std::size_t>(counts[0]) * counts[1]);
-    const Vec3 site = start + spacing * Vec3(static_cast<double>(ix), static_cast<double>(iy),
-                                             static_cast<double>(iz));
-    Particle& particle = packing.particles[i];
-    if ((particle.pose.position - site).norm() > lattice.radius) {
-      throw InvalidInput("repose lattice site " + std::to_string(i), "mismatch",
-                         "particles numbered as lattice_packer.h documents");
-    }
-    Rng rng(lattice.seed ^ 0x726f74ULL, i);
-    const Quat turn = Quat(rng.normal(), rng.normal(), rng.normal(), rng.normal()).normalized();
-    particle.pose.position = site + turn * (particle.pose.position - site);
-    particle.pose.rotation = (turn * particle.pose.rotation).normalized();
-  }
 }
 
 // The speed 99 % of the pile's particles stay below (the largest when there are fewer than 100):
@@ -196,21 +166,6 @@ bool wait_until_stable(World& world, const ReposeOptions& options, double bin_wi
 
 }  // namespace
 
-// The paper's placement in the half behind the baffle.
-LatticeOptions repose_fill_options(const ReposeOptions& options) {
-  LatticeOptions lattice;
-  lattice.container.shape = BoxContainer{
-      .length = options.baffle_position, .width = options.width(), .depth = options.fill_height};
-  lattice.container.wall_gap = 0.0;
-  lattice.alpha = options.alpha;
-  lattice.radius = options.radius;
-  lattice.edge_length = options.edge_length;
-  lattice.form = options.form;
-  lattice.files.options = options.library;
-  lattice.seed = options.seed;
-  return lattice;
-}
-
 void validate(const ReposeOptions& options) {
   require_positive("repose.trough_length", options.trough_length);
   require_positive("repose.trough_width", options.trough_width);
@@ -246,8 +201,6 @@ void validate(const ReposeOptions& options) {
   require_in_range("repose.yade_young", options.yade.young, 0.0, 1e15);
   require_in_range("repose.yade_damping", options.yade.damping, 0.0, 0.99);
   require_in_range("repose.yade_time_limit", options.yade.time_limit, 0.0, 1e7);
-  // What the fill would reject (too large a radius, too many vertices), before any simulation.
-  validate(repose_fill_options(options));
 }
 
 namespace detail {
@@ -261,9 +214,6 @@ Packing prepare_repose(const ReposeOptions& options, PackResult fill, ReposeResu
                        "a non-empty box packing within [0, baffle_position] x [0, trough width]");
   }
   const std::string packer = packing.provenance.packer;
-  if (options.is_orientation_random && packer == "lattice") {
-    randomise_orientations(packing, repose_fill_options(options));
-  }
   packing.container.shape = BoxContainer{
       .length = options.trough_length, .width = options.width(), .depth = options.trough_height};
   packing.provenance.packer = packer + "+repose";

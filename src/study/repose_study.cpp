@@ -21,9 +21,20 @@ ReposeFill fill_or_default(const ReposeFill& fill) {
   return [](const ReposeOptions& options) { return repose_fill(options); };
 }
 
+// The checks before a study starts: the simulation's, and the lattice fill's unless the caller
+// makes the fill.
+void check_before_start(const ReposeOptions& options, const ReposeFill& fill) {
+  if (fill) {
+    validate(options);
+  } else {
+    check_repose_inputs(options);
+  }
+}
+
 }  // namespace
 
 ReposeResult run_repose(const ReposeOptions& options, const ReposeControl& control) {
+  check_before_start(options, control.fill);
   const ReposeFill fill = fill_or_default(control.fill);
   if (options.engine == ReposeEngine::kYade) {
     return run_repose_yade(options, fill(options), write_repose_yade_script, control.on_yade);
@@ -39,7 +50,7 @@ EnsembleResult run_repose_ensemble(const ReposeOptions& base,
     throw InvalidInput("--seeds", std::to_string(seeds.size()) + " seeds",
                        "at most " + std::to_string(kMaxEnsembleSeeds));
   }
-  validate(base);
+  check_before_start(base, control.fill);
   const ReposeFill fill = fill_or_default(control.fill);
   std::vector<std::uint64_t> owned;
   for (std::size_t i = 0; i < seeds.size(); ++i) {
@@ -91,6 +102,7 @@ EnsembleResult run_repose_ensemble(const ReposeOptions& base,
 
 SweepRuns run_sweep_runs(const SweepOptions& options, const StudyControl& control) {
   validate(options);
+  check_before_start(options.base, control.fill);
   if (options.seeds.size() > kMaxEnsembleSeeds) {
     throw InvalidInput("--seeds", std::to_string(options.seeds.size()) + " seeds",
                        "at most " + std::to_string(kMaxEnsembleSeeds));

@@ -17,6 +17,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
 #include "aggpack/pack/lattice_packer.h"
+#include "aggpack/pack/verify.h"
 #include "support/files.h"
 #include "support/paths.h"
 
@@ -78,7 +79,7 @@ TEST(ReposeStudy, AFailingSeedIsReportedAndLeftOutOfTheStatistics) {
   study::StudyControl control;
   control.fill = [](const ReposeOptions& options) {
     if (options.seed == 2) throw LimitExceeded("test fill", "seed 2", "a fill that works");
-    return pack_lattice(repose_fill_options(options));
+    return study::repose_fill(options);
   };
   control.on_seed = [&](const EnsembleSeed& s, const ReposeResult* result, std::size_t,
                         std::size_t total) {
@@ -179,6 +180,50 @@ TEST(ReposeStudy, CancellingSkipsTheRunsNotYetStarted) {
   const study::SweepResult none = study::run_sweep(sweep, control);
   EXPECT_TRUE(none.is_cancelled);
   EXPECT_TRUE(none.cases.empty());
+}
+
+// The study's fill is the lattice packing with each particle turned about its site: same
+// particles and sites, new orientations, still overlap-free, the same every time.
+TEST(ReposeStudy, FillTurnsTheLatticeParticlesAboutTheirSites) {
+  ReposeOptions base = load_sweep_config(kStudyTrough, {}).base;
+  const PackResult turned = study::repose_fill(base);
+  base.is_orientation_random = false;
+  const PackResult lattice = study::repose_fill(base);
+  ASSERT_EQ(turned.packing.particles.size(), lattice.packing.particles.size());
+  ASSERT_GT(turned.packing.particles.size(), 10U);
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < turned.packing.particles.size(); ++i) {
+    const Pose& a = turned.packing.particles[i].pose;
+    const Pose& b = lattice.packing.particles[i].pose;
+    EXPECT_EQ(turned.packing.particles[i].shape, lattice.packing.particles[i].shape);
+    if (a.rotation.angularDistance(b.rotation) > 1e-3) ++moved;
+  }
+  EXPECT_EQ(moved, turned.packing.particles.size());
+  const VerifyResult check = verify(turned.packing);
+  EXPECT_TRUE(check.is_ok) << check.message;
+  base.is_orientation_random = true;
+  const PackResult again = study::repose_fill(base);
+  for (std::size_t i = 0; i < again.packing.particles.size(); ++i) {
+    EXPECT_EQ(again.packing.particles[i].pose.position, turned.packing.particles[i].pose.position);
+  }
+}
+
+// What a run would refuse is refused before it starts, named by the field.
+TEST(ReposeStudy, InputsAreCheckedBeforeTheRun) {
+  ReposeOptions base = load_sweep_config(kStudyTrough, {}).base;
+  EXPECT_NO_THROW(study::check_repose_inputs(base));
+  ReposeOptions too_large = base;
+  too_large.radius = 10.0;  // no lattice site fits the fill box
+  EXPECT_THROW(study::check_repose_inputs(too_large), Error);
+  ReposeOptions missing = base;
+  missing.library.paths = {(fs::temp_directory_path() / "aggpack-no-such-library").string()};
+  try {
+    study::check_repose_inputs(missing);
+    FAIL() << "a missing library was accepted";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.field(), "particle.library");
+  }
+  EXPECT_THROW(study::run_repose(missing), Error);
 }
 
 TEST(ReposeStudy, RejectsNoSeedsAndBadOptions) {

@@ -16,9 +16,10 @@
 #include <string_view>
 #include <vector>
 
-#include "aggpack/pack/lattice_packer.h"
 #include "aggpack/pack/packing.h"
 #include "aggpack/pack/progress.h"
+#include "aggpack/shape/generator.h"
+#include "aggpack/shape/shape_library.h"
 #include "aggpack/sim/settle.h"
 #include "aggpack/sim/world.h"
 
@@ -67,9 +68,11 @@ struct ReposeOptions {
   /// largest particle size beyond the pile; if it reaches the far wall first it stops there.
   double baffle_clear_time = 0.2;
 
-  // Particles: the fill, made by the caller (the study layer's repose_fill(): the pipeline's
-  // pack() of repose_fill_options(), the paper's lattice placement in the box
-  // [0, baffle_position] x [0, width()] x [0, fill_height]) and passed to run_repose().
+  // Particles: the fill, made by the caller (the study layer's study::repose_fill(): the
+  // pipeline's pack() of study::repose_fill_options(), the paper's lattice placement in the box
+  // [0, baffle_position] x [0, width()] x [0, fill_height]) and passed to run_repose(). The
+  // simulation reads only radius (time step, bins) and the trough; the other particle fields
+  // are the fill's, read by the study layer.
   double alpha = 0.5;        ///< Eq. 3 shape control, [0, 1]
   double radius = 0.1;       ///< control radius R (m), > 0; lattice spacing 2R
   double edge_length = 0.1;  ///< L (m), > 0
@@ -84,8 +87,8 @@ struct ReposeOptions {
   /// Turn each particle by a uniformly random rotation about its lattice site (stream
   /// Rng(seed ^ 0x726f74, i)); it stays inside its site's sphere, so nothing overlaps. Without it
   /// identical shapes (alpha = 1 grows the same body every time) stack into a stable crystal.
-  /// Only for the lattice fill of repose_fill_options() (provenance.packer "lattice"); other
-  /// fills (random, dense) are taken as they are.
+  /// Done by study::repose_fill() when it makes the lattice fill; a fill made otherwise
+  /// (ReposeFill) is taken as it is.
   bool is_orientation_random = true;
 
   /// Materials. `friction` is the mu_s of the sweep; walls default to the same value.
@@ -127,13 +130,9 @@ struct ReposeOptions {
   double fit_lower = 0.2;  ///< and above this fraction, [0, fit_upper)
 };
 
-/// Throws InvalidInput naming the field ("repose.baffle_speed", ...) unless usable.
+/// Throws InvalidInput naming the field ("repose.baffle_speed", ...) unless usable by the
+/// simulation. What the fill would refuse is checked by study::check_repose_inputs().
 void validate(const ReposeOptions& options);
-
-/// The paper's fill for the test: the lattice placement (alpha, radius, edge_length, seed) in the
-/// box [0, baffle_position] x [0, width()] x [0, fill_height]. Pack it with the pipeline's
-/// pack() (or pack_lattice) and pass the result to run_repose().
-LatticeOptions repose_fill_options(const ReposeOptions& options);
 
 /// Height of the pile surface along x: the highest particle point in each bin (0 = bare floor).
 struct SurfaceProfile {

@@ -13,6 +13,7 @@
 #include <iosfwd>
 #include <vector>
 
+#include "aggpack/pack/lattice_packer.h"
 #include "aggpack/sim/distributed.h"
 #include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
@@ -21,8 +22,22 @@
 
 namespace aggpack::study {
 
-/// The fill of a repose case: the paper's lattice placement of repose_fill_options(options)
-/// packed by the pipeline's pack(). What every study call runs on unless told otherwise (a
+/// The paper's fill for the test: the lattice placement (alpha, radius, edge_length, form or the
+/// shape library, seed) in the box [0, baffle_position] x [0, width()] x [0, fill_height].
+LatticeOptions repose_fill_options(const ReposeOptions& options);
+
+/// Everything a repose run checks before it starts, so that a command can refuse bad input before
+/// it announces or creates anything: validate(options) (the simulation's keys), what the fill
+/// would refuse (validate(repose_fill_options): too large a radius, too many vertices) and a
+/// shape library path that is not there (listed, not read). Fields are named as the options
+/// name them ("repose.radius", "particle.library"); with_sweep_key_names gives the config keys.
+/// 	hrow InvalidInput, IoError.
+void check_repose_inputs(const ReposeOptions& options);
+
+/// The fill of a repose case: the pipeline's pack() of repose_fill_options(options), each
+/// particle then turned by a random rotation about its lattice site when
+/// options.is_orientation_random (stream Rng(seed ^ 0x726f74, i); it stays inside its site's
+/// sphere, so nothing overlaps). What every study call runs on unless told otherwise (a
 /// ReposeFill; called concurrently by ensembles and sweeps).
 PackResult repose_fill(const ReposeOptions& options);
 
