@@ -25,6 +25,7 @@
 #include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/sweep.h"
+#include "aggpack/study/merge.h"
 #include "aggpack/study/repose_study.h"
 #endif
 
@@ -297,6 +298,19 @@ py::list run_sweep_call(const py::object& config, const std::vector<std::string>
   return rows;
 }
 
+// aggpack.merge(folder): the workers' run records merged, as `aggpack merge` (no files written).
+py::object merge_call(const std::string& folder) {
+  std::optional<study::MergedRuns> merged;
+  {
+    const py::gil_scoped_release release;
+    merged = study::merge_runs(folder);
+  }
+  if (merged->kind == RunKind::kEnsemble) return ensemble_dict(merged->ensemble);
+  py::list rows;
+  for (const SweepCase& c : merged->cases) rows.append(sweep_case_dict(c));
+  return rows;
+}
+
 }  // namespace
 #endif
 
@@ -341,6 +355,16 @@ ci_lower_degrees and ci_upper_degrees. progress: called after each finished run 
 alpha, friction, seed, is_valid, angle_degrees); returning False cancels: runs not yet started
 are skipped and sweep() returns one dict per run that ran instead of the table. Releases the
 GIL; long for the paper's 65 cases.)doc");
+
+  m.def(
+      "merge", &merge_call, py::arg("folder"),
+      R"doc(The summary of an ensemble or sweep run in parts, as `aggpack merge FOLDER` (which also
+writes the summary files; this call writes nothing): reads FOLDER/runs/*.json, the records the
+workers (`aggpack repose --seeds ... --case K --of N`, `aggpack sweep --case K --of N`, or mpirun
+ranks) left, checks they are one configuration and complete, and returns what repose(seeds=...)
+returns for an ensemble (a dict) or what sweep() returns for a sweep (one dict per case).
+Raises InvalidInput naming the missing runs and the worker that owns them, FormatError for a file
+that is not a run record.)doc");
 #else
   (void)m;
 #endif

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "aggpack/config/repose_config.h"
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/sim/distributed.h"
+#include "aggpack/study/merge.h"
 #include "commands.h"
 #include "output_flags.h"
 #include "sim_summary.h"
@@ -159,49 +159,20 @@ void merge_run_folder(const std::string& folder, const std::string& output_folde
   if (flags.image_width != 0 && (flags.image_width < 64 || flags.image_width > 16384)) {
     throw InvalidInput("--width", std::to_string(flags.image_width), "[64, 16384]");
   }
-  const RunFolder runs = read_run_folder(flags.folder);
-  const RunRecord& first = runs.any();
+  const study::MergedRuns merged = study::merge_runs(flags.folder);
   int image_width = flags.image_width;
-  if (image_width == 0) {
-    image_width = first.image_width >= 64 && first.image_width <= 16384 ? first.image_width : 1600;
-  }
-  SweepOptions plan;
-  with_sweep_key_names(
-      [&] { plan = parse_sweep_config(first.config, "run record configuration"); });
-  if (!runs.missing.empty()) {
-    std::string list;
-    constexpr std::size_t kShown = 20;
-    for (std::size_t k = 0; k < runs.missing.size() && k < kShown; ++k) {
-      const std::size_t i = runs.missing[k];
-      list +=
-          fmt::format("{}{} (run {})", k > 0 ? ", " : "", describe_run(first.kind, plan, i), i + 1);
-    }
-    if (runs.missing.size() > kShown) {
-      list += fmt::format(" and {} more", runs.missing.size() - kShown);
-    }
-    throw InvalidInput(
-        "merge " + flags.folder,
-        fmt::format("{} of {} runs", runs.runs.size() - runs.missing.size(), runs.runs.size()),
-        "every run of the plan; missing " + list +
-            " (run i belongs to worker (i - 1) mod N + 1 of --of N: run those again, then merge)");
-  }
+  if (image_width == 0) image_width = merged.image_width != 0 ? merged.image_width : 1600;
   const std::string output = flags.output.empty() ? flags.folder : flags.output;
-  if (first.kind == RunKind::kEnsemble) {
-    std::vector<EnsembleSeed> seeds;
-    for (const auto& run : runs.runs) seeds.push_back(run->ensemble);
-    const EnsembleResult ensemble = summarize_ensemble(std::move(seeds));
+  if (merged.kind == RunKind::kEnsemble) {
     prepare_folder(output, flags.is_forced, {"ensemble.json", "ensemble.csv", "ensemble.png"});
-    fmt::print("merge: ensemble of {} seeds\n", ensemble.seeds.size());
-    write_ensemble_summary(output, plan.base, ensemble, image_width);
+    fmt::print("merge: ensemble of {} seeds\n", merged.ensemble.seeds.size());
+    write_ensemble_summary(output, merged.plan.base, merged.ensemble, image_width);
     return;
   }
-  std::vector<SweepCase> cases;
-  for (const auto& run : runs.runs) cases.push_back(run->sweep);
-  cases = summarize_sweep(plan, std::move(cases));
   prepare_folder(output, flags.is_forced, {"sweep.csv", "sweep.gp", "sweep.png"});
-  fmt::print("merge: sweep of {} cases x {} seeds\n", cases.size(),
-             std::max<std::size_t>(1, plan.seeds.size()));
-  write_sweep_summary(output, plan, cases, flags.is_without_plot);
+  fmt::print("merge: sweep of {} cases x {} seeds\n", merged.cases.size(),
+             std::max<std::size_t>(1, merged.plan.seeds.size()));
+  write_sweep_summary(output, merged.plan, merged.cases, flags.is_without_plot);
 }
 
 void register_merge(CLI::App& app) {

@@ -131,3 +131,37 @@ def test_sweep_with_seeds_gives_each_case_its_ensemble(ensemble):
     assert row["seed_count"] == 2 and row["seeds_used"] == 2
     assert row["angle_degrees"] == ensemble["angle_degrees"]
     assert row["ci_upper_degrees"] == ensemble["statistics"]["ci_upper_degrees"]
+
+
+def test_merge_of_two_workers_is_the_ensemble(ensemble, cli, tmp_path):
+    out = tmp_path / "parts"
+    for worker in ("1", "2"):
+        run = cli("repose", str(TROUGH_FILE), "--seeds", "2,1", "--case", worker, "--of", "2",
+                  "-o", str(out), "--width", "64", "--progress", "none")
+        assert run.returncode == 0, run.stderr
+    merged = aggpack.merge(str(out))
+    assert [s["seed"] for s in merged["seeds"]] == [2, 1]
+    assert np.array_equal(merged["angles"], ensemble["angles"])
+    assert merged["statistics"] == ensemble["statistics"]
+    assert not (out / "ensemble.json").exists()  # merge() writes nothing
+    # Without worker 2's record the merge names the missing seed and its worker.
+    assert sorted(p.name for p in (out / "runs").glob("*.json")) == ["seed-1.json", "seed-2.json"]
+    (out / "runs" / "seed-1.json").unlink()
+    with pytest.raises(aggpack.InvalidInput) as caught:
+        aggpack.merge(str(out))
+    assert caught.value.field == f"merge {out}"
+    assert "missing seed 1 (run 2)" in str(caught.value)
+
+
+def test_merge_of_a_sweep_in_parts_is_the_sweep(cli, tmp_path):
+    out = tmp_path / "sweep"
+    for worker in ("1", "2"):
+        run = cli("sweep", str(TROUGH_FILE), *[f"--set={s}" for s in SWEEP], "--case", worker,
+                  "--of", "2", "-o", str(out), "--no-plot", "--progress", "none")
+        assert run.returncode == 0, run.stderr
+    rows = aggpack.merge(str(out))
+    assert [(r["alpha"], r["friction"]) for r in rows] == [(0.5, 0.2), (0.5, 0.4)]
+    alone = aggpack.repose(TROUGH, ["physics.friction=0.2"])
+    assert rows[0]["angle_degrees"] == alone["angle_degrees"]
+    with pytest.raises(aggpack.InvalidInput):
+        aggpack.merge(str(tmp_path / "nothing-here"))
