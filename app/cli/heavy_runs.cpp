@@ -11,8 +11,8 @@
 
 #include "aggpack/core/parallel.h"
 #include "aggpack/geom/mass_properties.h"
-#include "aggpack/study/repose_study.h"
 #include "aggpack/pack/lattice_packer.h"
+#include "aggpack/study/repose_study.h"
 #include "progress.h"
 
 namespace aggpack::cli {
