@@ -25,8 +25,8 @@
 #include "aggpack/sim/ensemble.h"
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/sweep.h"
-#include "aggpack/study/merge.h"
 #include "aggpack/study/repose_study.h"
+#include "aggpack/study/run_parts.h"
 #endif
 
 namespace aggpack::python {
@@ -222,13 +222,85 @@ py::dict sweep_case_dict(const SweepCase& c) {
   return d;
 }
 
+std::string fmt_share(const RunShare& share) {
+  return "(" + std::to_string(share.worker) + ", " + std::to_string(share.of) + ")";
+}
+
+// share=(K, N): worker K of N (1-based), as the CLI's --case K --of N.
+RunShare study_share(const py::object& share) {
+  if (share.is_none()) return {};
+  const auto refuse = [&] {
+    throw InvalidInput(
+        "share", py::repr(share).cast<std::string>(),
+        "None or (K, N): worker K of N, 1 <= K <= N <= " + std::to_string(kMaxWorkers));
+  };
+  if (!py::isinstance<py::tuple>(share) && !py::isinstance<py::list>(share)) refuse();
+  const auto items = share.cast<py::sequence>();
+  if (items.size() != 2) refuse();
+  std::size_t values[2] = {0, 0};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const py::object item = items[k];
+    if (!py::isinstance<py::int_>(item) || py::isinstance<py::bool_>(item) ||
+        item.cast<py::int_>() < py::int_(1) || item.cast<py::int_>() > py::int_(kMaxWorkers)) {
+      refuse();
+    }
+    values[k] = item.cast<std::size_t>();
+  }
+  if (values[0] > values[1]) refuse();
+  return RunShare{values[0], values[1]};
+}
+
+// records=FOLDER (and share): the run records of this call's runs, for merge(). A record that
+// cannot be written cancels the runs; the first such error is kept for the caller.
+struct StudyRecords {
+  std::optional<study::RunRecorder> recorder;
+  std::exception_ptr error;
+  template <class Run>
+  void record(const Run& run, StudyBridge& bridge) {
+    if (!recorder || error) return;
+    try {
+      recorder->record(run);
+    } catch (...) {
+      error = std::current_exception();
+      bridge.cancel.store(true);
+    }
+  }
+};
+
+StudyRecords study_records(RunKind kind, const SweepOptions& options, const py::object& records,
+                           const RunShare& share) {
+  StudyRecords out;
+  if (records.is_none()) {
+    if (share.is_split()) {
+      throw InvalidInput("share", fmt_share(share),
+                         "with records=FOLDER (a share's runs are summed up by merge(FOLDER))");
+    }
+    return out;
+  }
+  if (!py::isinstance<py::str>(records) || records.cast<std::string>().empty()) {
+    throw InvalidInput("records", py::repr(records).cast<std::string>(),
+                       "None or a folder name (str)");
+  }
+  const std::string folder = records.cast<std::string>();
+  with_sweep_key_names([&] { out.recorder.emplace(kind, options, folder, 0, "records"); });
+  return out;
+}
+
 py::object run_repose_call(const py::object& config, const std::vector<std::string>& overrides,
-                           const py::object& seeds_given, const py::object& progress) {
+                           const py::object& seeds_given, const py::object& progress,
+                           const py::object& share_given, const py::object& records_given) {
   SweepOptions options = study_options(config, overrides);
   options.seeds = study_seeds(seeds_given, options.seeds);
+  const RunShare share = study_share(share_given);
   if (options.seeds.empty()) {
     if (!progress.is_none()) {
       throw InvalidInput("progress", "a callable", "None for one run (progress needs seeds=...)");
+    }
+    if (!records_given.is_none() || share.is_split()) {
+      throw InvalidInput(
+          records_given.is_none() ? "share" : "records",
+          records_given.is_none() ? fmt_share(share) : py::repr(records_given).cast<std::string>(),
+          "None for one run (a run in parts needs seeds=...)");
     }
     std::optional<ReposeResult> result;
     {
@@ -238,12 +310,15 @@ py::object run_repose_call(const py::object& config, const std::vector<std::stri
     }
     return single_run_dict(*result);
   }
+  StudyRecords records = study_records(RunKind::kEnsemble, options, records_given, share);
   StudyBridge bridge;
   bridge.callback = progress;
   study::StudyControl control;
   control.cancel = &bridge.cancel;
-  control.on_seed = [&bridge](const EnsembleSeed& s, const ReposeResult*, std::size_t done,
-                              std::size_t total) {
+  control.share = &share;
+  control.on_seed = [&bridge, &records](const EnsembleSeed& s, const ReposeResult*,
+                                        std::size_t done, std::size_t total) {
+    records.record(s, bridge);
     bridge([&] {
       py::dict d;
       d["done"] = done;
@@ -261,20 +336,26 @@ py::object run_repose_call(const py::object& config, const std::vector<std::stri
     with_sweep_key_names(
         [&] { ensemble = study::run_repose_ensemble(options.base, options.seeds, control); });
   }
+  if (records.error) std::rethrow_exception(records.error);
   if (bridge.error) std::rethrow_exception(bridge.error);
   return ensemble_dict(*ensemble);
 }
 
 py::list run_sweep_call(const py::object& config, const std::vector<std::string>& overrides,
-                        const py::object& seeds_given, const py::object& progress) {
+                        const py::object& seeds_given, const py::object& progress,
+                        const py::object& share_given, const py::object& records_given) {
   SweepOptions options = study_options(config, overrides);
   options.seeds = study_seeds(seeds_given, options.seeds);
+  const RunShare share = study_share(share_given);
+  StudyRecords records = study_records(RunKind::kSweep, options, records_given, share);
   StudyBridge bridge;
   bridge.callback = progress;
   study::StudyControl control;
   control.cancel = &bridge.cancel;
-  control.on_run = [&bridge](const SweepCase& c, const ReposeResult&, std::size_t done,
-                             std::size_t total) {
+  control.share = &share;
+  control.on_run = [&bridge, &records](const SweepCase& c, const ReposeResult&, std::size_t done,
+                                       std::size_t total) {
+    records.record(c, bridge);
     bridge([&] {
       py::dict d;
       d["done"] = done;
@@ -290,8 +371,18 @@ py::list run_sweep_call(const py::object& config, const std::vector<std::string>
   std::optional<study::SweepResult> result;
   {
     const py::gil_scoped_release release;
-    with_sweep_key_names([&] { result = study::run_sweep(options, control); });
+    with_sweep_key_names([&] {
+      if (share.is_split()) {
+        result.emplace();
+        study::SweepRuns runs = study::run_sweep_runs(options, control);
+        result->cases = std::move(runs.runs);
+        result->is_cancelled = runs.is_cancelled;
+      } else {
+        result = study::run_sweep(options, control);
+      }
+    });
   }
+  if (records.error) std::rethrow_exception(records.error);
   if (bridge.error) std::rethrow_exception(bridge.error);
   py::list rows;
   for (const SweepCase& c : result->cases) rows.append(sweep_case_dict(c));
@@ -319,6 +410,7 @@ void register_study(py::module_& m) {
   m.def("repose", &run_repose_call, py::arg("config") = py::none(),
         py::arg("overrides") = std::vector<std::string>{}, py::kw_only(),
         py::arg("seeds") = py::none(), py::arg("progress") = py::none(),
+        py::arg("share") = py::none(), py::arg("records") = py::none(),
         R"doc(The angle-of-repose trough test, as `aggpack repose [CONFIG.toml] --set ...`: the
 paper's lattice fill behind the baffle, stage 1 settles it, stage 2 moves the baffle away, the
 pile's slope is fitted. config: None (the paper's case), a dict or TOML text with the tables of
@@ -341,11 +433,18 @@ is_cancelled. progress: None or a callable progress(dict) called after each fini
 done, total, seed, is_valid, angle_degrees, error. Returning False cancels: seeds not yet started
 are skipped and the result holds the seeds that ran (is_cancelled True). An exception raised by
 the callback also cancels and is re-raised; Ctrl-C is checked after each seed.
-Raises ConfigError naming the key, InvalidInput naming `seeds`.)doc");
+
+In parts, as `aggpack repose --seeds ... --case K --of N`: records = a folder: every finished seed
+leaves its run record in records/runs/ (a folder holding records of another configuration is
+refused); share = (K, N) runs only worker K's seeds (seed i of the list belongs to worker
+(i mod N) + 1) and needs records. When every worker is done, merge(records) (or `aggpack merge`)
+gives the ensemble.
+Raises ConfigError naming the key, InvalidInput naming `seeds`, `share` or `records`.)doc");
 
   m.def("sweep", &run_sweep_call, py::arg("config") = py::none(),
         py::arg("overrides") = std::vector<std::string>{}, py::kw_only(),
         py::arg("seeds") = py::none(), py::arg("progress") = py::none(),
+        py::arg("share") = py::none(), py::arg("records") = py::none(),
         R"doc(The repose test over every (alpha, mu_s) case, as `aggpack sweep` (config and
 overrides as repose(), plus the [sweep] table: alphas, frictions). Returns one dict per case in
 index order: alpha, friction, angle_degrees, r_squared, is_valid, is_at_rest, particle_count,
@@ -353,7 +452,9 @@ mean_measured_alpha, simulated_time, seed. seeds (as repose()): a seed ensemble 
 angle_degrees is then the mean over the seeds, with seed_count, seeds_used, std_dev_degrees,
 ci_lower_degrees and ci_upper_degrees. progress: called after each finished run (done, total,
 alpha, friction, seed, is_valid, angle_degrees); returning False cancels: runs not yet started
-are skipped and sweep() returns one dict per run that ran instead of the table. Releases the
+are skipped and sweep() returns one dict per run that ran instead of the table. share and
+records: a sweep in parts, as repose()'s (run i = case i / seeds, seed i % seeds); with share
+(K, N), N > 1, sweep() returns one dict per run of the share instead of the table. Releases the
 GIL; long for the paper's 65 cases.)doc");
 
   m.def(

@@ -16,7 +16,7 @@
 #include "aggpack/core/atomic_file.h"
 #include "aggpack/core/error.h"
 #include "aggpack/sim/distributed.h"
-#include "aggpack/study/merge.h"
+#include "aggpack/study/run_parts.h"
 #include "commands.h"
 #include "output_flags.h"
 #include "sim_summary.h"

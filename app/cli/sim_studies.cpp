@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +24,7 @@
 #include "aggpack/sim/repose.h"
 #include "aggpack/sim/sweep.h"
 #include "aggpack/study/repose_study.h"
+#include "aggpack/study/run_parts.h"
 #include "commands.h"
 #include "heavy_runs.h"
 #include "mpi_world.h"
@@ -37,39 +37,6 @@
 namespace aggpack::cli {
 
 namespace {
-
-// The plan of a distributed run: the resolved configuration (with the seed list) and its hash.
-RunRecord plan_record(RunKind kind, const SweepOptions& options, std::size_t run_count,
-                      int image_width) {
-  RunRecord record;
-  record.image_width = image_width;
-  record.kind = kind;
-  record.config = resolved_sweep_config(options);
-  record.hash = config_hash(record.config);
-  record.run_count = run_count;
-  return record;
-}
-
-// Workers share a folder: one whose runs/ holds records of another plan (configuration, seed
-// list or kind) is refused before anything runs, so that a folder never mixes plans.
-void check_same_plan(const std::string& folder, const RunRecord& plan) {
-  const std::filesystem::path runs = std::filesystem::path(folder) / "runs";
-  std::error_code error;
-  if (!std::filesystem::is_directory(runs, error)) return;
-  for (const auto& entry : std::filesystem::directory_iterator(runs, error)) {
-    const std::string name = entry.path().filename().string();
-    if (name.empty() || name.front() == '.' || entry.path().extension() != ".json") continue;
-    const RunRecord other = read_run_record(entry.path().string());
-    if (other.kind != plan.kind || other.hash != plan.hash) {
-      throw InvalidInput(
-          "-o " + folder,
-          "a folder holding " + entry.path().string() + " (configuration " + other.hash + ")",
-          "a new folder, or one of the same configuration and seed list (this "
-          "run's configuration is " +
-              plan.hash + ")");
-    }
-  }
-}
 
 // `repose --seeds`: one run per seed in DIR/seed-<k>/ and its record in DIR/runs/seed-<k>.json,
 // the angles and their statistics in DIR/ensemble.json|csv|png. Seeds run in parallel, each
@@ -88,9 +55,7 @@ EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& o
       is_merged_later ? std::vector<std::string>{}
                       : std::vector<std::string>{"ensemble.json", "ensemble.csv", "ensemble.png"});
   const Overwrite overwrite = flags.is_forced ? Overwrite::kAllow : Overwrite::kForbid;
-  std::map<std::uint64_t, std::size_t> run_index;
   for (std::size_t i = 0; i < seeds.size(); ++i) {
-    run_index[seeds[i]] = i;
     if (!share.owns(i)) continue;
     if (std::filesystem::exists(in_folder(folder, "runs"))) {
       check_writable(in_folder(folder, fmt::format("runs/seed-{}.json", seeds[i])), overwrite);
@@ -102,9 +67,8 @@ EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& o
     }
   }
   announce_repose(options.base, share, seeds.size());
-  const RunRecord plan = plan_record(RunKind::kEnsemble, options, seeds.size(), flags.image_width);
-  check_same_plan(folder, plan);
-  std::filesystem::create_directories(in_folder(folder, "runs"));
+  const study::RunRecorder recorder(RunKind::kEnsemble, options, folder, flags.image_width,
+                                    "-o " + folder);
   fmt::print("ensemble: {} seeds{}\n", seeds.size(),
              share.is_split() ? fmt::format(" (worker {} of {})", share.worker, share.of) : "");
   ProgressBar bar("ensemble", "seeds", style);
@@ -128,10 +92,7 @@ EnsembleResult run_ensemble_part(const ReposeFlags& flags, const SweepOptions& o
                             std::min(flags.image_width, 1200));
         write_packing(result->final, in_folder(sub, "final.h5"));
       }
-      RunRecord record = plan;
-      record.run_index = run_index.at(s.seed);
-      record.ensemble = s;
-      write_run_record(in_folder(folder, "runs/" + run_record_name(record)), record);
+      recorder.record(s);
     } catch (const std::exception& error) {
       std::fprintf(stderr, "aggpack: warning: seed %llu: %s\n",
                    static_cast<unsigned long long>(s.seed), error.what());
@@ -189,7 +150,6 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
       is_merged_later ? std::vector<std::string>{}
                       : std::vector<std::string>{"sweep.csv", "sweep.gp", "sweep.png"});
   std::filesystem::create_directories(std::filesystem::path(folder) / "cases");
-  std::filesystem::create_directories(std::filesystem::path(folder) / "runs");
   const std::size_t seed_count = is_ensemble ? options.seeds.size() : 1;
   const std::size_t total = options.alphas.size() * options.frictions.size();
   fmt::print("sweep: {} alpha x {} mu_s = {} cases", options.alphas.size(),
@@ -197,11 +157,8 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
   fmt::print("{}{}\n", is_ensemble ? fmt::format(" x {} seeds", options.seeds.size()) : "",
              share.is_split() ? fmt::format(" (worker {} of {})", share.worker, share.of) : "");
   announce_repose(options.base, share, total * seed_count);
-  const RunRecord plan =
-      plan_record(RunKind::kSweep, options, total * seed_count, flags.image_width);
-  check_same_plan(folder, plan);
-  std::map<std::uint64_t, std::size_t> seed_index;
-  for (std::size_t k = 0; k < options.seeds.size(); ++k) seed_index[options.seeds[k]] = k;
+  const study::RunRecorder recorder(RunKind::kSweep, options, folder, flags.image_width,
+                                    "-o " + folder);
   ProgressBar bar("sweep", "cases", style);
   // The bar from the start (0 of this process's runs), not first when a whole run has ended.
   std::size_t owned = 0;
@@ -211,8 +168,7 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
   control.share = &share;
   control.on_run = [&](const SweepCase& c, const ReposeResult& result, std::size_t done,
                        std::size_t count) {
-    const std::string stem = fmt::format("alpha{:.2f}_mu{:.2f}", c.alpha, c.friction) +
-                             (is_ensemble ? fmt::format("_seed{}", c.seed) : std::string());
+    const std::string stem = recorder.stem(c);
     try {
       ReposeOptions repose = options.base;
       repose.seed = c.seed;
@@ -222,10 +178,7 @@ std::vector<SweepCase> run_sweep_part(const ReposeFlags& flags, const SweepOptio
       write_repose_json(in_folder(folder, "cases/" + stem + ".json"), repose, result);
       write_side_view_png(in_folder(folder, "cases/" + stem + ".png"), result.final, result.profile,
                           result.fit, std::min(flags.image_width, 1200));
-      RunRecord record = plan;
-      record.run_index = c.index * seed_count + (is_ensemble ? seed_index.at(c.seed) : 0);
-      record.sweep = c;
-      write_run_record(in_folder(folder, "runs/" + stem + ".json"), record);
+      recorder.record(c);
     } catch (const Error& error) {
       std::fprintf(stderr, "aggpack: warning: case %s: %s\n", stem.c_str(), error.what());
     }

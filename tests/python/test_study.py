@@ -165,3 +165,51 @@ def test_merge_of_a_sweep_in_parts_is_the_sweep(cli, tmp_path):
     assert rows[0]["angle_degrees"] == alone["angle_degrees"]
     with pytest.raises(aggpack.InvalidInput):
         aggpack.merge(str(tmp_path / "nothing-here"))
+
+
+def test_python_workers_leave_records_that_merge_into_the_ensemble(ensemble, cli, tmp_path):
+    out = tmp_path / "py-parts"
+    first = aggpack.repose(TROUGH, seeds="2,1", share=(1, 2), records=str(out))
+    assert [s["seed"] for s in first["seeds"]] == [2]  # seed 2 is run 1 of the list: worker 1's
+    assert sorted(p.name for p in (out / "runs").glob("*.json")) == ["seed-2.json"]
+    aggpack.repose(TROUGH, seeds="2,1", share=(2, 2), records=str(out))
+    merged = aggpack.merge(str(out))
+    assert np.array_equal(merged["angles"], ensemble["angles"])
+    assert merged["statistics"] == ensemble["statistics"]
+    # The CLI merges the same records into the single-process ensemble.json.
+    run = cli("merge", str(out), "--width", "64")
+    assert run.returncode == 0, run.stderr
+    cli_json = json.loads((out / "ensemble.json").read_text())
+    assert [s["angle_degrees"] for s in cli_json["seeds"]] == list(ensemble["angles"])
+    # Another configuration may not add records to the folder.
+    with pytest.raises(aggpack.InvalidInput) as caught:
+        aggpack.repose(TROUGH, ["physics.friction=0.5"], seeds="2,1", share=(1, 2),
+                       records=str(out))
+    assert caught.value.field == "records"
+
+
+def test_a_sweep_share_returns_its_runs_and_records_them(tmp_path):
+    out = tmp_path / "sweep-parts"
+    rows = aggpack.sweep(TROUGH, SWEEP, share=(2, 2), records=str(out))
+    assert [(r["alpha"], r["friction"]) for r in rows] == [(0.5, 0.4)]
+    assert [p.name for p in (out / "runs").glob("*.json")] == ["alpha0.50_mu0.40.json"]
+    with pytest.raises(aggpack.InvalidInput) as caught:
+        aggpack.merge(str(out))
+    assert "missing alpha 0.5 mu_s 0.2" in str(caught.value)
+
+
+def test_bad_shares_and_records_name_the_keyword(tmp_path):
+    for bad in ((0, 2), (3, 2), (1,), "1/2", (1.0, 2), (True, 2)):
+        with pytest.raises(aggpack.InvalidInput) as caught:
+            aggpack.repose(TROUGH, seeds=2, share=bad, records=str(tmp_path / "r"))
+        assert caught.value.field == "share", bad
+    with pytest.raises(aggpack.InvalidInput) as caught:
+        aggpack.repose(TROUGH, seeds=2, share=(1, 2))  # a share without records
+    assert caught.value.field == "share"
+    with pytest.raises(aggpack.InvalidInput) as caught:
+        aggpack.repose(TROUGH, records=str(tmp_path / "r"))  # one run has no records
+    assert caught.value.field == "records"
+    with pytest.raises(aggpack.InvalidInput) as caught:
+        aggpack.sweep(TROUGH, SWEEP, records="")
+    assert caught.value.field == "records"
+    assert not (tmp_path / "r").exists()
