@@ -18,6 +18,7 @@ Main calls:
   read(path)                         a saved packing (.h5)
   generate_particle(...), generate_particles(...)   grown particles and their descriptors
   repose(...), sweep(...)            the angle-of-repose test and its alpha x mu_s sweep
+  merge(folder)                      the summary of an ensemble or sweep run in parts
   Packing.write / export / render / statistics / descriptors   (help(aggpack.Packing))
 
 Units are SI (metres). Errors are aggpack.Error subclasses with the CLI's one-line messages.

@@ -68,7 +68,21 @@ SweepOptions study_options(const py::object& config, const std::vector<std::stri
     throw InvalidInput("config", py::repr(config).cast<std::string>(),
                        "None (the paper's case), a dict or a TOML string");
   }
-  SweepOptions options = parse_sweep_config(text, source, overrides);
+  // Notes (a former table name, [particles]) as FutureWarnings, before any error.
+  std::vector<std::string> notes;
+  const auto warn = [&notes] {
+    for (const std::string& note : notes) {
+      if (PyErr_WarnEx(PyExc_FutureWarning, note.c_str(), 1) != 0) throw py::error_already_set();
+    }
+  };
+  SweepOptions options;
+  try {
+    options = parse_sweep_config(text, source, overrides, &notes);
+  } catch (const Error&) {
+    warn();
+    throw;
+  }
+  warn();
   with_sweep_key_names([&] { validate(options); });
   return options;
 }
@@ -414,7 +428,7 @@ void register_study(py::module_& m) {
         R"doc(The angle-of-repose trough test, as `aggpack repose [CONFIG.toml] --set ...`: the
 paper's lattice fill behind the baffle, stage 1 settles it, stage 2 moves the baffle away, the
 pile's slope is fitted. config: None (the paper's case), a dict or TOML text with the tables of
-docs/config.md ([trough] [particles] [physics] [rest] [measure]); overrides: "key=value" strings.
+docs/config.md ([trough] [particle] [physics] [rest] [measure]); overrides: "key=value" strings.
 Releases the GIL; minutes for the paper's 1,050 particles.
 
 One run (seeds None and no ensemble.seeds in the config): returns a dict: angle_degrees, fit

@@ -48,7 +48,7 @@ commands() {
     if grep -q '^\[trough\]' "$config"; then
       echo -e "$name.print-config\trepose $config --print-config"
       # Two layers of particles and 0.02 s per stage: the whole flow in seconds, not the result.
-      local short="--set particles.fill_height=0.025 --set rest.max_time=0.02 --width 160"
+      local short="--set particle.fill_height=0.025 --set rest.max_time=0.02 --width 160"
       echo -e "$name.repose\trepose $config -o $name-repose $short --progress none"
       if [ "$slow" = 1 ]; then
         echo -e "$name.sweep\tsweep $config -o $name-sweep $short --set sweep.alphas=[0.5]" \

@@ -256,7 +256,7 @@ void print_result(const CalibrateFlags& flags, const CalibrationResult& result) 
   fmt::print("evaluations   {} (grid + Nelder-Mead, {} particles each)\n", result.evaluated.size(),
              options.samples);
   fmt::print(
-      "config lines (under [particles] in repose/sweep configs, [particle] in pack configs):\n"
+      "config lines (under [particle] in pack, repose and sweep configs):\n"
       "alpha = {:.6g}\nradius = {:.6g}\nedge_length = {:.6g}\ngrowth = \"{}\"\n"
       "elongation = {:.6g}\nflatness = {:.6g}\nmin_edge_ratio = {:.6g}\n",
       in.alpha, result.radius, result.edge_length, growth_name(options.form.growth), in.elongation,

@@ -65,8 +65,9 @@ void register_config_keys(CLI::App& app) {
       "List every pack configuration key (type, unit, default, range, when it applies), print "
       "the markdown table of one table, or regenerate the tables of docs/config.md.");
   command->add_option("--markdown", flags->markdown_table,
-                      "print the docs table of TABLE (container, particle, grading, packer, "
-                      "output, trough, particles, physics, rest, measure, sweep)");
+                      "print the docs table of TABLE: a pack table (container, particle, grading, "
+                      "packer, densify, output) or repose.TABLE for the repose and sweep "
+                      "configuration's (repose.trough, repose.particle, repose.physics, ...)");
   command->add_option("--update-doc", flags->update_doc,
                       "rewrite the generated tables of this file (docs/config.md)");
   command->callback([flags, command]() {

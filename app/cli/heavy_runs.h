@@ -18,7 +18,7 @@ RunEstimate estimate_settle(const Packing& packing, const SettleOptions& options
 
 /// repose (Bullet): `runs` runs of the paper's lattice fill of `options` (its sites), `parallel`
 /// at a time: stage 1 settles the fill, stage 2 moves the baffle out of the way and waits for
-/// rest. The time step from particles.radius (about the paper's particles' equivalent diameter).
+/// rest. The time step from particle.radius (about the paper's particles' equivalent diameter).
 RunEstimate estimate_repose(const ReposeOptions& options, double runs, int parallel);
 
 /// The heads-up of `runs` repose runs (an ensemble's seeds, a sweep's cases x seeds), of which

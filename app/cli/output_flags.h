@@ -19,7 +19,7 @@ void check_output_file_flag(std::string_view flag, const std::string& path);
 void check_output_folder_flag(std::string_view flag, const std::string& path);
 
 /// A --seed value as typed: an integer in [0, 2^63 - 1] (the range of packer.seed and
-/// particles.seed). Taken as text because CLI11 would wrap "-1" to 2^64 - 1; anything else is
+/// particle.seed). Taken as text because CLI11 would wrap "-1" to 2^64 - 1; anything else is
 /// InvalidInput naming `flag` (exit 2).
 std::uint64_t parse_seed_flag(std::string_view flag, const std::string& text);
 

@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -37,7 +38,21 @@ namespace aggpack::cli {
 
 SweepOptions resolve_repose_flags(const ReposeFlags& flags) {
   check_output_folder_flag("-o/--output", flags.output);
-  SweepOptions options = load_sweep_config(flags.config_path, flags.overrides);
+  // Notes (a former table name) come before any error, which names the key as it is now.
+  std::vector<std::string> notes;
+  const auto show_notes = [&notes] {
+    for (const std::string& note : notes) {
+      std::fprintf(stderr, "aggpack: note: %s\n", clipped(note, 1000).c_str());
+    }
+  };
+  SweepOptions options;
+  try {
+    options = load_sweep_config(flags.config_path, flags.overrides, &notes);
+  } catch (...) {
+    show_notes();
+    throw;
+  }
+  show_notes();
   if (flags.engine) {
     if (*flags.engine != "bullet" && *flags.engine != "yade") {
       throw InvalidInput("--engine", clipped(*flags.engine, 40), "bullet or yade");
@@ -56,7 +71,7 @@ SweepOptions resolve_repose_flags(const ReposeFlags& flags) {
     // --mu and --alpha stand for keys but were typed as flags: their messages name the flags.
     std::map<std::string, std::string> flag_names;
     if (flags.friction) flag_names.emplace("physics.friction", "--mu");
-    if (flags.alpha) flag_names.emplace("particles.alpha", "--alpha");
+    if (flags.alpha) flag_names.emplace("particle.alpha", "--alpha");
     with_key_names({}, flag_names, [&] {
       with_sweep_key_names([&] { study::check_repose_inputs(options.base); });
     });
@@ -73,14 +88,14 @@ namespace {
 
 void add_config_options(CLI::App& command, ReposeFlags& flags) {
   command.add_option("config", flags.config_path,
-                     "TOML file with [trough] [particles] [physics] [rest] [measure] [sweep] "
+                     "TOML file with [trough] [particle] [physics] [rest] [measure] [sweep] "
                      "tables (omit for the paper's case; see --print-config)");
   command.add_option("--set", flags.overrides, "override a key: --set physics.friction=0.3")
       ->take_all();
   command.add_option("--mu", flags.friction,
                      "sliding friction mu_s, same as --set physics.friction");
-  command.add_option("--alpha", flags.alpha, "shape control alpha, same as --set particles.alpha");
-  command.add_option("--seed", flags.seed, "master seed, same as --set particles.seed");
+  command.add_option("--alpha", flags.alpha, "shape control alpha, same as --set particle.alpha");
+  command.add_option("--seed", flags.seed, "master seed, same as --set particle.seed");
   command.add_option(
       "--engine", flags.engine,
       "physics engine: bullet (built in) or yade (Debian's yade as a subprocess, "

@@ -27,13 +27,16 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 
 constexpr std::string_view kBegin = "<!-- generated: aggpack config-keys --markdown ";
 constexpr std::string_view kEnd = "<!-- end generated -->";
+// The repose/sweep configuration's tables are named "repose.TABLE" here: both configurations
+// have a [particle] table.
+const std::string kReposePrefix = "repose.";
 
 }  // namespace
 
 std::vector<std::string> documented_tables() {
   std::vector<std::string> names = table_names(pack_schema());
 #ifdef AGGPACK_HAS_SIM
-  for (const auto& name : table_names(sweep_schema())) names.push_back(name);
+  for (const auto& name : table_names(sweep_schema())) names.push_back(kReposePrefix + name);
 #endif
   return names;
 }
@@ -41,7 +44,10 @@ std::vector<std::string> documented_tables() {
 std::string config_keys_markdown(const std::string& table) {
   if (contains(table_names(pack_schema()), table)) return pack_keys_markdown(table);
 #ifdef AGGPACK_HAS_SIM
-  if (contains(table_names(sweep_schema()), table)) return sweep_keys_markdown(table);
+  if (table.rfind(kReposePrefix, 0) == 0 &&
+      contains(table_names(sweep_schema()), table.substr(kReposePrefix.size()))) {
+    return sweep_keys_markdown(table.substr(kReposePrefix.size()));
+  }
 #endif
   std::string allowed;
   for (const auto& name : documented_tables()) allowed += (allowed.empty() ? "" : ", ") + name;

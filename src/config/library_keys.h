@@ -1,6 +1,6 @@
 #pragma once
 // The options of a shape library (aggpack/shape/shape_library.h), declared once for every schema
-// that has a library key: pack's particle.library_* and repose's and sweep's particles.library_*.
+// that has a library key: pack's particle.library_* and repose's and sweep's (the same names).
 // Each schema binds them its own way (pack: on the packer kind's options; repose: a member).
 
 #include <string>

@@ -354,6 +354,52 @@ class Converter {
   const Leaf& leaf_;
 };
 
+// Keys given under a table's former name become the table's (an override, given after every
+// line, wins over the file's value of the same key); one note per former name.
+void read_former_tables(const std::vector<TableInfo>& tables, std::map<std::string, Leaf>& leaves,
+                        std::vector<std::pair<std::string, std::string>>& empty_tables,
+                        std::vector<std::string>* notes) {
+  for (const TableInfo& table : tables) {
+    if (table.former_name.empty()) continue;
+    const std::string old_prefix = table.former_name + ".";
+    std::vector<std::pair<std::string, Leaf>> moved;
+    for (auto it = leaves.begin(); it != leaves.end();) {
+      if (it->first.rfind(old_prefix, 0) == 0) {
+        moved.emplace_back(table.name + "." + it->first.substr(old_prefix.size()), it->second);
+        it = leaves.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    const Leaf* first = nullptr;
+    for (const auto& [name, leaf] : moved) {
+      if (first == nullptr || leaf.order < first->order) first = &leaf;
+      const auto [existing, is_new] = leaves.try_emplace(name, leaf);
+      if (is_new) continue;
+      // Both names in the file: which one counts is not clear. An override wins (it comes last).
+      const bool is_override =
+          leaf.origin.rfind("--set ", 0) == 0 || existing->second.origin.rfind("--set ", 0) == 0;
+      if (!is_override) {
+        throw ConfigError(name, leaf.origin + ": " + name + " given twice, in [" +
+                                    table.former_name + "] and in [" + table.name + "] (keep [" +
+                                    table.name + "])");
+      }
+      if (leaf.order > existing->second.order) existing->second = leaf;
+    }
+    std::string where;
+    for (auto& [name, origin] : empty_tables) {
+      if (name != table.former_name) continue;
+      name = table.name;
+      where = origin;
+    }
+    if (first != nullptr) where = first->origin;
+    if (notes != nullptr && !where.empty()) {
+      notes->push_back(where + ": [" + table.former_name + "] is now [" + table.name +
+                       "]: read as [" + table.name + "] (rename it; the old name will go)");
+    }
+  }
+}
+
 }  // namespace
 
 std::string override_key(std::string_view text) {
@@ -371,7 +417,8 @@ const std::string* last_override_of(const std::vector<std::string>& overrides,
 
 GivenValues read_values(const std::vector<TableInfo>& tables, const std::vector<KeyView>& keys,
                         std::string_view text, std::string_view source_name,
-                        const std::vector<std::string>& overrides) {
+                        const std::vector<std::string>& overrides,
+                        std::vector<std::string>* notes) {
   const std::string source(source_name);
   toml::table root;
   try {
@@ -387,6 +434,7 @@ GivenValues read_values(const std::vector<TableInfo>& tables, const std::vector<
   std::map<std::string, Leaf> leaves;
   std::vector<std::pair<std::string, std::string>> empty_tables;
   collect(root, "", source, leaves, origins, empty_tables);
+  read_former_tables(tables, leaves, empty_tables, notes);
 
   std::vector<std::string> table_names;
   for (const auto& table : tables) table_names.push_back(table.name);

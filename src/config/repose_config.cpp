@@ -21,9 +21,9 @@ using config_detail::library_option_keys;
 using config_detail::members;
 using SweepKey = Key<SweepOptions>;
 
-// The particles.library_* keys apply only with a library.
+// The particle.library_* keys apply only with a library.
 const Scope<SweepOptions> kLibrary{
-    .text = "particles.library given",
+    .text = "particle.library given",
     .applies = [](const SweepOptions& o) { return o.base.library.is_used(); }};
 
 // A float key of the repose options.
@@ -67,55 +67,55 @@ std::vector<SweepKey> keys() {
              "baffle removed once untouched this long and clear of the pile",
              [](auto& o) -> auto& { return o.base.baffle_clear_time; },
              {"repose.baffle_clear_time"}),
-      number("particles.alpha", "-", closed(0, 1), "Eq. 3 shape control alpha, [0, 1]",
+      number("particle.alpha", "-", closed(0, 1), "Eq. 3 shape control alpha, [0, 1]",
              [](auto& o) -> auto& { return o.base.alpha; },
              {"repose.alpha", "lattice.alpha", "alpha"}),
-      number("particles.radius", "m", open_closed(0, kMaxMagnitude),
+      number("particle.radius", "m", open_closed(0, kMaxMagnitude),
              "control radius R; lattice spacing 2R", [](auto& o) -> auto& { return o.base.radius; },
              {"repose.radius", "lattice.radius", "radius"}),
-      number("particles.edge_length", "m", open_closed(0, kMaxMagnitude), "maximum edge length L",
+      number("particle.edge_length", "m", open_closed(0, kMaxMagnitude), "maximum edge length L",
              [](auto& o) -> auto& { return o.base.edge_length; },
              {"repose.edge_length", "lattice.edge_length", "lattice.max_vertices", "edge_length",
               "max_vertices"}),
-      {.name = "particles.growth",
+      {.name = "particle.growth",
        .type = ValueType::kWord,
        .words = {growth_name(Growth::kHull), growth_name(Growth::kMidpoint)},
        .doc = "where growth puts a new vertex: hull (the paper's words) or midpoint (aggpack "
               "0.1's rule); see particle.growth",
        .binding = members<SweepOptions>([](auto& o) -> auto& { return o.base.form.growth; })},
-      number("particles.elongation", "-", closed(0.1, 1),
+      number("particle.elongation", "-", closed(0.1, 1),
              "control ellipsoid's intermediate / long semi-axis (1 = sphere)",
              [](auto& o) -> auto& { return o.base.form.elongation; }, {"repose.elongation"}),
-      number("particles.flatness", "-", closed(0.1, 1),
+      number("particle.flatness", "-", closed(0.1, 1),
              "control ellipsoid's short / intermediate semi-axis (1 = sphere)",
              [](auto& o) -> auto& { return o.base.form.flatness; }, {"repose.flatness"}),
-      number("particles.min_edge_ratio", "-", closed(0, 0.5),
+      number("particle.min_edge_ratio", "-", closed(0, 0.5),
              "minimum edge length / L of hull growth (see particle.min_edge_ratio)",
              [](auto& o) -> auto& { return o.base.form.min_edge_ratio; },
              {"repose.min_edge_ratio"}),
-      number("particles.fill_height", "m", open_closed(0, kMaxMagnitude),
+      number("particle.fill_height", "m", open_closed(0, kMaxMagnitude),
              "height of the lattice region", [](auto& o) -> auto& { return o.base.fill_height; },
              {"repose.fill_height", "container.depth"}),
-      {.name = "particles.seed",
+      {.name = "particle.seed",
        .type = ValueType::kInteger,
        .unit = "-",
        .range = {.lo = 0, .hi = 9223372036854775807.0, .hi_text = "2^63 - 1"},
        .doc = "master seed; particle i uses stream (seed, i)",
        .binding = members<SweepOptions>([](auto& o) -> auto& { return o.base.seed; })},
-      {.name = "particles.random_orientation",
+      {.name = "particle.random_orientation",
        .type = ValueType::kBool,
        .unit = "-",
        .doc = "turn each particle randomly about its lattice site",
        .binding =
            members<SweepOptions>([](auto& o) -> auto& { return o.base.is_orientation_random; })},
-      // particles.library (its options below, as particle.library's: library_keys.h); the
+      // particle.library (its options below, as particle.library's: library_keys.h); the
       // lattice fill's checks name particle.library_*, renamed here by `fields`.
-      {.name = "particles.library",
+      {.name = "particle.library",
        .type = ValueType::kPathList,
        .written = kLibrary,
        .doc = "a folder of particle meshes (.stl, .obj, .ply), one such file, or an array of "
               "folders and files: every lattice site holds one of them (its convex hull, "
-              "enclosing radius particles.radius, randomly turned) instead of a grown particle; "
+              "enclosing radius particle.radius, randomly turned) instead of a grown particle; "
               "unset = grown particles",
        .binding = members<SweepOptions>([](auto& o) -> auto& { return o.base.library.paths; }),
        .presence = Presence::kOptional,
@@ -279,14 +279,14 @@ std::vector<SweepKey> keys() {
        .binding =
            members<SweepOptions>([](auto& o) -> auto& { return o.is_wall_friction_coupled; })},
   };
-  // particles.library's options, declared with particle.library's (library_keys.h), after it.
+  // particle.library's options, declared with particle.library's (library_keys.h), after it.
   auto options = library_option_keys<SweepOptions>(
-      "particles.", kLibrary, "the fill needs at least as many shapes as lattice sites",
+      "particle.", kLibrary, "the fill needs at least as many shapes as lattice sites",
       [](auto member) {
         return members<SweepOptions>([member](auto& o) -> auto& { return member(o.base.library); });
       });
   const auto library = std::find_if(
-      all.begin(), all.end(), [](const SweepKey& key) { return key.name == "particles.library"; });
+      all.begin(), all.end(), [](const SweepKey& key) { return key.name == "particle.library"; });
   all.insert(library + 1, std::make_move_iterator(options.begin()),
              std::make_move_iterator(options.end()));
   return all;
@@ -308,7 +308,7 @@ std::vector<SweepKey> ensemble_keys() {
        .written = {.text = "given",
                    .applies = [](const SweepOptions& o) { return !o.seeds.empty(); }},
        .doc = "seed ensemble: `repose` runs once per seed (ensemble.json), `sweep` once per "
-              "case and seed; unset = one run at particles.seed",
+              "case and seed; unset = one run at particle.seed",
        .binding = {.get = [](const SweepOptions& o) -> Value { return format_seed_list(o.seeds); },
                    .set =
                        [](SweepOptions& o, const Value& value) {
@@ -325,11 +325,13 @@ std::vector<SweepKey> ensemble_keys() {
 const Schema<SweepOptions>& sweep_schema() {
   static const Schema<SweepOptions> schema = [] {
     Schema<SweepOptions> s;
-    s.tables = {{.name = "trough"},  {.name = "particles"}, {.name = "physics"},  {.name = "rest"},
-                {.name = "measure"}, {.name = "sweep"},     {.name = "ensemble"}, {.name = "yade"}};
+    s.tables = {{.name = "trough"},   {.name = "particle", .former_name = "particles"},
+                {.name = "physics"},  {.name = "rest"},
+                {.name = "measure"},  {.name = "sweep"},
+                {.name = "ensemble"}, {.name = "yade"}};
     s.keys = keys();
     for (auto& key : ensemble_keys()) s.keys.push_back(std::move(key));
-    s.aliases = {{"min_time", "fall time from particles.fill_height"}};
+    s.aliases = {{"min_time", "fall time from particle.fill_height"}};
     config_detail::fill_defaults(s, SweepOptions{});
     return s;
   }();
@@ -337,18 +339,20 @@ const Schema<SweepOptions>& sweep_schema() {
 }
 
 SweepOptions parse_sweep_config(std::string_view text, std::string_view source_name,
-                                const std::vector<std::string>& overrides) {
+                                const std::vector<std::string>& overrides,
+                                std::vector<std::string>* notes) {
   const auto& schema = sweep_schema();
   const GivenValues given =
-      read_values(schema.tables, key_views(schema), text, source_name, overrides);
+      read_values(schema.tables, key_views(schema), text, source_name, overrides, notes);
   SweepOptions options;
   resolve(schema, given, options);
   return options;
 }
 
-SweepOptions load_sweep_config(const std::string& path, const std::vector<std::string>& overrides) {
-  if (path.empty()) return parse_sweep_config("", "defaults", overrides);
-  return parse_sweep_config(read_config_file(path), path, overrides);
+SweepOptions load_sweep_config(const std::string& path, const std::vector<std::string>& overrides,
+                               std::vector<std::string>* notes) {
+  if (path.empty()) return parse_sweep_config("", "defaults", overrides, notes);
+  return parse_sweep_config(read_config_file(path), path, overrides, notes);
 }
 
 std::string resolved_sweep_config(const SweepOptions& options) {

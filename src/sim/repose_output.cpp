@@ -67,7 +67,7 @@ void write_repose_json(const std::string& path, const ReposeOptions& options,
       {"fit_upper", options.fit_upper},
       {"fit_lower", options.fit_lower},
   };
-  // particles.library: the files the fill took its shapes from (names and content hashes).
+  // particle.library: the files the fill took its shapes from (names and content hashes).
   if (options.library.is_used()) json["shape_library"] = result.initial.provenance.shape_library;
   if (options.engine == ReposeEngine::kYade) {
     // Bullet's solver settings above do not apply; YADE's contact stiffness and damping do.

@@ -221,8 +221,9 @@ TEST_F(FlagNamesCliTest, EmptyOutputIsOneErrorEverywhere) {
   expect_refused("config-keys --update-doc ''", 2,
                  "invalid --update-doc = \"\" (allowed: a file path)");
   const std::string tables =
-      " (allowed: container, particle, grading, packer, densify, output, trough, particles, "
-      "physics, rest, measure, sweep, ensemble, yade)";
+      " (allowed: container, particle, grading, packer, densify, output, repose.trough, "
+      "repose.particle, repose.physics, repose.rest, repose.measure, repose.sweep, "
+      "repose.ensemble, repose.yade)";
   expect_refused("config-keys --markdown ''", 2, "invalid --markdown = \"\"" + tables);
   expect_refused("config-keys --markdown foo", 2, "invalid --markdown = foo" + tables);
   if (has("render")) expect_refused("render " + kBase + " -o ''", 2, file);

@@ -91,8 +91,8 @@ TEST_F(HeadsUpCliTest, Settle) {
 TEST_F(HeadsUpCliTest, ReposeEnsembleAndSweep) {
   if (!has_subcommand("repose") || !has_subcommand("sweep")) GTEST_SKIP() << "built without Bullet";
   // The paper's trough with R = 0.02 m: 75 x 25 x 70 lattice sites.
-  expect_heads_up(stderr_until_heads_up("repose --set particles.radius=0.02 --set "
-                                        "particles.edge_length=0.02 -o paper --progress none"),
+  expect_heads_up(stderr_until_heads_up("repose --set particle.radius=0.02 --set "
+                                        "particle.edge_length=0.02 -o paper --progress none"),
                   "131250", "~");
   // The tiny trough (a few seconds a run): 500 seeds, and a sweep of 10 x 10 cases.
   const std::string trough = "'" + kTrough + "'";

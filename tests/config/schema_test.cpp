@@ -254,7 +254,7 @@ TEST(ConfigSchema, ReposeSetNamesTheTypedKey) {
 TEST(ConfigSchema, SweepConfigRoundTrips) {
   const SweepOptions options = parse_sweep_config(
       "[physics]\nfriction = 0.3\nwall_friction = 0.2\n[sweep]\nalphas = [0.5, 0.7]\n"
-      "wall_friction_coupled = false\n[particles]\nseed = 7\nrandom_orientation = false\n",
+      "wall_friction_coupled = false\n[particle]\nseed = 7\nrandom_orientation = false\n",
       "s.toml");
   EXPECT_EQ(options.base.physics.friction, 0.3);
   EXPECT_EQ(options.base.physics.wall_friction, 0.2);
@@ -268,6 +268,39 @@ TEST(ConfigSchema, SweepConfigRoundTrips) {
       << text;
   // The commented form reads back to the same options.
   EXPECT_EQ(resolved_sweep_config(parse_sweep_config(text, "again")), text);
+}
+
+// [particle] was [particles] in repose and sweep configs: the old name is read as the new one,
+// with one note naming where; both names for one key in a file is refused; an override of
+// either name wins over the file.
+TEST(ConfigSchema, FormerParticlesTableIsReadWithANote) {
+  const std::string now = "[particle]\nseed = 7\nalpha = 0.3\n";
+  const std::string before = "[particles]\nseed = 7\nalpha = 0.3\n";
+  std::vector<std::string> notes;
+  const SweepOptions current = parse_sweep_config(now, "new.toml", {}, &notes);
+  EXPECT_TRUE(notes.empty());
+  const SweepOptions old = parse_sweep_config(before, "old.toml", {}, &notes);
+  ASSERT_EQ(notes.size(), 1U);
+  EXPECT_EQ(notes[0],
+            "old.toml:2: [particles] is now [particle]: read as [particle] (rename it; the old "
+            "name will go)");
+  EXPECT_EQ(resolved_sweep_config(old), resolved_sweep_config(current));
+  EXPECT_EQ(old.base.seed, 7U);
+  EXPECT_EQ(old.base.alpha, 0.3);
+  notes.clear();
+  const SweepOptions set = parse_sweep_config(now, "new.toml", {"particles.seed=9"}, &notes);
+  EXPECT_EQ(set.base.seed, 9U);
+  EXPECT_EQ(notes.size(), 1U);
+  EXPECT_EQ(parse_sweep_config(before, "old.toml", {"particle.seed=11"}).base.seed, 11U);
+  try {
+    (void)parse_sweep_config("[particles]\nseed = 1\n[particle]\nseed = 2\n", "both.toml");
+    ADD_FAILURE() << "accepted";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(error.key(), "particle.seed");
+    EXPECT_NE(std::string(error.what()).find("given twice"), std::string::npos) << error.what();
+  }
+  // An unknown key under the old name is named as the new table's.
+  EXPECT_THROW((void)parse_sweep_config("[particles]\nseeed = 1\n", "typo.toml"), ConfigError);
 }
 #endif
 

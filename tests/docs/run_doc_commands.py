@@ -43,8 +43,8 @@ from markdown_it import MarkdownIt
 SMALL_TROUGH = ("--set trough.length=0.35 --set trough.width=0.063 --set trough.height=0.1 "
                 "--set trough.baffle_position=0.151 --set trough.baffle_thickness=0.005 "
                 "--set trough.baffle_speed=0.11 --set trough.baffle_clear_time=0.045 "
-                "--set particles.radius=0.00625 --set particles.edge_length=0.00625 "
-                "--set particles.fill_height=0.025 --set physics.density=1200 "
+                "--set particle.radius=0.00625 --set particle.edge_length=0.00625 "
+                "--set particle.fill_height=0.025 --set physics.density=1200 "
                 "--set rest.quiet_time=0.05 --set rest.check_interval=0.005 "
                 "--set rest.max_time=0.02 --set rest.confirm_window=0.5")
 # The command as written in the markdown -> how the test runs it smaller: "append" is added to

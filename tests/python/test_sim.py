@@ -24,7 +24,7 @@ def test_settle_bad_option_names_it(small_packing):
 
 
 SMALL_TROUGH = {"trough": {"length": 1.2, "width": 0.2, "height": 0.6, "baffle_position": 0.6},
-                "particles": {"radius": 0.05, "edge_length": 0.05, "fill_height": 0.4},
+                "particle": {"radius": 0.05, "edge_length": 0.05, "fill_height": 0.4},
                 "rest": {"max_time": 2.0, "confirm_window": 0.0}}
 
 

@@ -44,7 +44,7 @@ def test_ensemble_summary_is_the_statistics_of_its_seeds(ensemble):
 
 def test_a_seed_is_its_own_single_run(ensemble):
     first = ensemble["seeds"][0]
-    alone = aggpack.repose(TROUGH, [f"particles.seed={first['seed']}"])
+    alone = aggpack.repose(TROUGH, [f"particle.seed={first['seed']}"])
     assert alone["angle_degrees"] == first["angle_degrees"]
     assert alone["particle_count"] == first["particle_count"]
 
@@ -213,3 +213,12 @@ def test_bad_shares_and_records_name_the_keyword(tmp_path):
         aggpack.sweep(TROUGH, SWEEP, records="")
     assert caught.value.field == "records"
     assert not (tmp_path / "r").exists()
+
+
+def test_former_particles_table_is_read_with_a_future_warning():
+    # The note comes when the configuration is read, before the run (which the bad friction
+    # stops at once).
+    with pytest.warns(FutureWarning, match=r"\[particles\] is now \[particle\]"):
+        with pytest.raises(aggpack.ConfigError) as caught:
+            aggpack.repose({"particles": {"seed": 3}}, ["physics.friction=-1"])
+    assert caught.value.key == "physics.friction"

@@ -1,5 +1,5 @@
-// `aggpack repose` with particles.library: the trough's lattice fill takes its shapes from mesh
-// files (each particle one of them, its convex hull at enclosing radius particles.radius), the run
+// `aggpack repose` with particle.library: the trough's lattice fill takes its shapes from mesh
+// files (each particle one of them, its convex hull at enclosing radius particle.radius), the run
 // records the files in repose.json and final.h5, and the library's keys are named as typed.
 
 #include <gtest/gtest.h>
@@ -69,28 +69,37 @@ TEST_F(ReposeLibraryCli, FillTakesItsShapesFromTheFilesAndTheRunRecordsThem) {
 
 TEST_F(ReposeLibraryCli, LibraryKeysAreNamedAsTyped) {
   write_inputs();
-  const CliRun missing = run("repose small.toml --set particles.library=nope/ -o out");
+  const CliRun missing = run("repose small.toml --set particle.library=nope/ -o out");
   EXPECT_EQ(missing.exit_code, 2);
-  EXPECT_NE(missing.err.find("particles.library"), std::string::npos) << missing.err;
-  EXPECT_EQ(missing.err.find("particle.library"), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("invalid particle.library = \"nope/\""), std::string::npos)
+      << missing.err;
   EXPECT_FALSE(std::filesystem::exists(path("out")));
-  const CliRun units = run("repose small.toml --set particles.library_units=km -o out");
+  // The table's former name still works, with a note before the same error.
+  const CliRun former = run("repose small.toml --set particles.library=nope/ -o out");
+  EXPECT_EQ(former.exit_code, 2);
+  EXPECT_NE(former.err.find("aggpack: note: --set particles.library=nope/: [particles] is now "
+                            "[particle]"),
+            std::string::npos)
+      << former.err;
+  EXPECT_NE(former.err.find("invalid particle.library = \"nope/\""), std::string::npos)
+      << former.err;
+  EXPECT_FALSE(std::filesystem::exists(path("out")));
+  const CliRun units = run("repose small.toml --set particle.library_units=km -o out");
   EXPECT_EQ(units.exit_code, 2);
-  EXPECT_NE(units.err.find("particles.library_units"), std::string::npos) << units.err;
+  EXPECT_NE(units.err.find("particle.library_units"), std::string::npos) << units.err;
   // Every hull adds volume here (both rocks are dented): a limit of 0 % refuses the first.
-  const CliRun excess =
-      run("repose small.toml --set particles.library_max_hull_excess=1e-9 -o out");
+  const CliRun excess = run("repose small.toml --set particle.library_max_hull_excess=1e-9 -o out");
   EXPECT_EQ(excess.exit_code, 2);
-  EXPECT_NE(excess.err.find("particles.library_max_hull_excess"), std::string::npos) << excess.err;
+  EXPECT_NE(excess.err.find("particle.library_max_hull_excess"), std::string::npos) << excess.err;
   // A heavy run (the paper's 10-layer acrylic fill) with a missing library: the one line is the
   // refusal, before the heavy-run note; and so for a seed ensemble.
   for (const std::string seeds : {"", " --seeds 1-2"}) {
     const CliRun heavy = run("repose '" + test::source_dir() +
-                             "/examples/repose-acrylic-075.toml' --set particles.library=nope/ -o "
+                             "/examples/repose-acrylic-075.toml' --set particle.library=nope/ -o "
                              "heavy" +
                              seeds);
     EXPECT_EQ(heavy.exit_code, 2);
-    EXPECT_EQ(heavy.err.rfind("aggpack: error: invalid particles.library = \"nope/\"", 0), 0U)
+    EXPECT_EQ(heavy.err.rfind("aggpack: error: invalid particle.library = \"nope/\"", 0), 0U)
         << heavy.err;
     EXPECT_EQ(heavy.err.find('\n'), heavy.err.size() - 1) << heavy.err;
     EXPECT_FALSE(std::filesystem::exists(path("heavy")));

@@ -54,23 +54,22 @@ class SimCliErrors : public ::testing::Test {
 TEST_F(SimCliErrors, ReposeRejectsBeforeCreatingItsFolder) {
   // The lattice fill's vertex cap, found before any simulation: the user's key, exit 2, no folder.
   const std::string expected_start =
-      "aggpack: error: limit exceeded for particles.edge_length = 0.00661463 (allowed: >= about";
-  const auto run = aggpack("repose " + kExample + " --set particles.radius=0.5 -o " + path("rr"));
+      "aggpack: error: limit exceeded for particle.edge_length = 0.00661463 (allowed: >= about";
+  const auto run = aggpack("repose " + kExample + " --set particle.radius=0.5 -o " + path("rr"));
   EXPECT_EQ(run.exit_code, 2);
   EXPECT_EQ(run.output.rfind(expected_start, 0), 0U) << run.output;
   EXPECT_FALSE(fs::exists(path("rr")));
   // --print-config rejects the same configuration.
-  const auto print = aggpack("repose " + kExample + " --set particles.radius=0.5 --print-config");
+  const auto print = aggpack("repose " + kExample + " --set particle.radius=0.5 --print-config");
   EXPECT_EQ(print.exit_code, 2);
   EXPECT_EQ(print.output, run.output);
   // A folder the user made is kept (empty or not).
   fs::create_directory(path("mine"));
   EXPECT_EQ(
-      aggpack("repose " + kExample + " --set particles.radius=0.5 -o " + path("mine")).exit_code,
-      2);
+      aggpack("repose " + kExample + " --set particle.radius=0.5 -o " + path("mine")).exit_code, 2);
   EXPECT_TRUE(fs::is_directory(path("mine")));
   // sweep checks the same way.
-  const auto sweep = aggpack("sweep " + kExample + " --set particles.radius=0.5 -o " + path("ss"));
+  const auto sweep = aggpack("sweep " + kExample + " --set particle.radius=0.5 -o " + path("ss"));
   EXPECT_EQ(sweep.exit_code, 2);
   EXPECT_EQ(sweep.output.rfind(expected_start, 0), 0U) << sweep.output;
   EXPECT_FALSE(fs::exists(path("ss")));
@@ -82,10 +81,10 @@ TEST_F(SimCliErrors, MessagesNameTheUsersKeys) {
   EXPECT_EQ(baffle.output,
             "aggpack: error: invalid trough.baffle_position = 7 (allowed: (0, trough_length - "
             "baffle_thickness))\n");
-  const auto radius = aggpack("repose --set particles.radius=-1 --print-config");
+  const auto radius = aggpack("repose --set particle.radius=-1 --print-config");
   EXPECT_EQ(radius.exit_code, 2);
   EXPECT_EQ(radius.output,
-            "aggpack: error: --set particles.radius=-1: invalid particles.radius = -1 (allowed: "
+            "aggpack: error: --set particle.radius=-1: invalid particle.radius = -1 (allowed: "
             "(0, 1e6] m)\n");
   const auto friction = aggpack("repose --set physics.friction=11 --print-config");
   EXPECT_EQ(friction.output,
@@ -109,9 +108,9 @@ TEST_F(SimCliErrors, MessagesNameTheUsersKeys) {
     EXPECT_EQ(seed.output,
               "aggpack: error: invalid --seed = -1 (allowed: an integer in [0, 2^63 - 1])\n");
   }
-  const auto key = aggpack("repose --set particles.seed=-1 --print-config");
+  const auto key = aggpack("repose --set particle.seed=-1 --print-config");
   EXPECT_EQ(key.exit_code, 2);
-  EXPECT_EQ(key.output.rfind("aggpack: error: --set particles.seed=-1: invalid particles.seed", 0),
+  EXPECT_EQ(key.output.rfind("aggpack: error: --set particle.seed=-1: invalid particle.seed", 0),
             0U)
       << key.output;
 }

@@ -7,7 +7,7 @@
 namespace aggpack::test {
 
 /// The trough's TOML with `particle_lines` (what the particles are: "alpha = 0.9 ..." or
-/// "library = \"rocks\"\n") in its [particles] table; radius 5 mm, fill 0.02 m, seed 3.
+/// "library = \"rocks\"\n") in its [particle] table; radius 5 mm, fill 0.02 m, seed 3.
 inline std::string small_trough(const std::string& particle_lines) {
   return R"([trough]
 length = 0.05
@@ -17,7 +17,7 @@ baffle_position = 0.02
 baffle_thickness = 0.005
 baffle_speed = 0.2
 baffle_clear_time = 0.02
-[particles]
+[particle]
 )" + particle_lines +
          R"(radius = 0.005
 fill_height = 0.02

@@ -13,7 +13,8 @@ namespace aggpack {
 /// module) the repose / sweep tables.
 std::vector<std::string> documented_tables();
 
-/// The markdown table of one schema table ("container", "trough", ...).
+/// The markdown table of one schema table: a pack table ("container", ...) or "repose.TABLE" for
+/// the repose/sweep configuration's ("repose.trough", "repose.particle", ...).
 /// \throw InvalidInput for a table no schema has.
 std::string config_keys_markdown(const std::string& table);
 

@@ -156,6 +156,9 @@ struct Key {
 struct TableInfo {
   std::string name;
   std::string member_word;
+  /// A name the table had before, still read: its keys are read as this table's, with a one-line
+  /// note (read_values). Empty: none.
+  std::string former_name{};
 };
 
 /// How the resolved configuration is written.
@@ -170,7 +173,7 @@ struct Schema {
   std::vector<TableInfo> tables;
   std::vector<Key<Target>> keys;
   /// Validator names that are not keys, mapped to what the user should read ("min_time" ->
-  /// "fall time from particles.fill_height").
+  /// "fall time from particle.fill_height").
   std::map<std::string, std::string> aliases;
 
   [[nodiscard]] const Key<Target>* find(std::string_view name) const {
@@ -212,11 +215,14 @@ using GivenValues = std::map<std::string, GivenValue>;
 
 /// Parses TOML text, applies `--set` overrides ("dotted.key=value", the value in TOML syntax; a
 /// bare word is taken as a string) in order, and converts every leaf to its key's type, checking
-/// types, ranges and words. \throw FormatError (TOML syntax), ConfigError (unknown table or key,
+/// types, ranges and words. A table given under its former name (TableInfo::former_name, in the
+/// file or in an override) is read as the table, and `notes` (when given) gets one line saying so,
+/// where it was first used. \throw FormatError (TOML syntax), ConfigError (unknown table or key,
 /// wrong type, out of range, bad word, malformed override).
 GivenValues read_values(const std::vector<TableInfo>& tables, const std::vector<KeyView>& keys,
                         std::string_view text, std::string_view source_name,
-                        const std::vector<std::string>& overrides);
+                        const std::vector<std::string>& overrides,
+                        std::vector<std::string>* notes = nullptr);
 
 /// The key of a `--set` text: "dotted.key=value" -> "dotted.key", blanks around it trimmed; empty
 /// without '='. read_values applies an override to this key.

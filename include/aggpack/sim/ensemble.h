@@ -1,6 +1,6 @@
 #pragma once
 // Seed ensembles of the repose test (issue 15 item 2): the same case run once per master seed
-// (particles.seed: the fill's shapes and turns), each angle reported, and their mean, sample
+// (particle.seed: the fill's shapes and turns), each angle reported, and their mean, sample
 // standard deviation and the 95 % confidence interval of the mean (Student t, n - 1 degrees of
 // freedom): seed lists, statistics and the ensemble's files. The runs are the study layer's
 // (aggpack/study/repose_study.h: seeds side by side, one per worker, each single-threaded, so the

@@ -77,7 +77,7 @@ struct ReposeOptions {
   double radius = 0.1;       ///< control radius R (m), > 0; lattice spacing 2R
   double edge_length = 0.1;  ///< L (m), > 0
   GrowthForm form{};         ///< growth rule and control-surface axis ratios
-  /// Shapes from mesh files (particles.library; no paths = grown particles): every lattice site
+  /// Shapes from mesh files (particle.library; no paths = grown particles): every lattice site
   /// holds a library shape (its convex hull, enclosing radius `radius`) instead of a grown
   /// particle; alpha, edge_length and form are then unused. The study layer's repose_fill()
   /// reads the files (LatticeOptions::files).

@@ -73,7 +73,7 @@ struct StudyControl {
   [[nodiscard]] bool is_cancelled() const { return cancel != nullptr && cancel->load(); }
 };
 
-/// The seed ensemble of `base` (base.seed replaced by each seed; particles.seed: the fill's
+/// The seed ensemble of `base` (base.seed replaced by each seed; particle.seed: the fill's
 /// shapes and turns), in parallel over seeds: each seed's angle and their mean, sd and 95 %
 /// interval. A seed whose run throws an aggpack Error is recorded as failed with the message.
 /// When cancelled, the result holds the seeds that ran (plan order) and is_cancelled is set.
