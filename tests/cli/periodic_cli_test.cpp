@@ -1,6 +1,7 @@
 // The periodic box end to end: `aggpack pack` with container.periodic, the native file (written,
 // read back, an older file without the attribute), `aggpack info`, an export, the same bytes at
-// one and two threads, and the one-line refusals (bad word, other packers, mesomodel).
+// one and two threads, densify and the dense kind in it, and the one-line refusals (bad word,
+// the lattice packer, a bed, mesomodel).
 
 #include <gtest/gtest.h>
 
@@ -117,8 +118,9 @@ TEST_F(PeriodicCliTest, RefusalsAreOneLineNamingTheKey) {
       "xz | yz | xyz)");
   expect_one_line_refusal("pack periodic.toml --set packer.kind=lattice -o bad.h5 --progress none",
                           "packer.kind = lattice does not take periodic containers yet");
-  expect_one_line_refusal("pack periodic.toml --set packer.kind=dense -o bad.h5 --progress none",
-                          "packer.kind = dense does not take periodic containers yet");
+  expect_one_line_refusal(
+      "pack periodic.toml --set packer.kind=dense --set densify.mode=bed -o bad.h5 --progress none",
+      "densify.mode = bed does not take periodic containers yet");
   expect_one_line_refusal(
       "pack periodic.toml --set container.length=0.02 -o bad.h5 --progress none",
       "container.length = 0.02 m");
@@ -126,8 +128,39 @@ TEST_F(PeriodicCliTest, RefusalsAreOneLineNamingTheKey) {
   ASSERT_EQ(run("pack periodic.toml -o one.h5 --progress none").exit_code, 0);
   expect_one_line_refusal("mesomodel one.h5 -o rve.inp",
                           "aggpack mesomodel does not take periodic containers yet");
-  expect_one_line_refusal("densify one.h5 -o dense.h5 --target-fraction 0.3",
-                          "aggpack densify does not take periodic containers yet");
+  expect_one_line_refusal("densify one.h5 -o dense.h5 --target-container 0.02,0.1,0.1",
+                          "container.length = 0.02 m");
+}
+
+TEST_F(PeriodicCliTest, DensifyAndTheDenseKindKeepThePeriodicBox) {
+  ASSERT_EQ(run("pack periodic.toml -o loose.h5 --progress none").exit_code, 0);
+  const std::string densify = "densify loose.h5 --target-fraction 0.4 --sweeps 400 --progress none";
+  const test::CliRun one = run(densify + " -o one.h5 -j 1");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const test::CliRun two = run(densify + " -o two.h5 -j 2");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_TRUE(
+      test::same_bytes(test::file_text(folder_ / "one.h5"), test::file_text(folder_ / "two.h5")));
+  const Packing loose = read_packing((folder_ / "loose.h5").string());
+  const Packing dense = read_packing((folder_ / "one.h5").string());
+  EXPECT_EQ(periodic_axes(dense.container), (std::array<bool, 3>{true, true, true}));
+  EXPECT_EQ(dense.particles.size(), loose.particles.size());
+  EXPECT_LT(dense.container.volume(), 0.9 * loose.container.volume());
+  EXPECT_TRUE(verify(dense, {.gap = 0.0, .is_brute_force = true}).is_ok);
+  const test::CliRun info = run("info one.h5");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("periodic in xyz"), std::string::npos) << info.out;
+
+  // The dense kind: the fill in the enlarged periodic box, compressed into the given one.
+  const test::CliRun kind =
+      run("pack periodic.toml --set packer.kind=dense --set densify.target_fraction=0.35 "
+          "--set densify.max_sweeps=600 -o kind.h5 --progress none");
+  ASSERT_EQ(kind.exit_code, 0) << kind.err;
+  const Packing packed = read_packing((folder_ / "kind.h5").string());
+  EXPECT_EQ(periodic_axes(packed.container), (std::array<bool, 3>{true, true, true}));
+  EXPECT_NEAR(packed.container.volume(), 0.001, 1e-12);
+  EXPECT_TRUE(verify(packed, {.is_brute_force = true}).is_ok);
+  EXPECT_NE(kind.out.find("periodic in xyz"), std::string::npos) << kind.out;
 }
 
 }  // namespace
