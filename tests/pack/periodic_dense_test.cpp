@@ -104,8 +104,8 @@ TEST(PeriodicDense, CompressesWithoutOverlapAmongAllImagesAtAnyThreadCount) {
 }
 
 TEST(PeriodicDense, FewCellsPerPeriodStillFindEveryImage) {
-  // r = 20 mm in a 0.11 m cube compressed toward 0.45: two cells per periodic axis (a neighbour
-  // may then meet a particle through two of its images), and one cell along the shrinking axes.
+  // r = 20 mm in a 0.11 m cube compressed toward 0.45: one or two cells per periodic axis, so
+  // every cell is a neighbour and a neighbour may meet a particle through two of its images.
   const std::array<bool, 3> axes{true, true, true};
   const Packing start = periodic_rsa_start(0.11, 0.02, axes, 8);
   ASSERT_GT(start.particles.size(), 8u);
