@@ -16,6 +16,15 @@ bool Hpmc::for_each_image(std::uint32_t i, const Vec3& centre, std::uint32_t j, 
   const Grid::Sphere& sphere = grid_.spheres[grid_.slot_of[j]];
   const double reach = bodies_[body_of_[i]].outer + gap + sphere.radius;
   const double apart[3] = {sphere.x - centre.x(), sphere.y - centre.y(), sphere.z - centre.z()};
+  // The nearest image is the closest one along every axis at once: when even it is out of
+  // reach, so is every image (the common case, decided without the enumeration below).
+  double nearest_squared = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double d = apart[axis];
+    if (grid_.periodic[axis]) d -= grid_.period[axis] * std::round(d / grid_.period[axis]);
+    nearest_squared += d * d;
+  }
+  if (nearest_squared >= reach * reach) return true;
   // Per axis the periods that bring j within reach: along a periodic axis the nearest image and
   // the ones beside it (a period only just larger than the reach admits two), else none.
   std::int8_t periods[3][3];

@@ -10,7 +10,9 @@
 #include <fstream>
 #include <string>
 
+#include "aggpack/geom/mass_properties.h"
 #include "aggpack/io/native.h"
+#include "aggpack/io/stl.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/verify.h"
 #include "support/cli_test.h"
@@ -161,6 +163,43 @@ TEST_F(PeriodicCliTest, DensifyAndTheDenseKindKeepThePeriodicBox) {
   EXPECT_NEAR(packed.container.volume(), 0.001, 1e-12);
   EXPECT_TRUE(verify(packed, {.is_brute_force = true}).is_ok);
   EXPECT_NE(kind.out.find("periodic in xyz"), std::string::npos) << kind.out;
+}
+
+TEST_F(PeriodicCliTest, StlCutToTheBoxTilesAndIsRefusedElsewhere) {
+  ASSERT_EQ(run("pack periodic.toml -o one.h5 --progress none").exit_code, 0);
+  const test::CliRun cut = run("export one.h5 -o cut.stl --cut-to-box");
+  ASSERT_EQ(cut.exit_code, 0) << cut.err;
+  const Packing packing = read_packing((folder_ / "one.h5").string());
+  double solid = 0.0;
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    solid += mass_properties(packing.placed(i)).volume;
+  }
+  // The enclosed volume of the file (divergence theorem over its float coordinates) is the
+  // particles' (each once: the images' pieces fill what the particles' own pieces leave out),
+  // and every vertex lies in the box, up to float rounding.
+  const StlMesh mesh = read_stl((folder_ / "cut.stl").string());
+  double six_volume = 0.0;
+  for (const auto& t : mesh.triangles) {
+    six_volume += t[0].dot(t[1].cross(t[2]));
+    for (const Vec3& vertex : t) {
+      EXPECT_TRUE((vertex.array() >= -1e-7).all() && (vertex.array() <= 0.1 + 1e-7).all())
+          << vertex.transpose();
+    }
+  }
+  EXPECT_NEAR(six_volume / 6.0, solid, 1e-5 * solid);
+  // Without the flag the file reaches beyond the box.
+  ASSERT_EQ(run("export one.h5 -o whole.stl").exit_code, 0);
+  const StlMesh whole = read_stl((folder_ / "whole.stl").string());
+  EXPECT_LT(whole.triangles.size(), mesh.triangles.size());
+
+  expect_one_line_refusal("export one.h5 -o cut.obj --cut-to-box", "--cut-to-box");
+  expect_one_line_refusal("export one.h5 -o cut.vtu --cut-to-box", "only for .stl");
+  ASSERT_EQ(run("pack periodic.toml --set container.periodic=none -o walled.h5 --progress none")
+                .exit_code,
+            0);
+  expect_one_line_refusal("export walled.h5 -o walled.stl --cut-to-box",
+                          "--cut-to-box = true for a packing without periodic faces");
+  EXPECT_FALSE(std::filesystem::exists(folder_ / "walled.stl"));
 }
 
 }  // namespace
