@@ -42,6 +42,8 @@ const std::map<std::string, Setter>& setters() {
          o.overwrite = as<bool>(v, "force") ? Overwrite::kAllow : Overwrite::kForbid;
        }},
       {"scale", [](ExportOptions& o, const py::handle& v) { o.scale = as<double>(v, "scale"); }},
+      {"cut_to_box",
+       [](ExportOptions& o, const py::handle& v) { o.is_cut_to_box = as<bool>(v, "cut_to_box"); }},
       {"per_particle",
        [](ExportOptions& o, const py::handle& v) {
          o.is_per_particle = as<bool>(v, "per_particle");
@@ -203,7 +205,8 @@ dat (rock.dat), inp (Abaqus/CalculiX), vtu, msh (Gmsh), k (LS-DYNA), mac (ANSYS 
 
 Keywords (the CLI flags, '-' written '_'; defaults as the CLI's): format; force=False (as the
 CLI's -f: an existing file raises IoError unless force=True); scale=1.0 (1000 writes mm); per_particle=False
-(stl/obj: one file per particle in the folder path); ascii=False (stl); cells='default' |
+(stl/obj: one file per particle in the folder path); ascii=False (stl); cut_to_box=False (stl of
+a periodic packing: particles and images clipped to the box); cells='default' |
 'surface' | 'tetrahedra' (vtu, msh); tet_method='fan' | 'tetgen'; max_volume, radius_edge,
 tet_time_limit, split_surface (tetgen); quadratic=False (inp: C3D10); inp_layout='sets' | 'parts';
 material_name, density (kg/m^3), youngs_modulus (Pa), poisson_ratio; deck='none' | 'abaqus' |

@@ -165,6 +165,7 @@ const std::map<std::string, std::string>& export_flag_names() {
       {"time step", "--time-step"},
       {"deck", "--deck"},
       {"per-particle", "--per-particle"},
+      {"cut-to-box", "--cut-to-box"},
       {"inp layout", "--inp-layout"},
       {"quadratic", "--quadratic"},
       {"xdmf", "--xdmf"},
@@ -252,6 +253,9 @@ void register_export(CLI::App& app) {
   command->add_flag("--per-particle", defaults.is_per_particle,
                     formats_where(has_per_particle, "/") +
                         ": one file per particle (P000001.stl, ...) in the output folder");
+  command->add_flag("--cut-to-box", defaults.is_cut_to_box,
+                    "stl, periodic packings: every particle and its periodic images clipped to "
+                    "the box (copies of the file tile space)");
   command->add_flag("--ascii", flags->is_ascii,
                     formats_where(has_ascii, "/") + ": ASCII instead of binary");
   command

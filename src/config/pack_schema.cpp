@@ -132,7 +132,7 @@ std::vector<PackKey> container_keys() {
        .written = {.text = "container.periodic is not \"none\"",
                    .applies = [](const PackConfig& c) { return is_periodic(c.container()); }},
        .doc = "the box's periodic axes: a particle may cross such a face and meets the ones near "
-              "the opposite face through its periodic image (random packer only)",
+              "the opposite face through its periodic image (random and dense packers)",
        .binding = {.get = [](const PackConfig& c) -> Value {
                      return periodic_word(periodic_axes(c.container()));
                    },

@@ -114,6 +114,9 @@ void validate(const ExportOptions& options, ExportFormat format) {
     throw InvalidInput("quadratic", "true for " + name,
                        "only for " + formats_with(has_quadratic) + " (C3D10)");
   }
+  if (options.is_cut_to_box && format != ExportFormat::kStl) {
+    throw InvalidInput("cut-to-box", "true for " + name, "only for .stl");
+  }
   if (options.is_per_particle && !info.has_per_particle) {
     throw InvalidInput("per-particle", "true for " + name,
                        "only for " + formats_with(has_per_particle));

@@ -10,10 +10,12 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/temp_paths.h"
 #include "aggpack/pack/container.h"
+#include "aggpack/pack/cut_to_box.h"
 #include "export_detail.h"
 
 namespace aggpack {
@@ -163,9 +165,14 @@ void write_per_particle(const Packing& packing, const std::string& path,
 
 }  // namespace
 
-ExportSummary write(const Packing& packing, const std::string& path, const ExportOptions& options) {
+ExportSummary write(const Packing& whole, const std::string& path, const ExportOptions& options) {
   const ExportFormat format = resolve_format(path, options);
   validate(options, format);
+  // --cut-to-box: the pieces of the particles and their images inside the box are written as
+  // particles of their own.
+  std::optional<Packing> pieces;
+  if (options.is_cut_to_box) pieces = cut_to_box(whole);
+  const Packing& packing = pieces ? *pieces : whole;
   // A deck models the trough test with walls around the particles; a periodic box has none.
   if (options.deck.kind != DeckKind::kNone) refuse_periodic(packing.container, "--deck");
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {

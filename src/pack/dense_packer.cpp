@@ -4,6 +4,7 @@
 #include "aggpack/pack/dense_packer.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -57,6 +58,8 @@ Container target_of(const Packing& start, const DensifyOptions& options, double 
     for (const ContainerParam& param : kind.params) {
       no_larger(param.name, param.get(target), param.get(from));
     }
+    // The target has the start's periodic axes (the target's own sizes are all that is asked).
+    if (auto* box = target.get_if<BoxContainer>()) box->periodic = periodic_axes(from);
     return target;
   }
   Container target = from;
@@ -73,6 +76,15 @@ Container target_of(const Packing& start, const DensifyOptions& options, double 
 bool same_size(const Container& a, const Container& b) { return a.shape == b.shape; }
 
 }  // namespace
+
+void refuse_periodic_bed(const Container& container, DensifyMode mode) {
+  const std::array<bool, 3> axes = periodic_axes(container);
+  if (mode == DensifyMode::kBed && axes[2]) {
+    throw InvalidInput("container.periodic", "\"" + periodic_word(axes) + "\"",
+                       {Sentence::kPeriodicUnsupported,
+                        {"\"none\", \"x\", \"y\" or \"xy\"", "densify.mode = bed"}});
+  }
+}
 
 std::string to_string(DensifyMode mode) { return mode == DensifyMode::kFixed ? "fixed" : "bed"; }
 
@@ -199,7 +211,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   const auto began = Clock::now();
   validate(options);
   validate(start.container);
-  refuse_periodic(start.container, "aggpack densify");
+  refuse_periodic_bed(start.container, options.mode);
   {
     const VerifyResult check = verify(start, {.gap = options.gap});
     if (!check.is_ok) {
@@ -211,6 +223,11 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   const double solid_volume = engine.solid_volume();
   const bool is_bed = options.mode == DensifyMode::kBed;
   const Container target = is_bed ? start.container : target_of(start, options, solid_volume);
+  // A periodic box is compressed no further than its particles allow: a particle never meets
+  // its own image, and a neighbour only the images one period away (the engine relies on it).
+  if (is_periodic(target)) {
+    require_periodic_room(target, engine.max_outer_radius(), options.gap);
+  }
 
   DensifyReport report;
   report.start_fraction = solid_volume / start.container.volume();
@@ -427,8 +444,10 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   result.packing = std::move(start);
   Packing& packing = result.packing;
   packing.container = engine.container();
+  // Periodic axes: every centre wrapped back into [0, extent) (a particle may cross the face).
+  const std::vector<Pose> poses = engine.wrapped_poses();
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {
-    packing.particles[i].pose = engine.poses()[i];
+    packing.particles[i].pose = poses[i];
   }
   packing.provenance.packer = "dense";
   report.solid_fraction = fraction_now();

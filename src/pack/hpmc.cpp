@@ -13,6 +13,7 @@
 #include "aggpack/core/rng.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/pack/container.h"
+#include "hpmc_neighbours.h"
 
 namespace aggpack::detail {
 
@@ -95,7 +96,8 @@ Hpmc::Hpmc(const Packing& packing, double gap, std::uint64_t seed, double max_co
   blockers_.assign(poses_.size(), kNone);
 }
 
-bool Hpmc::is_apart(std::uint32_t i, const Pose& pose, std::uint32_t j, double gap) const {
+bool Hpmc::is_apart(std::uint32_t i, const Pose& pose, std::uint32_t j, double gap,
+                    const Image& image) const {
   AxisCache& cache = axes_[i];
   int slot = -1;
   for (int k = 0; k < kAxes; ++k) {
@@ -106,8 +108,11 @@ bool Hpmc::is_apart(std::uint32_t i, const Pose& pose, std::uint32_t j, double g
   }
   Vec3 axis = Vec3::Zero();
   if (slot >= 0) axis = Vec3(cache.axis[slot][0], cache.axis[slot][1], cache.axis[slot][2]);
+  // The cached direction is per neighbour, not per image: only a warm start either way.
+  Pose other = poses_[j];
+  if (image != kSelf) other.position += shift_of(image);
   const bool is_apart = is_separated(bodies_[body_of_[i]].support, pose,
-                                     bodies_[body_of_[j]].support, poses_[j], gap, axis);
+                                     bodies_[body_of_[j]].support, other, gap, axis);
   const double norm = axis.norm();
   if (is_apart && norm > 0.0) {
     if (slot < 0) {
@@ -128,99 +133,6 @@ double Hpmc::mean_height() const {
   return solid_volume_ > 0.0 ? sum / solid_volume_ : 0.0;
 }
 
-void Hpmc::build_grid(const Vec3& shift) {
-  const Aabb bounds = container_.bounds();
-  grid_.origin = bounds.lower - shift;
-  std::size_t cells = 1;
-  for (int axis = 0; axis < 3; ++axis) {
-    grid_.dims[axis] =
-        static_cast<std::int64_t>(std::ceil(bounds.extent()[axis] / grid_.width)) + 1;
-    cells *= static_cast<std::size_t>(grid_.dims[axis]);
-  }
-  grid_.start.assign(cells + 1, 0);
-  grid_.cell_of.resize(poses_.size());
-  for (std::size_t i = 0; i < poses_.size(); ++i) {
-    const auto cell = static_cast<std::uint32_t>(cell_index(poses_[i].position));
-    grid_.cell_of[i] = cell;
-    ++grid_.start[cell + 1];
-  }
-  for (std::size_t c = 0; c < cells; ++c) grid_.start[c + 1] += grid_.start[c];
-  grid_.items.resize(poses_.size());
-  std::vector<std::uint32_t> fill(grid_.start.begin(), grid_.start.end() - 1);
-  // Ascending ids within a cell: the order moves are tried in.
-  grid_.spheres.resize(poses_.size());
-  grid_.slot_of.resize(poses_.size());
-  for (std::size_t i = 0; i < poses_.size(); ++i) {
-    const std::uint32_t slot = fill[grid_.cell_of[i]]++;
-    grid_.items[slot] = static_cast<std::uint32_t>(i);
-    grid_.slot_of[i] = slot;
-    const Vec3& c = poses_[i].position;
-    grid_.spheres[slot] = {c.x(), c.y(), c.z(), bodies_[body_of_[i]].outer};
-  }
-}
-
-void Hpmc::place(std::uint32_t i, const Pose& pose) {
-  poses_[i] = pose;
-  Grid::Sphere& sphere = grid_.spheres[grid_.slot_of[i]];
-  sphere.x = pose.position.x();
-  sphere.y = pose.position.y();
-  sphere.z = pose.position.z();
-}
-
-std::int64_t Hpmc::cell_index(const Vec3& position) const {
-  std::int64_t c[3];
-  for (int axis = 0; axis < 3; ++axis) {
-    const double t = std::floor((position[axis] - grid_.origin[axis]) / grid_.width);
-    c[axis] =
-        static_cast<std::int64_t>(std::clamp(t, 0.0, static_cast<double>(grid_.dims[axis] - 1)));
-  }
-  return (c[2] * grid_.dims[1] + c[1]) * grid_.dims[0] + c[0];
-}
-
-void Hpmc::cell_coordinates(std::int64_t cell, std::int64_t (&c)[3]) const {
-  c[0] = cell % grid_.dims[0];
-  c[1] = (cell / grid_.dims[0]) % grid_.dims[1];
-  c[2] = cell / (grid_.dims[0] * grid_.dims[1]);
-}
-
-template <class Visit>
-void Hpmc::for_each_close(std::uint32_t i, const Vec3& centre, double gap, Visit&& visit) const {
-  const double reach_i = bodies_[body_of_[i]].outer + gap;
-  std::int64_t c[3];
-  cell_coordinates(grid_.cell_of[i], c);
-  for (std::int64_t z = std::max<std::int64_t>(0, c[2] - 1);
-       z <= std::min(grid_.dims[2] - 1, c[2] + 1); ++z) {
-    for (std::int64_t y = std::max<std::int64_t>(0, c[1] - 1);
-         y <= std::min(grid_.dims[1] - 1, c[1] + 1); ++y) {
-      const auto row = (z * grid_.dims[1] + y) * grid_.dims[0];
-      const auto first = static_cast<std::size_t>(row + std::max<std::int64_t>(0, c[0] - 1));
-      const auto last = static_cast<std::size_t>(row + std::min(grid_.dims[0] - 1, c[0] + 1));
-      // The cells of a row are contiguous in the CSR arrays.
-      for (std::uint32_t k = grid_.start[first]; k < grid_.start[last + 1]; ++k) {
-        const Grid::Sphere& sphere = grid_.spheres[k];
-        const double dx = sphere.x - centre.x();
-        const double dy = sphere.y - centre.y();
-        const double dz = sphere.z - centre.z();
-        const double reach = reach_i + sphere.radius;
-        if (dx * dx + dy * dy + dz * dz >= reach * reach) continue;
-        const std::uint32_t j = grid_.items[k];
-        if (j != i && !visit(j)) return;
-      }
-    }
-  }
-}
-
-bool Hpmc::is_adjacent(std::uint32_t i, std::uint32_t j) const {
-  std::int64_t a[3];
-  std::int64_t b[3];
-  cell_coordinates(grid_.cell_of[i], a);
-  cell_coordinates(grid_.cell_of[j], b);
-  for (int axis = 0; axis < 3; ++axis) {
-    if (a[axis] - b[axis] > 1 || b[axis] - a[axis] > 1) return false;
-  }
-  return true;
-}
-
 bool Hpmc::is_clear(std::uint32_t i, const Pose& pose, double gap) const {
   // The neighbour that blocked i's last rejected move is tested first: a rejection usually
   // comes from the same neighbour again, and testing it first ends the search at once. Only a
@@ -228,11 +140,19 @@ bool Hpmc::is_clear(std::uint32_t i, const Pose& pose, double gap) const {
   // thread); the order of the tests never changes the answer.
   std::uint32_t& blocker = blockers_[i];
   const bool has_blocker = blocker != kNone && blocker != i && is_adjacent(i, blocker);
-  if (has_blocker && !is_apart(i, pose, blocker, gap)) return false;
+  if (has_blocker) {
+    if (!grid_.is_periodic) {
+      if (!is_apart(i, pose, blocker, gap)) return false;
+    } else if (!for_each_image(i, pose.position, blocker, gap, [&](const Image& image) {
+                 return is_apart(i, pose, blocker, gap, image);
+               })) {
+      return false;
+    }
+  }
   bool is_ok = true;
-  for_each_close(i, pose.position, gap, [&](std::uint32_t j) {
+  for_each_close(i, pose.position, gap, [&](std::uint32_t j, const Image& image) {
     if (has_blocker && j == blocker) return true;
-    is_ok = is_apart(i, pose, j, gap);
+    is_ok = is_apart(i, pose, j, gap, image);
     if (!is_ok) blocker = j;
     return is_ok;
   });
@@ -314,22 +234,33 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
   constexpr int kTries = 8;
   constexpr int kMaxPartners = 64;
   const Body& body = bodies_[body_of_[i]];
-  std::uint32_t partners[kMaxPartners];
+  // A partner is a neighbour's image (periodic box: one neighbour may overlap through two).
+  struct Partner {
+    std::uint32_t id;
+    Image image;
+  };
+  Partner partners[kMaxPartners];
   int count = 0;
   bool is_crowded = false;
-  for_each_close(i, poses_[i].position, gap_, [&](std::uint32_t j) {
-    if (!is_apart(i, poses_[i], j, gap_)) {
+  for_each_close(i, poses_[i].position, gap_, [&](std::uint32_t j, const Image& image) {
+    if (!is_apart(i, poses_[i], j, gap_, image)) {
       if (count == kMaxPartners) {
         is_crowded = true;
         return false;
       }
-      partners[count++] = j;
+      partners[count++] = {j, image};
     }
     return true;
   });
   if (is_crowded) return;  // left flagged; the squeeze schedule backs off
-  auto is_partner = [&](std::uint32_t j) {
-    return std::find(partners, partners + count, j) != partners + count;
+  auto is_partner = [&](std::uint32_t j, const Image& image) {
+    return std::find_if(partners, partners + count, [&](const Partner& partner) {
+             return partner.id == j && partner.image == image;
+           }) != partners + count;
+  };
+  auto centre_of = [&](const Partner& partner) {
+    return partner.image == kSelf ? poses_[partner.id].position
+                                  : Vec3(poses_[partner.id].position + shift_of(partner.image));
   };
   bool was_inside = is_inside(i, poses_[i], container_);
   const double step = own_translation_.empty() ? parameters.translation_step
@@ -344,12 +275,15 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
     Pose trial = pose;
     Vec3 push = Vec3::Zero();
     for (int p = 0; p < count; ++p) {
-      const Vec3 away = pose.position - poses_[partners[p]].position;
+      const Vec3 away = pose.position - centre_of(partners[p]);
       if (away.squaredNorm() > 0.0) push += away.normalized();
     }
     if (!was_inside) {
       const Aabb bounds = container_.bounds();
-      const Vec3 inward = 0.5 * (bounds.lower + bounds.upper) - pose.position;
+      Vec3 inward = 0.5 * (bounds.lower + bounds.upper) - pose.position;
+      for (int axis = 0; axis < 3; ++axis) {
+        if (grid_.periodic[axis]) inward[axis] = 0.0;  // no wall to come back from
+      }
       if (inward.squaredNorm() > 0.0) push += inward.normalized();
     }
     if (push.squaredNorm() > 0.0) push.normalize();
@@ -364,37 +298,47 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
                       wall_clearance(container_, body.local, pose)) {
       continue;
     }
-    std::uint32_t fresh[kMaxPartners];
+    Partner fresh[kMaxPartners];
     int fresh_count = 0;
     int kept_count = 0;
     bool is_ok = true;
-    for_each_close(i, trial.position, gap_, [&](std::uint32_t j) {
-      const bool was_partner = is_partner(j);
-      if (is_apart(i, trial, j, gap_)) return true;
+    for_each_close(i, trial.position, gap_, [&](std::uint32_t j, const Image& image) {
+      const bool was_partner = is_partner(j, image);
+      if (is_apart(i, trial, j, gap_, image)) return true;
       if (was_partner) {
         ++kept_count;
-        is_ok = (poses_[j].position - trial.position).squaredNorm() >=
-                (poses_[j].position - pose.position).squaredNorm();
+        const Vec3 centre = centre_of({j, image});
+        is_ok = (centre - trial.position).squaredNorm() >= (centre - pose.position).squaredNorm();
       } else if (fresh_count + kept_count < count) {
-        fresh[fresh_count++] = j;
+        fresh[fresh_count++] = {j, image};
       } else {
         is_ok = false;  // more partners than before
       }
       return is_ok;
     });
     if (!is_ok || kept_count + fresh_count > count) continue;
-    place(i, trial);
+    // Wrapped back into the box across a periodic face: the images it meets move with it.
+    const Image periods = place(i, trial);
+    auto follow = [&periods](Partner& partner) {
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        partner.image[axis] = static_cast<std::int8_t>(partner.image[axis] - periods[axis]);
+      }
+    };
     was_inside = is_in;
     int kept = 0;
     for (int p = 0; p < count; ++p) {
-      if (!is_apart(i, poses_[i], partners[p], gap_)) partners[kept++] = partners[p];
+      follow(partners[p]);
+      if (!is_apart(i, poses_[i], partners[p].id, gap_, partners[p].image)) {
+        partners[kept++] = partners[p];
+      }
     }
     count = kept;
     for (int f = 0; f < fresh_count; ++f) {
+      follow(fresh[f]);
       partners[count++] = fresh[f];
       // Two particles moved at once (cells two apart) may both flag one between them: the
       // same value either way, stored atomically.
-      std::atomic_ref<std::uint8_t>(flagged_[fresh[f]]).store(1, std::memory_order_relaxed);
+      std::atomic_ref<std::uint8_t>(flagged_[fresh[f].id]).store(1, std::memory_order_relaxed);
     }
   }
   if (count == 0 && was_inside) flagged_[i] = 0;
@@ -481,9 +425,9 @@ SweepCounts Hpmc::sweep(std::uint64_t sweep, const SweepParameters& parameters) 
     own_rotation_.assign(poses_.size(), static_cast<float>(parameters.rotation_step));
   }
   Rng shift_rng(seed_ ^ kShiftSeedMix, sweep);
-  const Vec3 shift(shift_rng.uniform() * grid_.width, shift_rng.uniform() * grid_.width,
-                   shift_rng.uniform() * grid_.width);
-  build_grid(shift);
+  // The same three draws as a plain shift of up to one cell width per axis.
+  const Vec3 fractions(shift_rng.uniform(), shift_rng.uniform(), shift_rng.uniform());
+  build_grid(fractions);
   int colours[8] = {0, 1, 2, 3, 4, 5, 6, 7};
   for (int k = 7; k > 0; --k) {
     const auto pick = static_cast<int>(shift_rng.next() % static_cast<std::uint64_t>(k + 1));

@@ -3,6 +3,7 @@
 // Holds the particles' prepared shapes and poses, runs checkerboard sweeps and container squeezes.
 // Every decision about overlap goes through is_separated (exact); containment through contains().
 
+#include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -73,7 +74,11 @@ class Hpmc {
   void restore(const State& state);
 
   [[nodiscard]] const Container& container() const { return container_; }
+  /// The poses; along a periodic axis a centre may lie up to one move outside [0, extent) until
+  /// the next sweep wraps it (wrapped_poses() wraps them all).
   [[nodiscard]] const std::vector<Pose>& poses() const { return poses_; }
+  /// The poses with every centre wrapped into [0, extent) along the periodic axes.
+  [[nodiscard]] std::vector<Pose> wrapped_poses() const;
   [[nodiscard]] double solid_volume() const { return solid_volume_; }
   [[nodiscard]] double mean_outer_radius() const { return mean_outer_; }
   [[nodiscard]] double max_outer_radius() const { return max_outer_; }
@@ -94,6 +99,12 @@ class Hpmc {
     double width = 0.0;
     Vec3 origin = Vec3::Zero();  // lower corner minus the shift
     std::int64_t dims[3] = {1, 1, 1};
+    // Periodic box: along a periodic axis the cells tile the period (an even number of them,
+    // or one), `cell` wide, and the cell coordinates wrap; `period` is the box extent.
+    bool is_periodic = false;
+    bool periodic[3] = {false, false, false};
+    double cell[3] = {0.0, 0.0, 0.0};
+    double period[3] = {0.0, 0.0, 0.0};
     std::vector<std::uint32_t> start;  // CSR: cell c holds items[start[c], start[c + 1])
     std::vector<std::uint32_t> items;
     std::vector<std::uint32_t> cell_of;  // per particle
@@ -106,7 +117,22 @@ class Hpmc {
     std::vector<std::uint32_t> slot_of;
   };
 
-  void build_grid(const Vec3& shift);
+  /// An image of a neighbour: the neighbour's centre moved by image[axis] periods per axis.
+  using Image = std::array<std::int8_t, 3>;
+  static constexpr Image kSelf{0, 0, 0};
+  /// The grid of a sweep, shifted by `fractions` of a cell per axis (all zero: unshifted); along
+  /// periodic axes it wraps every centre into [0, extent) first.
+  void build_grid(const Vec3& fractions);
+  /// Wraps `position` into [0, extent) along the periodic axes; returns the periods subtracted.
+  Image wrap(Vec3& position) const;
+  /// The translation (m) of `image`.
+  [[nodiscard]] Vec3 shift_of(const Image& image) const;
+  /// Calls visit(image) for every image of particle j whose bounding sphere comes within `gap`
+  /// of particle i's centred at `centre` (periodic axes: the nearest image and the two beside
+  /// it); false from visit stops it and is returned.
+  template <class Visit>
+  bool for_each_image(std::uint32_t i, const Vec3& centre, std::uint32_t j, double gap,
+                      Visit&& visit) const;
   /// Per-axis shrink shares toward `target` (p becomes p (1 - t k)).
   [[nodiscard]] Vec3 shrink_shares(const Container& target) const;
   [[nodiscard]] std::int64_t cell_index(const Vec3& position) const;
@@ -116,15 +142,22 @@ class Hpmc {
   /// Whether particle i placed at `pose` is clear of every other particle (exact test, gap
   /// `gap`, neighbours from the grid).
   [[nodiscard]] bool is_clear(std::uint32_t i, const Pose& pose, double gap) const;
-  /// Calls visit(j) for every other particle j whose bounding sphere comes within `gap` of
-  /// particle i's centred at `centre` (neighbour cells of i's cell); stops when visit is false.
+  /// Calls visit(j, image) for every other particle j (and, in a periodic box, each of its images)
+  /// whose bounding sphere comes within `gap` of particle i's centred at `centre` (neighbour
+  /// cells of i's cell); stops when visit is false.
   template <class Visit>
   void for_each_close(std::uint32_t i, const Vec3& centre, double gap, Visit&& visit) const;
-  /// The exact test of particle i at `pose` against particle j where it is (is_separated), warm-
+  /// The periodic case of for_each_close: the neighbour cells wrap around the periodic axes.
+  template <class Visit>
+  void for_each_close_periodic(std::uint32_t i, const Vec3& centre, double gap,
+                               Visit&& visit) const;
+  /// The exact test of particle i at `pose` against particle j's `image` (is_separated), warm-
   /// started from i's cached separating direction for j and updating it.
-  [[nodiscard]] bool is_apart(std::uint32_t i, const Pose& pose, std::uint32_t j, double gap) const;
-  /// Moves particle i to `pose` (its packed sphere too).
-  void place(std::uint32_t i, const Pose& pose);
+  [[nodiscard]] bool is_apart(std::uint32_t i, const Pose& pose, std::uint32_t j, double gap,
+                              const Image& image = kSelf) const;
+  /// Moves particle i to `pose` (its packed sphere too), its centre wrapped into the box along
+  /// the periodic axes; returns the periods subtracted (Hpmc::wrap).
+  Image place(std::uint32_t i, const Pose& pose);
   [[nodiscard]] bool is_inside(std::uint32_t i, const Pose& pose, const Container& box) const;
   void repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters);
   void move_cell(std::uint32_t i, std::uint64_t sweep, const SweepParameters& parameters,

@@ -47,9 +47,8 @@ constexpr auto kKinds = std::make_index_sequence<std::variant_size_v<PackerOptio
 }  // namespace
 
 void validate(const DensePackOptions& options) {
-  // The densifier's moves and container compression know walls only.
-  refuse_periodic(std::visit([](const auto& fill) { return fill.container; }, options.fill),
-                  "packer.kind = dense");
+  refuse_periodic_bed(std::visit([](const auto& fill) { return fill.container; }, options.fill),
+                      options.densify.mode);
   std::visit([](const auto& fill) { validate(fill); }, options.fill);
   validate(options.densify);
   const double gap = std::visit([](const auto& fill) { return fill.gap; }, options.fill);

@@ -1,6 +1,7 @@
 // The periodic box end to end: `aggpack pack` with container.periodic, the native file (written,
 // read back, an older file without the attribute), `aggpack info`, an export, the same bytes at
-// one and two threads, and the one-line refusals (bad word, other packers, mesomodel).
+// one and two threads, densify and the dense kind in it, and the one-line refusals (bad word,
+// the lattice packer, a bed, mesomodel).
 
 #include <gtest/gtest.h>
 
@@ -9,7 +10,9 @@
 #include <fstream>
 #include <string>
 
+#include "aggpack/geom/mass_properties.h"
 #include "aggpack/io/native.h"
+#include "aggpack/io/stl.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/verify.h"
 #include "support/cli_test.h"
@@ -117,8 +120,9 @@ TEST_F(PeriodicCliTest, RefusalsAreOneLineNamingTheKey) {
       "xz | yz | xyz)");
   expect_one_line_refusal("pack periodic.toml --set packer.kind=lattice -o bad.h5 --progress none",
                           "packer.kind = lattice does not take periodic containers yet");
-  expect_one_line_refusal("pack periodic.toml --set packer.kind=dense -o bad.h5 --progress none",
-                          "packer.kind = dense does not take periodic containers yet");
+  expect_one_line_refusal(
+      "pack periodic.toml --set packer.kind=dense --set densify.mode=bed -o bad.h5 --progress none",
+      "densify.mode = bed does not take periodic containers yet");
   expect_one_line_refusal(
       "pack periodic.toml --set container.length=0.02 -o bad.h5 --progress none",
       "container.length = 0.02 m");
@@ -126,8 +130,76 @@ TEST_F(PeriodicCliTest, RefusalsAreOneLineNamingTheKey) {
   ASSERT_EQ(run("pack periodic.toml -o one.h5 --progress none").exit_code, 0);
   expect_one_line_refusal("mesomodel one.h5 -o rve.inp",
                           "aggpack mesomodel does not take periodic containers yet");
-  expect_one_line_refusal("densify one.h5 -o dense.h5 --target-fraction 0.3",
-                          "aggpack densify does not take periodic containers yet");
+  expect_one_line_refusal("densify one.h5 -o dense.h5 --target-container 0.02,0.1,0.1",
+                          "container.length = 0.02 m");
+}
+
+TEST_F(PeriodicCliTest, DensifyAndTheDenseKindKeepThePeriodicBox) {
+  ASSERT_EQ(run("pack periodic.toml -o loose.h5 --progress none").exit_code, 0);
+  const std::string densify = "densify loose.h5 --target-fraction 0.4 --sweeps 400 --progress none";
+  const test::CliRun one = run(densify + " -o one.h5 -j 1");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const test::CliRun two = run(densify + " -o two.h5 -j 2");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_TRUE(
+      test::same_bytes(test::file_text(folder_ / "one.h5"), test::file_text(folder_ / "two.h5")));
+  const Packing loose = read_packing((folder_ / "loose.h5").string());
+  const Packing dense = read_packing((folder_ / "one.h5").string());
+  EXPECT_EQ(periodic_axes(dense.container), (std::array<bool, 3>{true, true, true}));
+  EXPECT_EQ(dense.particles.size(), loose.particles.size());
+  EXPECT_LT(dense.container.volume(), 0.9 * loose.container.volume());
+  EXPECT_TRUE(verify(dense, {.gap = 0.0, .is_brute_force = true}).is_ok);
+  const test::CliRun info = run("info one.h5");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("periodic in xyz"), std::string::npos) << info.out;
+
+  // The dense kind: the fill in the enlarged periodic box, compressed into the given one.
+  const test::CliRun kind =
+      run("pack periodic.toml --set packer.kind=dense --set densify.target_fraction=0.35 "
+          "--set densify.max_sweeps=600 -o kind.h5 --progress none");
+  ASSERT_EQ(kind.exit_code, 0) << kind.err;
+  const Packing packed = read_packing((folder_ / "kind.h5").string());
+  EXPECT_EQ(periodic_axes(packed.container), (std::array<bool, 3>{true, true, true}));
+  EXPECT_NEAR(packed.container.volume(), 0.001, 1e-12);
+  EXPECT_TRUE(verify(packed, {.is_brute_force = true}).is_ok);
+  EXPECT_NE(kind.out.find("periodic in xyz"), std::string::npos) << kind.out;
+}
+
+TEST_F(PeriodicCliTest, StlCutToTheBoxTilesAndIsRefusedElsewhere) {
+  ASSERT_EQ(run("pack periodic.toml -o one.h5 --progress none").exit_code, 0);
+  const test::CliRun cut = run("export one.h5 -o cut.stl --cut-to-box");
+  ASSERT_EQ(cut.exit_code, 0) << cut.err;
+  const Packing packing = read_packing((folder_ / "one.h5").string());
+  double solid = 0.0;
+  for (std::size_t i = 0; i < packing.particles.size(); ++i) {
+    solid += mass_properties(packing.placed(i)).volume;
+  }
+  // The enclosed volume of the file (divergence theorem over its float coordinates) is the
+  // particles' (each once: the images' pieces fill what the particles' own pieces leave out),
+  // and every vertex lies in the box, up to float rounding.
+  const StlMesh mesh = read_stl((folder_ / "cut.stl").string());
+  double six_volume = 0.0;
+  for (const auto& t : mesh.triangles) {
+    six_volume += t[0].dot(t[1].cross(t[2]));
+    for (const Vec3& vertex : t) {
+      EXPECT_TRUE((vertex.array() >= -1e-7).all() && (vertex.array() <= 0.1 + 1e-7).all())
+          << vertex.transpose();
+    }
+  }
+  EXPECT_NEAR(six_volume / 6.0, solid, 1e-5 * solid);
+  // Without the flag the file reaches beyond the box.
+  ASSERT_EQ(run("export one.h5 -o whole.stl").exit_code, 0);
+  const StlMesh whole = read_stl((folder_ / "whole.stl").string());
+  EXPECT_LT(whole.triangles.size(), mesh.triangles.size());
+
+  expect_one_line_refusal("export one.h5 -o cut.obj --cut-to-box", "--cut-to-box");
+  expect_one_line_refusal("export one.h5 -o cut.vtu --cut-to-box", "only for .stl");
+  ASSERT_EQ(run("pack periodic.toml --set container.periodic=none -o walled.h5 --progress none")
+                .exit_code,
+            0);
+  expect_one_line_refusal("export walled.h5 -o walled.stl --cut-to-box",
+                          "--cut-to-box = true for a packing without periodic faces");
+  EXPECT_FALSE(std::filesystem::exists(folder_ / "walled.stl"));
 }
 
 }  // namespace

@@ -22,14 +22,13 @@
 #include "aggpack/pack/verify.h"
 #include "pack/pack_test_util.h"
 #include "support/packings.h"
+#include "support/periodic.h"
 
 namespace aggpack {
 namespace {
 
-Container periodic_box(double length, double width, double depth, std::array<bool, 3> axes) {
-  return {.shape =
-              BoxContainer{.length = length, .width = width, .depth = depth, .periodic = axes}};
-}
+using test::periodic_box;
+using test::periodic_brute_force_overlaps;
 
 // Two cubes of half size 0.1 at x = first and x = second (y = z = 0.5) in a 1 m box.
 Packing periodic_cube_pair(double first, double second, std::array<bool, 3> axes) {
@@ -39,45 +38,6 @@ Packing periodic_cube_pair(double first, double second, std::array<bool, 3> axes
   packing.particles.push_back({.shape = 0, .pose = {.position = Vec3(first, 0.5, 0.5)}});
   packing.particles.push_back({.shape = 0, .pose = {.position = Vec3(second, 0.5, 0.5)}});
   return packing;
-}
-
-// Independent of the packer and verify(): every pair and every particle with itself, through
-// every image one period away on the periodic axes, by the exact GJK distance. Returns the number
-// of pairs (image pairs included) closer than `gap`; `closest` the smallest such distance.
-std::size_t periodic_brute_force_overlaps(const Packing& packing, double gap, double& closest) {
-  const std::array<bool, 3> axes = periodic_axes(packing.container);
-  const Vec3 extent = packing.container.bounds().extent();
-  const std::size_t n = packing.particles.size();
-  std::vector<ConvexPolyhedron> bodies;
-  std::vector<double> radius;
-  for (std::size_t i = 0; i < n; ++i) {
-    bodies.push_back(packing.local_body(i));
-    radius.push_back(bounding_radius(bodies.back()));
-  }
-  std::size_t overlaps = 0;
-  closest = 1e300;
-  for (int a = -1; a <= 1; ++a) {
-    for (int b = -1; b <= 1; ++b) {
-      for (int c = -1; c <= 1; ++c) {
-        if ((a != 0 && !axes[0]) || (b != 0 && !axes[1]) || (c != 0 && !axes[2])) continue;
-        const Vec3 shift(a * extent.x(), b * extent.y(), c * extent.z());
-        const bool is_zero = a == 0 && b == 0 && c == 0;
-        for (std::size_t i = 0; i < n; ++i) {
-          for (std::size_t j = is_zero ? i + 1 : i; j < n; ++j) {
-            Pose moved = packing.particles[j].pose;
-            moved.position += shift;
-            const double centres = (packing.particles[i].pose.position - moved.position).norm();
-            if (centres > radius[i] + radius[j] + gap) continue;
-            const DistanceResult result =
-                gjk_distance(bodies[i], packing.particles[i].pose, bodies[j], moved);
-            closest = std::min(closest, result.distance);
-            if (result.is_intersecting || result.distance < gap) ++overlaps;
-          }
-        }
-      }
-    }
-  }
-  return overlaps;
 }
 
 RandomPackOptions periodic_random_options(std::array<bool, 3> axes, std::uint64_t seed) {
@@ -255,13 +215,19 @@ TEST(PeriodicRandom, BoxMustExceedTwiceTheLargestParticle) {
   EXPECT_NO_THROW((void)pack_random(options));
 }
 
-TEST(PeriodicRandom, OtherPackersRefusePeriodicBoxes) {
+TEST(PeriodicRandom, LatticeAndBedRefusePeriodicBoxes) {
   const Container box = periodic_box(1.0, 1.0, 1.0, {false, false, true});
   EXPECT_EQ(testing::invalid_field([&] { pack_lattice({.container = box}); }),
             "container.periodic");
+  // The dense kind takes periodic boxes (periodic_dense_test.cpp), but a bed needs its floor.
   DensePackOptions dense;
   std::get<RandomPackOptions>(dense.fill).container = box;
+  EXPECT_NO_THROW(validate(dense));
+  dense.densify.mode = DensifyMode::kBed;
   EXPECT_EQ(testing::invalid_field([&] { validate(dense); }), "container.periodic");
+  std::get<RandomPackOptions>(dense.fill).container =
+      periodic_box(1.0, 1.0, 1.0, {true, true, false});
+  EXPECT_NO_THROW(validate(dense));
 }
 
 }  // namespace

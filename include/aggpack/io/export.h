@@ -127,6 +127,9 @@ struct ExportOptions {
   DeckOptions deck = {};    ///< a complete solver model instead of the mesh alone (.inp, .k, .py)
   int compression = 0;      ///< native .h5 only: deflate level of the datasets, 0 (none) .. 9
   bool write_xdmf = false;  ///< native .h5 only: also /world and the .xdmf side file (native.h)
+  /// STL only, a periodic packing only: every particle and its periodic images clipped to the
+  /// box (pack/cut_to_box.h), so copies of the file tile space; one solid per piece.
+  bool is_cut_to_box = false;
 };
 
 /// A shape that TetGen could not mesh (--tet-method tetgen) and that was cut as the paper's

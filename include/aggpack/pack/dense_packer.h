@@ -90,6 +90,10 @@ struct DensifyOptions {
 /// \throw InvalidInput naming "densify.<option>" for the first bad option.
 void validate(const DensifyOptions& options);
 
+/// Throws InvalidInput naming `container.periodic` when a bed (`mode` kBed) has a periodic z
+/// axis: the bed settles on its floor. Periodic x and y are fine in both modes.
+void refuse_periodic_bed(const Container& container, DensifyMode mode);
+
 enum class DensifyStop {
   kTargetReached,  ///< kFixed: target container (and fraction) reached
   kSettled,        ///< kBed: the mean height stopped sinking
