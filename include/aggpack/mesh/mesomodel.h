@@ -96,6 +96,10 @@ struct MesoMesh {
   std::vector<std::uint32_t> particle;  ///< per tetrahedron: 1-based particle (aggregate, ITZ), 0
   std::uint32_t particle_count = 0;     ///< particles of the packing (ids 1..particle_count)
   Aabb bounds;                          ///< the container's bounding box (for face node sets)
+  /// Periodic axes (x, y, z) of a periodic box: the mesh is the box with every particle image
+  /// that meets it clipped to it, and each node on a periodic face has a partner on the opposite
+  /// face at the same in-plane coordinates (bit for bit; `periodic_pairs`).
+  std::array<bool, 3> periodic{};
   bool is_cylinder = false;             ///< the container is a cylinder (prism), axis z
   Vec3 axis_point = Vec3::Zero();       ///< cylinder: a point on its axis (x, y used)
   double cylinder_radius = 0.0;         ///< cylinder: radius of the circle the prism circumscribes
