@@ -516,6 +516,10 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
   }
   const auto start = std::chrono::steady_clock::now();
   detail::PlcMesh raw = detail::tetrahedralize_plc(plc, switches, options.time_limit);
+  if (is_periodic_box) {  // again, with the lower faces' triangles on the upper faces too
+    detail::copy_lower_face_triangles(raw, periodic_axes(packing.container), box.extent(), plc);
+    raw = detail::tetrahedralize_plc(plc, switches, options.time_limit);
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 

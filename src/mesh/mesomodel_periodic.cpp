@@ -341,4 +341,60 @@ PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, do
   return complex;
 }
 
+void copy_lower_face_triangles(const PlcMesh& first, const std::array<bool, 3>& periodic,
+                               const Vec3& extent, Plc& plc) {
+  // The boundary triangles of the first mesh (faces of one tetrahedron), by box face.
+  std::map<std::array<std::uint32_t, 3>, int> faces;
+  for (const Tetrahedron& tet : first.tetrahedra) {
+    for (const auto& local : kTetraFaces) {
+      std::array<std::uint32_t, 3> key{tet[local[0]], tet[local[1]], tet[local[2]]};
+      std::sort(key.begin(), key.end());
+      ++faces[key];
+    }
+  }
+  std::map<std::array<double, 3>, std::uint32_t> numbers;
+  for (std::uint32_t i = 0; i < plc.points.size(); ++i) {
+    numbers.try_emplace({plc.points[i].x(), plc.points[i].y(), plc.points[i].z()}, i);
+  }
+  std::array<std::vector<std::vector<std::uint32_t>>, 3> lower;
+  for (const auto& [key, count] : faces) {
+    if (count != 1) continue;
+    for (int axis = 0; axis < 3; ++axis) {
+      const bool is_on = std::all_of(key.begin(), key.end(), [&](std::uint32_t k) {
+        return k < plc.points.size() && first.nodes[k][axis] == 0.0;
+      });
+      if (is_on && periodic[static_cast<std::size_t>(axis)]) {
+        lower[static_cast<std::size_t>(axis)].push_back({key[0], key[1], key[2]});
+      }
+    }
+  }
+  // Facets 0-5 are the box's faces (periodic_complex): each periodic pair becomes the lower
+  // face's triangles and their translations, one facet each, which -Y keeps as they are.
+  std::vector<PlcFacet> facets;
+  for (int face = 0; face < 6; ++face) {
+    const int axis = face / 2;
+    if (!periodic[static_cast<std::size_t>(axis)]) {
+      facets.push_back(plc.facets[static_cast<std::size_t>(face)]);
+      continue;
+    }
+    for (const auto& triangle : lower[static_cast<std::size_t>(axis)]) {
+      std::vector<std::uint32_t> polygon;
+      for (const std::uint32_t k : triangle) {
+        Vec3 p = plc.points[k];
+        if (face % 2 == 1) p[axis] = extent[axis];
+        const auto found = numbers.find({p.x(), p.y(), p.z()});
+        if (found == numbers.end()) {
+          throw LimitExceeded(Wording{Sentence::kMesomodelMesh, {}},
+                              Wording{Sentence::kText, {"a periodic face's point without partner"}},
+                              Wording{Sentence::kComplexTetGenKeeps, {}});
+        }
+        polygon.push_back(found->second);
+      }
+      facets.push_back({{polygon}, -face - 1});
+    }
+  }
+  facets.insert(facets.end(), plc.facets.begin() + 6, plc.facets.end());
+  plc.facets = std::move(facets);
+}
+
 }  // namespace aggpack::detail

@@ -95,6 +95,13 @@ struct PeriodicComplex {
 };
 PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, double min_gap);
 
+/// Replaces the periodic faces' facets of a periodic complex (its facets 0-5) by the triangles
+/// TetGen made of each lower face in `first` (a mesh of `plc`, with Y) and their translations onto
+/// the upper face, so that a second mesh has the same triangles on both faces of a pair (a
+/// homogeneous box then takes an affine displacement exactly under periodic ties).
+void copy_lower_face_triangles(const PlcMesh& first, const std::array<bool, 3>& periodic,
+                               const Vec3& extent, Plc& plc);
+
 /// Throws InvalidInput naming itz_thickness unless it can be a cohesive ITZ's constitutive
 /// thickness (finite, > 0): the one check of validate(MesoOptions) and split_cohesive_interfaces.
 void check_cohesive_thickness(double thickness);

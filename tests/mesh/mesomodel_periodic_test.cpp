@@ -65,6 +65,46 @@ void expect_faces_pair_up(const MesoMesh& mesh) {
   }
 }
 
+// The boundary triangles on each lower periodic face, moved onto the upper face, are exactly the
+// upper face's triangles (so a homogeneous box takes an affine field under periodic ties).
+void expect_faces_triangulated_alike(const MesoMesh& mesh) {
+  std::map<std::array<std::uint32_t, 3>, int> faces;
+  for (const Tetrahedron& tet : mesh.tetrahedra) {
+    for (const auto& local : kTetraFaces) {
+      std::array<std::uint32_t, 3> key{tet[local[0]], tet[local[1]], tet[local[2]]};
+      std::sort(key.begin(), key.end());
+      ++faces[key];
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!mesh.periodic[static_cast<std::size_t>(axis)]) continue;
+    std::array<std::vector<std::array<std::array<double, 3>, 3>>, 2> sides;
+    for (const auto& [key, count] : faces) {
+      if (count != 1) continue;
+      for (int side = 0; side < 2; ++side) {
+        const double at = side == 0 ? mesh.bounds.lower[axis] : mesh.bounds.upper[axis];
+        if (!std::all_of(key.begin(), key.end(),
+                         [&](std::uint32_t k) { return mesh.nodes[k][axis] == at; })) {
+          continue;
+        }
+        std::array<std::array<double, 3>, 3> corners{};
+        for (int c = 0; c < 3; ++c) {
+          const Vec3& p = mesh.nodes[key[static_cast<std::size_t>(c)]];
+          corners[static_cast<std::size_t>(c)] = {p.x(), p.y(), p.z()};
+          corners[static_cast<std::size_t>(c)][static_cast<std::size_t>(axis)] = 0.0;
+        }
+        std::sort(corners.begin(), corners.end());
+        sides[static_cast<std::size_t>(side)].push_back(corners);
+      }
+    }
+    std::sort(sides[0].begin(), sides[0].end());
+    std::sort(sides[1].begin(), sides[1].end());
+    EXPECT_GT(sides[0].size(), 10U);
+    EXPECT_TRUE(sides[0] == sides[1])
+        << "axis " << axis << ": " << sides[0].size() << " vs " << sides[1].size() << " triangles";
+  }
+}
+
 double particle_volume(const Packing& packing) {
   double volume = 0.0;
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {
@@ -83,6 +123,7 @@ TEST(PeriodicMesomodel, OppositeFacesPairUpAndTheVolumesAreExact) {
       const MesoMesh mesh = build_mesomodel(packing, {}, &report);
       EXPECT_EQ(mesh.periodic, axes);
       expect_faces_pair_up(mesh);
+      expect_faces_triangulated_alike(mesh);
       const Vec3 extent = mesh.bounds.extent();
       const double box = extent.prod();
       double total = 0.0;

@@ -162,4 +162,19 @@ enum class SpecimenFace : std::uint8_t { kBottom = 0, kTop = 1, kSide = 2 };
 /// 1e-9 of the container's size.
 std::vector<std::uint32_t> face_nodes(const MesoMesh& mesh, SpecimenFace face);
 
+/// A node on an upper face of a periodic mesh (coordinate = bounds.upper on some periodic axis)
+/// and its image: the node at the same point with each such coordinate moved to the lower face.
+/// `shifted` says on which axes it moved (an edge node two, a corner node three), so that
+/// u(node) = u(image) + the sum over those axes of the box's macroscopic displacement over one
+/// period. Every node on an upper face is `node` of exactly one pair, an image is never one.
+struct PeriodicPair {
+  std::uint32_t node = 0;
+  std::uint32_t image = 0;
+  std::array<bool, 3> shifted{};
+};
+
+/// The pairs of a periodic mesh (empty for a walled one), by node. \throw LimitExceeded when a
+/// node on an upper face has no image (the mesh is not periodic).
+std::vector<PeriodicPair> periodic_pairs(const MesoMesh& mesh);
+
 }  // namespace aggpack
