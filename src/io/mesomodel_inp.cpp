@@ -238,7 +238,7 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
   }
   if (options.is_quadratic && (mesh.periodic[0] || mesh.periodic[1] || mesh.periodic[2])) {
     throw InvalidInput("quadratic", "true with a periodic box",
-                       "linear elements (opposite faces share their nodes, not their triangles)");
+                       "linear elements (the periodic ties join the corner nodes only)");
   }
   check_writable(path, options.overwrite);
   const detail::MesoLayout layout = detail::make_layout(mesh);
