@@ -145,6 +145,25 @@ bool is_near_periodic_cap(const std::vector<Vec3>& points, const std::vector<std
   return outside < margin;
 }
 
+// Rotates a polygon to start at its widest corner: TetGen takes a facet's plane from the first
+// three points of its first polygon, and an outline that starts with collinear edge points gives
+// it no plane (it then triangulates the facet into overlapping triangles).
+void start_at_widest_corner(const std::vector<Vec3>& points, std::vector<std::uint32_t>& polygon) {
+  const std::size_t n = polygon.size();
+  std::size_t best = 0;
+  double widest = -1.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec3& a = points[polygon[k]];
+    const double area =
+        (points[polygon[(k + 1) % n]] - a).cross(points[polygon[(k + 2) % n]] - a).norm();
+    if (area > widest) {
+      widest = area;
+      best = k;
+    }
+  }
+  std::rotate(polygon.begin(), polygon.begin() + static_cast<std::ptrdiff_t>(best), polygon.end());
+}
+
 }  // namespace
 
 PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, double min_gap) {
@@ -252,11 +271,16 @@ PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, do
         for (int i = 1; i < nu; ++i) {
           Vec3 p = Vec3::Zero();
           p[axis] = side == 0 ? 0.0 : extent[axis];
-          p[u] = du * i;
-          p[v] = dv * j;
+          // Jittered by up to 1/10 of the spacing: TetGen 1.5 triangulates a facet whose points
+          // are a regular grid (many cocircular points) crossed by the caps' segments into
+          // overlapping triangles for some grids; the jitter is a fixed function of (i, j).
+          const double jitter_u = std::fmod(0.6180339887 * i + 0.4142135624 * j, 1.0) - 0.5;
+          const double jitter_v = std::fmod(0.7320508076 * i + 0.2360679775 * j, 1.0) - 0.5;
+          p[u] = du * (i + 0.2 * jitter_u);
+          p[v] = dv * (j + 0.2 * jitter_v);
           bool is_free = true;
           for (const auto& cap : caps[static_cast<std::size_t>(2 * axis + side)]) {
-            is_free &= !is_near_periodic_cap(plc.points, cap, u, v, p, 0.25 * std::min(du, dv));
+            is_free &= !is_near_periodic_cap(plc.points, cap, u, v, p, 0.5 * std::min(du, dv));
           }
           if (is_free) grids[static_cast<std::size_t>(2 * axis + side)].push_back(p);
         }
@@ -294,8 +318,23 @@ PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, do
       outline.insert(outline.end(), on_edge.begin(), on_edge.end());
     }
     if (face % 2 == 0) std::reverse(outline.begin(), outline.end());  // outward
+    start_at_widest_corner(plc.points, outline);
     PlcFacet facet{{outline}, -face - 1};
-    for (const auto& cap : caps[static_cast<std::size_t>(face)]) facet.polygons.push_back(cap);
+    // The caps' edges as segments, but not those on the outline: a segment twice in one facet
+    // breaks TetGen's triangulation of the facet (it then reports the facet intersecting itself).
+    const auto is_on_outline = [&](std::uint32_t m, std::uint32_t n) {
+      const Vec3& p = plc.points[m];
+      const Vec3& q = plc.points[n];
+      return (p[u] == q[u] && (p[u] == 0.0 || p[u] == extent[u])) ||
+             (p[v] == q[v] && (p[v] == 0.0 || p[v] == extent[v]));
+    };
+    for (const auto& cap : caps[static_cast<std::size_t>(face)]) {
+      for (std::size_t k = 0; k < cap.size(); ++k) {
+        const std::uint32_t m = cap[k];
+        const std::uint32_t n = cap[(k + 1) % cap.size()];
+        if (!is_on_outline(m, n)) facet.polygons.push_back({m, n});
+      }
+    }
     for (const Vec3& p : grids[static_cast<std::size_t>(face)]) {
       facet.polygons.push_back({table.at(p)});
     }
@@ -308,8 +347,9 @@ PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, do
     std::vector<HalfSpace> planes;
     std::map<std::uint32_t, std::uint32_t> local;
     for (std::size_t f = 0; f < piece_faces[p].size(); ++f) {
-      const auto& polygon = piece_faces[p][f];
+      auto& polygon = piece_faces[p][f];
       if (piece_caps[p][f] < 0) {
+        start_at_widest_corner(plc.points, polygon);
         plc.facets.push_back({{polygon}, 2 * static_cast<int>(complex.piece_particle[p])});
       }
       std::vector<std::uint32_t> at;
