@@ -14,7 +14,8 @@
 #     ThenInfo) and `export --format inp` with the fan (AbaqusExport.*, C3D4 and C3D10) and TetGen
 #     at the paper's scale (ExportTetGenCliTest.PaperPackingExportsAndReportsTheFallbacks).
 #   PeriodicCcx.*: the periodic .inp (its ties and steps) is checked as text under the sanitizers
-#     in PeriodicInp.EveryUpperFaceNodeIsTiedOnceToItsImage, the .dat reader runs only here.
+#     in PeriodicInp.EveryUpperFaceNodeIsTiedOnceToItsImage, the .dat reader in
+#     PeriodicInp.StiffnessFromADatText.
 # A name that matches no test is ignored by ctest (the test then simply runs in both phases).
 set_tests_properties(
   CalculixDeck.CcxRunsTheTroughTestOnASmallPile

@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <map>
 #include <set>
 #include <sstream>
 
+#include "aggpack/core/error.h"
 #include "aggpack/io/mesomodel_files.h"
 #include "aggpack/mesh/mesomodel.h"
 #include "aggpack/pack/random_packer.h"
@@ -131,6 +133,38 @@ TEST(PeriodicInp, EveryUpperFaceNodeIsTiedOnceToItsImage) {
     EXPECT_EQ(independent.count(node), 0U) << "node " << node << " dependent and independent";
   }
   EXPECT_EQ(steps.size(), 6U);
+}
+
+TEST(PeriodicInp, StiffnessFromADatText) {
+  // A 2 x 4 x 5 mm box in mm: step k's totals on XMAX, YMAX, ZMAX (areas 20, 10, 8 mm^2).
+  MesoMesh mesh;
+  mesh.bounds = Aabb{Vec3::Zero(), Vec3(0.002, 0.004, 0.005)};
+  mesh.periodic = {true, true, true};
+  std::string dat;
+  for (int k = 0; k < 6; ++k) {
+    const double time = k + 1.0;
+    char text[512];
+    // sigma_11 = 100 (k + 1) MPa from XMAX's fx; shear sigma_12 from XMAX's fy (20 MPa) and YMAX's
+    // fx (22 MPa): their mean, 21 MPa.
+    std::snprintf(text, sizeof text,
+                  " total force (fx,fy,fz) for set XMAX and time  %.7E\n\n        %.6E  %.6E  "
+                  "0.000000E+00\n\n total force (fx,fy,fz) for set YMAX and time  %.7E\n\n"
+                  "        %.6E  0.000000E+00  0.000000E+00\n\n total force (fx,fy,fz) for set "
+                  "ZMAX and time  %.7E\n\n        0.000000E+00  0.000000E+00  0.000000E+00\n\n",
+                  time, 2000.0 * (k + 1), 400.0, time, 220.0, time);
+    dat += text;
+  }
+  MesoFileOptions options;
+  options.units = MesoUnits::kMillimetre;
+  options.step.strain = 0.002;
+  const VoigtStiffness c = periodic_stiffness_from_dat(dat, mesh, options);
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_NEAR(c[0][k], 100e6 * (k + 1) / 0.002, 1e3) << k;
+    EXPECT_NEAR(c[5][k], 21e6 / 0.002, 1e3) << k;
+    EXPECT_NEAR(c[1][k], 0.0, 1e-6) << k;
+  }
+  EXPECT_THROW((void)periodic_stiffness_from_dat(dat.substr(0, dat.size() / 2), mesh, options),
+               InvalidInput);
 }
 
 TEST(PeriodicCcx, MortarEverywhereGivesTheMortarsIsotropicStiffness) {
