@@ -209,11 +209,21 @@ PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, do
           const double p = vertex[axis] + offset[axis];
           const double clearance = std::min(std::abs(p), std::abs(p - extent[axis]));
           const bool is_periodic = periodic[static_cast<std::size_t>(axis)];
-          if (clearance <= min_gap && (is_periodic || (p >= 0.0 && p <= extent[axis]))) {
-            throw InvalidInput(Wording{Sentence::kParticleNumber, {std::to_string(i + 1)}},
-                               Wording{Sentence::kFromAWall, {format_value(clearance) + " m"}},
-                               Wording{Sentence::kWallClearance,
-                                       {format_value(min_gap) + " m", "container.wall_gap"}});
+          if (clearance <= min_gap && is_periodic) {
+            throw InvalidInput(
+                Wording{Sentence::kParticleNumber, {std::to_string(i + 1)}},
+                Wording{Sentence::kText, {format_value(clearance) + " m from a periodic face"}},
+                Wording{Sentence::kText,
+                        {"> " + format_value(min_gap) +
+                         " m or across it (a vertex this close leaves a sliver: pack with "
+                         "another seed)"}});
+          }
+          if (!is_periodic && std::min(p, extent[axis] - p) <= min_gap) {
+            throw InvalidInput(
+                Wording{Sentence::kParticleNumber, {std::to_string(i + 1)}},
+                Wording{Sentence::kFromAWall, {format_value(std::min(p, extent[axis] - p)) + " m"}},
+                Wording{Sentence::kWallClearance,
+                        {format_value(min_gap) + " m", "container.wall_gap"}});
           }
         }
       }

@@ -215,7 +215,18 @@ TEST(PeriodicMesomodel, RefusesAVertexOnAPeriodicFace) {
   Packing packing = test::box_with(1.0, {make_box(Vec3(-0.1, -0.1, -0.1), Vec3(0.1, 0.1, 0.1))},
                                    {Vec3(0.1, 0.5, 0.5)});
   std::get<BoxContainer>(packing.container.shape).periodic = {true, true, true};
+  try {
+    (void)build_mesomodel(packing, {});
+    ADD_FAILURE() << "a vertex on a periodic face was accepted";
+  } catch (const InvalidInput& error) {
+    EXPECT_NE(std::string(error.what()).find("particle 1 = 0 m from a periodic face"),
+              std::string::npos)
+        << error.what();
+  }
+  // A walled axis keeps the walled box's rule: a particle crossing the wall is refused.
+  std::get<BoxContainer>(packing.container.shape).periodic = {false, true, true};
   EXPECT_THROW((void)build_mesomodel(packing, {}), InvalidInput);
+  std::get<BoxContainer>(packing.container.shape).periodic = {true, true, true};
   // Moved off the face it meshes: one cube cut in two by x = 0.
   packing.particles[0].pose.position.x() = 0.05;
   const MesoMesh mesh = build_mesomodel(packing, {});
