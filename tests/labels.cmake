@@ -13,6 +13,9 @@
 #   PaperPackingInCalculix.*: `aggpack pack` of the paper's case (PackCliTest.PapersCaseEndToEnd
 #     ThenInfo) and `export --format inp` with the fan (AbaqusExport.*, C3D4 and C3D10) and TetGen
 #     at the paper's scale (ExportTetGenCliTest.PaperPackingExportsAndReportsTheFallbacks).
+#   PeriodicCcx.*: the periodic .inp (its ties and steps) is checked as text under the sanitizers
+#     in PeriodicInp.EveryUpperFaceNodeIsTiedOnceToItsImage, the .dat reader in
+#     PeriodicInp.StiffnessFromADatText.
 # A name that matches no test is ignored by ctest (the test then simply runs in both phases).
 set_tests_properties(
   CalculixDeck.CcxRunsTheTroughTestOnASmallPile
@@ -23,6 +26,8 @@ set_tests_properties(
   PaperPackingInCalculix.TetGenC3D4
   PaperPackingInCalculix.TetGenC3D4Seed4
   PaperPackingInCalculix.TetGenC3D10Seed4
+  PeriodicCcx.MortarEverywhereGivesTheMortarsIsotropicStiffness
+  PeriodicCcx.PackedBoxLiesBetweenTheReussAndVoigtTensors
   PROPERTIES LABELS external-solver)
 
 # OpenMPI's own allocations at MPI_Init/Finalize (libmpi and its dlopened components) are reported
@@ -62,6 +67,8 @@ set_tests_properties(DistributedCli.MpirunWithTwoRanksGivesTheSingleProcessSweep
                      PROPERTIES COST 40)
 set_tests_properties(Settle.LatticeFallsToADenserPackingInsideItsContainer
                      PaperPackingInCalculix.TetGenC3D10Seed4
+  PeriodicCcx.MortarEverywhereGivesTheMortarsIsotropicStiffness
+  PeriodicCcx.PackedBoxLiesBetweenTheReussAndVoigtTensors
                      PaperPackingInCalculix.FanC3D10
                      DistributedCli.EnsembleSeedsKeyRunsTheEnsembleAndTheFlagOverridesIt
                      EnsembleCli.PerSeedResultsStatisticsAndThreadIndependence

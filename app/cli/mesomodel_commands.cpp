@@ -22,6 +22,7 @@
 #include "aggpack/io/voxel_image.h"
 #include "aggpack/mesh/mesomodel.h"
 #include "aggpack/mesh/voxels.h"
+#include "aggpack/pack/container.h"
 #include "commands.h"
 #include "output_flags.h"
 #include "progress.h"
@@ -207,6 +208,10 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   check_writable(flags.output, overwrite);
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
+  if (flags.file.is_quadratic && is_periodic(packing.container)) {
+    throw InvalidInput("--quadratic", "with container.periodic",
+                       "linear elements (the periodic ties join the corner nodes only)");
+  }
   const RunEstimate estimate =
       estimate_mesomodel(static_cast<double>(packing.particles.size()), 0.0);
   announce_heavy_run(estimate);
@@ -219,7 +224,7 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
     StageTimer timer(
         "meshing (TetGen)", style,
         {.limit_seconds = flags.mesh.time_limit, .expected_seconds = estimate.seconds});
-    mesh = build_mesomodel(packing, flags.mesh, &report);
+    with_key_names({}, flag_of, [&] { mesh = build_mesomodel(packing, flags.mesh, &report); });
   }
   print_report(mesh, report);
   const MesoModulusBounds bounds = voigt_reuss_bounds(mesh, flags.file.materials);
@@ -232,7 +237,10 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fmt::print("wrote {} ({} nodes, {} elements{}) in {} s\n", flags.output, summary.nodes,
              summary.elements,
-             flags.file.step.strain > 0.0
+             is_periodic(packing.container)
+                 ? fmt::format(", periodic ties and six load cases of strain {:.6g}",
+                               flags.file.step.strain > 0.0 ? flags.file.step.strain : 1e-3)
+             : flags.file.step.strain > 0.0
                  ? fmt::format(", compression step to strain {:.6g}", flags.file.step.strain)
                  : std::string(),
              format_seconds(seconds));

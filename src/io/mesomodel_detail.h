@@ -61,4 +61,17 @@ void write_atomically(const std::string& path, Overwrite overwrite,
 /// Throws IoError "write error" when `out` failed (stops long loops early on a full disk).
 void require_good(const std::ostream& out);
 
+/// Writes `name`'s node set (1-based, 16 a line).
+void append_node_set(const std::string& name, const std::vector<std::uint32_t>& nodes,
+                     std::string& out);
+
+/// A periodic mesh's part of the .inp (docs/mesomodel.md, "Periodic RVE"), after the model's sets:
+/// node sets XMIN ... ZMAX, reference nodes numbered from written_nodes + 1 (REF_X, REF_Y,
+/// REF_Z), the *EQUATION ties of periodic_pairs(mesh) and, when every axis is periodic, the
+/// origin node held and six steps of unit-direction macroscopic strains of size `strain`
+/// (11, 22, 33, 23, 13, 12; engineering shear) with the reference nodes' reactions printed.
+/// Coordinates and displacements are multiplied by `scale`; comment lines go to `heading`.
+void append_periodic_model(const MesoMesh& mesh, std::uint64_t written_nodes, double scale,
+                           double strain, std::string& heading, std::string& out);
+
 }  // namespace aggpack::detail

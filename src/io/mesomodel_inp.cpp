@@ -30,15 +30,6 @@ void append_generated_set(const std::string& name, std::uint64_t first, std::uin
   out += ", 1\n";
 }
 
-void append_node_set(const std::string& name, const std::vector<std::uint32_t>& nodes,
-                     std::string& out) {
-  out += "*NSET, NSET=" + name + "\n";
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    append_number(out, static_cast<std::uint64_t>(nodes[i]) + 1);
-    out += (i + 1) % kSetEntriesPerLine == 0 || i + 1 == nodes.size() ? ",\n" : ", ";
-  }
-}
-
 // Boundary triangles of the mesh: faces of exactly one tetrahedron (sorted node triples).
 std::vector<std::array<std::uint32_t, 3>> boundary_triangles(const std::vector<Tetrahedron>& tets) {
   std::vector<std::array<std::uint32_t, 3>> faces;
@@ -134,7 +125,7 @@ void append_heading(const MesoMesh& mesh, const MesoFileOptions& options, const 
       "** Elements are numbered aggregates first (particle by particle), then the ITZ shells,\n"
       "** then the mortar. Node sets: ALLNODES, BOTTOM (z min), TOP (z max), SIDES.\n"
       "** One material and solid section per phase (MAT_AGGREGATE, MAT_ITZ, MAT_MORTAR).\n";
-  if (options.step.strain > 0.0) {
+  if (options.step.strain > 0.0 && !(mesh.periodic[0] || mesh.periodic[1] || mesh.periodic[2])) {
     out +=
         "** Step: uniaxial compression, BOTTOM held in z, TOP moved by -strain x height in z,\n"
         "** sides free; effective E = (sum of RF3 over TOP / top area) / strain.\n";
@@ -228,6 +219,15 @@ void append_step(const MesoMesh& mesh, const CompressionStep& step, double scale
 
 }  // namespace
 
+void detail::append_node_set(const std::string& name, const std::vector<std::uint32_t>& nodes,
+                             std::string& out) {
+  out += "*NSET, NSET=" + name + "\n";
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    append_number(out, static_cast<std::uint64_t>(nodes[i]) + 1);
+    out += (i + 1) % kSetEntriesPerLine == 0 || i + 1 == nodes.size() ? ",\n" : ", ";
+  }
+}
+
 MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mesh,
                                     const MesoFileOptions& options) {
   validate(options);
@@ -235,6 +235,10 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
   if (options.is_quadratic && !mesh.cohesive.empty()) {
     throw InvalidInput("quadratic", "true with a cohesive ITZ",
                        "linear elements (COH3D6 joins the faces of C3D4, not of C3D10)");
+  }
+  if (options.is_quadratic && (mesh.periodic[0] || mesh.periodic[1] || mesh.periodic[2])) {
+    throw InvalidInput("quadratic", "true with a periodic box",
+                       "linear elements (the periodic ties join the corner nodes only)");
   }
   check_writable(path, options.overwrite);
   const detail::MesoLayout layout = detail::make_layout(mesh);
@@ -269,16 +273,26 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
     if (begin == end || !options.has_particle_sets) continue;  // none, or named on *ELEMENT
     append_generated_set(phase_set_name(phase), begin + 1, end, tail);
   }
+  using detail::append_node_set;
   append_node_set("BOTTOM", bottom, tail);
   append_node_set("TOP", face_sets[static_cast<int>(SpecimenFace::kTop)], tail);
   append_node_set("SIDES", face_sets[static_cast<int>(SpecimenFace::kSide)], tail);
   const double scale = length_scale(options.units);
   append_materials(options.materials, scale, mesh, layout, tail);
-  if (options.step.strain > 0.0) append_step(mesh, options.step, scale, bottom, tail);
+  const bool is_periodic_mesh = mesh.periodic[0] || mesh.periodic[1] || mesh.periodic[2];
+  std::string periodic_heading;
+  if (is_periodic_mesh) {
+    // The load cases' strain: --strain, else 1e-3 (linear elastic: any size gives the tensor).
+    const double strain = options.step.strain > 0.0 ? options.step.strain : 1e-3;
+    detail::append_periodic_model(mesh, nodes.size(), scale, strain, periodic_heading, tail);
+  } else if (options.step.strain > 0.0) {
+    append_step(mesh, options.step, scale, bottom, tail);
+  }
 
   detail::write_atomically(path, options.overwrite, [&](std::ostream& out) {
     std::string head;
     append_heading(mesh, options, type, nodes.size(), head);
+    head += periodic_heading;
     head += "*NODE, NSET=ALLNODES\n";
     out << head;
     const std::size_t node_chunks = (nodes.size() + kChunk - 1) / kChunk;
@@ -318,7 +332,9 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
     }
     out << tail;
   });
-  return {.format = MesoFileFormat::kInp, .nodes = nodes.size(), .elements = layout.order.size()};
+  return {.format = MesoFileFormat::kInp,
+          .nodes = nodes.size() + (is_periodic_mesh ? 3 : 0),  // + the reference nodes
+          .elements = layout.order.size()};
 }
 
 }  // namespace aggpack

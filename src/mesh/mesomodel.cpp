@@ -129,7 +129,8 @@ struct Inclusion {
   double shell_volume = 0.0;     // enclosed by the outer surface
   double reach = 1.0;            // largest vertex displacement / thickness
   double wall_clearance = 0.0;
-  Aabb bounds;  // of the outer body (shell, or aggregate without ITZ)
+  Aabb bounds;                 // of the outer body (shell, or aggregate without ITZ)
+  std::uint32_t particle = 0;  // 1-based (a periodic box has pieces of a particle's images)
 };
 
 double regular_tetra_volume(double edge) { return edge * edge * edge / (6.0 * std::sqrt(2.0)); }
@@ -187,8 +188,9 @@ void check_gaps(const std::vector<Inclusion>& inclusions, const MesoOptions& opt
   for (const Inclusion& inclusion : inclusions) reach = std::max(reach, inclusion.reach);
   const double needed =
       has_itz ? 2.0 * reach * options.itz_thickness + 2.0 * min_gap : 2.0 * min_gap;
-  const Wording pair{Sentence::kParticlesPair,
-                     {std::to_string(worst_a + 1), std::to_string(worst_b + 1)}};
+  const auto [first, second] =
+      std::minmax(inclusions[worst_a].particle, inclusions[worst_b].particle);
+  const Wording pair{Sentence::kParticlesPair, {std::to_string(first), std::to_string(second)}};
   const std::string pairs = std::to_string(violations);
   if (has_itz) {
     throw InvalidInput(
@@ -255,6 +257,7 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
   std::vector<Inclusion> inclusions(packing.particles.size());
   parallel_for_index(0, inclusions.size(), [&](std::size_t i) {
     Inclusion& inclusion = inclusions[i];
+    inclusion.particle = static_cast<std::uint32_t>(i + 1);
     inclusion.aggregate = packing.placed(i);
     const MassProperties mass = mass_properties(inclusion.aggregate);
     inclusion.aggregate_volume = mass.volume;
@@ -286,6 +289,23 @@ std::vector<Inclusion> make_inclusions(const Packing& packing, const Prism& pris
           Wording{Sentence::kWallClearance, {metres(min_gap), "container.wall_gap"}});
     }
   }
+  return inclusions;
+}
+
+// A periodic box's clipped images as inclusions (no ITZ: refused with a periodic box).
+std::vector<Inclusion> piece_inclusions(const detail::PeriodicComplex& complex) {
+  std::vector<Inclusion> inclusions(complex.pieces.size());
+  parallel_for_index(0, inclusions.size(), [&](std::size_t i) {
+    Inclusion& inclusion = inclusions[i];
+    inclusion.particle = complex.piece_particle[i];
+    inclusion.aggregate = complex.pieces[i];
+    const MassProperties mass = mass_properties(inclusion.aggregate);
+    inclusion.aggregate_volume = mass.volume;
+    inclusion.aggregate_area = mass.surface_area;
+    inclusion.centroid = mass.centroid;
+    inclusion.planes = complex.piece_planes[i];
+    inclusion.bounds = inclusion.aggregate.bounds();
+  });
   return inclusions;
 }
 
@@ -406,7 +426,13 @@ void add_itz_layers(const std::vector<Inclusion>& inclusions,
 
 MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoReport* report) {
   validate(given);
-  refuse_periodic(packing.container, "aggpack mesomodel");
+  const bool is_periodic_box = is_periodic(packing.container);
+  if (is_periodic_box && given.itz_thickness > 0.0) {
+    throw InvalidInput("itz_thickness", format_value(given.itz_thickness),
+                       Wording{Sentence::kText,
+                               {"0 with container.periodic (a periodic box has no ITZ layer or "
+                                "cohesive ITZ yet)"}});
+  }
   // A cohesive ITZ has no geometric thickness: the aggregates and the mortar are meshed bonded,
   // then split along the interfaces (split_cohesive_interfaces).
   const bool is_cohesive = given.itz_kind == ItzKind::kCohesive;
@@ -422,16 +448,22 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
   const double min_gap = 1e-7 * size;
   const double t = options.itz_thickness;
   const bool has_itz = t > 0.0;
-  const std::vector<Inclusion> inclusions = make_inclusions(packing, prism, options, min_gap);
-  check_gaps(inclusions, options, min_gap);
-
-  detail::Plc plc;
-  plc.points = prism.points;
   // Walls: each a facet with points on a grid inside it (one-vertex polygons), so that the mortar
   // at the walls, and the node sets a load acts on, are not a handful of long triangles (-Y keeps
   // every input facet as TetGen triangulates it, adding no point of its own).
   const double wall_spacing = options.mortar_size > 0.0 ? options.mortar_size : size / 50.0;
-  for (std::size_t w = 0; w < prism.faces.size(); ++w) {
+  std::vector<Inclusion> inclusions;
+  detail::Plc plc;
+  if (is_periodic_box) {
+    detail::PeriodicComplex complex = detail::periodic_complex(packing, wall_spacing, min_gap);
+    inclusions = piece_inclusions(complex);
+    plc = std::move(complex.plc);
+  } else {
+    inclusions = make_inclusions(packing, prism, options, min_gap);
+    plc.points = prism.points;
+  }
+  check_gaps(inclusions, options, min_gap);
+  for (std::size_t w = 0; w < prism.faces.size() && !is_periodic_box; ++w) {
     detail::PlcFacet facet{{prism.faces[w]}, -static_cast<int>(w) - 1};
     for (const Vec3& p : wall_grid(prism, w, wall_spacing)) {
       facet.polygons.push_back({static_cast<std::uint32_t>(plc.points.size())});
@@ -439,17 +471,18 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
     }
     plc.facets.push_back(std::move(facet));
   }
-  const auto count = static_cast<int>(inclusions.size());
+  const auto count = static_cast<int>(packing.particles.size());
   std::vector<std::uint32_t> aggregate_base;  // PLC number of each aggregate's first vertex
-  for (int i = 0; i < count; ++i) {
-    const Inclusion& inclusion = inclusions[static_cast<std::size_t>(i)];
-    const int id = i + 1;
+  for (const Inclusion& inclusion : inclusions) {
+    const auto id = static_cast<int>(inclusion.particle);
     auto base = static_cast<std::uint32_t>(plc.points.size());
     aggregate_base.push_back(base);
-    plc.points.insert(plc.points.end(), inclusion.aggregate.vertices().begin(),
-                      inclusion.aggregate.vertices().end());
-    for (const Triangle& tri : inclusion.aggregate.triangles()) {
-      plc.facets.push_back({{{base + tri[0], base + tri[1], base + tri[2]}}, 2 * id});
+    if (!is_periodic_box) {  // a periodic box's pieces are in the complex already
+      plc.points.insert(plc.points.end(), inclusion.aggregate.vertices().begin(),
+                        inclusion.aggregate.vertices().end());
+      for (const Triangle& tri : inclusion.aggregate.triangles()) {
+        plc.facets.push_back({{{base + tri[0], base + tri[1], base + tri[2]}}, 2 * id});
+      }
     }
     const Vec3& centroid = inclusion.centroid;
     const Triangle& first = inclusion.aggregate.triangles()[0];
@@ -483,6 +516,10 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
   }
   const auto start = std::chrono::steady_clock::now();
   detail::PlcMesh raw = detail::tetrahedralize_plc(plc, switches, options.time_limit);
+  if (is_periodic_box) {  // again, with the lower faces' triangles on the upper faces too
+    detail::copy_lower_face_triangles(raw, periodic_axes(packing.container), box.extent(), plc);
+    raw = detail::tetrahedralize_plc(plc, switches, options.time_limit);
+  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -503,6 +540,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
   }
   mesh.particle_count = static_cast<std::uint32_t>(count);
   mesh.bounds = box;
+  mesh.periodic = periodic_axes(packing.container);
   mesh.itz_thickness = t;
   if (const auto* cylinder = packing.container.get_if<CylinderContainer>()) {
     mesh.is_cylinder = true;
@@ -514,6 +552,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
   parallel_for_index(0, bodies.size(), [&](std::size_t i) {
     bodies[i].planes = inclusions[i].planes;
     bodies[i].bounds = inclusions[i].aggregate.bounds();
+    bodies[i].particle = inclusions[i].particle;
   });
   const std::size_t relabelled = detail::relabel_by_geometry(bodies, 1e-10 * size, mesh);
   if (has_itz) add_itz_layers(inclusions, aggregate_base, count, mesh);

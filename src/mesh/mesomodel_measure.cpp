@@ -5,9 +5,11 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <numbers>
 #include <vector>
 
+#include "aggpack/core/error.h"
 #include "aggpack/mesh/mesomodel.h"
 
 namespace aggpack {
@@ -68,6 +70,41 @@ std::vector<std::uint32_t> face_nodes(const MesoMesh& mesh, SpecimenFace face) {
     if (is_wanted) nodes.push_back(i);
   }
   return nodes;
+}
+
+std::vector<PeriodicPair> periodic_pairs(const MesoMesh& mesh) {
+  std::vector<PeriodicPair> pairs;
+  if (!(mesh.periodic[0] || mesh.periodic[1] || mesh.periodic[2])) return pairs;
+  // The mesher made every upper-face point the exact translation of its partner: exact keys.
+  std::map<std::array<double, 3>, std::uint32_t> lower;
+  for (std::uint32_t i = 0; i < mesh.nodes.size(); ++i) {
+    const Vec3& p = mesh.nodes[i];
+    lower.try_emplace({p.x(), p.y(), p.z()}, i);
+  }
+  for (std::uint32_t i = 0; i < mesh.nodes.size(); ++i) {
+    PeriodicPair pair{.node = i};
+    Vec3 image = mesh.nodes[i];
+    bool is_upper = false;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (mesh.periodic[static_cast<std::size_t>(axis)] && image[axis] == mesh.bounds.upper[axis]) {
+        image[axis] = mesh.bounds.lower[axis];
+        pair.shifted[static_cast<std::size_t>(axis)] = true;
+        is_upper = true;
+      }
+    }
+    if (!is_upper) continue;
+    const auto found = lower.find({image.x(), image.y(), image.z()});
+    if (found == lower.end()) {
+      throw LimitExceeded(
+          Wording{Sentence::kMesomodelMesh, {}},
+          Wording{Sentence::kText,
+                  {"node " + std::to_string(i + 1) + " on a periodic face has no partner"}},
+          Wording{Sentence::kText, {"a periodic mesh"}});
+    }
+    pair.image = found->second;
+    pairs.push_back(pair);
+  }
+  return pairs;
 }
 
 }  // namespace aggpack

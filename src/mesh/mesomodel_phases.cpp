@@ -77,7 +77,7 @@ std::size_t relabel_by_geometry(const std::vector<PhaseBody>& bodies, double mar
       const double depth = plane_excess(bodies[b].planes, c);
       if (depth < -margin) {
         phase = MesoPhase::kAggregate;
-        particle = b + 1;
+        particle = bodies[b].particle != 0 ? bodies[b].particle : b + 1;
         break;
       }
       is_undecided |= depth < margin;

@@ -67,6 +67,7 @@ void append_prism_tetrahedra(std::span<const Triangle> triangles, std::uint32_t 
 struct PhaseBody {
   std::span<const HalfSpace> planes;
   Aabb bounds;
+  std::uint32_t particle = 0;  ///< 1-based particle; 0 = the body's index + 1
 };
 
 /// Checks the phase and particle of every tetrahedron TetGen made (aggregates and mortar; the ITZ
@@ -77,6 +78,29 @@ struct PhaseBody {
 /// keeps TetGen's label. Returns the number of tetrahedra relabelled.
 std::size_t relabel_by_geometry(const std::vector<PhaseBody>& bodies, double margin,
                                 MesoMesh& mesh);
+
+/// A periodic box's complex without its regions: every image of every particle that meets the
+/// box, clipped to it (its faces in the box's planes, the caps, are parts of the box's facets, not
+/// facets of their own), and the six box facets: outline through every point on the box's edges,
+/// the caps, and a point grid of `wall_spacing`. Every point on an upper periodic face is the exact
+/// translation of one on the lower face (the grid is copied, cap points are moved onto their
+/// partners, which differ in the last bits only). Point numbers 0-7 are the box's corners.
+/// \throw InvalidInput when a vertex of an image lies within `min_gap` of a box face (or a
+/// particle crosses a walled face); LimitExceeded when a point has no partner.
+struct PeriodicComplex {
+  Plc plc;
+  std::vector<ConvexPolyhedron> pieces;              ///< the clipped images
+  std::vector<std::vector<HalfSpace>> piece_planes;  ///< each piece's face planes
+  std::vector<std::uint32_t> piece_particle;         ///< 1-based particle of each piece
+};
+PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, double min_gap);
+
+/// Replaces the periodic faces' facets of a periodic complex (its facets 0-5) by the triangles
+/// TetGen made of each lower face in `first` (a mesh of `plc`, with Y) and their translations onto
+/// the upper face, so that a second mesh has the same triangles on both faces of a pair (a
+/// homogeneous box then takes an affine displacement exactly under periodic ties).
+void copy_lower_face_triangles(const PlcMesh& first, const std::array<bool, 3>& periodic,
+                               const Vec3& extent, Plc& plc);
 
 /// Throws InvalidInput naming itz_thickness unless it can be a cohesive ITZ's constitutive
 /// thickness (finite, > 0): the one check of validate(MesoOptions) and split_cohesive_interfaces.

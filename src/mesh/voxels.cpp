@@ -3,6 +3,7 @@
 #include "aggpack/mesh/voxels.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -25,10 +26,12 @@ struct Body {
   Vec3 centre = Vec3::Zero();
   double radius = 0.0;  // vertices lie within this distance of centre
   Aabb bounds;
+  std::uint32_t particle = 0;  // 1-based (a periodic box has images of a particle too)
 };
 
-Body make_body(ConvexPolyhedron shape, const Vec3& centre) {
+Body make_body(ConvexPolyhedron shape, const Vec3& centre, std::uint32_t particle) {
   Body body;
+  body.particle = particle;
   body.centre = centre;
   for (const Vec3& v : shape.vertices()) body.radius = std::max(body.radius, (v - centre).norm());
   body.planes = face_half_spaces(shape);
@@ -71,7 +74,6 @@ std::array<std::uint64_t, 4> VoxelImage::phase_counts() const {
 
 VoxelImage voxelize(const Packing& packing, const VoxelOptions& options) {
   validate(options);
-  refuse_periodic(packing.container, "the phase image (--voxels)");
   const Aabb box = packing.container.bounds();
   const Vec3 extent = box.extent();
   const double longest = extent.maxCoeff();
@@ -90,6 +92,18 @@ VoxelImage voxelize(const Packing& packing, const VoxelOptions& options) {
         static_cast<std::uint32_t>(std::max(1.0, std::round(extent[axis] / image.spacing)));
     total *= image.dims[axis];
   }
+  // A periodic image tiles only when its voxels fill each periodic extent exactly.
+  const std::array<bool, 3> periodic = periodic_axes(packing.container);
+  for (int axis = 0; axis < 3; ++axis) {
+    const double cells = extent[axis] / image.spacing;
+    if (periodic[static_cast<std::size_t>(axis)] &&
+        std::abs(cells - std::round(cells)) > 1e-9 * cells) {
+      throw InvalidInput("voxels", std::to_string(options.resolution),
+                         Wording{Sentence::kText,
+                                 {"a count that cuts every periodic extent into whole voxels "
+                                  "(container.periodic: the image must tile)"}});
+    }
+  }
   if (total > options.max_voxels) {
     throw LimitExceeded("voxels",
                         std::to_string(options.resolution) + " (" + std::to_string(total) +
@@ -102,7 +116,30 @@ VoxelImage voxelize(const Packing& packing, const VoxelOptions& options) {
   std::vector<Body> bodies;
   bodies.reserve(packing.particles.size());
   for (std::size_t i = 0; i < packing.particles.size(); ++i) {
-    bodies.push_back(make_body(packing.placed(i), packing.particles[i].pose.position));
+    const ConvexPolyhedron placed = packing.placed(i);
+    const Aabb reach = placed.bounds();
+    // Along a periodic axis every image within t of the box (one period away at most: the
+    // extents exceed twice a particle's enclosing radius), so the image tiles without seams.
+    for (int shift = 0; shift < 27; ++shift) {
+      Vec3 offset = Vec3::Zero();
+      bool is_used = true;
+      for (int axis = 0, code = shift; axis < 3; ++axis, code /= 3) {
+        const int step = code % 3 == 2 ? -1 : code % 3;
+        offset[axis] = step * extent[axis];
+        is_used &= step == 0 || (periodic[static_cast<std::size_t>(axis)] &&
+                                 reach.lower[axis] + offset[axis] < box.upper[axis] + t &&
+                                 reach.upper[axis] + offset[axis] > box.lower[axis] - t);
+      }
+      if (!is_used) continue;
+      ConvexPolyhedron shape = placed;
+      if (shift != 0) {
+        std::vector<Vec3> vertices = placed.vertices();
+        for (Vec3& v : vertices) v += offset;
+        shape = ConvexPolyhedron(std::move(vertices), placed.triangles());
+      }
+      bodies.push_back(make_body(std::move(shape), packing.particles[i].pose.position + offset,
+                                 static_cast<std::uint32_t>(i + 1)));
+    }
   }
   // Particles binned by the z range of their bounds (+ t) over the voxel layers: each layer
   // looks only at the particles that reach it.
@@ -146,7 +183,7 @@ VoxelImage voxelize(const Packing& packing, const VoxelOptions& options) {
           const double s = plane_excess(body.planes, p);
           if (s <= 0.0) {
             image.phase[index] = static_cast<std::uint8_t>(VoxelPhase::kAggregate);
-            image.particle[index] = b + 1;
+            image.particle[index] = body.particle;
             is_aggregate = true;
             break;
           }
@@ -154,7 +191,7 @@ VoxelImage voxelize(const Packing& packing, const VoxelOptions& options) {
           const double d = distance_to_body(body.shape, p);
           if (d <= t && d < nearest) {
             nearest = d;
-            nearest_body = b + 1;
+            nearest_body = body.particle;
           }
         }
         if (!is_aggregate && nearest_body != 0) {

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include "aggpack/geom/mass_properties.h"
@@ -128,8 +129,11 @@ TEST_F(PeriodicCliTest, RefusalsAreOneLineNamingTheKey) {
       "container.length = 0.02 m");
   EXPECT_FALSE(std::filesystem::exists(folder_ / "bad.h5"));
   ASSERT_EQ(run("pack periodic.toml -o one.h5 --progress none").exit_code, 0);
-  expect_one_line_refusal("mesomodel one.h5 -o rve.inp",
-                          "aggpack mesomodel does not take periodic containers yet");
+  expect_one_line_refusal("mesomodel one.h5 --itz 0.0001 -o rve.inp",
+                          "invalid --itz = 0.0001 (allowed: 0 with container.periodic");
+  expect_one_line_refusal("mesomodel one.h5 --quadratic -o rve.inp",
+                          "invalid --quadratic = with container.periodic");
+  EXPECT_FALSE(std::filesystem::exists(folder_ / "rve.inp"));
   expect_one_line_refusal("densify one.h5 -o dense.h5 --target-container 0.02,0.1,0.1",
                           "container.length = 0.02 m");
 }
@@ -200,6 +204,35 @@ TEST_F(PeriodicCliTest, StlCutToTheBoxTilesAndIsRefusedElsewhere) {
   expect_one_line_refusal("export walled.h5 -o walled.stl --cut-to-box",
                           "--cut-to-box = true for a packing without periodic faces");
   EXPECT_FALSE(std::filesystem::exists(folder_ / "walled.stl"));
+}
+
+TEST_F(PeriodicCliTest, MesomodelWritesTiesAndSixLoadCasesAndATilingImage) {
+  ASSERT_EQ(run("pack periodic.toml --set container.length=0.04 --set container.width=0.04 "
+                "--set container.depth=0.04 -o small.h5 --progress none")
+                .exit_code,
+            0);
+  const test::CliRun mesh = run("mesomodel small.h5 -o rve.inp --progress none");
+  ASSERT_EQ(mesh.exit_code, 0) << mesh.err;
+  EXPECT_NE(mesh.out.find("periodic ties and six load cases of strain 0.001"), std::string::npos)
+      << mesh.out;
+  std::ifstream in(folder_ / "rve.inp");
+  std::string line;
+  std::size_t steps = 0;
+  std::size_t equations = 0;
+  std::set<std::string> sets;
+  while (std::getline(in, line)) {
+    steps += line == "*STEP";
+    equations += line == "*EQUATION";
+    if (line.rfind("*NSET, NSET=", 0) == 0) sets.insert(line.substr(12));
+  }
+  EXPECT_EQ(steps, 6U);
+  EXPECT_EQ(equations, 1U);
+  for (const char* name :
+       {"XMIN", "XMAX", "YMIN", "YMAX", "ZMIN", "ZMAX", "REF_X", "REF_Y", "REF_Z"}) {
+    EXPECT_EQ(sets.count(name), 1U) << name;
+  }
+  const test::CliRun image = run("mesomodel small.h5 --voxels 16 -o rve.vti");
+  EXPECT_EQ(image.exit_code, 0) << image.err;
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 // particle, then the mortar, each group in the mesh's order (docs/mesomodel.md, "Files").
 // Units are SI (m, Pa, kg/m^3) unless MesoFileOptions::units asks for mm (mm, N, t, s, MPa).
 
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -124,5 +125,16 @@ struct MesoModulusBounds {
   double reuss = 0.0;                     ///< Pa
 };
 MesoModulusBounds voigt_reuss_bounds(const MesoMesh& mesh, const MesoMaterials& materials);
+
+/// A 6x6 stiffness in Voigt order (11, 22, 33, 23, 13, 12; engineering shear strains), Pa.
+using VoigtStiffness = std::array<std::array<double, 6>, 6>;
+
+/// The homogenised stiffness of a periodic box (every axis periodic) from the .dat CalculiX wrote
+/// for the .inp that write_mesomodel made of `mesh` with `options` (its six steps, the totals of
+/// RF over XMAX, YMAX and ZMAX; docs/mesomodel.md, "Periodic RVE"): column k is the box's mean
+/// stress in step k over the step's strain; a shear stress is the mean of its two faces' values.
+/// \throw InvalidInput when the text lacks a step's totals (naming the step and the set).
+VoigtStiffness periodic_stiffness_from_dat(const std::string& dat, const MesoMesh& mesh,
+                                           const MesoFileOptions& options);
 
 }  // namespace aggpack

@@ -96,6 +96,10 @@ struct MesoMesh {
   std::vector<std::uint32_t> particle;  ///< per tetrahedron: 1-based particle (aggregate, ITZ), 0
   std::uint32_t particle_count = 0;     ///< particles of the packing (ids 1..particle_count)
   Aabb bounds;                          ///< the container's bounding box (for face node sets)
+  /// Periodic axes (x, y, z) of a periodic box: the mesh is the box with every particle image
+  /// that meets it clipped to it, and each node on a periodic face has a partner on the opposite
+  /// face at the same in-plane coordinates (bit for bit; `periodic_pairs`).
+  std::array<bool, 3> periodic{};
   bool is_cylinder = false;             ///< the container is a cylinder (prism), axis z
   Vec3 axis_point = Vec3::Zero();       ///< cylinder: a point on its axis (x, y used)
   double cylinder_radius = 0.0;         ///< cylinder: radius of the circle the prism circumscribes
@@ -157,5 +161,20 @@ enum class SpecimenFace : std::uint8_t { kBottom = 0, kTop = 1, kSide = 2 };
 /// Nodes on one face of the specimen's boundary (sorted, 0-based), found geometrically within
 /// 1e-9 of the container's size.
 std::vector<std::uint32_t> face_nodes(const MesoMesh& mesh, SpecimenFace face);
+
+/// A node on an upper face of a periodic mesh (coordinate = bounds.upper on some periodic axis)
+/// and its image: the node at the same point with each such coordinate moved to the lower face.
+/// `shifted` says on which axes it moved (an edge node two, a corner node three), so that
+/// u(node) = u(image) + the sum over those axes of the box's macroscopic displacement over one
+/// period. Every node on an upper face is `node` of exactly one pair, an image is never one.
+struct PeriodicPair {
+  std::uint32_t node = 0;
+  std::uint32_t image = 0;
+  std::array<bool, 3> shifted{};
+};
+
+/// The pairs of a periodic mesh (empty for a walled one), by node. \throw LimitExceeded when a
+/// node on an upper face has no image (the mesh is not periodic).
+std::vector<PeriodicPair> periodic_pairs(const MesoMesh& mesh);
 
 }  // namespace aggpack
