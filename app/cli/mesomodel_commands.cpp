@@ -209,8 +209,8 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
   if (flags.file.is_quadratic && is_periodic(packing.container)) {
-    throw InvalidInput("--quadratic", "with container.periodic",
-                       "linear elements (the periodic ties join the corner nodes only)");
+    throw InvalidInput("--quadratic", "true with container.periodic",
+                       Wording{Sentence::kPeriodicLinear, {}});
   }
   const RunEstimate estimate =
       estimate_mesomodel(static_cast<double>(packing.particles.size()), 0.0);

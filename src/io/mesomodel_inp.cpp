@@ -237,8 +237,8 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
                        "linear elements (COH3D6 joins the faces of C3D4, not of C3D10)");
   }
   if (options.is_quadratic && (mesh.periodic[0] || mesh.periodic[1] || mesh.periodic[2])) {
-    throw InvalidInput("quadratic", "true with a periodic box",
-                       "linear elements (the periodic ties join the corner nodes only)");
+    throw InvalidInput("quadratic", "true with container.periodic",
+                       Wording{Sentence::kPeriodicLinear, {}});
   }
   check_writable(path, options.overwrite);
   const detail::MesoLayout layout = detail::make_layout(mesh);

@@ -171,9 +171,10 @@ VoigtStiffness periodic_stiffness_from_dat(const std::string& dat, const MesoMes
   for (int k = 0; k < 6; ++k) {
     for (int f = 0; f < 3; ++f) {
       if (!is_found[static_cast<std::size_t>(k)][static_cast<std::size_t>(f)]) {
-        throw InvalidInput(
-            "dat", "step " + std::to_string(k + 1) + ", set " + std::string(1, "XYZ"[f]) + "MAX",
-            Wording{Sentence::kText, {"the totals of the periodic deck's six steps"}});
+        throw InvalidInput(Wording{Sentence::kText, {"dat"}},
+                           Wording{Sentence::kDatStepSet,
+                                   {std::to_string(k + 1), std::string(1, "XYZ"[f]) + "MAX"}},
+                           Wording{Sentence::kPeriodicDatTotals, {}});
       }
     }
     // sigma_ij = F_j,i / area of face j

@@ -429,9 +429,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
   const bool is_periodic_box = is_periodic(packing.container);
   if (is_periodic_box && given.itz_thickness > 0.0) {
     throw InvalidInput("itz_thickness", format_value(given.itz_thickness),
-                       Wording{Sentence::kText,
-                               {"0 with container.periodic (a periodic box has no ITZ layer or "
-                                "cohesive ITZ yet)"}});
+                       Wording{Sentence::kPeriodicNoItz, {}});
   }
   // A cohesive ITZ has no geometric thickness: the aggregates and the mortar are meshed bonded,
   // then split along the interfaces (split_cohesive_interfaces).

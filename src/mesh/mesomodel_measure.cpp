@@ -95,11 +95,9 @@ std::vector<PeriodicPair> periodic_pairs(const MesoMesh& mesh) {
     if (!is_upper) continue;
     const auto found = lower.find({image.x(), image.y(), image.z()});
     if (found == lower.end()) {
-      throw LimitExceeded(
-          Wording{Sentence::kMesomodelMesh, {}},
-          Wording{Sentence::kText,
-                  {"node " + std::to_string(i + 1) + " on a periodic face has no partner"}},
-          Wording{Sentence::kText, {"a periodic mesh"}});
+      throw LimitExceeded(Wording{Sentence::kMesomodelMesh, {}},
+                          Wording{Sentence::kPeriodicNodeNoPartner, {std::to_string(i + 1)}},
+                          Wording{Sentence::kAPeriodicMesh, {}});
     }
     pair.image = found->second;
     pairs.push_back(pair);

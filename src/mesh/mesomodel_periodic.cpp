@@ -115,9 +115,7 @@ void match_periodic_faces(std::vector<Vec3>& points, const std::array<bool, 3>& 
         }
         if (partner == nullptr) {
           throw LimitExceeded(Wording{Sentence::kMesomodelMesh, {}},
-                              Wording{Sentence::kText,
-                                      {"a point on a periodic face without a "
-                                       "partner on the opposite face"}},
+                              Wording{Sentence::kPeriodicPointNoPartner, {}},
                               Wording{Sentence::kComplexTetGenKeeps, {}});
         }
         p[u] = (*partner)[u];
@@ -210,13 +208,9 @@ PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, do
           const double clearance = std::min(std::abs(p), std::abs(p - extent[axis]));
           const bool is_periodic = periodic[static_cast<std::size_t>(axis)];
           if (clearance <= min_gap && is_periodic) {
-            throw InvalidInput(
-                Wording{Sentence::kParticleNumber, {std::to_string(i + 1)}},
-                Wording{Sentence::kText, {format_value(clearance) + " m from a periodic face"}},
-                Wording{Sentence::kText,
-                        {"> " + format_value(min_gap) +
-                         " m or across it (a vertex this close leaves a sliver: pack with "
-                         "another seed)"}});
+            throw InvalidInput(Wording{Sentence::kParticleNumber, {std::to_string(i + 1)}},
+                               Wording{Sentence::kFromAPeriodicFace, {format_value(clearance)}},
+                               Wording{Sentence::kPeriodicFaceClearance, {format_value(min_gap)}});
           }
           if (!is_periodic && std::min(p, extent[axis] - p) <= min_gap) {
             throw InvalidInput(
@@ -435,7 +429,7 @@ void copy_lower_face_triangles(const PlcMesh& first, const std::array<bool, 3>& 
         const auto found = numbers.find({p.x(), p.y(), p.z()});
         if (found == numbers.end()) {
           throw LimitExceeded(Wording{Sentence::kMesomodelMesh, {}},
-                              Wording{Sentence::kText, {"a periodic face's point without partner"}},
+                              Wording{Sentence::kPeriodicPointNoPartner, {}},
                               Wording{Sentence::kComplexTetGenKeeps, {}});
         }
         polygon.push_back(found->second);

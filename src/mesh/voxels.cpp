@@ -99,9 +99,7 @@ VoxelImage voxelize(const Packing& packing, const VoxelOptions& options) {
     if (periodic[static_cast<std::size_t>(axis)] &&
         std::abs(cells - std::round(cells)) > 1e-9 * cells) {
       throw InvalidInput("voxels", std::to_string(options.resolution),
-                         Wording{Sentence::kText,
-                                 {"a count that cuts every periodic extent into whole voxels "
-                                  "(container.periodic: the image must tile)"}});
+                         Wording{Sentence::kVoxelsTilePeriodic, {}});
     }
   }
   if (total > options.max_voxels) {

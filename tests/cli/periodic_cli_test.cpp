@@ -132,7 +132,8 @@ TEST_F(PeriodicCliTest, RefusalsAreOneLineNamingTheKey) {
   expect_one_line_refusal("mesomodel one.h5 --itz 0.0001 -o rve.inp",
                           "invalid --itz = 0.0001 (allowed: 0 with container.periodic");
   expect_one_line_refusal("mesomodel one.h5 --quadratic -o rve.inp",
-                          "invalid --quadratic = with container.periodic");
+                          "invalid --quadratic = true with container.periodic (allowed: linear "
+                          "elements");
   EXPECT_FALSE(std::filesystem::exists(folder_ / "rve.inp"));
   expect_one_line_refusal("densify one.h5 -o dense.h5 --target-container 0.02,0.1,0.1",
                           "container.length = 0.02 m");

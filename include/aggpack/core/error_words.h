@@ -300,6 +300,22 @@
   X(MesomodelMesh, "mesomodel mesh")                                                            \
   X(TetGenMovedPoint, "TetGen moved an input point of particle {}")                             \
   X(ComplexTetGenKeeps, "a complex TetGen keeps")                                               \
+  X(PeriodicNoItz,                                                                                \
+    "0 with container.periodic (a periodic box has no ITZ layer "                                 \
+    "or cohesive ITZ yet)")                                                                       \
+  X(PeriodicLinear, "linear elements (the periodic ties join the corner nodes only)")             \
+  X(FromAPeriodicFace, "{} m from a periodic face")                                               \
+  X(PeriodicFaceClearance,                                                                        \
+    "> {} m or across it (a vertex this close leaves a sliver: "                                  \
+    "pack with another seed)")                                                                    \
+  X(PeriodicNodeNoPartner, "node {} on a periodic face has no partner")                           \
+  X(APeriodicMesh, "a periodic mesh")                                                             \
+  X(PeriodicPointNoPartner, "a point on a periodic face without a partner on the opposite face")  \
+  X(VoxelsTilePeriodic,                                                                           \
+    "a count that cuts every periodic extent into whole voxels "                                  \
+    "(the image of a periodic box must tile)")                                                  \
+  X(DatStepSet, "step {}, set {}")                                                                \
+  X(PeriodicDatTotals, "the totals of the periodic deck's six steps")                             \
   X(ItzFolds, "an ITZ layer that folds at particle {} (its prisms overlap by {} of its volume)")\
   X(ThinnerItz, "a thinner ITZ for this packing's sharpest corners")                            \
   X(DegreesInMesh, "{} degrees in the mesh")                                                    \
