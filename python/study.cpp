@@ -83,7 +83,11 @@ SweepOptions study_options(const py::object& config, const std::vector<std::stri
     throw;
   }
   warn();
-  with_sweep_key_names([&] { validate(options); });
+  // Everything a run checks before it starts, before records= makes its folder.
+  with_sweep_key_names([&] {
+    validate(options);
+    study::check_repose_inputs(options.base);
+  });
   return options;
 }
 

@@ -212,6 +212,9 @@ def test_bad_shares_and_records_name_the_keyword(tmp_path):
     with pytest.raises(aggpack.InvalidInput) as caught:
         aggpack.sweep(TROUGH, SWEEP, records="")
     assert caught.value.field == "records"
+    # A configuration the run would refuse is refused before records= makes its folder.
+    with pytest.raises(aggpack.Error):
+        aggpack.repose(TROUGH, ["particle.radius=10"], seeds=2, records=str(tmp_path / "r"))
     assert not (tmp_path / "r").exists()
 
 
