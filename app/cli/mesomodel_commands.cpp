@@ -15,8 +15,10 @@
 
 #include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
+#include "aggpack/core/child_process.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
+#include "aggpack/io/homogenize.h"
 #include "aggpack/io/mesomodel_files.h"
 #include "aggpack/io/native.h"
 #include "aggpack/io/voxel_image.h"
@@ -42,11 +44,56 @@ struct MesomodelFlags {
   std::vector<std::string> materials;
   std::string units = "mm";
   std::string itz_kind = "solid";
+  std::string solver = "direct";
   bool has_no_particle_sets = false;
   int threads = 0;
   std::string progress = "auto";
   bool is_forced = false;
+  bool is_homogenized = false;
 };
+
+// OUT.inp -> OUT-stiffness.json (--homogenize).
+std::string stiffness_path(const std::string& output) {
+  const std::size_t dot = output.find_last_of('.');
+  const std::size_t slash = output.find_last_of('/');
+  const bool has_extension =
+      dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (has_extension ? output.substr(0, dot) : output) + "-stiffness.json";
+}
+
+// Runs CalculiX on the periodic mesh's six load cases and writes OUT-stiffness.json.
+void homogenize(const MesomodelFlags& flags, const MesoMesh& mesh, const ProgressStyle style,
+                const Overwrite overwrite) {
+  const std::string json = stiffness_path(flags.output);
+  Homogenized result;
+  {
+    StageTimer timer("CalculiX, six load cases", style, {.item = "load case", .items_total = 6});
+    result = homogenize_with_calculix(
+        mesh, flags.file, {.threads = flags.threads, .progress = [&timer](int finished) {
+                             timer.set_items(static_cast<std::uint64_t>(finished), 6);
+                           }});
+  }
+  write_stiffness_json(json, result, mesh, flags.file.materials, overwrite);
+  for (const std::string& warning : result.warnings) {
+    fmt::print(stderr, "aggpack: warning: CalculiX: {}\n", warning);
+  }
+  const VoigtStiffness& c = result.stiffness;
+  fmt::print(
+      "stiffness     GPa (Voigt order 11 22 33 23 13 12, engineering shear), asymmetry {:.2e}\n",
+      result.asymmetry);
+  for (const auto& row : c) {
+    fmt::print("             ");
+    for (const double value : row) fmt::print(" {:9.4f}", value * 1e-9);
+    fmt::print("\n");
+  }
+  const HashinShtrikmanBounds bounds = hashin_shtrikman_bounds(mesh, flags.file.materials);
+  fmt::print(
+      "isotropic     E {:.5g} Pa, nu {:.4f} (projection); Hashin-Shtrikman E {:.5g} to {:.5g} Pa\n",
+      result.isotropic.youngs, result.isotropic.poisson, bounds.lower.youngs, bounds.upper.youngs);
+  fmt::print("wrote {} (CalculiX {} s wall, {} s CPU, {} threads)\n", json,
+             format_seconds(result.wall_seconds), format_seconds(result.cpu_seconds),
+             result.threads);
+}
 
 // --material NAME=E,NU,RHO (Pa, -, kg/m^3) for aggregate, itz or mortar.
 void apply_material(const std::string& text, MesoMaterials& materials) {
@@ -186,6 +233,7 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
   for (const std::string& text : flags.materials) apply_material(text, flags.file.materials);
   flags.file.has_particle_sets = !flags.has_no_particle_sets;
   flags.file.units = flags.units == "m" ? MesoUnits::kMetre : MesoUnits::kMillimetre;
+  flags.file.solver = flags.solver == "iterative" ? MesoSolver::kIterative : MesoSolver::kDirect;
   flags.file.overwrite = overwrite;
   // The file options come from --strain and --material NAME=E,NU,RHO.
   std::map<std::string, std::string> file_flags = {{"step.strain", "--strain"}};
@@ -206,8 +254,21 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
                        "a name ending in .inp, .msh or .vtu; .vti or .raw with --voxels");
   }
   check_writable(flags.output, overwrite);
+  if (flags.is_homogenized) {
+    check_writable(stiffness_path(flags.output), overwrite);
+    if (find_on_path("ccx").empty()) {
+      throw InvalidInput("--homogenize", "true",
+                         "with CalculiX installed: no program ccx on PATH (Debian package "
+                         "calculix-ccx: apt-get install calculix-ccx)");
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
+  const std::string periodic = periodic_word(periodic_axes(packing.container));
+  if (flags.is_homogenized && periodic != "xyz") {
+    throw InvalidInput("--homogenize", "with container.periodic = " + periodic,
+                       "a packing periodic in x, y and z (container.periodic = true)");
+  }
   if (flags.file.is_quadratic && is_periodic(packing.container)) {
     throw InvalidInput("--quadratic", "true with container.periodic",
                        Wording{Sentence::kPeriodicLinear, {}});
@@ -244,6 +305,7 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
                  ? fmt::format(", compression step to strain {:.6g}", flags.file.step.strain)
                  : std::string(),
              format_seconds(seconds));
+  if (flags.is_homogenized) homogenize(flags, mesh, style, overwrite);
 }
 
 }  // namespace
@@ -313,6 +375,13 @@ void register_mesomodel(CLI::App& app) {
                    "thin tetrahedra) or m (SI)")
       ->check(CLI::IsMember({"mm", "m"}))
       ->capture_default_str();
+  command
+      ->add_option("--solver", flags->solver,
+                   ".inp: CalculiX's solver for the steps: direct (SPOOLES, exact) or iterative "
+                   "(ITERATIVE CHOLESKY: several times faster on large meshes, off-diagonal "
+                   "stiffness terms within ~0.3 %; CalculiX only)")
+      ->check(CLI::IsMember({"direct", "iterative"}))
+      ->capture_default_str();
   command->add_flag("--quadratic", flags->file.is_quadratic, ".inp: 10-node tetrahedra (C3D10)");
   command->add_flag("--no-particle-sets", flags->has_no_particle_sets,
                     ".inp: leave out the per-particle element sets AGG<k>, ITZ<k>");
@@ -325,6 +394,10 @@ void register_mesomodel(CLI::App& app) {
                    "elapsed time and ETA while TetGen meshes (or the voxels are filled), on "
                    "stderr: auto (redrawn on a terminal, else a line every 2 s), bar, lines, none")
       ->capture_default_str();
+  command->add_flag("--homogenize", flags->is_homogenized,
+                    "periodic box: run CalculiX (ccx) on the six load cases and write "
+                    "OUT-stiffness.json (6x6 tensor in Pa, E and nu of its isotropic projection, "
+                    "bounds, solver time)");
   command->add_flag("-f,--force", flags->is_forced, "replace existing output files");
   command->callback([flags, command]() {
     set_thread_count(flags->threads);
@@ -338,6 +411,10 @@ void register_mesomodel(CLI::App& app) {
       if (flags->itz_kind != "solid") {
         throw InvalidInput("--itz-kind", flags->itz_kind,
                            "solid with --voxels (the phase image has no cohesive elements)");
+      }
+      if (flags->is_homogenized) {
+        throw InvalidInput("--homogenize", "with --voxels",
+                           "a tetrahedral mesomodel (the phase image is not solved)");
       }
       run_voxels(*flags, overwrite);
     } else {

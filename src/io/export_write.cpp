@@ -12,8 +12,8 @@
 #include <filesystem>
 #include <optional>
 
+#include "aggpack/core/child_process.h"
 #include "aggpack/core/error.h"
-#include "aggpack/core/temp_paths.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/cut_to_box.h"
 #include "export_detail.h"
@@ -62,47 +62,6 @@ void write_one(const Packing& packing, const std::string& path, const ExportOpti
   summary.quality.add(model.quality());
 }
 
-// Removes a folder this process created, on every exit path that did not hand it over (and on
-// SIGINT/SIGTERM through temp_paths.h).
-class TemporaryFolder {
- public:
-  explicit TemporaryFolder(const fs::path& beside) {
-    std::string folder = beside.parent_path().string();
-    const std::string pattern = temporary_pattern(folder);
-    std::vector<char> buffer(pattern.begin(), pattern.end());
-    buffer.push_back('\0');
-    const CleanupSignalBlock block;
-    if (::mkdtemp(buffer.data()) == nullptr) {
-      throw IoError(Wording{Sentence::kTemporaryFolder, {beside.string(), std::strerror(errno)}});
-    }
-    path_ = buffer.data();
-    slot_ = register_temporary(path_.string(), /*is_folder=*/true);
-  }
-  TemporaryFolder(const TemporaryFolder&) = delete;
-  TemporaryFolder& operator=(const TemporaryFolder&) = delete;
-  ~TemporaryFolder() {
-    if (!path_.empty()) {
-      std::error_code error;
-      fs::remove_all(path_, error);
-    }
-    unregister_temporary(slot_);
-  }
-  [[nodiscard]] const fs::path& path() const { return path_; }
-  void forget_on_signal() {
-    unregister_temporary(slot_);
-    slot_ = -1;
-  }
-  void release() {
-    path_.clear();
-    unregister_temporary(slot_);
-    slot_ = -1;
-  }
-
- private:
-  fs::path path_;
-  int slot_ = -1;
-};
-
 void write_per_particle(const Packing& packing, const std::string& path,
                         const ExportOptions& options, const FormatInfo& info,
                         ExportSummary& summary) {
@@ -123,7 +82,7 @@ void write_per_particle(const Packing& packing, const std::string& path,
   if (exists && options.overwrite != Overwrite::kAllow) {
     throw IoError(Wording{Sentence::kFolderExists, {target.string(), "--force"}});
   }
-  TemporaryFolder staging(target);
+  TemporaryFolder staging(target.parent_path().string(), target.string());
   fs::permissions(staging.path(),
                   fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                       fs::perms::others_read | fs::perms::others_exec,
@@ -138,13 +97,12 @@ void write_per_particle(const Packing& packing, const std::string& path,
     name.append(static_cast<std::size_t>(width) - std::min<std::size_t>(width, number.size()), '0');
     name += number;
     name += extension;
-    write_one(packing, (staging.path() / name).string(), options, info, i, i + 1,
-              Overwrite::kForbid, summary);
+    write_one(packing, staging.file(name), options, info, i, i + 1, Overwrite::kForbid, summary);
   }
   // Swap in the new folder; an old one is moved aside first and removed only afterwards, so at
   // every moment `target` is either the complete old or the complete new folder.
   if (exists) {
-    TemporaryFolder old_parking(target);
+    TemporaryFolder old_parking(target.parent_path().string(), target.string());
     fs::remove(old_parking.path());
     // From here it holds the user's old folder: a signal must not empty it (at worst it stays
     // behind under its temporary name).

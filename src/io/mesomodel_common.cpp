@@ -83,6 +83,10 @@ void validate(const MesoFileOptions& options) {
   if (!(options.step.strain >= 0.0 && options.step.strain <= 0.1)) {
     throw InvalidInput("step.strain", format_value(options.step.strain), "[0, 0.1]; 0 = no step");
   }
+  if (options.solver != MesoSolver::kDirect && options.solver != MesoSolver::kIterative) {
+    throw InvalidInput("solver", std::to_string(static_cast<int>(options.solver)),
+                       "direct or iterative");
+  }
 }
 
 void validate(const MesoMesh& mesh) {

@@ -65,6 +65,10 @@ void require_good(const std::ostream& out);
 void append_node_set(const std::string& name, const std::vector<std::uint32_t>& nodes,
                      std::string& out);
 
+/// The line that starts a step's analysis: "*STATIC\n", with the iterative solver's parameter
+/// for MesoSolver::kIterative.
+const char* static_line(MesoSolver solver);
+
 /// A periodic mesh's part of the .inp (docs/mesomodel.md, "Periodic RVE"), after the model's sets:
 /// node sets XMIN ... ZMAX, reference nodes numbered from written_nodes + 1 (REF_X, REF_Y,
 /// REF_Z), the *EQUATION ties of periodic_pairs(mesh) and, when every axis is periodic, the
@@ -72,6 +76,7 @@ void append_node_set(const std::string& name, const std::vector<std::uint32_t>& 
 /// (11, 22, 33, 23, 13, 12; engineering shear) with the reference nodes' reactions printed.
 /// Coordinates and displacements are multiplied by `scale`; comment lines go to `heading`.
 void append_periodic_model(const MesoMesh& mesh, std::uint64_t written_nodes, double scale,
-                           double strain, std::string& heading, std::string& out);
+                           double strain, MesoSolver solver, std::string& heading,
+                           std::string& out);
 
 }  // namespace aggpack::detail

@@ -204,7 +204,7 @@ std::array<std::uint32_t, 2> anchor_nodes(const MesoMesh& mesh,
   return {a, b};
 }
 
-void append_step(const MesoMesh& mesh, const CompressionStep& step, double scale,
+void append_step(const MesoMesh& mesh, const CompressionStep& step, double scale, MesoSolver solver,
                  const std::vector<std::uint32_t>& bottom, std::string& out) {
   const auto [a, b] = anchor_nodes(mesh, bottom);
   const double height = (mesh.bounds.upper.z() - mesh.bounds.lower.z()) * scale;
@@ -212,12 +212,18 @@ void append_step(const MesoMesh& mesh, const CompressionStep& step, double scale
   append_number(out, static_cast<std::uint64_t>(a) + 1);
   out += ", 1, 2, 0.\n";
   append_number(out, static_cast<std::uint64_t>(b) + 1);
-  out += ", 2, 2, 0.\n*STEP\n*STATIC\n*BOUNDARY\nTOP, 3, 3, ";
+  out += ", 2, 2, 0.\n*STEP\n";
+  out += detail::static_line(solver);
+  out += "*BOUNDARY\nTOP, 3, 3, ";
   append_real(out, -step.strain * height);
   out += "\n*NODE PRINT, NSET=TOP, TOTALS=YES\nRF\n*NODE FILE\nU, RF\n*EL FILE\nS, E\n*END STEP\n";
 }
 
 }  // namespace
+
+const char* detail::static_line(MesoSolver solver) {
+  return solver == MesoSolver::kIterative ? "*STATIC, SOLVER=ITERATIVE CHOLESKY\n" : "*STATIC\n";
+}
 
 void detail::append_node_set(const std::string& name, const std::vector<std::uint32_t>& nodes,
                              std::string& out) {
@@ -284,9 +290,10 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
   if (is_periodic_mesh) {
     // The load cases' strain: --strain, else 1e-3 (linear elastic: any size gives the tensor).
     const double strain = options.step.strain > 0.0 ? options.step.strain : 1e-3;
-    detail::append_periodic_model(mesh, nodes.size(), scale, strain, periodic_heading, tail);
+    detail::append_periodic_model(mesh, nodes.size(), scale, strain, options.solver,
+                                  periodic_heading, tail);
   } else if (options.step.strain > 0.0) {
-    append_step(mesh, options.step, scale, bottom, tail);
+    append_step(mesh, options.step, scale, options.solver, bottom, tail);
   }
 
   detail::write_atomically(path, options.overwrite, [&](std::ostream& out) {

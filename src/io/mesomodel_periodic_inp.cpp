@@ -32,7 +32,8 @@ std::array<std::array<double, 3>, 3> load_case_strain(int k, double strain) {
 }  // namespace
 
 void append_periodic_model(const MesoMesh& mesh, std::uint64_t written_nodes, double scale,
-                           double strain, std::string& heading, std::string& out) {
+                           double strain, MesoSolver solver, std::string& heading,
+                           std::string& out) {
   const std::vector<PeriodicPair> pairs = periodic_pairs(mesh);
   const Vec3 extent = mesh.bounds.extent();
   const bool is_full = mesh.periodic[0] && mesh.periodic[1] && mesh.periodic[2];
@@ -110,7 +111,9 @@ void append_periodic_model(const MesoMesh& mesh, std::uint64_t written_nodes, do
   out += ", 1, 3, 0.\n";
   for (int k = 0; k < 6; ++k) {
     const auto e = load_case_strain(k, strain);
-    out += "*STEP\n*STATIC\n*BOUNDARY\n";
+    out += "*STEP\n";
+    out += static_line(solver);
+    out += "*BOUNDARY\n";
     for (int axis = 0; axis < 3; ++axis) {
       for (int i = 0; i < 3; ++i) {
         append_number(out, ref_first + static_cast<std::uint64_t>(axis));

@@ -4,10 +4,7 @@
 
 #include "aggpack/sim/repose_yade.h"
 
-#include <fcntl.h>
 #include <poll.h>
-#include <sys/prctl.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,10 +12,6 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <csignal>
-#include <cstdlib>
-#include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -26,9 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "aggpack/core/child_process.h"
 #include "aggpack/core/clock.h"
 #include "aggpack/core/error.h"
-#include "aggpack/core/temp_paths.h"
 #include "aggpack/core/text.h"
 #include "aggpack/geom/mass_properties.h"
 #include "aggpack/sim/settle.h"
@@ -38,141 +31,16 @@ namespace aggpack {
 
 namespace {
 
-namespace fs = std::filesystem;
-// The program `name` on PATH, or "" when it is not there.
-std::string find_on_path(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::stringstream folders(path != nullptr ? path : "");
-  std::string folder;
-  while (std::getline(folders, folder, ':')) {
-    if (folder.empty()) continue;
-    const std::string candidate = folder + "/" + name;
-    if (::access(candidate.c_str(), X_OK) == 0 && fs::is_regular_file(candidate)) {
-      return candidate;
-    }
-  }
-  return "";
-}
-
-// A flat temporary folder, removed on every exit path and by the signal handler (temp_paths.h).
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    std::error_code error;
-    const std::string pattern = temporary_pattern(fs::temp_directory_path(error).string());
-    std::vector<char> buffer(pattern.begin(), pattern.end());
-    buffer.push_back('\0');
-    const CleanupSignalBlock block;
-    if (::mkdtemp(buffer.data()) == nullptr) {
-      throw IoError("cannot create a temporary folder for YADE: " +
-                    std::string(std::strerror(errno)));
-    }
-    path_ = buffer.data();
-    slot_ = register_temporary(path_, /*is_folder=*/true);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  ~ScratchFolder() {
-    std::error_code error;
-    fs::remove_all(path_, error);
-    unregister_temporary(slot_);
-  }
-  [[nodiscard]] std::string file(const std::string& name) const { return path_ + "/" + name; }
-  [[nodiscard]] const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-  int slot_ = -1;
-};
-
-// The YADE process; killed (and reaped) unless it was waited for.
-class YadeProcess {
- public:
-  YadeProcess(const std::string& program, const ScratchFolder& folder) {
-    int fds[2];
-    if (::pipe(fds) != 0) throw IoError("cannot start yade: " + std::string(std::strerror(errno)));
-    const std::string log = folder.file("yade.log");
-    // Everything the child needs is made before fork(): between fork and exec a threaded process
-    // (seeds run side by side) may only call async-signal-safe functions.
-    std::vector<std::string> environment;
-    for (char** entry = environ; *entry != nullptr; ++entry) {
-      if (std::strncmp(*entry, "OMP_NUM_THREADS=", 16) != 0 &&
-          std::strncmp(*entry, "TMPDIR=", 7) != 0) {
-        environment.emplace_back(*entry);
-      }
-    }
-    environment.emplace_back("OMP_NUM_THREADS=1");  // one core per run, like Bullet's runs
-    // YADE makes a yade-XXXXXX folder in $TMPDIR at start and leaves it behind (always when it
-    // is killed at the time limit, often when it ends normally): put it in the scratch folder,
-    // which is removed with everything in it.
-    environment.emplace_back("TMPDIR=" + folder.path());
-    std::vector<char*> envp;
-    for (auto& entry : environment) envp.push_back(entry.data());
-    envp.push_back(nullptr);
-    std::string arg0 = program;
-    std::string arg1 = "-n";
-    std::string arg2 = "-x";
-    std::string arg3 = "repose.py";
-    char* const argv[] = {arg0.data(), arg1.data(), arg2.data(), arg3.data(), nullptr};
-    pid_ = ::fork();
-    if (pid_ < 0) {
-      ::close(fds[0]);
-      ::close(fds[1]);
-      throw IoError("cannot start yade: " + std::string(std::strerror(errno)));
-    }
-    if (pid_ == 0) {
-      // Child: dies with aggpack (a SIGTERM to aggpack alone must not leave YADE running).
-      ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-      ::close(fds[0]);
-      ::dup2(fds[1], STDOUT_FILENO);
-      const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      if (err >= 0) ::dup2(err, STDERR_FILENO);
-      if (::chdir(folder.path().c_str()) != 0) ::_exit(126);
-      ::execve(program.c_str(), argv, envp.data());
-      ::_exit(127);
-    }
-    ::close(fds[1]);
-    out_ = fds[0];
-  }
-  YadeProcess(const YadeProcess&) = delete;
-  YadeProcess& operator=(const YadeProcess&) = delete;
-  ~YadeProcess() {
-    if (out_ >= 0) ::close(out_);
-    if (pid_ > 0) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-  }
-  [[nodiscard]] int output() const { return out_; }
-  /// Waits for the end; returns the exit status (waitpid's) and sets the CPU seconds.
-  int wait(double& cpu_seconds) {
-    int status = 0;
-    struct rusage usage {};
-    while (::wait4(pid_, &status, 0, &usage) < 0 && errno == EINTR) {
-    }
-    pid_ = -1;
-    cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-                  1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-    return status;
-  }
-
- private:
-  pid_t pid_ = -1;
-  int out_ = -1;
-};
-
-// The last line of YADE's log that says something (its warnings about degenerate polyhedra
-// intersections are left out).
-std::string last_log_line(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::string last;
-  while (std::getline(in, line)) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    if (line.find("WARNING") != std::string::npos) continue;
-    last = line;
-  }
-  return clipped(last, 300);
+// The YADE process: `yade -n -x repose.py` in the scratch folder, one core per run (like
+// Bullet's runs), its log as standard error. YADE makes a yade-XXXXXX folder in $TMPDIR at start
+// and leaves it behind (always when it is killed at the time limit, often when it ends
+// normally): TMPDIR is the scratch folder, which is removed with everything in it.
+ChildCommand yade_command(const std::string& program, const TemporaryFolder& folder) {
+  return {.program = program,
+          .arguments = {"-n", "-x", "repose.py"},
+          .folder = folder.path(),
+          .environment = {"OMP_NUM_THREADS=1", "TMPDIR=" + folder.path()},
+          .error_file = folder.file("yade.log")};
 }
 
 bool parse_progress(const std::string& line, YadeProgress& p) {
@@ -308,14 +176,14 @@ ReposeResult run_repose_yade(const ReposeOptions& options, PackResult fill,
   result.yade_young = resolved.yade.young;
   result.smallest_size = equivalent_sizes(packing).front();
 
-  ScratchFolder folder;
+  const TemporaryFolder folder("YADE");
   {
     std::ofstream script(folder.file("repose.py"));
     write_script(packing, resolved, script);
     script.flush();
     if (!script) throw IoError("cannot write the YADE script in " + folder.path());
   }
-  YadeProcess yade(program, folder);
+  ChildProcess yade(yade_command(program, folder));
   std::string pending;
   char buffer[4096];
   const double limit = options.yade.time_limit;
@@ -348,9 +216,9 @@ ReposeResult run_repose_yade(const ReposeOptions& options, PackResult fill,
   }
   const int status = yade.wait(result.engine_cpu_seconds);
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    const std::string why = WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
-                                              : "signal " + std::to_string(WTERMSIG(status));
-    throw IoError("yade failed (" + why + "): " + last_log_line(folder.file("yade.log")));
+    // YADE's warnings about degenerate polyhedra intersections are left out.
+    throw IoError("yade failed (" + describe_exit(status) +
+                  "): " + last_line_of(folder.file("yade.log"), "WARNING"));
   }
   const YadeOutput output = read_output(folder.file("poses.txt"), packing.particles.size());
   const auto& initial = output.poses.at("initial");

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 
@@ -19,6 +20,7 @@
 #include "support/cli_test.h"
 #include "support/files.h"
 #include "support/paths.h"
+#include "support/readers.h"
 
 namespace aggpack {
 namespace {
@@ -234,6 +236,52 @@ TEST_F(PeriodicCliTest, MesomodelWritesTiesAndSixLoadCasesAndATilingImage) {
   }
   const test::CliRun image = run("mesomodel small.h5 --voxels 16 -o rve.vti");
   EXPECT_EQ(image.exit_code, 0) << image.err;
+}
+
+TEST_F(PeriodicCliTest, HomogenizeRunsCalculixAndWritesTheStiffness) {
+  AGGPACK_REQUIRE_READER("ccx");
+  ASSERT_EQ(run("pack periodic.toml --set container.length=0.04 --set container.width=0.04 "
+                "--set container.depth=0.04 -o small.h5 --progress none")
+                .exit_code,
+            0);
+  const test::CliRun result =
+      run("mesomodel small.h5 -o rve.inp --homogenize --solver iterative -j 1 --progress none");
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("wrote rve-stiffness.json"), std::string::npos) << result.out;
+  const auto json = nlohmann::json::parse(test::file_text(folder_ / "rve-stiffness.json"));
+  const double e = json["isotropic_projection"]["youngs_modulus_pa"].get<double>();
+  EXPECT_GT(e, json["bounds"]["reuss_youngs_modulus_pa"].get<double>());
+  EXPECT_LT(e, json["bounds"]["voigt_youngs_modulus_pa"].get<double>());
+  EXPECT_LT(json["asymmetry"].get<double>(), 0.01);
+  EXPECT_EQ(json["stiffness_pa"].size(), 6U);
+  EXPECT_EQ(json["solver"]["threads"].get<int>(), 1);
+  EXPECT_EQ(json["solver"]["method"].get<std::string>(), "iterative (ITERATIVE CHOLESKY)");
+  EXPECT_GT(json["solver"]["cpu_seconds"].get<double>(), 0.0);
+  std::ifstream in(folder_ / "rve.inp");
+  std::string line;
+  std::size_t iterative_steps = 0;
+  while (std::getline(in, line)) iterative_steps += line == "*STATIC, SOLVER=ITERATIVE CHOLESKY";
+  EXPECT_EQ(iterative_steps, 6U);
+  // Asked again without --force: refused before meshing, nothing replaced.
+  expect_one_line_refusal("mesomodel small.h5 -o rve.inp --homogenize", "rve.inp");
+}
+
+TEST_F(PeriodicCliTest, HomogenizeRefusalsComeBeforeTheWork) {
+  ASSERT_EQ(run("pack periodic.toml --set container.periodic=xy --set container.length=0.04 "
+                "--set container.width=0.04 --set container.depth=0.04 -o xy.h5 --progress none")
+                .exit_code,
+            0);
+  expect_one_line_refusal("mesomodel xy.h5 -o xy.inp --homogenize",
+                          "invalid --homogenize = with container.periodic = xy (allowed: a "
+                          "packing periodic in x, y and z");
+  expect_one_line_refusal("mesomodel xy.h5 -o xy.vti --voxels 8 --homogenize",
+                          "invalid --homogenize = with --voxels");
+  // Without CalculiX: the package is named, and no mesh is made or written.
+  const test::CliRun missing = run("mesomodel xy.h5 -o xy.inp --homogenize", "PATH=/nonexistent");
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.err.find("calculix-ccx"), std::string::npos) << missing.err;
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(folder_ / "xy.inp"));
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "aggpack/core/error.h"
+#include "aggpack/io/homogenize.h"
 #include "aggpack/io/mesomodel_files.h"
 #include "aggpack/mesh/mesomodel.h"
 #include "aggpack/pack/random_packer.h"
@@ -41,32 +42,14 @@ MesoMesh small_periodic_mesh(double fraction) {
   return build_mesomodel(small_periodic_packing(fraction), {.mortar_size = 0.004});
 }
 
-// Isotropic stiffness (Voigt, engineering shear) of E, nu.
-VoigtStiffness isotropic_stiffness(double e, double nu) {
-  const double lambda = e * nu / ((1 + nu) * (1 - 2 * nu));
-  const double mu = e / (2 * (1 + nu));
-  VoigtStiffness c{};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) c[i][j] = lambda + (i == j ? 2 * mu : 0.0);
-    c[i + 3][i + 3] = mu;
-  }
-  return c;
-}
-
-// Writes `name`.inp in mm, runs ccx on it and returns the stiffness of its six load cases.
-VoigtStiffness ccx_stiffness(const ScratchFolder& folder, const MesoMesh& mesh,
-                             const std::string& name, const MesoMaterials& materials) {
+// CalculiX's stiffness of the mesh's six load cases (the .inp in mm), after a clean run.
+VoigtStiffness ccx_stiffness(const MesoMesh& mesh, const MesoMaterials& materials) {
   MesoFileOptions options;
   options.materials = materials;
   options.units = MesoUnits::kMillimetre;
-  write_mesomodel(folder.file(name + ".inp"), mesh, options);
-  const auto run =
-      test::run_command("cd " + folder.path().string() + " && OMP_NUM_THREADS=1 ccx -i " + name);
-  EXPECT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_NE(run.output.find("Job finished"), std::string::npos) << run.output;
-  EXPECT_EQ(test::upper(run.output).find("*ERROR"), std::string::npos) << run.output;
-  EXPECT_EQ(test::upper(run.output).find("*WARNING"), std::string::npos) << run.output;
-  return periodic_stiffness_from_dat(test::read_text(folder.file(name + ".dat")), mesh, options);
+  const Homogenized h = homogenize_with_calculix(mesh, options, {.threads = 1, .progress = {}});
+  EXPECT_TRUE(h.warnings.empty()) << h.warnings.front();
+  return h.stiffness;
 }
 
 TEST(PeriodicInp, EveryUpperFaceNodeIsTiedOnceToItsImage) {
@@ -169,10 +152,9 @@ TEST(PeriodicInp, StiffnessFromADatText) {
 
 TEST(PeriodicCcx, MortarEverywhereGivesTheMortarsIsotropicStiffness) {
   AGGPACK_REQUIRE_READER("ccx");
-  const ScratchFolder folder;
   MesoMaterials materials;
   materials.aggregate = materials.mortar;
-  const VoigtStiffness c = ccx_stiffness(folder, small_periodic_mesh(0.2), "mortar", materials);
+  const VoigtStiffness c = ccx_stiffness(small_periodic_mesh(0.2), materials);
   const VoigtStiffness expected = isotropic_stiffness(25e9, 0.2);
   for (int i = 0; i < 6; ++i) {
     for (int j = 0; j < 6; ++j) {
@@ -183,10 +165,9 @@ TEST(PeriodicCcx, MortarEverywhereGivesTheMortarsIsotropicStiffness) {
 
 TEST(PeriodicCcx, PackedBoxLiesBetweenTheReussAndVoigtTensors) {
   AGGPACK_REQUIRE_READER("ccx");
-  const ScratchFolder folder;
   const MesoMesh mesh = small_periodic_mesh(0.3);
   const MesoMaterials materials;
-  const VoigtStiffness c = ccx_stiffness(folder, mesh, "packed", materials);
+  const VoigtStiffness c = ccx_stiffness(mesh, materials);
   // With one Poisson ratio the Voigt and Reuss tensors are isotropic with E_Voigt and E_Reuss.
   const MesoModulusBounds bounds = voigt_reuss_bounds(mesh, materials);
   const VoigtStiffness voigt = isotropic_stiffness(bounds.voigt, 0.2);
