@@ -129,6 +129,7 @@ struct Leaf {
   const toml::node* node = nullptr;
   std::string origin;  // "paper.toml:5" or "--set packer.gap=1"
   std::size_t order = 0;
+  bool is_override = false;  // given by --set (it comes after every file value)
 };
 
 void collect(const toml::table& table, const std::string& prefix, const std::string& source,
@@ -148,6 +149,7 @@ void collect(const toml::table& table, const std::string& prefix, const std::str
     if (const auto found = origins.find(name); found != origins.end()) {
       leaf.origin = found->second;
       leaf.order = std::numeric_limits<std::uint32_t>::max();
+      leaf.is_override = true;
     } else {
       leaf.origin = source + ":" + std::to_string(node.source().begin.line);
       leaf.order = node.source().begin.line;
@@ -377,9 +379,7 @@ void read_former_tables(const std::vector<TableInfo>& tables, std::map<std::stri
       const auto [existing, is_new] = leaves.try_emplace(name, leaf);
       if (is_new) continue;
       // Both names in the file: which one counts is not clear. An override wins (it comes last).
-      const bool is_override =
-          leaf.origin.rfind("--set ", 0) == 0 || existing->second.origin.rfind("--set ", 0) == 0;
-      if (!is_override) {
+      if (!leaf.is_override && !existing->second.is_override) {
         throw ConfigError(name, leaf.origin + ": " + name + " given twice, in [" +
                                     table.former_name + "] and in [" + table.name + "] (keep [" +
                                     table.name + "])");

@@ -86,10 +86,10 @@ bool run_until_rest(World& world, const RestCriterion& criterion,
 inline constexpr double kMaxSimulationSteps = 1e8;
 
 /// Whole time steps between rest checks: check_interval / time step, at least 1.
-/// 	hrow LimitExceeded (field max_time) when max_time / time step exceeds kMaxSimulationSteps.
+/// \throw LimitExceeded (field max_time) when max_time / time step exceeds kMaxSimulationSteps.
 std::size_t steps_per_check(const World& world, const RestCriterion& criterion);
 
-/// 	hrow Error of kind kLimitExceeded ("<what>: the simulation diverged at t = ... s ...")
+/// \throw Error of kind kLimitExceeded ("<what>: the simulation diverged at t = ... s ...")
 /// unless `kinetic_energy` and every particle's position and velocity are finite. Every iterative
 /// command calls it after each block of steps: Bullet turns bad input into NaN silently.
 void require_finite_state(const World& world, double kinetic_energy, const char* what);

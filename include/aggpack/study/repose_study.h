@@ -31,7 +31,7 @@ LatticeOptions repose_fill_options(const ReposeOptions& options);
 /// would refuse (validate(repose_fill_options): too large a radius, too many vertices) and a
 /// shape library path that is not there (listed, not read). Fields are named as the options
 /// name them ("repose.radius", "particle.library"); with_sweep_key_names gives the config keys.
-/// 	hrow InvalidInput, IoError.
+/// \throw InvalidInput, IoError.
 void check_repose_inputs(const ReposeOptions& options);
 
 /// The fill of a repose case: the pipeline's pack() of repose_fill_options(options), each

@@ -26,12 +26,12 @@ class RunRecorder {
   /// that records of another configuration are told apart by hash. Refuses (InvalidInput naming
   /// `field`, e.g. "-o out") a folder whose runs/ holds records of another plan or kind, and
   /// creates FOLDER/runs/. `image_width`: what merge draws ensemble.png with (0: its default).
-  /// 	hrow InvalidInput, FormatError (a record it cannot read), IoError.
+  /// \throw InvalidInput, FormatError (a record it cannot read), IoError.
   RunRecorder(RunKind kind, const SweepOptions& options, std::string folder, int image_width,
               const std::string& field);
 
   /// The record of a finished ensemble seed / sweep run (the run's place in the plan from its
-  /// seed, case index and seed). Atomic. 	hrow IoError.
+  /// seed, case index and seed). Atomic. \throw IoError.
   void record(const EnsembleSeed& seed) const;
   void record(const SweepCase& run) const;
 
