@@ -3,6 +3,7 @@
 #include "aggpack/core/child_process.h"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -157,6 +158,18 @@ ChildProcess::~ChildProcess() {
     ::kill(pid_, SIGKILL);
     ::waitpid(pid_, nullptr, 0);
   }
+}
+
+bool ChildProcess::read_output(std::string& text, int timeout_ms) {
+  pollfd fd{.fd = out_, .events = POLLIN, .revents = 0};
+  const int ready = ::poll(&fd, 1, timeout_ms);
+  if (ready <= 0) return true;  // nothing yet, or a signal came
+  char buffer[4096];
+  const ssize_t got = ::read(out_, buffer, sizeof buffer);
+  if (got < 0) return errno == EINTR || errno == EAGAIN;
+  if (got == 0) return false;
+  text.append(buffer, static_cast<std::size_t>(got));
+  return true;
 }
 
 int ChildProcess::wait(double& cpu_seconds) {

@@ -2,12 +2,9 @@
 
 #include "aggpack/io/homogenize.h"
 
-#include <poll.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -184,21 +181,12 @@ Homogenized homogenize_with_calculix(const MesoMesh& mesh, const MesoFileOptions
                       .folder = folder.path(),
                       .environment = {"OMP_NUM_THREADS=" + std::to_string(result.threads)},
                       .error_file = folder.file("ccx.err")});
-    char buffer[4096];
     int reported = -1;
-    while (true) {
-      pollfd fd{.fd = ccx.output(), .events = POLLIN, .revents = 0};
-      const int ready = ::poll(&fd, 1, 200);
+    while (ccx.read_output(output, 200)) {
       if (run.progress) {
         const int finished = finished_steps(folder.file("rve.sta"));
         if (finished != reported) run.progress(reported = finished);
       }
-      if (ready < 0 && errno == EINTR) continue;
-      if (ready <= 0) continue;
-      const ssize_t got = ::read(ccx.output(), buffer, sizeof buffer);
-      if (got < 0 && errno == EINTR) continue;
-      if (got <= 0) break;  // ccx closed its output: it ended
-      output.append(buffer, static_cast<std::size_t>(got));
       if (output.size() > (1U << 20U)) output.erase(0, output.size() - (1U << 19U));  // bounded
     }
     status = ccx.wait(result.cpu_seconds);

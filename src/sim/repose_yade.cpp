@@ -4,12 +4,9 @@
 
 #include "aggpack/sim/repose_yade.h"
 
-#include <poll.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -185,7 +182,6 @@ ReposeResult run_repose_yade(const ReposeOptions& options, PackResult fill,
   }
   ChildProcess yade(yade_command(program, folder));
   std::string pending;
-  char buffer[4096];
   const double limit = options.yade.time_limit;
   YadeProgress last;
   while (true) {
@@ -195,14 +191,7 @@ ReposeResult run_repose_yade(const ReposeOptions& options, PackResult fill,
                               format_value(last.total_time) + " s simulated, stage " +
                               std::to_string(last.stage) + ")");
     }
-    pollfd fd{.fd = yade.output(), .events = POLLIN, .revents = 0};
-    const int ready = ::poll(&fd, 1, 200);
-    if (ready < 0 && errno == EINTR) continue;
-    if (ready <= 0) continue;
-    const ssize_t got = ::read(yade.output(), buffer, sizeof buffer);
-    if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) break;  // YADE closed its output: it ended
-    pending.append(buffer, static_cast<std::size_t>(got));
+    if (!yade.read_output(pending, 200)) break;  // YADE closed its output: it ended
     for (std::size_t end = pending.find('\n'); end != std::string::npos; end = pending.find('\n')) {
       const std::string line = pending.substr(0, end);
       pending.erase(0, end + 1);

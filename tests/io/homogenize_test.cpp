@@ -14,8 +14,8 @@
 
 #include "aggpack/core/error.h"
 #include "aggpack/mesh/mesomodel.h"
-#include "aggpack/pack/random_packer.h"
 #include "export_fixture.h"
+#include "support/periodic.h"
 #include "support/readers.h"
 
 namespace aggpack {
@@ -103,21 +103,6 @@ TEST(Homogenize, HashinShtrikmanBoundsOfStiffInclusionsLieInsideVoigtAndReuss) {
   EXPECT_NEAR(b.lower.shear, g_lower, 1e-9 * g_lower);
 }
 
-Packing small_periodic_packing() {
-  const RandomPackOptions options{
-      .container = {.shape = BoxContainer{.length = 0.04,
-                                          .width = 0.036,
-                                          .depth = 0.032,
-                                          .periodic = {true, true, true}}},
-      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.006, .radius_max = 0.01},
-      .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
-      .target = PackTarget::kVolumeFraction,
-      .volume_fraction = 0.3,
-      .gap = 0.0008,
-      .seed = 4};
-  return pack_random(options).packing;
-}
-
 // Entries of `folder`.
 std::size_t entries(const std::string& folder) {
   std::size_t count = 0;
@@ -133,7 +118,7 @@ TEST(HomogenizeCcx, MortarEverywhereGivesTheMortarsModuli) {
   MesoFileOptions options;
   options.materials.aggregate = options.materials.mortar;
   options.units = MesoUnits::kMillimetre;
-  const MesoMesh mesh = build_mesomodel(small_periodic_packing(), {.mortar_size = 0.004});
+  const MesoMesh mesh = build_mesomodel(test::small_periodic_packing(0.3), {.mortar_size = 0.004});
   // The run's temporary folder goes to $TMPDIR (each test is a process of its own).
   const ScratchFolder temporary;
   ::setenv("TMPDIR", temporary.path().c_str(), 1);
@@ -159,8 +144,8 @@ TEST(HomogenizeCcx, PackedBoxLiesBetweenTheHashinShtrikmanBoundsAndSolversAgree)
   // Linear tetrahedra are too stiff on a coarse mesh: E falls as the mesh is refined and, on
   // examples/periodic-rve.toml, crosses the upper bound between 3 and 2 mm edges
   // (docs/mesomodel.md). Here at 2 mm: E 33.07 GPa in [32.07, 33.18] GPa.
-  const MesoMesh mesh =
-      build_mesomodel(small_periodic_packing(), {.aggregate_size = 0.002, .mortar_size = 0.002});
+  const MesoMesh mesh = build_mesomodel(test::small_periodic_packing(0.3),
+                                        {.aggregate_size = 0.002, .mortar_size = 0.002});
   MesoFileOptions options;
   options.units = MesoUnits::kMillimetre;
   const Homogenized direct =

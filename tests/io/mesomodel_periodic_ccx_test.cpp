@@ -14,8 +14,8 @@
 #include "aggpack/io/homogenize.h"
 #include "aggpack/io/mesomodel_files.h"
 #include "aggpack/mesh/mesomodel.h"
-#include "aggpack/pack/random_packer.h"
 #include "ccx_fixture.h"
+#include "support/periodic.h"
 #include "support/readers.h"
 
 namespace aggpack {
@@ -23,23 +23,8 @@ namespace {
 
 using test::ScratchFolder;
 
-Packing small_periodic_packing(double fraction) {
-  const RandomPackOptions options{
-      .container = {.shape = BoxContainer{.length = 0.04,
-                                          .width = 0.036,
-                                          .depth = 0.032,
-                                          .periodic = {true, true, true}}},
-      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.006, .radius_max = 0.01},
-      .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
-      .target = PackTarget::kVolumeFraction,
-      .volume_fraction = fraction,
-      .gap = 0.0008,
-      .seed = 4};
-  return pack_random(options).packing;
-}
-
 MesoMesh small_periodic_mesh(double fraction) {
-  return build_mesomodel(small_periodic_packing(fraction), {.mortar_size = 0.004});
+  return build_mesomodel(test::small_periodic_packing(fraction), {.mortar_size = 0.004});
 }
 
 // CalculiX's stiffness of the mesh's six load cases (the .inp in mm), after a clean run.

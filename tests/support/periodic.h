@@ -1,6 +1,7 @@
 #pragma once
 // Periodic boxes and the independent brute-force overlap check over all images that several test
-// programs use (tests/pack/periodic_test.cpp, periodic_dense_test.cpp).
+// programs use (tests/pack/periodic_test.cpp, periodic_dense_test.cpp), and a small periodic RVE
+// (tests/io/homogenize_test.cpp, mesomodel_periodic_ccx_test.cpp).
 
 #include <algorithm>
 #include <array>
@@ -10,6 +11,7 @@
 #include "aggpack/geom/overlap.h"
 #include "aggpack/pack/container.h"
 #include "aggpack/pack/packing.h"
+#include "aggpack/pack/random_packer.h"
 
 namespace aggpack::test {
 
@@ -17,6 +19,20 @@ namespace aggpack::test {
 inline Container periodic_box(double length, double width, double depth, std::array<bool, 3> axes) {
   return {.shape =
               BoxContainer{.length = length, .width = width, .depth = depth, .periodic = axes}};
+}
+
+/// A small RVE for the periodic mesomodel's CalculiX tests: a 40 x 36 x 32 mm box periodic in x,
+/// y and z, particles of radius 6-10 mm (alpha 0.5, L = r) at `fraction`, 0.8 mm apart, seed 4.
+inline Packing small_periodic_packing(double fraction) {
+  const RandomPackOptions options{
+      .container = periodic_box(0.04, 0.036, 0.032, {true, true, true}),
+      .grading = {.kind = GradingKind::kUniform, .radius_min = 0.006, .radius_max = 0.01},
+      .shape = {.alpha = 0.5, .edge_length_ratio = 1.0},
+      .target = PackTarget::kVolumeFraction,
+      .volume_fraction = fraction,
+      .gap = 0.0008,
+      .seed = 4};
+  return pack_random(options).packing;
 }
 
 /// Independent of the packers and verify(): every pair and every particle with itself, through

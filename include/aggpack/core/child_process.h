@@ -59,8 +59,9 @@ class ChildProcess {
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
   ~ChildProcess();
-  /// The read end of its standard output (closed by the destructor).
-  [[nodiscard]] int output() const { return out_; }
+  /// Waits up to `timeout_ms` for its standard output and appends what came to `text`. False
+  /// once it closed its output (it ended or is about to); true otherwise, also when nothing came.
+  bool read_output(std::string& text, int timeout_ms);
   /// Waits for its end; returns waitpid's status and sets its user + system CPU seconds.
   int wait(double& cpu_seconds);
 
