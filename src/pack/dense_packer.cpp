@@ -266,6 +266,10 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
   auto fraction_now = [&] {
     return solid_volume / (is_repairing ? checkpoint.container : engine.container()).volume();
   };
+  // The largest uniform expansion that keeps every extent within the checkpoint's.
+  auto relief_limit = [&] {
+    return container_ratio(engine.container(), checkpoint.container).minCoeff();
+  };
   auto is_at_target = [&] { return !is_repairing && same_size(engine.container(), target); };
   // Reached: the target container, and the fraction target (round-off of the derived container
   // aside).
@@ -324,6 +328,7 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
       break;
     }
     parameters.repair_step = kRepairReach * squeeze_step;
+    parameters.relief_scale = is_repairing ? relief_limit() : 0.0;
     const detail::SweepCounts counts = engine.sweep(sweep, parameters);
     ++report.sweeps;
     report.moves_tried += counts.translations_tried + counts.rotations_tried;
@@ -354,21 +359,27 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
       }
     } else {
       std::size_t flagged = engine.flagged_count();
-      if (is_repairing && flagged == 0) {  // clean again: a new checkpoint
+      auto take_checkpoint = [&] {  // clean again: a new checkpoint
         is_repairing = false;
         squeezes_per_checkpoint = std::min(kSqueezesPerCheckpoint, 2 * squeezes_per_checkpoint);
         is_consolidating = false;
         report.compressions += since_checkpoint;
         since_checkpoint = 0;
         checkpoint = engine.state();
-      }
+        flagged = 0;
+      };
+      if (is_repairing && flagged == 0) take_checkpoint();
       if (is_consolidating) {
         ++consolidate_sweeps;
         if (consolidate_sweeps % kStallSweeps == 0) {
-          // Stalled (a few caged pairs): undo a quarter, then half of the squeezes since the
-          // checkpoint, keeping the moves made since; the third time, go back to it.
+          // Stalled (a few caged pairs): the smallest uniform expansion that clears every
+          // overlap, a clean state between the checkpoint and now; where none is found, undo a
+          // quarter, then half of the squeezes since the checkpoint, keeping the moves made
+          // since; the third time, go back to it.
           squeeze_step *= 0.7;
-          if (consolidate_sweeps >= 3 * kStallSweeps) {
+          if (engine.relieve(relief_limit())) {
+            take_checkpoint();
+          } else if (consolidate_sweeps >= 3 * kStallSweeps) {
             engine.restore(checkpoint);
             is_repairing = false;
             is_consolidating = false;
@@ -436,8 +447,10 @@ DensifyResult densify(Packing start, const DensifyOptions& options, const PackCo
     report.stop = DensifyStop::kTargetReached;
   }
 
-  if (is_repairing) {  // stopped mid-repair: return the last overlap-free state
-    engine.restore(checkpoint);
+  if (is_repairing) {
+    // Stopped mid-repair: the densest overlap-free state at hand, the current one expanded just
+    // enough to clear its overlaps, else the last checkpoint.
+    if (!engine.relieve(relief_limit())) engine.restore(checkpoint);
     is_repairing = false;
   }
   DensifyResult result;

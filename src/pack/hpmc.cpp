@@ -298,6 +298,14 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
                       wall_clearance(container_, body.local, pose)) {
       continue;
     }
+    auto is_relievable = [&](std::uint32_t j, const Image& image) {
+      if (!(parameters.relief_scale > 1.0)) return true;
+      Pose scaled_i = trial;
+      scaled_i.position *= parameters.relief_scale;
+      Pose scaled_j = poses_[j];
+      scaled_j.position = (scaled_j.position + shift_of(image)) * parameters.relief_scale;
+      return is_separated(body.support, scaled_i, bodies_[body_of_[j]].support, scaled_j, gap_);
+    };
     Partner fresh[kMaxPartners];
     int fresh_count = 0;
     int kept_count = 0;
@@ -309,7 +317,7 @@ void Hpmc::repair(std::uint32_t i, Rng& rng, const SweepParameters& parameters) 
         ++kept_count;
         const Vec3 centre = centre_of({j, image});
         is_ok = (centre - trial.position).squaredNorm() >= (centre - pose.position).squaredNorm();
-      } else if (fresh_count + kept_count < count) {
+      } else if (fresh_count + kept_count < count && is_relievable(j, image)) {
         fresh[fresh_count++] = {j, image};
       } else {
         is_ok = false;  // more partners than before

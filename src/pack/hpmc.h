@@ -22,6 +22,10 @@ struct SweepParameters {
   bool is_bed = false;                // Metropolis on potential energy
   double temperature = 0.0;           // bed: see DensifyOptions::bed_temperature
   double repair_step = 1.0;           // largest repair push / bounding radius
+  // > 1: a repair push may overlap a new partner only when the pair is apart once positions are
+  // expanded by this factor (the way back to the last clean container), so that every overlap
+  // stays shallow enough for Hpmc::relieve.
+  double relief_scale = 0.0;
   // > 0: every particle keeps translation and rotation steps of its own (starting at the two
   // steps above, which are then ignored) adapted to this acceptance rate by its own moves.
   double per_particle_acceptance = 0.0;
@@ -55,6 +59,15 @@ class Hpmc {
   /// The reverse of squeeze (partly undoing one that does not repair): positions and container
   /// scaled up a share t of the way to `larger` (no extent smaller than now), flags recomputed.
   std::size_t expand(const Container& larger, double t);
+  /// The clean state nearest the current one by a uniform expansion: the smallest s in
+  /// (1, max_scale] (found per overlapping pair and per particle outside the container, by
+  /// bisection on the exact tests) such that positions and container times s separate every
+  /// pair and hold every particle; then the flags are recomputed exactly. Returns true and keeps
+  /// the expanded state when it is clean (no flag); otherwise restores the state it was given
+  /// and returns false. Sound because a convex body holds its centre: expanding the centres'
+  /// frame only moves a separated pair further apart along its separating direction and a
+  /// contained particle further from the walls (and the refresh checks it anyway).
+  bool relieve(double max_scale);
   /// Recomputes the flags exactly (a flag can outlive its overlap when the partner moved away).
   std::size_t refresh_flags();
   /// Shared by squeeze and expand: positions times `factor` (per axis), the container scaled the
