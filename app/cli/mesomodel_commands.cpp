@@ -15,7 +15,6 @@
 
 #include "aggpack/config/schema.h"
 #include "aggpack/core/atomic_file.h"
-#include "aggpack/core/child_process.h"
 #include "aggpack/core/error.h"
 #include "aggpack/core/text.h"
 #include "aggpack/io/homogenize.h"
@@ -254,20 +253,12 @@ void run_mesh(MesomodelFlags& flags, const Overwrite overwrite) {
                        "a name ending in .inp, .msh or .vtu; .vti or .raw with --voxels");
   }
   check_writable(flags.output, overwrite);
-  if (flags.is_homogenized) {
-    check_writable(stiffness_path(flags.output), overwrite);
-    if (find_on_path("ccx").empty()) {
-      throw InvalidInput("--homogenize", "true",
-                         "with CalculiX installed: no program ccx on PATH (Debian package "
-                         "calculix-ccx: apt-get install calculix-ccx)");
-    }
-  }
+  if (flags.is_homogenized) check_writable(stiffness_path(flags.output), overwrite);
   const auto start = std::chrono::steady_clock::now();
   const Packing packing = read_packing(flags.input);
-  const std::string periodic = periodic_word(periodic_axes(packing.container));
-  if (flags.is_homogenized && periodic != "xyz") {
-    throw InvalidInput("--homogenize", "with container.periodic = " + periodic,
-                       "a packing periodic in x, y and z (container.periodic = true)");
+  if (flags.is_homogenized) {  // refused before meshing
+    with_key_names({}, {{"homogenize", "--homogenize"}},
+                   [&] { (void)check_homogenize(periodic_axes(packing.container)); });
   }
   if (flags.file.is_quadratic && is_periodic(packing.container)) {
     throw InvalidInput("--quadratic", "true with container.periodic",

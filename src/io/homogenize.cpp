@@ -16,6 +16,7 @@
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
 #include "aggpack/core/text.h"
+#include "aggpack/pack/container.h"
 
 namespace aggpack {
 
@@ -116,55 +117,57 @@ int finished_steps(const std::string& sta) {
   return finished;
 }
 
-// ccx's first `limit` *WARNING messages: the line and the next one that says something.
-std::vector<std::string> ccx_warnings(const std::string& output, std::size_t limit) {
+// ccx's first `limit` messages tagged `tag` ("*WARNING", "*ERROR"): the tagged line and the next
+// one that says something (it often says more).
+std::vector<std::string> ccx_messages(const std::string& output, const std::string& tag,
+                                      std::size_t limit) {
   std::istringstream in(output);
   std::string line;
-  std::vector<std::string> warnings;
-  while (warnings.size() < limit && std::getline(in, line)) {
-    if (line.find("*WARNING") == std::string::npos) continue;
+  std::vector<std::string> messages;
+  while (messages.size() < limit && std::getline(in, line)) {
+    if (line.find(tag) == std::string::npos) continue;
     std::string next;
     while (std::getline(in, next) && next.find_first_not_of(" \t\r") == std::string::npos) {
     }
-    warnings.push_back(clipped(trimmed(line) + " " + trimmed(next), 300));
+    messages.push_back(clipped(trimmed(line) + " " + trimmed(next), 300));
   }
-  return warnings;
+  return messages;
 }
 
-// Why ccx failed, from what it printed: its first *ERROR line (with the next line, which often
-// says more), else its last line.
+// Why ccx failed, from what it printed: its first *ERROR message, else its last line.
 std::string ccx_reason(const std::string& output) {
+  const std::vector<std::string> errors = ccx_messages(output, "*ERROR", 1);
+  if (!errors.empty()) return errors.front();
   std::istringstream in(output);
   std::string line;
   std::string last;
   while (std::getline(in, line)) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    if (line.find("*ERROR") != std::string::npos) {
-      std::string next;
-      while (std::getline(in, next) && next.find_first_not_of(" \t\r") == std::string::npos) {
-      }
-      return clipped(trimmed(line) + " " + trimmed(next), 300);
-    }
-    last = line;
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
   }
   return clipped(last, 300);
 }
 
 }  // namespace
 
-Homogenized homogenize_with_calculix(const MesoMesh& mesh, const MesoFileOptions& options,
-                                     const HomogenizeOptions& run) {
-  if (!(mesh.periodic[0] && mesh.periodic[1] && mesh.periodic[2])) {
-    throw InvalidInput("homogenize", "a mesh periodic in fewer than three axes",
+std::string check_homogenize(const std::array<bool, 3>& periodic) {
+  std::string program = find_on_path("ccx");
+  if (program.empty()) {
+    throw InvalidInput("homogenize", "true",
+                       "with CalculiX installed: no program ccx on PATH (Debian package "
+                       "calculix-ccx: apt-get install calculix-ccx)");
+  }
+  const std::string word = periodic_word(periodic);
+  if (word != "xyz") {
+    throw InvalidInput("homogenize", "with container.periodic = " + word,
                        "a packing periodic in x, y and z (container.periodic = true)");
   }
+  return program;
+}
+
+Homogenized homogenize_with_calculix(const MesoMesh& mesh, const MesoFileOptions& options,
+                                     const HomogenizeOptions& run) {
   Homogenized result;
-  result.program = find_on_path("ccx");
-  if (result.program.empty()) {
-    throw InvalidInput("homogenize", "ccx",
-                       "CalculiX installed: no program ccx on PATH (Debian package calculix-ccx: "
-                       "apt-get install calculix-ccx)");
-  }
+  result.program = check_homogenize(mesh.periodic);
   result.solver = options.solver;
   result.threads = run.threads > 0 ? run.threads : allowed_threads();
   result.strain = options.step.strain > 0.0 ? options.step.strain : 1e-3;
@@ -203,7 +206,7 @@ Homogenized homogenize_with_calculix(const MesoMesh& mesh, const MesoFileOptions
   result.stiffness = periodic_stiffness_from_dat(text, mesh, options);
   result.isotropic = isotropic_projection(result.stiffness);
   result.asymmetry = asymmetry(result.stiffness);
-  result.warnings = ccx_warnings(output, 5);
+  result.warnings = ccx_messages(output, "*WARNING", 5);
   if (run.progress) run.progress(6);
   return result;
 }

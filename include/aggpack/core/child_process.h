@@ -49,10 +49,10 @@ struct ChildCommand {
   std::string error_file;  ///< its standard error goes here (created or truncated)
 };
 
-/// A running child whose standard output is a pipe to aggpack (output()). The child gets SIGKILL
-/// when aggpack ends (PR_SET_PDEATHSIG), and the destructor kills and reaps it unless wait() did.
-/// \throw IoError when it cannot start ("cannot start <program>: <reason>"); a program that
-/// fails to exec exits with status 127, a folder it cannot enter with 126.
+/// A running child whose standard output is a pipe to aggpack (read_output()). The child gets
+/// SIGKILL when aggpack ends (PR_SET_PDEATHSIG), and the destructor kills and reaps it unless
+/// wait() did. \throw IoError when it cannot start ("cannot start <program>: <reason>"); a program
+/// that fails to exec exits with status 127, a folder it cannot enter with 126.
 class ChildProcess {
  public:
   explicit ChildProcess(const ChildCommand& command);

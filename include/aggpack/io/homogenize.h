@@ -5,6 +5,7 @@
 // asymmetry, and the Hashin-Shtrikman bounds of the phases (Walpole's form, which holds for any
 // isotropic phases, ordered or not). write_stiffness_json writes all of it.
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -72,12 +73,18 @@ struct Homogenized {
   std::vector<std::string> warnings;
 };
 
+/// What homogenize_with_calculix refuses before any work, for a box periodic along `periodic`
+/// (x, y, z): CalculiX not installed, then a box not periodic in all three axes. Returns the ccx
+/// to run. A front end calls it before meshing. \throw InvalidInput (field "homogenize"; value
+/// "true" when ccx is not on PATH, the message naming the Debian package calculix-ccx, or "with
+/// container.periodic = xy").
+std::string check_homogenize(const std::array<bool, 3>& periodic);
+
 /// Writes the periodic .inp of `mesh` with `options` in a temporary folder, runs CalculiX's ccx on
 /// it and reads the stiffness from its .dat. The folder and everything in it are removed on every
 /// exit path; ccx dies with aggpack.
-/// \throw InvalidInput ("homogenize": a mesh not periodic in x, y and z; ccx not on PATH, naming
-/// the Debian package calculix-ccx), IoError (ccx failed: its exit status and its first *ERROR
-/// line or last line).
+/// \throw InvalidInput (check_homogenize(mesh.periodic)), IoError (ccx failed: its exit status and
+/// its first *ERROR line or last line).
 Homogenized homogenize_with_calculix(const MesoMesh& mesh, const MesoFileOptions& options,
                                      const HomogenizeOptions& run = {});
 
