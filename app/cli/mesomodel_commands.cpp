@@ -174,9 +174,7 @@ void run_voxels(const MesomodelFlags& flags, const Overwrite overwrite) {
 void print_report(const MesoMesh& mesh, const MesoReport& report) {
   fmt::print("mesomodel     {} aggregates, ITZ {:.6g} m, container {:.6g} m^3 ({})\n",
              mesh.particle_count, mesh.itz_thickness, report.container_volume,
-             mesh.is_cylinder
-                 ? fmt::format("prism of {} sides about the cylinder", mesh.cylinder_segments)
-                 : std::string("box"));
+             prism_summary(mesh.container, mesh.prism_sides));
   fmt::print("mesh          {} nodes, {} tetrahedra; TetGen -{} in {} s{}\n", mesh.nodes.size(),
              mesh.tetrahedra.size(), report.tetgen_switches, format_seconds(report.mesh_seconds),
              report.relabelled_tetrahedra == 0

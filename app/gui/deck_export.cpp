@@ -118,12 +118,17 @@ std::string GuiApp::draw_deck_fields(DeckKind deck) {
       {Text::kDeckPoisson, "poisson ratio", Text::kDeckPoissonTooltip,
        &deck_material_.poisson_ratio},
   };
-  if (deck == DeckKind::kCalculix) {
-    fields.push_back(
-        {Text::kDeckContact, "contact distance", Text::kDeckContactTooltip, &d.contact_distance});
-  }
-  if (deck == DeckKind::kYade) {
-    fields.push_back({Text::kDeckTimeStep, "time step", Text::kDeckTimeStepTooltip, &d.time_step});
+  // The options of one deck only: shown for the decks whose row lists them.
+  const DeckField own_fields[] = {
+      {Text::kDeckContact, "contact distance", Text::kDeckContactTooltip, &d.contact_distance},
+      {Text::kDeckTimeStep, "time step", Text::kDeckTimeStepTooltip, &d.time_step}};
+  for (const DeckInfo& info : deck_kinds()) {
+    if (info.kind != deck) continue;
+    for (const std::string_view name : info.own_options) {
+      for (const DeckField& field : own_fields) {
+        if (name == field.field) fields.push_back(field);
+      }
+    }
   }
   if (ImGui::BeginTable("##deck", 2, ImGuiTableFlags_SizingStretchSame)) {
     for (const DeckField& field : fields) {

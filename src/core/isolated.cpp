@@ -19,10 +19,15 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <utility>
 
 #include "aggpack/core/error.h"
 #include "aggpack/core/parallel.h"
+
+#ifdef AGGPACK_HAS_TBB
+#include <tbb/global_control.h>
+#endif
 
 // Weak: defined only when a sanitizer runtime is linked in.
 extern "C" void __sanitizer_set_death_callback(void (*callback)()) __attribute__((weak));
@@ -43,6 +48,21 @@ struct RecordHeader {
 };
 
 int default_workers() { return allowed_threads(); }
+
+// Ends TBB's worker threads (they start again at the next parallel loop) before the parent
+// forks. A worker that has just finished its part of a loop may still be freeing its task when
+// the loop returns; a child forked at that moment inherits the allocator's lock taken. glibc's
+// malloc guards against that at fork, GCC 12's sanitizer allocator does not. A sanitized CI run
+// hung for ten minutes in `aggpack mesomodel` of a periodic box, whose TetGen worker is forked
+// right after the parallel loop that measures the clipped pieces: most likely that way. Best
+// effort: inside a parallel loop, or while another thread of the program uses TBB, finalize
+// refuses and the workers stay.
+void stop_thread_pool() {
+#ifdef AGGPACK_HAS_TBB
+  tbb::task_scheduler_handle handle{tbb::attach{}};
+  (void)tbb::finalize(handle, std::nothrow);
+#endif
+}
 
 std::shared_mutex& fork_mutex() {
   static std::shared_mutex mutex;
@@ -151,6 +171,7 @@ class Pool {
   }
 
   std::vector<IsolatedOutcome> run() {
+    stop_thread_pool();
     while (!queue_.empty() || !workers_.empty()) {
       while (workers_.size() < max_workers_ && !queue_.empty()) {
         start(std::move(queue_.front()));

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "aggpack/core/error.h"
+#include "aggpack/io/mesomodel_files.h"
 #include "aggpack/io/native.h"
 #include "deck_common.h"
 #include "export_detail.h"
@@ -95,7 +96,8 @@ const std::vector<FormatInfo>& export_formats() {
        .has_surface = true,
        .has_tetrahedra = true,
        .default_cells = MeshCells::kSurface,
-       .write_mesh = detail::write_vtu},
+       .write_mesh = detail::write_vtu,
+       .write_mesomodel = write_mesomodel_vtu},
       {.format = kRockDat,
        .name = "dat",
        .output_key = "dat",
@@ -112,7 +114,8 @@ const std::vector<FormatInfo>& export_formats() {
        .has_tetrahedra = true,
        .has_quadratic = true,
        .default_cells = MeshCells::kTetrahedra,
-       .write_mesh = detail::write_abaqus},
+       .write_mesh = detail::write_abaqus,
+       .write_mesomodel = write_mesomodel_inp},
       {.format = kGmsh,
        .name = "msh",
        .output_key = "msh",
@@ -121,7 +124,8 @@ const std::vector<FormatInfo>& export_formats() {
        .has_surface = true,
        .has_tetrahedra = true,
        .default_cells = MeshCells::kTetrahedra,
-       .write_mesh = detail::write_gmsh},
+       .write_mesh = detail::write_gmsh,
+       .write_mesomodel = write_mesomodel_msh},
       {.format = kLsDyna,
        .name = "k",
        .output_key = "k",
@@ -163,6 +167,7 @@ const std::vector<DeckInfo>& deck_kinds() {
        .title = "CalculiX",
        .aliases = {"ccx"},
        .format = ExportFormat::kAbaqus,
+       .own_options = {"contact distance"},
        .write_mesh = detail::write_deck_calculix},
       {.kind = DeckKind::kLsDyna,
        .name = "lsdyna",
@@ -175,6 +180,7 @@ const std::vector<DeckInfo>& deck_kinds() {
        .title = "YADE",
        .aliases = {},
        .format = ExportFormat::kYade,
+       .own_options = {"time step"},
        .write_mesh = detail::write_deck_yade},
   };
   return decks;

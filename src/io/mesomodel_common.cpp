@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/pack/container.h"
 #include "mesomodel_detail.h"
 
 namespace aggpack {
@@ -114,6 +117,13 @@ void validate(const MesoMesh& mesh) {
                            format_value(extent.z()) + " m",
                        "a box with positive, finite extent");
   }
+  // The container's prism is what the writers' face sets are found on: a mesh made by hand must
+  // say which container it fills.
+  const Aabb prism = prism_bounds(mesh.container, std::max(mesh.prism_sides, 3));
+  if (prism.lower != mesh.bounds.lower || prism.upper != mesh.bounds.upper) {
+    throw InvalidInput("mesh.container", prism_summary(mesh.container, mesh.prism_sides),
+                       "the container whose prism (mesh.prism_sides) has the mesh's bounds");
+  }
   const auto nodes = static_cast<std::uint32_t>(mesh.nodes.size());
   validate_cohesive(mesh, nodes);
   for (std::size_t i = 0; i < count; ++i) {
@@ -140,27 +150,25 @@ void validate(const MesoMesh& mesh) {
   }
 }
 
-MesoFileFormat mesomodel_format(const std::string& path) {
+ExportFormat mesomodel_format(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension == ".inp") return MesoFileFormat::kInp;
-  if (extension == ".msh") return MesoFileFormat::kMsh;
-  if (extension == ".vtu") return MesoFileFormat::kVtu;
-  throw InvalidInput("output", "'" + path + "'", ".inp, .msh, .vtu");
+  std::vector<std::string> allowed;
+  for (const FormatInfo& info : export_formats()) {
+    if (info.write_mesomodel == nullptr) continue;
+    if (extension == "." + std::string(info.name)) return info.format;
+    allowed.push_back("." + std::string(info.name));
+  }
+  std::sort(allowed.begin(), allowed.end());
+  std::string list;
+  for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
+  throw InvalidInput("output", "'" + path + "'", list);
 }
 
 MesoFileSummary write_mesomodel(const std::string& path, const MesoMesh& mesh,
                                 const MesoFileOptions& options) {
-  switch (mesomodel_format(path)) {
-    case MesoFileFormat::kInp:
-      return write_mesomodel_inp(path, mesh, options);
-    case MesoFileFormat::kMsh:
-      return write_mesomodel_msh(path, mesh, options);
-    case MesoFileFormat::kVtu:
-      break;
-  }
-  return write_mesomodel_vtu(path, mesh, options);
+  return format_info(mesomodel_format(path)).write_mesomodel(path, mesh, options);
 }
 
 MesoModulusBounds voigt_reuss_bounds(const MesoMesh& mesh, const MesoMaterials& materials) {

@@ -339,7 +339,7 @@ MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mes
     }
     out << tail;
   });
-  return {.format = MesoFileFormat::kInp,
+  return {.format = ExportFormat::kAbaqus,
           .nodes = nodes.size() + (is_periodic_mesh ? 3 : 0),  // + the reference nodes
           .elements = layout.order.size()};
 }

@@ -132,7 +132,7 @@ MesoFileSummary write_mesomodel_msh(const std::string& path, const MesoMesh& mes
     out << "$EndElements\n";
   });
   return {
-      .format = MesoFileFormat::kMsh, .nodes = mesh.nodes.size(), .elements = layout.order.size()};
+      .format = ExportFormat::kGmsh, .nodes = mesh.nodes.size(), .elements = layout.order.size()};
 }
 
 }  // namespace aggpack

@@ -101,7 +101,7 @@ MesoFileSummary write_mesomodel_vtu(const std::string& path, const MesoMesh& mes
          .scalars = "phase"},
         out);
   });
-  return {.format = MesoFileFormat::kVtu, .nodes = points, .elements = cells};
+  return {.format = ExportFormat::kVtu, .nodes = points, .elements = cells};
 }
 
 }  // namespace aggpack

@@ -11,7 +11,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
-#include <numbers>
 #include <string>
 
 #include "aggpack/core/error.h"
@@ -36,21 +35,8 @@ struct Prism {
 
 Prism make_prism(const Container& container, int segments) {
   Prism prism;
-  std::vector<Vec3> ring;  // the floor polygon, counter-clockwise seen from above
-  double height = 0.0;
-  if (const auto* box = container.get_if<BoxContainer>()) {
-    ring = {Vec3(0, 0, 0), Vec3(box->length, 0, 0), Vec3(box->length, box->width, 0),
-            Vec3(0, box->width, 0)};
-    height = box->depth;
-  } else if (const auto* cylinder = container.get_if<CylinderContainer>()) {
-    const double corner = cylinder->radius / std::cos(std::numbers::pi / segments);
-    for (int k = 0; k < segments; ++k) {
-      // Side k is tangent to the circle at angle 2 pi k / n; corners halfway between.
-      const double angle = std::numbers::pi * (2.0 * k + 1.0) / segments;
-      ring.emplace_back(corner * std::cos(angle), corner * std::sin(angle), 0.0);
-    }
-    height = cylinder->height;
-  }
+  const std::vector<Vec3> ring = container_prism_floor(container, segments);
+  const double height = container.bounds().upper.z();
   const auto n = static_cast<std::uint32_t>(ring.size());
   for (const Vec3& p : ring) prism.points.push_back(p);
   for (const Vec3& p : ring) prism.points.emplace_back(p.x(), p.y(), height);
@@ -438,8 +424,7 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
   if (is_cohesive) options.itz_thickness = 0.0;
   validate(packing.container);
   const Prism prism = make_prism(packing.container, options.cylinder_segments);
-  Aabb box;
-  for (const Vec3& p : prism.points) box.expand(p);
+  const Aabb box = prism_bounds(packing.container, options.cylinder_segments);
   const double size = box.extent().maxCoeff();
   // Bodies closer than this count as touching (TetGen's own coplanarity tolerance is 1e-8 of the
   // domain's size; stay well clear of it).
@@ -540,11 +525,8 @@ MesoMesh build_mesomodel(const Packing& packing, const MesoOptions& given, MesoR
   mesh.bounds = box;
   mesh.periodic = periodic_axes(packing.container);
   mesh.itz_thickness = t;
-  if (const auto* cylinder = packing.container.get_if<CylinderContainer>()) {
-    mesh.is_cylinder = true;
-    mesh.cylinder_radius = cylinder->radius;
-    mesh.cylinder_segments = options.cylinder_segments;
-  }
+  mesh.container = packing.container;
+  mesh.prism_sides = options.cylinder_segments;
 
   std::vector<detail::PhaseBody> bodies(inclusions.size());
   parallel_for_index(0, bodies.size(), [&](std::size_t i) {

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
-#include <numbers>
 #include <vector>
 
 #include "aggpack/core/error.h"
 #include "aggpack/mesh/mesomodel.h"
+#include "aggpack/pack/container.h"
 
 namespace aggpack {
 
@@ -51,19 +51,7 @@ std::vector<std::uint32_t> face_nodes(const MesoMesh& mesh, SpecimenFace face) {
     const Vec3& p = mesh.nodes[i];
     const bool is_bottom = p.z() <= mesh.bounds.lower.z() + tolerance;
     const bool is_top = p.z() >= mesh.bounds.upper.z() - tolerance;
-    bool is_side = false;
-    if (mesh.is_cylinder) {
-      const int n = mesh.cylinder_segments;
-      for (int k = 0; k < n && !is_side; ++k) {
-        const double angle = 2.0 * std::numbers::pi * k / n;
-        const double reach = std::cos(angle) * (p.x() - mesh.axis_point.x()) +
-                             std::sin(angle) * (p.y() - mesh.axis_point.y());
-        is_side = reach >= mesh.cylinder_radius - tolerance;
-      }
-    } else {
-      is_side = (p.head<2>().array() <= mesh.bounds.lower.head<2>().array() + tolerance).any() ||
-                (p.head<2>().array() >= mesh.bounds.upper.head<2>().array() - tolerance).any();
-    }
+    const bool is_side = is_on_prism_side(mesh.container, p, mesh.prism_sides, tolerance);
     const bool is_wanted = face == SpecimenFace::kBottom ? is_bottom
                            : face == SpecimenFace::kTop  ? is_top
                                                          : is_side;

@@ -165,9 +165,9 @@ void start_at_widest_corner(const std::vector<Vec3>& points, std::vector<std::ui
 }  // namespace
 
 PeriodicComplex periodic_complex(const Packing& packing, double wall_spacing, double min_gap) {
-  const auto* box = packing.container.get_if<BoxContainer>();
-  const std::array<bool, 3> periodic = box->periodic;
-  const Vec3 extent(box->length, box->width, box->depth);
+  // A periodic container is a box [0, extent] (container.h: periodic_axes).
+  const std::array<bool, 3> periodic = periodic_axes(packing.container);
+  const Vec3 extent = packing.container.bounds().upper;
   PeriodicComplex complex;
   Plc& plc = complex.plc;
   ExactPointNumbers table{plc.points, {}};

@@ -254,6 +254,30 @@ Vec3 container_ratio(const Container& from, const Container& other) {
   });
 }
 
+std::vector<Vec3> container_prism_floor(const Container& container, int sides) {
+  return container.visit([sides](const auto& kind) { return kind.prism_floor(sides); });
+}
+
+Aabb prism_bounds(const Container& container, int sides) {
+  Aabb box;
+  for (const Vec3& p : container_prism_floor(container, sides)) box.expand(p);
+  box.expand(Vec3(box.lower.x(), box.lower.y(), container.bounds().upper.z()));
+  return box;
+}
+
+bool is_on_prism_side(const Container& container, const Vec3& point, int sides, double tolerance) {
+  return container.visit(
+      [&](const auto& kind) { return kind.is_on_prism_side(point, sides, tolerance); });
+}
+
+std::string prism_summary(const Container& container, int sides) {
+  std::string text =
+      container.visit([]<class K>(const K&) { return std::string(K::kPrismSummary); });
+  const std::size_t slot = text.find("{}");
+  if (slot != std::string::npos) text.replace(slot, 2, std::to_string(sides));
+  return text;
+}
+
 Container container_scaled(const Container& container, const Vec3& factor) {
   Container result = container;
   result.shape = container.visit(

@@ -126,4 +126,13 @@ BoxContainer BoxContainer::scaled(const Vec3& factor) const {
           .periodic = periodic};
 }
 
+std::vector<Vec3> BoxContainer::prism_floor(int /*sides*/) const {
+  return {Vec3(0, 0, 0), Vec3(length, 0, 0), Vec3(length, width, 0), Vec3(0, width, 0)};
+}
+
+bool BoxContainer::is_on_prism_side(const Vec3& point, int /*sides*/, double tolerance) const {
+  return point.x() <= tolerance || point.y() <= tolerance || point.x() >= length - tolerance ||
+         point.y() >= width - tolerance;
+}
+
 }  // namespace aggpack

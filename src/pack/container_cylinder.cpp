@@ -117,4 +117,26 @@ CylinderContainer CylinderContainer::scaled(const Vec3& factor) const {
   return {radius * factor.x(), height * factor.z()};
 }
 
+std::vector<Vec3> CylinderContainer::prism_floor(int sides) const {
+  // Side k is tangent to the circle at angle 2 pi k / sides; its corners lie halfway between.
+  const double corner = radius / std::cos(std::numbers::pi / sides);
+  std::vector<Vec3> ring;
+  ring.reserve(static_cast<std::size_t>(sides));
+  for (int k = 0; k < sides; ++k) {
+    const double angle = std::numbers::pi * (2.0 * k + 1.0) / sides;
+    ring.emplace_back(corner * std::cos(angle), corner * std::sin(angle), 0.0);
+  }
+  return ring;
+}
+
+bool CylinderContainer::is_on_prism_side(const Vec3& point, int sides, double tolerance) const {
+  for (int k = 0; k < sides; ++k) {
+    const double angle = 2.0 * std::numbers::pi * k / sides;
+    if (std::cos(angle) * point.x() + std::sin(angle) * point.y() >= radius - tolerance) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace aggpack

@@ -6,14 +6,19 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <fstream>
 #include <future>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "aggpack/core/error.h"
+#include "aggpack/core/parallel.h"
 
 namespace aggpack {
 namespace {
@@ -117,6 +122,39 @@ TEST(RunIsolated, DoesNotForkWhileASectionWithoutForkIsOpen) {
   const auto outcomes = running.get();
   ASSERT_EQ(outcomes.size(), 3U);
   for (std::size_t i = 0; i < outcomes.size(); ++i) EXPECT_EQ(outcomes[i].bytes, square(i));
+}
+
+// Threads of process `pid` (the "Threads:" line of /proc/PID/status), 0 if unknown.
+int thread_count(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string word;
+  while (status >> word) {
+    if (word == "Threads:") {
+      int count = 0;
+      status >> count;
+      return count;
+    }
+  }
+  return 0;
+}
+
+TEST(RunIsolated, ForksWithNoThreadPoolWorkerAlive) {
+  // A parallel loop leaves TBB's workers alive; one of them still freeing its task when a child is
+  // forked leaves the child the allocator's lock (a sanitized run hung so). The worker, asked
+  // how many threads its parent has, must answer one: the parent's own.
+  std::atomic<int> most_threads = 0;
+  parallel_for_index(0, 64, [&](std::size_t) {
+    std::vector<double> scratch(1000, 1.0);
+    most_threads = std::max(most_threads.load(), thread_count(::getpid()));
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  });
+  if (concurrency() > 1) {
+    EXPECT_GT(most_threads.load(), 1) << "the loop ran on one thread";
+  }
+  const auto outcomes = run_isolated(
+      1, [](std::size_t) { return std::to_string(thread_count(::getppid())); }, {.workers = 1});
+  ASSERT_TRUE(outcomes.front().is_done) << outcomes.front().failure;
+  EXPECT_EQ(outcomes.front().bytes, "1");
 }
 
 TEST(RunIsolated, RejectsBadOptions) {

@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 #include <string>
+#include <string_view>
 
 #include "aggpack/core/error.h"
 #include "aggpack/io/export.h"
@@ -125,6 +127,22 @@ TEST(FormatTable, EveryDeckNamesAMeshFormatAndAWriter) {
     ExportOptions options;
     options.deck.kind = deck.kind;
     EXPECT_EQ(resolve_format("trough", options), deck.format);
+    // A deck's own options (the GUI shows their fields for this deck only) are named so by the
+    // library's check: a bad value is refused under that name.
+    const std::map<std::string_view, double DeckOptions::*> members = {
+        {"contact distance", &DeckOptions::contact_distance},
+        {"time step", &DeckOptions::time_step}};
+    for (const std::string_view own : deck.own_options) {
+      ASSERT_EQ(members.count(own), 1U) << own;
+      ExportOptions bad = options;
+      bad.deck.*members.at(own) = -1.0;
+      try {
+        validate(bad, deck.format);
+        ADD_FAILURE() << own << " = -1 was accepted";
+      } catch (const InvalidInput& invalid) {
+        EXPECT_EQ(invalid.field(), own);
+      }
+    }
   }
   EXPECT_EQ(seen.size(), 4U);
   EXPECT_EQ(parse_deck_kind("none"), DeckKind::kNone);

@@ -35,7 +35,8 @@ MesoMesh two_phase_mesh(double aggregate) {
   mesh.phase = {MesoPhase::kAggregate, MesoPhase::kMortar};
   mesh.particle = {1, 0};
   mesh.particle_count = 1;
-  mesh.bounds = Aabb{Vec3::Zero(), Vec3(6, 6, 6)};
+  mesh.container.shape = BoxContainer{.length = 6, .width = 6, .depth = 6};
+  mesh.bounds = mesh.container.bounds();
   return mesh;
 }
 

@@ -6,10 +6,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <charconv>
 #include <map>
 #include <regex>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "aggpack/core/error.h"
 #include "ccx_fixture.h"
@@ -56,7 +59,7 @@ TEST(MesomodelFiles, InpHasSetsMaterialsAndShortNumbers) {
   MesoFileOptions options;
   options.step.strain = 2e-3;
   const MesoFileSummary summary = write_mesomodel(path, mesh, options);
-  EXPECT_EQ(summary.format, MesoFileFormat::kInp);
+  EXPECT_EQ(summary.format, ExportFormat::kAbaqus);
   EXPECT_EQ(summary.nodes, 64U);
   EXPECT_EQ(summary.elements, 162U);
   const std::string text = test::read_text(path);
@@ -283,7 +286,7 @@ TEST(MesomodelFiles, VtkReadsTheVtuWithPhaseAndParticle) {
   const MesoMesh mesh = specimen(0.1);
   const std::string path = folder.file("s.vtu");
   const MesoFileSummary summary = write_mesomodel(path, mesh, {});
-  EXPECT_EQ(summary.format, MesoFileFormat::kVtu);
+  EXPECT_EQ(summary.format, ExportFormat::kVtu);
   const auto result = test::run_python(folder, kVtkScript, path);
   ASSERT_EQ(result.exit_code, 0) << result.output;
   const auto lines = test::split(result.output, '\n');
@@ -319,8 +322,24 @@ TEST(MesomodelFiles, UnknownExtensionIsRefusedNamingTheAllowedOnes) {
   const std::string path = folder.file("s.stl");
   EXPECT_EQ(message_of<InvalidInput>([&] { write_mesomodel(path, specimen()); }),
             "invalid output = '" + path + "' (allowed: .inp, .msh, .vtu)");
-  EXPECT_EQ(mesomodel_format(folder.file("S.INP")), MesoFileFormat::kInp);
+  EXPECT_EQ(mesomodel_format(folder.file("S.INP")), ExportFormat::kAbaqus);
   EXPECT_TRUE(folder.entries().empty());
+}
+
+TEST(MesomodelFiles, EveryRowWithAMesomodelWriterWritesItsFormat) {
+  ScratchFolder folder;
+  std::vector<std::string> names;
+  for (const FormatInfo& info : export_formats()) {
+    if (info.write_mesomodel == nullptr) continue;
+    names.emplace_back(info.name);
+    const std::string path = folder.file("s." + std::string(info.name));
+    EXPECT_EQ(mesomodel_format(path), info.format);
+    const MesoFileSummary summary = write_mesomodel(path, specimen());
+    EXPECT_EQ(summary.format, info.format);
+    EXPECT_EQ(summary.elements, specimen().tetrahedra.size()) << info.name;
+  }
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"inp", "msh", "vtu"}));
 }
 
 TEST(MesomodelFiles, BadMaterialsAndOptionsNameTheField) {
@@ -364,6 +383,11 @@ TEST(MesomodelFiles, InconsistentMeshIsRefused) {
   mesh.tetrahedra[5][2] = 64;
   EXPECT_EQ(message_of<InvalidInput>([&] { write_mesomodel(path, mesh); }),
             "invalid mesh.tetrahedra[5] node = 64 (allowed: 0..63 (0-based))");
+  mesh = specimen();
+  mesh.container = Container{};  // made by hand without its container: the face sets need it
+  EXPECT_EQ(message_of<InvalidInput>([&] { write_mesomodel(path, mesh); }),
+            "invalid mesh.container = box (allowed: the container whose prism "
+            "(mesh.prism_sides) has the mesh's bounds)");
   EXPECT_TRUE(folder.entries().empty());
 }
 

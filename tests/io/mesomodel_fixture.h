@@ -58,8 +58,8 @@ inline MesoMesh cube_mesomodel(int n, double size, std::uint32_t particle_count,
     }
   }
   mesh.particle_count = particle_count;
-  mesh.bounds.lower = Vec3::Zero();
-  mesh.bounds.upper = Vec3(size, size, size);
+  mesh.container.shape = BoxContainer{.length = size, .width = size, .depth = size};
+  mesh.bounds = mesh.container.bounds();
   return mesh;
 }
 

@@ -106,7 +106,8 @@ TEST(PeriodicInp, EveryUpperFaceNodeIsTiedOnceToItsImage) {
 TEST(PeriodicInp, StiffnessFromADatText) {
   // A 2 x 4 x 5 mm box in mm: step k's totals on XMAX, YMAX, ZMAX (areas 20, 10, 8 mm^2).
   MesoMesh mesh;
-  mesh.bounds = Aabb{Vec3::Zero(), Vec3(0.002, 0.004, 0.005)};
+  mesh.container.shape = BoxContainer{.length = 0.002, .width = 0.004, .depth = 0.005};
+  mesh.bounds = mesh.container.bounds();
   mesh.periodic = {true, true, true};
   std::string dat;
   for (int k = 0; k < 6; ++k) {

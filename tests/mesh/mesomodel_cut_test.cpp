@@ -71,8 +71,8 @@ MesoMesh kuhn_cube() {
     }
   }
   mesh.particle_count = kCells * kCells * kCells;
-  mesh.bounds.lower = Vec3::Zero();
-  mesh.bounds.upper = Vec3::Constant(kSide);
+  mesh.container.shape = BoxContainer{.length = kSide, .width = kSide, .depth = kSide};
+  mesh.bounds = mesh.container.bounds();
   return mesh;
 }
 

@@ -46,7 +46,7 @@ void expect_conforming(const MesoMesh& mesh) {
     if (users.size() == 1) {
       // A boundary face lies on the container's surface: on a wall plane of the box.
       const Vec3 centre = (mesh.nodes[key[0]] + mesh.nodes[key[1]] + mesh.nodes[key[2]]) / 3.0;
-      if (!mesh.is_cylinder) {
+      if (mesh.container.get_if<BoxContainer>() != nullptr) {
         const bool is_on_wall = ((centre - mesh.bounds.lower).cwiseAbs().minCoeff() <= tolerance) ||
                                 ((centre - mesh.bounds.upper).cwiseAbs().minCoeff() <= tolerance);
         EXPECT_TRUE(is_on_wall) << "a face inside the container has one tetrahedron";

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "aggpack/core/error.h"
 #include "aggpack/pack/container.h"
@@ -109,6 +110,31 @@ TEST(Container, SlabVolumesAreExactAndAddUp) {
   for (int k = 0; k < 7; ++k)
     sum += container_slab_volume(c, 0, -0.5 + k / 7.0, -0.5 + (k + 1) / 7.0);
   EXPECT_NEAR(sum, c.volume(), 1e-14);
+}
+
+TEST(Container, MeshPrismOfEachKind) {
+  const Container b = box(3.0, 1.0, 2.8);
+  EXPECT_EQ(container_prism_floor(b, 96),
+            (std::vector<Vec3>{Vec3(0, 0, 0), Vec3(3, 0, 0), Vec3(3, 1, 0), Vec3(0, 1, 0)}));
+  EXPECT_TRUE(is_on_prism_side(b, Vec3(3.0, 0.5, 1.0), 96, 1e-9));
+  EXPECT_TRUE(is_on_prism_side(b, Vec3(1.0, 0.0, 1.0), 96, 1e-9));
+  EXPECT_FALSE(is_on_prism_side(b, Vec3(1.0, 0.5, 0.0), 96, 1e-9));  // the floor only
+  EXPECT_EQ(prism_summary(b, 96), "box");
+  // A cylinder's prism circumscribes it: n corners at R / cos(pi / n), counter-clockwise, area
+  // n R^2 tan(pi / n); side k touches the circle at angle 2 pi k / n.
+  const Container c = cylinder(0.5, 2.0);
+  const std::vector<Vec3> ring = container_prism_floor(c, 8);
+  ASSERT_EQ(ring.size(), 8U);
+  double area = 0.0;
+  for (std::size_t k = 0; k < ring.size(); ++k) {
+    EXPECT_NEAR(ring[k].norm(), 0.5 / std::cos(std::numbers::pi / 8), 1e-15);
+    area += 0.5 * ring[k].cross(ring[(k + 1) % ring.size()]).z();
+  }
+  EXPECT_NEAR(area, 8 * 0.25 * std::tan(std::numbers::pi / 8), 1e-15);
+  EXPECT_TRUE(is_on_prism_side(c, Vec3(0.5, 0.1, 1.0), 8, 1e-9));        // on side 0 (x = R)
+  EXPECT_FALSE(is_on_prism_side(c, Vec3(0.49, 0.0, 1.0), 8, 1e-9));      // inside it
+  EXPECT_TRUE(is_on_prism_side(c, ring[3] + Vec3(0, 0, 0.5), 8, 1e-9));  // a corner's edge
+  EXPECT_EQ(prism_summary(c, 8), "prism of 8 sides about the cylinder");
 }
 
 }  // namespace

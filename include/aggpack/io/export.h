@@ -32,6 +32,9 @@ namespace aggpack {
 namespace detail {
 class ExportModel;
 }
+struct MesoMesh;         // mesh/mesomodel.h
+struct MesoFileOptions;  // io/mesomodel_files.h
+struct MesoFileSummary;
 
 /// File formats: an id only; what a format is and does is its row in export_formats().
 enum class ExportFormat {
@@ -190,6 +193,10 @@ struct FormatInfo {
   /// Writes the whole file itself and counts it in `summary` (the native file).
   void (*write_file)(const Packing& packing, const std::string& path, const ExportOptions& options,
                      ExportSummary& summary) = nullptr;
+  /// Writes a concrete mesomodel in this format (io/mesomodel_files.h, write_mesomodel with the
+  /// same contract); nullptr when the format has none.
+  MesoFileSummary (*write_mesomodel)(const std::string& path, const MesoMesh& mesh,
+                                     const MesoFileOptions& options) = nullptr;
 };
 
 /// Every format, in documentation order (the order of docs/formats.md and of help texts).
@@ -209,6 +216,8 @@ struct DeckInfo {
   std::string_view title;                     ///< the solver as its users name it: "CalculiX"
   std::vector<std::string_view> aliases;      ///< "ccx"
   ExportFormat format = ExportFormat::kAuto;  ///< the format the deck is written in
+  /// The DeckOptions only this deck reads, by the names validate() gives them ("time step").
+  std::vector<std::string_view> own_options = {};
   void (*write_mesh)(const detail::ExportModel& model, std::ostream& out) = nullptr;
 };
 

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "aggpack/core/atomic_file.h"
+#include "aggpack/io/export.h"
 #include "aggpack/mesh/mesomodel.h"
 
 namespace aggpack {
@@ -97,17 +98,16 @@ void validate(const MesoFileOptions& options);
 /// a container box with positive height.
 void validate(const MesoMesh& mesh);
 
-enum class MesoFileFormat : std::uint8_t { kInp, kMsh, kVtu };
-
-/// The format named by the output's extension (.inp, .msh, .vtu; case-insensitive).
+/// The format named by the output's extension, case-insensitive: a row of export_formats() with a
+/// mesomodel writer (FormatInfo::write_mesomodel: .inp, .msh, .vtu).
 /// \throw InvalidInput "invalid output = 'x.stl' (allowed: .inp, .msh, .vtu)"
-MesoFileFormat mesomodel_format(const std::string& path);
+ExportFormat mesomodel_format(const std::string& path);
 
 /// What was written.
 struct MesoFileSummary {
-  MesoFileFormat format = MesoFileFormat::kInp;
-  std::uint64_t nodes = 0;     ///< including mid-side nodes of C3D10
-  std::uint64_t elements = 0;  ///< tetrahedra
+  ExportFormat format = ExportFormat::kAbaqus;  ///< kAbaqus (.inp), kGmsh (.msh) or kVtu
+  std::uint64_t nodes = 0;                      ///< including mid-side nodes of C3D10
+  std::uint64_t elements = 0;                   ///< tetrahedra
 };
 
 /// Writes the mesh in the format of the path's extension, atomically (temporary file + rename;
@@ -117,7 +117,7 @@ struct MesoFileSummary {
 MesoFileSummary write_mesomodel(const std::string& path, const MesoMesh& mesh,
                                 const MesoFileOptions& options = {});
 
-/// The three writers (write_mesomodel checks the extension and calls one). Same contract.
+/// The three writers (write_mesomodel checks the extension and calls the row's). Same contract.
 MesoFileSummary write_mesomodel_inp(const std::string& path, const MesoMesh& mesh,
                                     const MesoFileOptions& options = {});
 MesoFileSummary write_mesomodel_msh(const std::string& path, const MesoMesh& mesh,

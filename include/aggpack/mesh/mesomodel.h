@@ -100,10 +100,10 @@ struct MesoMesh {
   /// that meets it clipped to it, and each node on a periodic face has a partner on the opposite
   /// face at the same in-plane coordinates (bit for bit; `periodic_pairs`).
   std::array<bool, 3> periodic{};
-  bool is_cylinder = false;             ///< the container is a cylinder (prism), axis z
-  Vec3 axis_point = Vec3::Zero();       ///< cylinder: a point on its axis (x, y used)
-  double cylinder_radius = 0.0;         ///< cylinder: radius of the circle the prism circumscribes
-  int cylinder_segments = 0;            ///< cylinder: sides of the prism (the first at angle 0)
+  /// The container meshed: the prism its kind gives for `prism_sides` (container.h,
+  /// container_prism_floor) is the specimen, whose side walls face_nodes() finds.
+  Container container;
+  int prism_sides = 0;  ///< sides of a curved container's prism (MesoOptions::cylinder_segments)
   double itz_thickness = 0.0;           ///< m, as meshed (cohesive: the constitutive thickness)
   std::vector<CohesiveWedge> cohesive;  ///< cohesive ITZ elements (empty for a solid ITZ)
   std::vector<std::uint32_t> cohesive_particle;  ///< per cohesive element: 1-based particle

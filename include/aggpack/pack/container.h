@@ -131,6 +131,20 @@ std::vector<ContainerWall> container_walls(const Container& container, double th
 /// Line segments that draw the container.
 std::vector<OutlineSegment> container_outline(const Container& container);
 
+/// The floor polygon (z = 0, counter-clockwise seen from above) of the straight prism a mesomodel
+/// of the container fills, up to its bounds' top: a box's rectangle; for a cylinder, `sides`
+/// sides circumscribing its circle, side k tangent at angle 2 pi k / sides.
+std::vector<Vec3> container_prism_floor(const Container& container, int sides);
+
+/// The bounding box of that prism.
+Aabb prism_bounds(const Container& container, int sides);
+
+/// Whether `point` lies on the side walls of that prism, within `tolerance` (m).
+bool is_on_prism_side(const Container& container, const Vec3& point, int sides, double tolerance);
+
+/// The CLI's name of that prism: "box", "prism of 96 sides about the cylinder".
+std::string prism_summary(const Container& container, int sides);
+
 /// Per-axis size ratio other / from (x, y, z). Throws InvalidInput if the kinds differ.
 Vec3 container_ratio(const Container& from, const Container& other);
 

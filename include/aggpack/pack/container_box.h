@@ -14,6 +14,7 @@ struct BoxContainer {
   static constexpr const char* kDescription = "box [0,length]x[0,width]x[0,depth]";
   static constexpr const char* kSummary = "box {} x {} x {} m";
   static constexpr bool kCentreRegionIsBounds = true;
+  static constexpr const char* kPrismSummary = "box";
 
   double length = 3.0;  ///< x extent (m)
   double width = 1.0;   ///< y extent (m)
@@ -36,6 +37,8 @@ struct BoxContainer {
   [[nodiscard]] std::vector<OutlineSegment> outline() const;
   [[nodiscard]] Vec3 ratio(const BoxContainer& other) const;
   [[nodiscard]] BoxContainer scaled(const Vec3& factor) const;
+  [[nodiscard]] std::vector<Vec3> prism_floor(int sides) const;
+  [[nodiscard]] bool is_on_prism_side(const Vec3& point, int sides, double tolerance) const;
   bool operator==(const BoxContainer&) const = default;
 };
 

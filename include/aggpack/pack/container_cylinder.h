@@ -13,6 +13,7 @@ struct CylinderContainer {
   static constexpr const char* kDescription = "cylinder about the z axis";
   static constexpr const char* kSummary = "cylinder radius {} m x height {} m";
   static constexpr bool kCentreRegionIsBounds = false;
+  static constexpr const char* kPrismSummary = "prism of {} sides about the cylinder";
 
   double radius = 0.05;  ///< m
   double height = 0.1;   ///< m
@@ -31,6 +32,8 @@ struct CylinderContainer {
   [[nodiscard]] std::vector<OutlineSegment> outline() const;
   [[nodiscard]] Vec3 ratio(const CylinderContainer& other) const;
   [[nodiscard]] CylinderContainer scaled(const Vec3& factor) const;
+  [[nodiscard]] std::vector<Vec3> prism_floor(int sides) const;
+  [[nodiscard]] bool is_on_prism_side(const Vec3& point, int sides, double tolerance) const;
   bool operator==(const CylinderContainer&) const = default;
 };
 

@@ -73,6 +73,13 @@ concept ContainerKindType = std::equality_comparable<K> && std::default_initiali
   // compression).
   { k.ratio(k) } -> std::same_as<Vec3>;
   { k.scaled(point) } -> std::same_as<K>;
+  // The straight prism a mesomodel fills (z from 0 to bounds().upper.z()): its floor polygon at
+  // z = 0, counter-clockwise seen from above, a curved wall replaced by `axis` sides (the
+  // mesomodel's cylinder_segments) that circumscribe it; whether a point lies on that prism's
+  // side walls within `value`; and the CLI's name for the prism, an fmt pattern taking the sides.
+  { k.prism_floor(axis) } -> std::same_as<std::vector<Vec3>>;
+  { k.is_on_prism_side(point, axis, value) } -> std::same_as<bool>;
+  { K::kPrismSummary } -> std::convertible_to<std::string_view>;
 };
 
 }  // namespace aggpack
