@@ -13,13 +13,14 @@
 // The lattice and settings are sim_bench's (World defaults); an optional last argument SWEEPS > 0
 // runs `run` with the cache-blocked solver (PhysicsOptions::solver = kBlocked, SWEEPS per block).
 //
-//   build/bench/sim_profile check NX NY SWEEPS TIME CREEP [ITERATIONS]
+//   build/bench/sim_profile check NX NY SWEEPS TIME CREEP [ITERATIONS [TOLERANCE]]
 //
 // validates a solver on a large pile: the lattice settles TIME s from rest (SWEEPS 0 =
 // Gauss-Seidel), then prints the state (contacts, deepest contact and exact overlap relative to
 // d_min, mean height, kinetic energy) and how far the particles move during CREEP more seconds
 // (mean and largest displacement, sinking of the mean height): a pile at rest should not creep.
-// ITERATIONS sets PhysicsOptions::solver_iterations (default 100).
+// ITERATIONS sets PhysicsOptions::solver_iterations (default 100), TOLERANCE
+// PhysicsOptions::solver_tolerance (m/s, default 0).
 
 #include <valgrind/callgrind.h>
 
@@ -80,9 +81,11 @@ double mean_height(const World& world) {
   return world.potential_energy() / (world.total_mass() * 9.81);
 }
 
-int check(int nx, int ny, int block_sweeps, double time, double creep, int iterations) {
+int check(int nx, int ny, int block_sweeps, double time, double creep, int iterations,
+          double tolerance) {
   PhysicsOptions options = solver_options(block_sweeps);
   options.solver_iterations = iterations;
+  options.solver_tolerance = tolerance;
   World world(lattice(nx, ny), options);
   const double d = world.smallest_size();
   const std::clock_t cpu_start = std::clock();
@@ -92,11 +95,12 @@ int check(int nx, int ny, int block_sweeps, double time, double creep, int itera
   const auto overlaps = world.overlap_statistics();
   const double particles = static_cast<double>(world.particle_count());
   std::printf(
-      "%s, %d iterations, %zu particles, %.2f s settled (%zu steps, %.1f s CPU): contacts per "
+      "%s, %d iterations, tolerance %g m/s, %zu particles, %.2f s settled (%zu steps, %.1f s CPU): "
+      "contacts per "
       "particle %.3f, "
       "deepest contact %.3f%% of d_min, deepest exact overlap %.3f%% of d_min, mean height %.5f m, "
       "kinetic energy %.4g J, max speed %.3g m/s\n",
-      block_sweeps > 0 ? "blocked" : "gauss-seidel", iterations, world.particle_count(),
+      block_sweeps > 0 ? "blocked" : "gauss-seidel", iterations, tolerance, world.particle_count(),
       world.time(), world.step_count(), cpu,
       static_cast<double>(contacts.contact_count) / particles,
       100.0 * contacts.max_contact_penetration / d, 100.0 * overlaps.max_depth_fraction,
@@ -104,7 +108,9 @@ int check(int nx, int ny, int block_sweeps, double time, double creep, int itera
   std::vector<Vec3> before(world.particle_count());
   for (std::size_t i = 0; i < before.size(); ++i) before[i] = world.pose(i).position;
   const double height = mean_height(world);
+  const std::clock_t creep_start = std::clock();
   world.step(static_cast<std::size_t>(creep / world.time_step() + 0.5));
+  const double creep_cpu = static_cast<double>(std::clock() - creep_start) / CLOCKS_PER_SEC;
   double sum = 0.0;
   double largest = 0.0;
   for (std::size_t i = 0; i < before.size(); ++i) {
@@ -113,9 +119,10 @@ int check(int nx, int ny, int block_sweeps, double time, double creep, int itera
     largest = std::max(largest, moved);
   }
   std::printf(
-      "  creep over %.2f s: mean displacement %.4f%% of d_min, largest %.3f%% of d_min, mean "
+      "  creep over %.2f s (%.1f s CPU): mean displacement %.4f%% of d_min, largest %.3f%% of "
+      "d_min, mean "
       "height %+.4f%% of d_min; then kinetic energy %.4g J, deepest contact %.3f%% of d_min\n",
-      creep, 100.0 * sum / particles / d, 100.0 * largest / d,
+      creep, creep_cpu, 100.0 * sum / particles / d, 100.0 * largest / d,
       100.0 * (mean_height(world) - height) / d, world.kinetic_energy(),
       100.0 * world.contact_statistics().max_contact_penetration / d);
   return 0;
@@ -173,12 +180,13 @@ int main(int argc, char** argv) {
     return run(std::atoi(argv[2]), std::atoi(argv[3]), argv[4], std::atoi(argv[5]),
                std::atoi(argv[6]), argc == 8 ? std::atoi(argv[7]) : 0);
   }
-  if (mode == "check" && (argc == 7 || argc == 8)) {
+  if (mode == "check" && argc >= 7 && argc <= 9) {
     return check(std::atoi(argv[2]), std::atoi(argv[3]), std::atoi(argv[4]), std::atof(argv[5]),
-                 std::atof(argv[6]), argc == 8 ? std::atoi(argv[7]) : 100);
+                 std::atof(argv[6]), argc >= 8 ? std::atoi(argv[7]) : 100,
+                 argc == 9 ? std::atof(argv[8]) : 0.0);
   }
   std::fprintf(stderr,
                "usage: sim_profile prepare NX NY STATE TIME | run NX NY STATE SETTLE MEASURE "
-               "[SWEEPS] | check NX NY SWEEPS TIME CREEP [ITERATIONS]\n");
+               "[SWEEPS] | check NX NY SWEEPS TIME CREEP [ITERATIONS [TOLERANCE]]\n");
   return 2;
 }

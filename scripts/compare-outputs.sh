@@ -6,8 +6,10 @@
 # --json) and every export: STL binary + ASCII (+ one file per particle), OBJ, VTU surface +
 # tetrahedra (fan and TetGen), rock.dat, Abaqus .inp C3D4 / C3D10 / parts, Gmsh .msh, LS-DYNA .k,
 # ANSYS .mac, YADE .py, and the abaqus / calculix / lsdyna / yade decks; the default case also
-# with --xdmf and --compression, a short settle and a short densify. Printed text is compared
-# too, after masking timings ("0.14 s" -> "<T> s"); each command's exit code is compared.
+# with --xdmf and --compression, a short settle and a short densify; the mesomodels of the
+# mesomodel-cube (.inp, .msh, .vtu), mesomodel-cylinder and periodic-rve examples (.inp). Printed
+# text is compared too, after masking timings ("0.14 s" -> "<T> s"); each command's exit code is
+# compared.
 #
 #   scripts/compare-outputs.sh OLD_BINARY NEW_BINARY [OUTDIR]
 #
@@ -20,7 +22,7 @@
 set -uo pipefail
 
 if [ $# -lt 2 ] || [ $# -gt 3 ]; then
-  sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 fi
 old_binary=$(realpath "$1")
@@ -90,6 +92,17 @@ commands() {
       echo -e "$name.tetgen-vtu\texport $in -o $name.tetgen.vtu --cells tetrahedra --tet-method tetgen"
     fi
   done
+  # The mesomodels of the examples made for them: a box (the .inp with its face sets and a
+  # compression step, .msh, .vtu), a cylinder (its circumscribed prism) and a periodic box (ties
+  # and six load cases).
+  for name in mesomodel-cube mesomodel-cylinder periodic-rve; do
+    case " ${packings[*]} " in *" $name "*) ;; *) continue ;; esac
+    echo -e "$name.meso-inp\tmesomodel $name.h5 -o $name.meso.inp --strain 0.001 --progress none"
+  done
+  if [[ " ${packings[*]} " == *" mesomodel-cube "* ]]; then
+    echo -e "mesomodel-cube.meso-msh\tmesomodel mesomodel-cube.h5 -o mesomodel-cube.meso.msh --progress none"
+    echo -e "mesomodel-cube.meso-vtu\tmesomodel mesomodel-cube.h5 -o mesomodel-cube.meso.vtu --progress none"
+  fi
   echo -e "default.settle\tsettle default.h5 -o default-settled.h5 --max-time 0.02 --progress none"
   echo -e "default.densify\tdensify default.h5 -o default-dense.h5 --sweeps 3 --progress none"
   echo -e "default-xdmf.info\tinfo default-xdmf.h5"

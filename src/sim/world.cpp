@@ -78,6 +78,7 @@ void validate(const PhysicsOptions& options) {
   if (options.solver_iterations < 1 || options.solver_iterations > 1000) {
     throw InvalidInput("solver_iterations", std::to_string(options.solver_iterations), "[1, 1000]");
   }
+  require_in_range("solver_tolerance", options.solver_tolerance, 0.0, 1.0);
   require_in_range("margin_fraction", options.margin_fraction, 1e-4, 0.1);
   if (options.solver_block_contacts < 1 || options.solver_block_contacts > 1000000) {
     throw InvalidInput("solver_block_contacts", std::to_string(options.solver_block_contacts),
@@ -121,6 +122,9 @@ void World::Impl::build_world() {
   world->setGravity(to_bt(scale * options.gravity));
   auto& info = world->getSolverInfo();
   info.m_numIterations = options.solver_iterations;
+  // The solver's residual is a row's change of relative velocity in sim units, squared.
+  info.m_leastSquaresResidualThreshold =
+      static_cast<btScalar>(scale * options.solver_tolerance * scale * options.solver_tolerance);
   // Two friction directions with Bullet's implicit cone: static friction holds in every tangential
   // direction (one direction lets a resting particle drift sideways). No SOLVER_RANDMIZE_ORDER:
   // a fixed constraint order keeps runs bit-identical.

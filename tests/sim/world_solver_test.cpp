@@ -127,13 +127,13 @@ TEST(BlockedSolver, SameInputGivesTheSameResult) {
   EXPECT_TRUE(same_poses(first, second));
 }
 
-// A cube on the floor with gravity tilted by theta: every contact point is its own block.
-double slide_on_incline(double theta, double mu) {
+// A cube on the floor with gravity tilted by theta (default solver options: every contact point
+// its own block).
+double slide_on_incline(double theta, double mu, PhysicsOptions options = blocked(1, 1)) {
   Packing packing = box_container(20.0, 1.0, 1.0);
   const double side = 0.1;
   packing.shapes.push_back(make_box(Vec3::Constant(-side / 2), Vec3::Constant(side / 2)));
   packing.particles.push_back({.shape = 0, .pose = {.position = Vec3(1.0, 0.5, side / 2)}});
-  PhysicsOptions options = blocked(1, 1);
   options.friction = mu;
   options.wall_friction = mu;
   options.gravity = Vec3(9.81 * std::sin(theta), 0.0, -9.81 * std::cos(theta));
@@ -179,11 +179,11 @@ TEST(BlockedSolver, KineticEnergyNeverGrowsWithoutInput) {
   }
 }
 
-// A pile of 64 aggregates settled in many blocks of 16 contact points: penetration as small as
-// Gauss-Seidel's, mechanical energy never grows, and once at rest it does not creep.
-TEST(BlockedSolver, SettledPileRestsWithoutPenetrationOrCreep) {
+// A pile of 64 aggregates settled with `options`: penetration below 1 % of d_min, mechanical
+// energy never grows, and once at rest it does not creep. `contacts_at_rest`: its contact points.
+void expect_settled_pile_rests(const PhysicsOptions& options, std::size_t& contacts_at_rest) {
   const Packing packing = gas(4, 4, 1.2);
-  World world(packing, blocked(16));
+  World world(packing, options);
   const double allowance = 1e-4 * world.total_mass() * 9.81 * world.smallest_size();
   double previous = world.kinetic_energy() + world.potential_energy();
   const auto steps = static_cast<std::size_t>(2.5 / world.time_step());
@@ -194,7 +194,7 @@ TEST(BlockedSolver, SettledPileRestsWithoutPenetrationOrCreep) {
     previous = energy;
   }
   const ContactStatistics contacts = world.contact_statistics();
-  EXPECT_GT(contacts.contact_count, 100u);  // > 6 blocks
+  contacts_at_rest = contacts.contact_count;
   EXPECT_LT(contacts.max_contact_penetration, 0.01 * world.smallest_size());
   EXPECT_LT(world.overlap_statistics().max_depth_fraction, 0.01);
   std::vector<Vec3> before;
@@ -205,6 +205,53 @@ TEST(BlockedSolver, SettledPileRestsWithoutPenetrationOrCreep) {
     largest = std::max(largest, (world.pose(i).position - before[i]).norm());
   }
   EXPECT_LT(largest, 0.01 * world.smallest_size());
+}
+
+// Many blocks of 16 contact points: as small a penetration as Gauss-Seidel's, and no creep.
+TEST(BlockedSolver, SettledPileRestsWithoutPenetrationOrCreep) {
+  std::size_t contacts = 0;
+  expect_settled_pile_rests(blocked(16), contacts);
+  EXPECT_GT(contacts, 100u);  // > 6 blocks
+}
+
+// The sweeps stop once no row changes its relative velocity by more than the tolerance: friction
+// still holds a cube below its angle and lets it slide above, and a settled pile still rests.
+// (The tolerance is 1e-4 m/s: 2.5e-3 of the speed gravity gives in one step of these piles.)
+TEST(SolverTolerance, InclineAndSettledPileKeepTheirPhysics) {
+  PhysicsOptions options;
+  options.solver_tolerance = 1e-4;
+  for (const double mu : {0.2, 0.5, 0.8}) {
+    const double critical = std::atan(mu);
+    EXPECT_LT(std::abs(slide_on_incline(critical - 3.0 * kDegree, mu, options)), 1e-3)
+        << "mu " << mu;
+    EXPECT_GT(slide_on_incline(critical + 3.0 * kDegree, mu, options), 0.02) << "mu " << mu;
+  }
+  std::size_t contacts = 0;
+  expect_settled_pile_rests(options, contacts);
+  EXPECT_GT(contacts, 50u);
+}
+
+// The tolerance reaches the sweeps: a coarse one stops them early and the pile moves otherwise.
+TEST(SolverTolerance, ACoarseToleranceChangesTheTrajectory) {
+  const Packing packing = gas(5, 3, 1.0);
+  PhysicsOptions coarse;
+  coarse.solver_tolerance = 0.1;
+  World full(packing, PhysicsOptions{});
+  World early(packing, coarse);
+  full.step(300);
+  early.step(300);
+  EXPECT_FALSE(same_poses(full, early));
+}
+
+TEST(SolverTolerance, RejectsBadTolerances) {
+  Packing packing = box_container(1.0, 1.0, 1.0);
+  packing.shapes.push_back(make_box(Vec3::Constant(-0.05), Vec3::Constant(0.05)));
+  packing.particles.push_back({.shape = 0, .pose = {.position = Vec3(0.5, 0.5, 0.5)}});
+  for (const double tolerance : {-1e-9, 1.5, std::nan("")}) {
+    PhysicsOptions options;
+    options.solver_tolerance = tolerance;
+    EXPECT_THROW(World(packing, options), InvalidInput) << tolerance;
+  }
 }
 
 TEST(BlockedSolver, RejectsBadBlocks) {

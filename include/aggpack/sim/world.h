@@ -64,6 +64,12 @@ struct PhysicsOptions {
   /// is not converged: 100 iterations cut the creep of a resting pile about 5-fold against 20
   /// at about 1.5x the cost (collision detection dominates).
   int solver_iterations = 100;
+  /// Convergence tolerance of a step's solver sweeps (m/s), in [0, 1]: the sweeps (split-impulse
+  /// and velocity) stop early once no contact row changes its relative velocity by more than
+  /// this in a sweep (Bullet's least-squares residual threshold is its square). 0 = every one of
+  /// the solver_iterations sweeps runs (the default; bench/RESULTS.md, "Solver tolerance",
+  /// measures what a tolerance saves and what it does to creep and penetration).
+  double solver_tolerance = 0.0;
   /// Collision margin as a fraction of d_min, in [0.0001, 0.1]. Each hull is shrunk by the
   /// margin so that hull + margin keeps the polyhedron's faces and rounds its edges and corners
   /// with radius margin; the exact polyhedra of two resting particles then overlap by about the
