@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "aggpack/core/error.h"
@@ -81,11 +82,12 @@ struct DeckField {
 }  // namespace
 
 std::string GuiApp::draw_deck_fields(DeckKind deck) {
-  ExportOptions options;
-  options.format = deck_kinds().front().format;
+  const DeckInfo* row = nullptr;  // the deck's row; none for DeckKind::kNone
   for (const DeckInfo& info : deck_kinds()) {
-    if (info.kind == deck) options.format = info.format;
+    if (info.kind == deck) row = &info;
   }
+  ExportOptions options;
+  options.format = (row != nullptr ? *row : deck_kinds().front()).format;
   options.deck = deck_options_;
   options.deck.kind = deck;
   options.material = deck_material_;
@@ -122,12 +124,10 @@ std::string GuiApp::draw_deck_fields(DeckKind deck) {
   const DeckField own_fields[] = {
       {Text::kDeckContact, "contact distance", Text::kDeckContactTooltip, &d.contact_distance},
       {Text::kDeckTimeStep, "time step", Text::kDeckTimeStepTooltip, &d.time_step}};
-  for (const DeckInfo& info : deck_kinds()) {
-    if (info.kind != deck) continue;
-    for (const std::string_view name : info.own_options) {
-      for (const DeckField& field : own_fields) {
-        if (name == field.field) fields.push_back(field);
-      }
+  const std::vector<std::string_view> no_options;
+  for (const std::string_view name : row != nullptr ? row->own_options : no_options) {
+    for (const DeckField& field : own_fields) {
+      if (name == field.field) fields.push_back(field);
     }
   }
   if (ImGui::BeginTable("##deck", 2, ImGuiTableFlags_SizingStretchSame)) {

@@ -67,8 +67,9 @@ struct PhysicsOptions {
   /// Convergence tolerance of a step's solver sweeps (m/s), in [0, 1]: the sweeps (split-impulse
   /// and velocity) stop early once no contact row changes its relative velocity by more than
   /// this in a sweep (Bullet's least-squares residual threshold is its square). 0 = every one of
-  /// the solver_iterations sweeps runs (the default; bench/RESULTS.md, "Solver tolerance",
-  /// measures what a tolerance saves and what it does to creep and penetration).
+  /// the solver_iterations sweeps runs (the default; bench/RESULTS.md, "Fewer sweeps by a
+  /// convergence tolerance", measures what a tolerance saves and what it does to creep and
+  /// penetration: at most 12 % of the CPU on a settling pile of 4,000 particles).
   double solver_tolerance = 0.0;
   /// Collision margin as a fraction of d_min, in [0.0001, 0.1]. Each hull is shrunk by the
   /// margin so that hull + margin keeps the polyhedron's faces and rounds its edges and corners
